@@ -1,0 +1,217 @@
+"""The immutable ``Program``: what a part program asks for, dialect-free.
+
+A reader (``gcode``, ``pmac``) turns text into a :class:`Program`: a tuple of
+:class:`Block` objects, one per executed move or dwell, in execution order
+(subroutine calls and loops already expanded). Each block carries
+
+* its source location (file, line, column of the first word),
+* the motion (rapid, line, clockwise/counter-clockwise arc, dwell),
+* start and end in absolute machine coordinates ``(x, y, z)`` in program
+  units (mm or inch, see :attr:`Program.units`),
+* for arcs, the absolute centre and extra full turns,
+* the feed as a tangential speed in program units **per second** (readers
+  convert G-code ``F`` per minute, G93 inverse time and PMAC ``F`` here, once),
+* the modal state that matters to compensation (:class:`Modal`).
+
+Conventions
+-----------
+* Plane of compensation: ``"XY"`` (G17, PMAC ``NORMAL K-1``), ``"ZX"`` (G18,
+  ``NORMAL J-1``), ``"YZ"`` (G19, ``NORMAL I-1``). In-plane coordinates
+  ``(u, v)`` and the normal ``w`` are given by :data:`PLANE_AXES`; arcs turn
+  counter-clockwise when seen looking down ``w`` (right-handed ``u, v, w``).
+* Side: ``+1`` left (G41, CC1), ``-1`` right (G42, CC2), ``0`` off.
+* Angles are radians inside ccopt.
+"""
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass, field, replace
+from typing import Iterator
+
+Vec3 = tuple[float, float, float]
+
+#: In-plane axes (u, v) and normal axis w, as indices into (x, y, z).
+PLANE_AXES: dict[str, tuple[int, int, int]] = {
+    "XY": (0, 1, 2),
+    "ZX": (2, 0, 1),
+    "YZ": (1, 2, 0),
+}
+
+
+class Motion(str, enum.Enum):
+    """What a block does. ``ARC_CW``/``ARC_CCW`` are seen in the block's plane."""
+
+    RAPID = "rapid"
+    LINE = "line"
+    ARC_CW = "cw"
+    ARC_CCW = "ccw"
+    DWELL = "dwell"
+
+    @property
+    def is_arc(self) -> bool:
+        return self in (Motion.ARC_CW, Motion.ARC_CCW)
+
+    @property
+    def is_move(self) -> bool:
+        return self is not Motion.DWELL
+
+
+@dataclass(frozen=True, slots=True)
+class Source:
+    """Where a block came from: file name, 1-based line and column."""
+
+    file: str
+    line: int
+    col: int = 1
+
+    def __str__(self) -> str:
+        return f"{self.file}:{self.line}"
+
+
+@dataclass(frozen=True, slots=True)
+class Modal:
+    """Modal state in force for a block, as far as ccopt cares.
+
+    Attributes
+    ----------
+    plane: ``"XY" | "ZX" | "YZ"``.
+    units: ``"mm" | "inch"``.
+    side: +1 left (G41/CC1), -1 right (G42/CC2), 0 compensation off.
+        A negative programmed radius has already been turned into a side flip
+        by the reader (spec: "a negative radius flips the side").
+    radius: cutter radius in program units (>= 0), or ``None`` when the
+        program never set one (then ``--radius`` must).
+    tool: tool number from G-code ``D``/``T`` when the radius comes from a tool
+        table, else ``None``.
+    corner: Fagor outside-corner transition, ``"circular"`` (G136, default)
+        or ``"linear"`` (G137).
+    start_end: Fagor activation/cancellation, ``"contour"`` (G139, default)
+        or ``"direct"`` (G138).
+    accel_time, scurve_time: PMAC ``TA``/``TS`` in seconds (``None`` unset).
+    """
+
+    plane: str = "XY"
+    units: str = "mm"
+    side: int = 0
+    radius: float | None = None
+    tool: int | None = None
+    corner: str = "circular"
+    start_end: str = "contour"
+    accel_time: float | None = None
+    scurve_time: float | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class Block:
+    """One executed move or dwell. See the module docstring for conventions.
+
+    Attributes
+    ----------
+    source: where it is written.
+    motion: :class:`Motion`.
+    start, end: absolute ``(x, y, z)`` in program units. A dwell has
+        ``start == end``.
+    center: absolute ``(x, y, z)`` of an arc's centre (only its in-plane
+        components matter), else ``None``. For a PMAC CIRCLE move whose end
+        lies at another distance from the centre than its start, the block is
+        a spiral: see :meth:`is_spiral`.
+    turns: extra full turns of an arc (G2/G3 ``P`` minus one), normally 0.
+    feed: tangential speed cap, program units per second; ``None`` for rapids
+        (run at the axis limits).
+    dwell: seconds, for ``Motion.DWELL``.
+    move_time: PMAC ``TM`` move time in seconds when the program gave one.
+    modal: :class:`Modal` in force for this block.
+    mcodes: M codes written on the block (recorded, otherwise ignored).
+    """
+
+    source: Source
+    motion: Motion
+    start: Vec3
+    end: Vec3
+    modal: Modal
+    center: Vec3 | None = None
+    turns: int = 0
+    feed: float | None = None
+    dwell: float = 0.0
+    move_time: float | None = None
+    mcodes: tuple[int, ...] = ()
+
+    # -- plane helpers -------------------------------------------------
+    def uvw(self, p: Vec3) -> tuple[float, float, float]:
+        """``p`` in this block's plane coordinates (u, v, w)."""
+        i, j, k = PLANE_AXES[self.modal.plane]
+        return (p[i], p[j], p[k])
+
+    @property
+    def start_uv(self) -> tuple[float, float]:
+        u, v, _ = self.uvw(self.start)
+        return (u, v)
+
+    @property
+    def end_uv(self) -> tuple[float, float]:
+        u, v, _ = self.uvw(self.end)
+        return (u, v)
+
+    @property
+    def center_uv(self) -> tuple[float, float] | None:
+        if self.center is None:
+            return None
+        u, v, _ = self.uvw(self.center)
+        return (u, v)
+
+    @property
+    def in_plane(self) -> bool:
+        """True when the move changes the in-plane coordinates (or is a full circle)."""
+        if not self.motion.is_move:
+            return False
+        if self.motion.is_arc:
+            return True
+        (u0, v0), (u1, v1) = self.start_uv, self.end_uv
+        return math.hypot(u1 - u0, v1 - v0) > 0.0
+
+    def is_spiral(self, tol: float = 1e-9) -> bool:
+        """An arc whose end radius differs from its start radius by more than ``tol``."""
+        if not self.motion.is_arc or self.center is None:
+            return False
+        (cu, cv) = self.center_uv
+        (u0, v0), (u1, v1) = self.start_uv, self.end_uv
+        return abs(math.hypot(u1 - cu, v1 - cv) - math.hypot(u0 - cu, v0 - cv)) > tol
+
+    def with_modal(self, **changes) -> "Block":
+        return replace(self, modal=replace(self.modal, **changes))
+
+
+@dataclass(frozen=True)
+class Program:
+    """An immutable part program: blocks in execution order.
+
+    Attributes
+    ----------
+    blocks: tuple of :class:`Block`.
+    file: source file name.
+    dialect: ``"gcode"`` or ``"pmac"``.
+    units: ``"mm"`` or ``"inch"`` (of the last unit word; mixed units are an
+        error in the readers).
+    start: machine position before the first block, ``(x, y, z)``.
+    """
+
+    blocks: tuple[Block, ...]
+    file: str = "<string>"
+    dialect: str = "gcode"
+    units: str = "mm"
+    start: Vec3 = (0.0, 0.0, 0.0)
+    meta: dict = field(default_factory=dict, compare=False)
+
+    def __iter__(self) -> Iterator[Block]:
+        return iter(self.blocks)
+
+    def __len__(self) -> int:
+        return len(self.blocks)
+
+    def __getitem__(self, i):
+        return self.blocks[i]
+
+    @property
+    def moves(self) -> tuple[Block, ...]:
+        return tuple(b for b in self.blocks if b.motion.is_move)

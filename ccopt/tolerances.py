@@ -1,0 +1,23 @@
+"""The one place for numerical tolerances (program units unless stated).
+
+Change a tolerance here, never inline.
+"""
+from __future__ import annotations
+
+#: Two points closer than this are the same point (program units).
+POINT_EPS = 1e-9
+
+#: |t_in x t_out| at or below this is "no turn" (tangent or reversal), unitless.
+TURN_EPS = 1e-9
+
+#: G-code arcs whose start and end radii differ by more than this are an error
+#: (LinuxCNC's default: 0.002 mm absolute or 0.001 relative; we accept either).
+ARC_RADIUS_ABS_TOL_MM = 0.002
+ARC_RADIUS_REL_TOL = 0.001
+
+#: PMAC break point (Isx99): cos of the turn above which an outside corner is
+#: "shallow" and the offsets are extended instead of adding an arc.
+PMAC_BREAK_COS = 0.9998
+
+#: Default verification tolerance (program units), see ccopt.verify.
+VERIFY_EPS = 1e-6
