@@ -1,0 +1,193 @@
+"""The ``ccopt`` command.
+
+Exit codes (DESIGN.md): 0 success, 1 verification failed, 2 bad input (one
+line ``file:line: message`` on stderr, never a traceback). An unexpected
+internal failure prints one line and exits 3; ``CCOPT_DEBUG=1`` shows the
+traceback.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable, Sequence
+
+import ccopt
+from ccopt.cases import Case, bundled_cases, find_case
+from ccopt.errors import CcoptError, ProgramError
+from ccopt.program import read_program
+from ccopt.program.model import Program
+from ccopt.toolpath import ToolPath, programmed_path
+
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with one-line errors and exit code 2."""
+
+    def error(self, message: str) -> None:  # noqa: D401 - argparse API
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: {message} (see {self.prog} --help)\n")
+
+
+@dataclass(frozen=True)
+class Input:
+    """One thing to work on: a program file, maybe within a case."""
+
+    label: str
+    program: Path
+    case: Case | None = None
+
+
+def resolve_input(arg: str) -> Input:
+    """A case folder, a bundled case name or a program file."""
+    case = find_case(arg)
+    if case is not None:
+        return Input(case.name, case.program, case)
+    p = Path(arg)
+    if not p.exists():
+        raise ProgramError("no such program, case folder or bundled case name", arg)
+    if p.is_dir():
+        raise ProgramError("a folder without case.toml is not a case", arg)
+    return Input(p.name, p)
+
+
+def load(inp: Input, args: argparse.Namespace) -> Program:
+    return read_program(inp.program, getattr(args, "dialect", None),
+                        tool_table=getattr(args, "tool_table", None))
+
+
+# -- output helpers --------------------------------------------------------------
+def _fmt(x: float) -> str:
+    return f"{x:.4f}"
+
+
+def path_table(path: ToolPath) -> str:
+    """A readable table of a tool path's segments."""
+    rows = [("#", "kind", "role", "line", "start", "end", "centre / sweep")]
+    for i, seg in enumerate(path.segments):
+        d = seg.to_json()
+        extra = ""
+        if "center" in d:
+            extra = (f"({_fmt(d['center'][0])}, {_fmt(d['center'][1])}) "
+                     f"{'ccw' if d['ccw'] else 'cw'} {d['sweep'] * 180 / 3.141592653589793:.3f} deg")
+        rows.append((str(i), d["kind"], d["role"], str(d["block"] or ""),
+                     f"({_fmt(d['start'][0])}, {_fmt(d['start'][1])})",
+                     f"({_fmt(d['end'][0])}, {_fmt(d['end'][1])})", extra))
+    widths = [max(len(r[c]) for r in rows) for c in range(len(rows[0]))]
+    return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(r, widths)).rstrip() for r in rows)
+
+
+def emit_json(obj) -> None:
+    json.dump(obj, sys.stdout, indent=1)
+    sys.stdout.write("\n")
+
+
+# -- subcommands -----------------------------------------------------------------
+def cmd_show(args: argparse.Namespace) -> int:
+    inp = resolve_input(args.program)
+    prog = load(inp, args)
+    path = programmed_path(prog)
+    if args.json:
+        emit_json(path.to_json())
+    else:
+        print(f"{prog.file}: {len(prog.blocks)} blocks, {prog.dialect}, units {prog.units}, "
+              f"programmed path {path.length:.4f} {prog.units}")
+        print(path_table(path))
+    return EXIT_OK
+
+
+def cmd_run(args: argparse.Namespace) -> int:
+    if args.inputs:
+        inputs = [resolve_input(a) for a in args.inputs]
+    else:
+        inputs = [Input(c.name, c.program, c) for c in bundled_cases()]
+        if not inputs:
+            raise ProgramError("no bundled cases found (is the cases/ folder next to ccopt/?)",
+                               "cases")
+    results = []
+    for inp in inputs:
+        prog = load(inp, args)
+        path = programmed_path(prog)
+        results.append({
+            "name": inp.label,
+            "program": str(inp.program),
+            "title": inp.case.title if inp.case else "",
+            "blocks": len(prog.blocks),
+            "segments": len(path.segments),
+            "length": path.length,
+            "units": prog.units,
+        })
+    if args.out:
+        out = Path(args.out)
+        out.mkdir(parents=True, exist_ok=True)
+        from ccopt.export.atomic import write_text_atomic
+        write_text_atomic(out / "summary.json", json.dumps({"cases": results}, indent=1) + "\n")
+    if args.json:
+        emit_json({"cases": results})
+    else:
+        w = max([len(r["name"]) for r in results] + [4])
+        print(f"{'case'.ljust(w)}  blocks  segments  programmed length")
+        for r in results:
+            print(f"{r['name'].ljust(w)}  {r['blocks']:6d}  {r['segments']:8d}  "
+                  f"{r['length']:.4f} {r['units']}")
+    return EXIT_OK
+
+
+Command = Callable[[argparse.Namespace], int]
+
+
+def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
+    parser = _Parser(prog="ccopt", description=(
+        "Cutter radius compensation as a controller does it (PMAC reference), "
+        "time-optimal feed, verification, blend comparison and export."))
+    parser.add_argument("--version", action="version", version=f"ccopt {ccopt.__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    commands: dict[str, Command] = {}
+
+    def program_args(p: argparse.ArgumentParser) -> None:
+        p.add_argument("--dialect", choices=["gcode", "pmac"],
+                       help="program dialect (default: from the file suffix)")
+        p.add_argument("--tool-table", metavar="FILE",
+                       help="LinuxCNC tool table for G41/G42 D<tool number>")
+        p.add_argument("--json", action="store_true", help="machine-readable output on stdout")
+
+    p = sub.add_parser("show", help="print the programmed path as exact segments")
+    p.add_argument("program", metavar="PROGRAM", help="program file, case folder or case name")
+    program_args(p)
+    commands["show"] = cmd_show
+
+    p = sub.add_parser("run", help="the main job, on bundled cases or given programs")
+    p.add_argument("inputs", nargs="*", metavar="CASE|PROGRAM")
+    p.add_argument("--out", metavar="DIR", help="write results into DIR")
+    program_args(p)
+    commands["run"] = cmd_run
+    return parser, commands
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser, commands = build_parser()
+    args = parser.parse_args(argv)
+    if not args.command:
+        parser.print_help()
+        return EXIT_BAD_INPUT
+    try:
+        return commands[args.command](args)
+    except CcoptError as exc:
+        print(str(exc), file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        print("ccopt: interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:  # an internal bug: one line, traceback on request
+        if os.environ.get("CCOPT_DEBUG"):
+            raise
+        print(f"ccopt: internal error: {type(exc).__name__}: {exc} "
+              "(set CCOPT_DEBUG=1 for the traceback and please report it)", file=sys.stderr)
+        return EXIT_INTERNAL
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

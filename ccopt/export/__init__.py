@@ -1,0 +1,1 @@
+"""Writers for verified tool paths. Every write is atomic (see :mod:`.atomic`)."""

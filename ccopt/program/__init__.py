@@ -1,0 +1,76 @@
+"""Part-program readers: text -> immutable :class:`Program`.
+
+``read_program(path)`` picks the dialect from the file suffix (``.pmc``,
+``.pmac``, ``.prg`` -> PMAC motion program; ``.nc``, ``.ngc``, ``.gcode``,
+``.tap``, ``.cnc``, ``.mpf``, ``.iso`` -> ISO/RS274 G-code) unless
+``dialect=`` says otherwise.
+"""
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from ccopt.errors import ProgramError
+from ccopt.program.model import Block, Modal, Motion, PLANE_AXES, Program, Source
+
+PMAC_SUFFIXES = {".pmc", ".pmac", ".prg"}
+GCODE_SUFFIXES = {".nc", ".ngc", ".gcode", ".tap", ".cnc", ".mpf", ".iso", ".g"}
+DIALECTS = ("gcode", "pmac")
+
+
+def dialect_of(path: str | os.PathLike) -> str:
+    """The dialect a file's suffix implies; ProgramError when it implies none."""
+    suffix = Path(path).suffix.lower()
+    if suffix in PMAC_SUFFIXES:
+        return "pmac"
+    if suffix in GCODE_SUFFIXES:
+        return "gcode"
+    raise ProgramError(
+        f"cannot tell the dialect from the suffix {suffix or '(none)'!r}; "
+        f"use {sorted(PMAC_SUFFIXES)} for PMAC, {sorted(GCODE_SUFFIXES)} for G-code, "
+        "or pass dialect='gcode'|'pmac'", str(path))
+
+
+def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
+              tool_table: dict[int, float] | None = None) -> Program:
+    """Read program text of the given dialect."""
+    if dialect == "gcode":
+        from ccopt.program.gcode import read_gcode
+        return read_gcode(text, file, tool_table=tool_table)
+    if dialect == "pmac":
+        from ccopt.program.pmac import read_pmac
+        return read_pmac(text, file)
+    raise ProgramError(f"unknown dialect {dialect!r}; choose one of {', '.join(DIALECTS)}", file)
+
+
+def read_program(path: str | os.PathLike, dialect: str | None = None, *,
+                 tool_table: str | os.PathLike | dict[int, float] | None = None) -> Program:
+    """Read a part program file.
+
+    Parameters
+    ----------
+    path: program file.
+    dialect: ``"gcode"`` or ``"pmac"``; default from the suffix.
+    tool_table: LinuxCNC tool table (path or ``{tool: diameter}``) for G-code
+        ``G41 D<tool>``.
+    """
+    file = str(path)
+    dialect = dialect or dialect_of(path)
+    try:
+        raw = Path(path).read_bytes()
+    except OSError as exc:
+        raise ProgramError(f"cannot read program: {exc.strerror or exc}", file) from None
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        line = raw[: exc.start].count(b"\n") + 1
+        raise ProgramError("not UTF-8/ASCII text (a binary file?)", file, line) from None
+    table = tool_table
+    if tool_table is not None and not isinstance(tool_table, dict):
+        from ccopt.program.tooltable import read_tool_table
+        table = read_tool_table(tool_table)
+    return read_text(text, file, dialect, tool_table=table)
+
+
+__all__ = ["Block", "Modal", "Motion", "PLANE_AXES", "Program", "ProgramError", "Source",
+           "dialect_of", "read_program", "read_text"]

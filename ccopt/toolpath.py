@@ -1,0 +1,204 @@
+"""``ToolPath``: the exact tool-centre path, segment by segment.
+
+A :class:`ToolPath` is what compensation produces and what feed planning,
+verification and export consume. Each :class:`PathSegment` holds one exact
+in-plane primitive (``Line``, ``Arc``, ``Spiral`` from :mod:`ccopt.geometry`,
+or a parametric blend curve), its :class:`Role`, the source :class:`Block` it
+came from, and the out-of-plane coordinate ``w`` at its start and end (carried
+linearly along the segment, never offset).
+
+In-plane coordinates are the block plane's ``(u, v)`` (``X, Y`` for G17), see
+:data:`ccopt.program.model.PLANE_AXES`.
+"""
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass, field
+from typing import Any, Iterator
+
+from ccopt.geometry import Arc, Line, Spiral
+from ccopt.program.model import PLANE_AXES, Block, Motion, Program
+
+
+class Role(str, enum.Enum):
+    """Why a segment is there."""
+
+    RAPID = "rapid"
+    LEAD_IN = "lead-in"
+    COMPENSATED = "compensated"
+    CORNER = "corner"
+    LEAD_OUT = "lead-out"
+    UNCOMPENSATED = "uncompensated"
+
+
+def segment_kind(geom: Any) -> str:
+    """``"line" | "arc" | "spiral" | "curve"`` for a geometry object."""
+    if isinstance(geom, Line):
+        return "line"
+    if isinstance(geom, Arc):
+        return "arc"
+    if isinstance(geom, Spiral):
+        return "spiral"
+    return "curve"
+
+
+@dataclass(frozen=True, slots=True)
+class PathSegment:
+    """One exact piece of tool-centre path.
+
+    Attributes
+    ----------
+    geom: the in-plane primitive, parameterised by arc length.
+    role: :class:`Role`.
+    block: the source block it came from (``None`` only for paths built by
+        hand, e.g. in tests or blends not tied to one block).
+    w0, w1: out-of-plane coordinate (Z for G17) at start and end.
+    feed: tangential speed cap in program units per second, ``None`` for rapids.
+    """
+
+    geom: Any
+    role: Role
+    block: Block | None
+    w0: float = 0.0
+    w1: float = 0.0
+    feed: float | None = None
+
+    @property
+    def kind(self) -> str:
+        return segment_kind(self.geom)
+
+    @property
+    def start(self) -> tuple[float, float]:
+        return tuple(float(c) for c in self.geom.start)
+
+    @property
+    def end(self) -> tuple[float, float]:
+        return tuple(float(c) for c in self.geom.end)
+
+    @property
+    def length(self) -> float:
+        """In-plane length (program units)."""
+        return float(self.geom.length)
+
+    def to_json(self) -> dict:
+        """The segment as DESIGN.md's JSON schema."""
+        out: dict[str, Any] = {
+            "kind": self.kind,
+            "start": list(self.start),
+            "end": list(self.end),
+            "role": self.role.value,
+            "block": self.block.source.line if self.block is not None else None,
+        }
+        if self.w0 != 0.0 or self.w1 != 0.0:
+            out["w"] = [self.w0, self.w1]
+        g = self.geom
+        if isinstance(g, (Arc, Spiral)):
+            out["center"] = [float(g.center[0]), float(g.center[1])]
+            out["ccw"] = bool(g.sweep > 0)
+            out["sweep"] = float(g.sweep)
+        if isinstance(g, Arc):
+            out["radius"] = float(g.radius)
+        elif isinstance(g, Spiral):
+            out["radius"] = [float(g.rho0), float(g.rho1)]
+        elif out["kind"] == "curve":
+            out["control_points"] = [list(map(float, p)) for p in getattr(g, "control_points", ())]
+            out["degree"] = int(getattr(g, "degree", 0))
+        if self.feed is not None:
+            out["feed"] = self.feed
+        return out
+
+
+@dataclass(frozen=True)
+class ToolPath:
+    """Tool-centre path: exact segments in order, plus dwells.
+
+    Attributes
+    ----------
+    segments: tuple of :class:`PathSegment`.
+    plane: ``"XY" | "ZX" | "YZ"``.
+    style: controller style that produced it (``"programmed"`` for the
+        uncompensated programmed path).
+    radius: cutter radius used (program units); 0 for the programmed path.
+    dwells: ``(segment index before which the dwell happens, seconds, block)``.
+    units: ``"mm" | "inch"``.
+    """
+
+    segments: tuple[PathSegment, ...]
+    plane: str = "XY"
+    style: str = "programmed"
+    radius: float = 0.0
+    dwells: tuple[tuple[int, float, Block], ...] = ()
+    units: str = "mm"
+    meta: dict = field(default_factory=dict, compare=False)
+
+    def __iter__(self) -> Iterator[PathSegment]:
+        return iter(self.segments)
+
+    def __len__(self) -> int:
+        return len(self.segments)
+
+    def __getitem__(self, i):
+        return self.segments[i]
+
+    @property
+    def length(self) -> float:
+        return float(sum(s.length for s in self.segments))
+
+    def to_json(self) -> dict:
+        return {
+            "style": self.style,
+            "radius": self.radius,
+            "plane": self.plane,
+            "units": self.units,
+            "segments": [s.to_json() for s in self.segments],
+        }
+
+
+def block_geometry(block: Block, start_uv=None, end_uv=None):
+    """Exact in-plane primitive of a programmed block.
+
+    ``start_uv``/``end_uv`` override the block's own in-plane points (used by
+    compensation for gradual changes about the programmed centre). A CIRCLE
+    move whose end radius differs from its start radius is a :class:`Spiral`.
+    """
+    s = block.start_uv if start_uv is None else start_uv
+    e = block.end_uv if end_uv is None else end_uv
+    if block.motion.is_arc:
+        c = block.center_uv
+        ccw = block.motion is Motion.ARC_CCW
+        r0 = math.hypot(s[0] - c[0], s[1] - c[1])
+        r1 = math.hypot(e[0] - c[0], e[1] - c[1])
+        if abs(r1 - r0) > 1e-9 * max(1.0, r0):
+            return Spiral.from_points(s, e, c, ccw, turns=block.turns)
+        return Arc.from_points(s, e, c, ccw, turns=block.turns)
+    return Line(tuple(s), tuple(e))
+
+
+def programmed_path(program: Program) -> ToolPath:
+    """The programmed (uncompensated) path of a program as a :class:`ToolPath`.
+
+    Rapids get role ``rapid``, feed moves ``uncompensated``; moves with no
+    in-plane component are zero-length lines carrying their ``w`` change.
+    """
+    segs: list[PathSegment] = []
+    dwells: list[tuple[int, float, Block]] = []
+    plane = program.blocks[0].modal.plane if program.blocks else "XY"
+    for b in program.blocks:
+        if b.motion is Motion.DWELL:
+            dwells.append((len(segs), b.dwell, b))
+            continue
+        role = Role.RAPID if b.motion is Motion.RAPID else Role.UNCOMPENSATED
+        w0 = b.uvw(b.start)[2]
+        w1 = b.uvw(b.end)[2]
+        segs.append(PathSegment(block_geometry(b), role, b, w0, w1, b.feed))
+    return ToolPath(tuple(segs), plane=plane, style="programmed", radius=0.0,
+                    dwells=tuple(dwells), units=program.units)
+
+
+def plane_point(plane: str, u: float, v: float, w: float) -> tuple[float, float, float]:
+    """Back from plane coordinates to machine ``(x, y, z)``."""
+    i, j, k = PLANE_AXES[plane]
+    out = [0.0, 0.0, 0.0]
+    out[i], out[j], out[k] = u, v, w
+    return (out[0], out[1], out[2])
