@@ -284,6 +284,7 @@ class _Reader:
         self.p: dict[int, float] = {}
         self.q: dict[int, float] = {}
         self.i: dict[int, float] = {}
+        self.i_line: dict[int, int] = {}      # line of the last assignment of each I-variable
         self.m: dict[int, float] = {}
         self.coord_system = 1
         self.feed_unit_ms = 1000.0
@@ -320,15 +321,16 @@ class _Reader:
                 self.online_line(lineno, line)
             if program is None:
                 if not order:
+                    first_open = next(n for n, line in lines if line.lstrip().startswith("OPEN"))
                     raise self.error("the file opens no PROG buffer (only "
-                                     + ", ".join(skipped) + ")", None)
+                                     + ", ".join(skipped) + ")", first_open, 1)
                 program = order[0]
             if program not in buffers:
                 have = ", ".join(f"PROG {n}" for n in order) or "none"
                 raise self.error(f"program {program} is not in the file (it has: {have})", None)
             body = buffers[program]
             self.meta["program"] = program
-        self.apply_coordinate_system_defaults(None)
+        self.apply_coordinate_system_defaults()
         self.in_body = True
         for lineno, line in body:
             if self.finished:
@@ -415,7 +417,7 @@ class _Reader:
                              opened_at, 1)
         return buffers, order, outside, skipped
 
-    def apply_coordinate_system_defaults(self, line: int | None) -> None:
+    def apply_coordinate_system_defaults(self) -> None:
         """Honour Isx87/88/89/90/99 of the selected coordinate system, if the file set them."""
         base = 5000 + 100 * self.coord_system
         self.meta["coordinate_system"] = self.coord_system
@@ -423,19 +425,19 @@ class _Reader:
             unit = self.i[base + 90]
             if not unit > 0:
                 raise self.error(f"I{base + 90}={unit:g}: the feedrate time unit must be > 0 ms",
-                                 line)
+                                 self.i_line[base + 90])
             self.feed_unit_ms = unit
         if base + 87 in self.i:
-            self.accel_time = self.nonnegative(self.i[base + 87], f"I{base + 87}=", line,
-                                               None) / 1e3
+            self.accel_time = self.nonnegative(self.i[base + 87], f"I{base + 87}=",
+                                               self.i_line[base + 87], None) / 1e3
         if base + 88 in self.i:
-            self.scurve_time = self.nonnegative(self.i[base + 88], f"I{base + 88}=", line,
-                                                None) / 1e3
+            self.scurve_time = self.nonnegative(self.i[base + 88], f"I{base + 88}=",
+                                                self.i_line[base + 88], None) / 1e3
         if base + 89 in self.i:
             default = self.i[base + 89]
             if not default > 0:
                 raise self.error(f"I{base + 89}={default:g}: the default feedrate must be > 0",
-                                 line)
+                                 self.i_line[base + 89])
             self.feed = default * 1000.0 / self.feed_unit_ms
         if base + 99 in self.i:
             self.meta["break_cos"] = self.i[base + 99]
@@ -615,6 +617,7 @@ class _Reader:
             self.meta["m_variables"][number] = value
         else:
             self.i[number] = value
+            self.i_line[number] = line
             self.meta["i_variables"][number] = value
             if number == 15:
                 self.radians = value != 0
@@ -625,7 +628,7 @@ class _Reader:
                         f"I{number} changed after the first move: ccopt does not model changing "
                         f"Isx87..Isx90 while the program runs; set it before OPEN PROG",
                         line, pos + 1)
-                self.apply_coordinate_system_defaults(line)
+                self.apply_coordinate_system_defaults()
             elif self.in_body and number == base + 99:
                 self.meta["break_cos"] = value
 
