@@ -99,6 +99,35 @@ def cmd_show(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def compensate_input(inp: Input, prog: Program, args: argparse.Namespace) -> ToolPath:
+    """Compensate with the command line's style options, defaulting to the case's."""
+    from ccopt.compensate import compensate
+    style = getattr(args, "style", None) or (inp.case.style if inp.case else "pmac")
+    radius = getattr(args, "radius", None)
+    if radius is None and inp.case is not None:
+        radius = inp.case.radius
+    options = {}
+    if getattr(args, "break_cos", None) is not None:
+        options["break_cos"] = args.break_cos
+    if getattr(args, "ccbuf", None) is not None:
+        options["ccbuf"] = args.ccbuf
+    return compensate(prog, style=style, radius=radius, side=getattr(args, "side", None),
+                      **options)
+
+
+def cmd_compensate(args: argparse.Namespace) -> int:
+    inp = resolve_input(args.program)
+    prog = load(inp, args)
+    path = compensate_input(inp, prog, args)
+    if args.json:
+        emit_json(path.to_json())
+    else:
+        print(f"{prog.file}: style {path.style}, cutter radius {path.radius:g} {path.units}, "
+              f"{len(path.segments)} segments, tool path {path.length:.4f} {path.units}")
+        print(path_table(path))
+    return EXIT_OK
+
+
 def cmd_run(args: argparse.Namespace) -> int:
     if args.inputs:
         inputs = [resolve_input(a) for a in args.inputs]
@@ -139,6 +168,16 @@ def cmd_run(args: argparse.Namespace) -> int:
 Command = Callable[[argparse.Namespace], int]
 
 
+def _nonneg_float(text: str) -> float:
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not (x >= 0 and x < float("inf")):
+        raise argparse.ArgumentTypeError(f"must be a finite number >= 0: {text!r}")
+    return x
+
+
 def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
     parser = _Parser(prog="ccopt", description=(
         "Cutter radius compensation as a controller does it (PMAC reference), "
@@ -158,6 +197,25 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
     p.add_argument("program", metavar="PROGRAM", help="program file, case folder or case name")
     program_args(p)
     commands["show"] = cmd_show
+
+    def style_args(p: argparse.ArgumentParser) -> None:
+        from ccopt.compensate import STYLES
+        p.add_argument("--style", choices=sorted(STYLES),
+                       help="controller style (default: the case's, else pmac)")
+        p.add_argument("--radius", type=_nonneg_float, metavar="R",
+                       help="cutter radius in program units, overriding the program")
+        p.add_argument("--side", choices=["left", "right"],
+                       help="compensation side wherever it is on, overriding the program")
+        p.add_argument("--break-cos", type=float, metavar="C",
+                       help="PMAC Isx99 outside-corner break (cos of the turn), default 0.9998")
+        p.add_argument("--ccbuf", type=int, metavar="N",
+                       help="Turbo PMAC DEFINE CCBUF: non-plane moves looked through at a corner")
+
+    p = sub.add_parser("compensate", help="the tool-centre path a controller style makes")
+    p.add_argument("program", metavar="PROGRAM", help="program file, case folder or case name")
+    program_args(p)
+    style_args(p)
+    commands["compensate"] = cmd_compensate
 
     p = sub.add_parser("run", help="the main job, on bundled cases or given programs")
     p.add_argument("inputs", nargs="*", metavar="CASE|PROGRAM")

@@ -1,0 +1,59 @@
+"""Cutter radius compensation: ``Program`` -> ``ToolPath`` as a controller does it.
+
+Styles register in :data:`STYLES` (name -> factory taking the style's options);
+a new style is one module plus one line here. The shared geometry of corners
+lives in :mod:`.corners`, the program scan in :mod:`.scan`, and every decision
+the manuals leave open in :mod:`.decisions`.
+"""
+from __future__ import annotations
+
+from typing import Callable
+
+from ccopt.errors import ProgramError
+from ccopt.program.model import Program
+from ccopt.toolpath import ToolPath
+
+SIDES = {"left": 1, "right": -1, None: None}
+
+
+def _pmac(**options):
+    from ccopt.compensate.pmac import PmacStyle
+    return PmacStyle(**options)
+
+
+#: style name -> factory(**options) returning an object with
+#: ``compensate(program, radius=, side=) -> ToolPath``.
+STYLES: dict[str, Callable[..., object]] = {
+    "pmac": _pmac,
+}
+
+
+def compensate(program: Program, style: str = "pmac", *, radius: float | None = None,
+               side: str | int | None = None, **options) -> ToolPath:
+    """Tool-centre path of ``program`` as controller ``style`` makes it.
+
+    Parameters
+    ----------
+    program: the programmed contour with its compensation words.
+    style: ``"pmac"`` (reference) or another registered style.
+    radius: cutter radius in program units, overriding the program's.
+    side: ``"left"``/``"right"`` (or +1/-1) overriding the programmed side
+        wherever compensation is on.
+    options: style options, e.g. ``break_cos`` (PMAC Isx99, default 0.9998)
+        and ``ccbuf`` (Turbo ``DEFINE CCBUF``) for ``pmac``.
+    """
+    if style not in STYLES:
+        raise ProgramError(f"unknown compensation style {style!r}; choose one of "
+                           f"{', '.join(sorted(STYLES))}", program.file)
+    if isinstance(side, str) or side is None:
+        if side not in SIDES:
+            raise ProgramError(f"side must be left or right, not {side!r}", program.file)
+        side = SIDES[side]
+    try:
+        engine = STYLES[style](**options)
+    except (TypeError, ValueError) as exc:
+        raise ProgramError(f"bad option for style {style}: {exc}", program.file) from None
+    return engine.compensate(program, radius=radius, side=side)
+
+
+__all__ = ["STYLES", "compensate"]

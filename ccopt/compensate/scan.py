@@ -1,0 +1,88 @@
+"""First pass of every style: split a program into in-plane moves and gaps.
+
+The in-plane moves become :class:`~ccopt.compensate.corners.Element` objects
+with their effective side and radius (after ``radius=``/``side=`` overrides);
+moves with no in-plane component (Z only) and dwells between two in-plane
+moves are the *gap* before the next move: they are skipped when looking for
+the next move and run at the compensated corner point (spec rule 6).
+Conditions no style can compensate are reported here, located.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from ccopt.compensate.corners import Element, element_of
+from ccopt.errors import CompensationError
+from ccopt.program.model import Block, Program
+
+
+@dataclass(frozen=True)
+class ScanResult:
+    """Elements in order; ``gaps[i]`` are the non-plane blocks before element
+    ``i`` and ``gaps[len(elements)]`` the trailing ones."""
+
+    elements: list[Element]
+    gaps: list[list[Block]]
+    plane: str
+    start_uv: tuple[float, float]
+
+
+def _err(block: Block, message: str) -> CompensationError:
+    s = block.source
+    return CompensationError(message, s.file, s.line, s.col)
+
+
+def effective_side_radius(block: Block, radius: float | None, side: int | None,
+                          style: str) -> tuple[int, float]:
+    """Side and radius in force for ``block``, after the overrides.
+
+    ``side`` (+1 left / -1 right) replaces the programmed side wherever
+    compensation is on; ``radius`` replaces every programmed radius.
+    """
+    k = block.modal.side
+    if k == 0:
+        return 0, 0.0
+    if side is not None:
+        k = side
+    r = radius if radius is not None else block.modal.radius
+    if r is None:
+        raise _err(block, "cutter compensation is on but no cutter radius is set: "
+                          "program CCR{r} (PMAC) or a tool D word (G-code), or pass --radius")
+    if r < 0:
+        raise _err(block, f"cutter radius {r:g} is negative")
+    return k, float(r)
+
+
+def scan_program(program: Program, radius: float | None = None, side: int | None = None,
+                 style: str = "pmac") -> ScanResult:
+    if radius is not None and radius < 0:
+        raise CompensationError(f"--radius {radius:g} must be >= 0", program.file)
+    if side not in (None, 1, -1):
+        raise CompensationError("side must be left (+1) or right (-1)", program.file)
+    elements: list[Element] = []
+    gaps: list[list[Block]] = [[]]
+    plane = program.blocks[0].modal.plane if program.blocks else "XY"
+    prev_side = 0
+    prev_plane = plane
+    for blk in program.blocks:
+        k, r = effective_side_radius(blk, radius, side, style)
+        if blk.modal.plane != prev_plane:
+            if prev_side != 0 or k != 0:
+                raise _err(blk, f"plane change ({prev_plane} to {blk.modal.plane}, NORMAL/G17-G19) "
+                                "while cutter compensation is on: turn it off (CC0/G40) first")
+            if elements:
+                raise _err(blk, "moves in more than one plane in one program are not supported "
+                                "by the compensation engine yet")
+            plane = blk.modal.plane
+        prev_plane = blk.modal.plane
+        if k != 0 and blk.move_time is not None and blk.motion.is_move:
+            raise _err(blk, "TM (move time) moves cannot be compensated: program a feed rate F "
+                            "while cutter compensation is on")
+        prev_side = k
+        if blk.motion.is_move and blk.in_plane:
+            elements.append(element_of(blk, k, r))
+            gaps.append([])
+        else:
+            gaps[-1].append(blk)
+    start = program.blocks[0].uvw(program.start)[:2] if program.blocks else (0.0, 0.0)
+    return ScanResult(elements, gaps, plane, (float(start[0]), float(start[1])))

@@ -1,0 +1,396 @@
+"""PMAC reference compensation on the bundled cases.
+
+Every expected figure is derived here from the case's geometry with the
+spec's formulas (``o(t) = k*(-t_y, t_x)``, offset arc radius ``R -/+ r``, line
+and circle intersections worked out by hand), never copied from ccopt's output.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import ccopt
+from ccopt.cases import bundled_cases_dir, load_case
+from ccopt.compensate import compensate
+
+TOL = 1e-9
+S2 = math.sqrt(2.0)
+H = 1.0 / S2  # cos 45
+
+
+def run_case(name: str):
+    case = load_case(bundled_cases_dir() / name)
+    prog = ccopt.read_program(case.program)
+    return compensate(prog, style="pmac", radius=case.radius)
+
+
+# Expected segments: (kind, role, start, end[, centre, sweep])
+def L(role, s, e):
+    return ("line", role, s, e, None, None)
+
+
+def A(role, c, s, e, sweep):
+    return ("arc", role, s, e, c, sweep)
+
+
+def SP(role, c, s, e, sweep):
+    return ("spiral", role, s, e, c, sweep)
+
+
+def angle(c, p):
+    return math.atan2(p[1] - c[1], p[0] - c[0])
+
+
+def check(path, expected, skip_roles=("rapid",)):
+    segs = [s for s in path.segments if s.role.value not in skip_roles]
+    got = [(s.kind, s.role.value) for s in segs]
+    want = [(e[0], e[1]) for e in expected]
+    assert got == want, f"segment kinds/roles differ:\n got  {got}\n want {want}"
+    for i, (seg, exp) in enumerate(zip(segs, expected)):
+        kind, role, s, e, c, sweep = exp
+        d = seg.to_json()
+        assert np.allclose(d["start"], s, atol=TOL, rtol=0), f"seg {i} start {d['start']} != {s}"
+        assert np.allclose(d["end"], e, atol=TOL, rtol=0), f"seg {i} end {d['end']} != {e}"
+        if c is not None:
+            assert np.allclose(d["center"], c, atol=TOL, rtol=0), f"seg {i} centre {d['center']} != {c}"
+            assert d["sweep"] == pytest.approx(sweep, abs=TOL), f"seg {i} sweep {d['sweep']} != {sweep}"
+
+
+def test_leadin_inside_line():
+    # Lead-in (0,-20)->(0,0) then -X, CC1 r=2: left turn = inside, the lead-in
+    # ends at P + r*o(t_next) = (0,0) + 2*(0,-1).
+    check(run_case("leadin-inside-line"), [
+        L("lead-in", (0, -20), (0, -2)),
+        # (0,0)->(-20,0) then +Y is a right turn: outside, d = 0 < break: arc.
+        L("compensated", (0, -2), (-20, -2)),
+        A("corner", (-20, 0), (-20, -2), (-22, 0), -math.pi / 2),
+        # lead-out to (-40,20) turns left: inside, ends at P + r*o(t_last).
+        L("compensated", (-22, 0), (-22, 20)),
+        L("lead-out", (-22, 20), (-40, 20)),
+    ])
+
+
+def test_leadin_outside_line():
+    # +Y then +X is a right turn for CC1: outside. Lead-in ends perpendicular
+    # to its own path at P: (0,0) + 2*(-1,0); arc about P to (0,2).
+    check(run_case("leadin-outside-line"), [
+        L("lead-in", (0, -20), (-2, 0)),
+        A("corner", (0, 0), (-2, 0), (0, 2), -math.pi / 2),
+        L("compensated", (0, 2), (20, 2)),
+        L("lead-out", (20, 2), (20, 10)),
+    ])
+
+
+def test_leadin_inside_arc_is_a_spiral():
+    # CIRCLE2 about (0,0) from (10,0) to (0,10); next move along u=(-1,-1)/sqrt2
+    # (left turn, inside). End = (0,10) + 2*(-u_y, u_x) = (sqrt2, 10 - sqrt2).
+    e = (S2, 10 - S2)
+    e2 = (-10 + S2, -S2)  # lead-out corner (-10,0): inside, P + 2*(H, -H)
+    check(run_case("leadin-inside-arc"), [
+        # programmed sweep pi/2 from angle 0, end angle moved to atan2(e)
+        SP("lead-in", (0, 0), (10, 0), e, math.atan2(e[1], e[0])),
+        L("compensated", e, e2),
+        L("lead-out", e2, (-10, -10)),
+    ])
+    seg = run_case("leadin-inside-arc").segments[1]
+    assert seg.geom.rho0 == pytest.approx(10, abs=TOL)
+    assert seg.geom.rho1 == pytest.approx(math.hypot(*e), abs=TOL)
+
+
+def test_leadin_outside_arc():
+    # CIRCLE1 about (0,0) from (-10,0) to (0,10) (sweep -pi/2), CC1 r=1.5.
+    # Next move -Y: right turn, outside. Lead-in ends at (0,10) + 1.5*(0,1).
+    check(run_case("leadin-outside-arc"), [
+        SP("lead-in", (0, 0), (-10, 0), (0, 11.5), -math.pi / 2),
+        A("corner", (0, 10), (0, 11.5), (1.5, 10), -math.pi / 2),
+        L("compensated", (1.5, 10), (1.5, -5)),
+        L("lead-out", (1.5, -5), (10, -5)),
+    ])
+
+
+def test_leadout_inside_line_line():
+    # CC2 r=2; lead-in collinear: ends at (0,0) + 2*o((1,0)) = (0,-2).
+    check(run_case("leadout-inside-line-line"), [
+        L("lead-in", (-10, 0), (0, -2)),
+        L("compensated", (0, -2), (20, -2)),
+        L("lead-out", (20, -2), (30, -10)),
+    ])
+
+
+def test_leadout_inside_line_arc():
+    # Lead-out arc about (15,-5) from (20,-2) (rho sqrt34) to (20,-10) (rho
+    # sqrt50); programmed sweep -pi/2 from angle pi/4; start angle atan2(3,5).
+    sweep = -math.pi / 2 - (math.atan2(3, 5) - math.pi / 4)
+    path = run_case("leadout-inside-line-arc")
+    check(path, [
+        L("lead-in", (-10, 0), (0, -2)),
+        L("compensated", (0, -2), (20, -2)),
+        SP("lead-out", (15, -5), (20, -2), (20, -10), sweep),
+    ])
+    sp = path.segments[-1].geom
+    assert (sp.rho0, sp.rho1) == pytest.approx((math.sqrt(34), math.sqrt(50)), abs=TOL)
+
+
+def test_leadout_inside_arc_arc():
+    # Compensated CIRCLE1 about (0,-10), R10, CC2: tool toward the centre, R 8.
+    # Ends at (10,-10) + 2*o((0,-1)) = (8,-10). Lead-out about (5,-5): from
+    # angle atan2(-5,3) (rho sqrt34) to the programmed end (0,-10), angle -3pi/4.
+    sweep = -math.pi / 2 - (math.atan2(-5, 3) - (-math.pi / 4))
+    check(run_case("leadout-inside-arc-arc"), [
+        L("lead-in", (-10, 0), (0, -2)),
+        A("compensated", (0, -10), (0, -2), (8, -10), -math.pi / 2),
+        SP("lead-out", (5, -5), (8, -10), (0, -10), sweep),
+    ])
+
+
+def test_leadout_inside_arc_line():
+    check(run_case("leadout-inside-arc-line"), [
+        L("lead-in", (-10, 0), (0, -2)),
+        A("compensated", (0, -10), (0, -2), (8, -10), -math.pi / 2),
+        L("lead-out", (8, -10), (0, -20)),
+    ])
+
+
+def test_leadout_outside_line_line():
+    # +X then (1,1)/sqrt2 is a left turn: outside for CC2. Arc about (20,0)
+    # from (20,-2) by +45 degrees to (20,0) + 2*(H,-H).
+    check(run_case("leadout-outside-line-line"), [
+        L("lead-in", (-10, 0), (0, -2)),
+        L("compensated", (0, -2), (20, -2)),
+        A("corner", (20, 0), (20, -2), (20 + S2, -S2), math.pi / 4),
+        L("lead-out", (20 + S2, -S2), (30, 10)),
+    ])
+
+
+def test_side_change_through_a_line():
+    # Left offset y=+2 and right offset y=-2 are parallel: no intersection, the
+    # change runs over the next move as a diagonal.
+    check(run_case("sidechange-through-line"), [
+        L("lead-in", (-10, 0), (0, 2)),
+        L("compensated", (0, 2), (20, 2)),
+        L("compensated", (20, 2), (40, -2)),
+        L("lead-out", (40, -2), (50, 0)),
+    ])
+
+
+def test_side_change_through_an_arc():
+    # Old side: line y=2. New side (right) of the clockwise arc about (20,-10):
+    # radius 10 - 2 = 8, which y=2 misses (distance 12). Spiral about (20,-10)
+    # from (20,2) (rho 12, angle pi/2) to (28,-10) (rho 8), sweep -pi/2.
+    path = run_case("sidechange-through-arc")
+    check(path, [
+        L("lead-in", (-10, 0), (0, 2)),
+        L("compensated", (0, 2), (20, 2)),
+        SP("compensated", (20, -10), (20, 2), (28, -10), -math.pi / 2),
+        L("lead-out", (28, -10), (20, -20)),
+    ])
+    sp = [s for s in path.segments if s.kind == "spiral"][0].geom
+    assert (sp.rho0, sp.rho1) == pytest.approx((12, 8), abs=TOL)
+
+
+def test_side_change_in_reversal():
+    # Decision: 180-degree arc on the old (left) side about (20,0), passing
+    # ahead of the corner (22,0), then the change over the next move.
+    path = run_case("sidechange-reversal")
+    check(path, [
+        L("lead-in", (-10, 0), (0, 2)),
+        L("compensated", (0, 2), (20, 2)),
+        A("corner", (20, 0), (20, 2), (20, -2), -math.pi),
+        L("compensated", (20, -2), (10, 2)),
+        L("lead-out", (10, 2), (0, 10)),
+    ])
+    arc = [s for s in path.segments if s.role.value == "corner"][0].geom
+    assert np.allclose(arc.point(arc.length / 2), (22, 0), atol=1e-9)
+
+
+def test_outside_corner_break_angle():
+    r = 2.0
+    c2, s2 = math.cos(math.radians(2)), math.sin(math.radians(2))
+    c25, s25 = math.cos(math.radians(2.5)), math.sin(math.radians(2.5))
+    q2 = np.array([20 + 20 * c2, -20 * s2])
+    q3 = q2 + 20 * np.array([c25, -s25])
+    n2 = np.array([s2, c2])      # left normal of (c2, -s2)
+    n3 = np.array([s25, c25])
+    # 2 degrees: cos 2 < 0.9998: sharp, arc about (20,0) from 90 deg by -2 deg.
+    a_end = (20 + r * math.cos(math.radians(88)), r * math.sin(math.radians(88)))
+    # 0.5 degrees: shallow, the offsets meet at the miter point
+    # X = Q + r*(n2 + n3)/(1 + n2.n3).
+    x = q2 + r * (n2 + n3) / (1 + n2 @ n3)
+    e3 = q3 + r * n3
+    check(run_case("outside-break"), [
+        L("lead-in", (-10, 0), (0, 2)),
+        L("compensated", (0, 2), (20, 2)),
+        A("corner", (20, 0), (20, 2), a_end, -math.radians(2)),
+        L("compensated", a_end, tuple(x)),
+        L("compensated", tuple(x), tuple(e3)),
+        # lead-out -Y: right turn by 87.5 deg, outside: arc to Q3 + (2, 0)
+        A("corner", tuple(q3), tuple(e3), tuple(q3 + [2, 0]), -math.radians(87.5)),
+        L("lead-out", tuple(q3 + [2, 0]), tuple(q3 + [0, -10])),
+    ])
+
+
+def test_outside_corner_break_angle_is_isx99():
+    # With Isx99 = 0.99999 the 0.5-degree corner is sharp too: two corner arcs.
+    case = load_case(bundled_cases_dir() / "outside-break")
+    path = compensate(ccopt.read_program(case.program), "pmac", break_cos=0.99999)
+    assert sum(s.role.value == "corner" for s in path.segments) == 3
+    path = compensate(ccopt.read_program(case.program), "pmac", break_cos=0.999)
+    # cos 2 = 0.99939 >= 0.999: both shallow, only the lead-out arc remains
+    assert sum(s.role.value == "corner" for s in path.segments) == 1
+
+
+def test_radius_change_is_introduced_over_the_next_move():
+    check(run_case("radius-change"), [
+        L("lead-in", (-10, 0), (0, 2)),
+        L("compensated", (0, 2), (20, 2)),
+        # r 2 -> 3 over (20,0)->(40,0): from (20,2) to the r=3 inside corner
+        # x = 40 - 3, y = 3.
+        L("compensated", (20, 2), (37, 3)),
+        L("compensated", (37, 3), (37, 17)),
+        # r 3 -> 0 over (40,20)->(20,20): from the r=3 corner to the programmed point
+        L("compensated", (37, 17), (20, 20)),
+        L("compensated", (20, 20), (0, 20)),
+        L("lead-out", (0, 20), (-10, 20)),
+    ])
+
+
+def test_short_move_runs_backwards_and_overcuts():
+    path = run_case("short-move-overcut")
+    check(path, [
+        L("lead-in", (-10, 0), (0, 2)),
+        L("compensated", (0, 2), (18, 2)),          # inside corner: y=2 meets x=18
+        L("compensated", (18, 2), (18, 1)),         # the 1 mm step runs backwards
+        A("corner", (20, 1), (18, 1), (20, 3), -math.pi / 2),
+        L("compensated", (20, 3), (40, 3)),
+        L("lead-out", (40, 3), (50, 1)),
+    ])
+    # The tool centre reaches (18,1): 1 from the first programmed move (y=0),
+    # so PMAC overcuts by r - 1 = 1 there; the verifier reports it.
+    back = path.segments[3]
+    assert back.geom.end[1] - 0.0 == pytest.approx(1.0, abs=TOL)
+
+
+def test_concave_arc_smaller_than_cutter_is_an_error():
+    case = load_case(bundled_cases_dir() / "concave-arc-too-small")
+    prog = ccopt.read_program(case.program)
+    with pytest.raises(ccopt.ProgramError) as err:
+        compensate(prog, "pmac")
+    assert err.value.line == 8  # the CIRCLE2 move: "X10 Y2 I0 J1"
+    assert "radius 1" in str(err.value) and "cutter radius 2" in str(err.value)
+
+
+def test_z_plunges_run_at_the_compensated_corner_point():
+    path = run_case("z-plunges")
+    segs = [s for s in path.segments if s.role.value != "rapid"]
+    pts = [(s.kind, s.start, s.end, s.w0, s.w1) for s in segs]
+    expected = [
+        ("line", (-10, 0), (0, 2), 5, 5),        # lead-in (tangent: P + r*o(t_next))
+        ("line", (0, 2), (0, 2), 5, -2),         # plunge at the lead-in's end
+        ("line", (0, 2), (18, 2), -2, -2),       # inside corner at (18,2)
+        ("line", (18, 2), (18, 2), -2, -4),      # Z-4 at the intersection point
+        ("line", (18, 2), (18, 20), -4, -4),
+        ("arc", (18, 20), (20, 22), -4, -4),     # outside corner arc first ...
+        ("line", (20, 22), (20, 22), -4, -6),    # ... then Z-6
+        ("line", (20, 22), (40, 22), -6, -6),
+        ("line", (40, 22), (50, 20), -6, -6),    # lead-out
+        ("line", (50, 20), (50, 20), -6, 5),     # Z5 after CC0, at the programmed point
+    ]
+    assert len(pts) == len(expected)
+    for (k, s, e, w0, w1), (k2, s2_, e2, v0, v1) in zip(pts, expected):
+        assert k == k2
+        assert np.allclose(s, s2_, atol=TOL) and np.allclose(e, e2, atol=TOL)
+        assert (w0, w1) == pytest.approx((v0, v1), abs=TOL)
+    assert len(path.dwells) == 1 and path.dwells[0][1] == pytest.approx(0.1)
+    # the dwell happens right after the plunge
+    idx = path.dwells[0][0]
+    assert path.segments[idx - 1].w1 == pytest.approx(-2)
+
+
+def test_inside_corners_line_arc_arc_line():
+    r = 1.0
+    Rp = math.sqrt(50) + r          # clockwise arcs with CC1: tool outside
+    Rp2 = Rp * Rp
+    c1, c2 = (15, -5), (25, -5)
+    x1 = (15 - math.sqrt(Rp2 - 36), 1)              # y = 1 meets circle 1 (nearest root)
+    x2 = (20, -5 + math.sqrt(Rp2 - 25))             # circles meet on x = 20 (upper root)
+    x3 = (29, -5 + math.sqrt(Rp2 - 16))             # x = 29 meets circle 2 (upper root)
+
+    def sweep(c, s, e, th_s, prog_sweep):
+        def wrap(a):
+            return (a + math.pi) % (2 * math.pi) - math.pi
+        return prog_sweep + wrap(angle(c, e) - (th_s + prog_sweep)) - wrap(angle(c, s) - th_s)
+
+    check(run_case("inside-corners"), [
+        L("lead-in", (-10, 0), (0, 1)),
+        L("compensated", (0, 1), x1),
+        A("compensated", c1, x1, x2, sweep(c1, x1, x2, 3 * math.pi / 4, -math.pi / 2)),
+        A("compensated", c2, x2, x3, sweep(c2, x2, x3, 3 * math.pi / 4, -math.pi / 2)),
+        L("compensated", x3, (29, 9)),
+        L("compensated", (29, 9), (10, 9)),
+        A("corner", (10, 10), (10, 9), (9, 10), -math.pi / 2),
+        L("lead-out", (9, 10), (10, 20)),
+    ])
+
+
+def test_pocket_key_points():
+    path = run_case("pocket")
+    segs = [s for s in path.segments if s.role.value not in ("rapid",) and s.length > 0]
+    r = 3.0
+    # Inside lead-in: (20,20)->(0,20) then -Y (left turn): ends at (0,20) + 3*(1,0).
+    assert segs[0].role.value == "lead-in"
+    assert np.allclose(segs[0].end, (3, 20), atol=TOL)
+    # Concave R6 corner about (6,6): tool radius 6 - 3 = 3, tangent joins.
+    arc = next(s for s in segs if s.kind == "arc" and np.allclose(s.geom.center, (6, 6)))
+    assert arc.geom.radius == pytest.approx(3.0, abs=TOL)
+    assert np.allclose(arc.start, (3, 6), atol=TOL) and np.allclose(arc.end, (6, 3), atol=TOL)
+    # Boss: inside corner at (25,0) -> (22,3); outside corners at (25,8) and (35,8).
+    ends = [s.end for s in segs]
+    assert any(np.allclose(e, (22, 3), atol=TOL) for e in ends)
+    corners = [s for s in segs if s.role.value == "corner"]
+    centres = sorted(tuple(np.round(s.geom.center, 9)) for s in corners)
+    assert centres == [(25.0, 8.0), (35.0, 8.0)]
+    for c in corners:
+        assert c.geom.radius == pytest.approx(r, abs=TOL)
+        assert abs(c.geom.sweep) == pytest.approx(math.pi / 2, abs=TOL)
+    # Bulge, clockwise R10 about (30,40) with CC1: tool radius 13. Inside corner
+    # with the line y = 40 - 3: x = 30 +- sqrt(13^2 - 3^2) (nearest roots).
+    bulge = next(s for s in segs if s.kind == "arc" and np.allclose(s.geom.center, (30, 40)))
+    dx = math.sqrt(13 ** 2 - 3 ** 2)
+    assert bulge.geom.radius == pytest.approx(13, abs=TOL)
+    assert np.allclose(bulge.start, (30 + dx, 37), atol=TOL)
+    assert np.allclose(bulge.end, (30 - dx, 37), atol=TOL)
+    # Inside lead-out at (0,20): last move ends at (0,20) + 3*(1,0), lead-out to (20,20).
+    assert segs[-1].role.value == "lead-out"
+    assert np.allclose(segs[-1].start, (3, 20), atol=TOL)
+
+
+def test_profile_key_points():
+    path = run_case("profile")
+    segs = [s for s in path.segments if s.role.value != "rapid" and s.length > 0]
+    r = 3.0
+    # Tangent CIRCLE lead-in about (-10,15): spiral from rho 10 to rho 10 - 3
+    # (CCW with CC1 is toward the centre), ending at (0,15) + 3*(-1,0).
+    lead_in = segs[0]
+    assert lead_in.kind == "spiral" and lead_in.role.value == "lead-in"
+    assert (lead_in.geom.rho0, lead_in.geom.rho1) == pytest.approx((10, 7), abs=TOL)
+    assert np.allclose(lead_in.end, (-3, 15), atol=TOL)
+    # Convex R5 corners: tool radius 8.
+    for c in [(5, 25), (35, 25), (35, 5)]:
+        arc = next(s for s in segs if s.kind == "arc" and np.allclose(s.geom.center, c))
+        assert arc.geom.radius == pytest.approx(5 + r, abs=TOL)
+    # V-notch: outside corners at (15,30) and (25,30) (45 deg arcs), inside at
+    # (20,25): offsets of the two 45-degree lines meet at (20, 25 + 3*sqrt2).
+    assert any(np.allclose(s.end, (20, 25 + 3 * S2), atol=TOL) for s in segs)
+    corner_centres = sorted(tuple(np.round(s.geom.center, 9)) for s in segs if s.role.value == "corner")
+    assert corner_centres == [(0.0, 0.0), (15.0, 30.0), (25.0, 30.0)]
+    # Sharp corner at (0,0): arc from (0,-3) to (-3,0), 90 deg clockwise.
+    sharp = next(s for s in segs if s.role.value == "corner" and np.allclose(s.geom.center, (0, 0)))
+    assert np.allclose(sharp.start, (0, -3), atol=TOL) and np.allclose(sharp.end, (-3, 0), atol=TOL)
+    assert sharp.geom.sweep == pytest.approx(-math.pi / 2, abs=TOL)
+    # Tangent lead-out about (-10,15): from (-3,15) (rho 7) to (-10,25) (rho 10).
+    lead_out = segs[-1]
+    assert lead_out.kind == "spiral" and lead_out.role.value == "lead-out"
+    assert np.allclose(lead_out.start, (-3, 15), atol=TOL)
+    assert (lead_out.geom.rho0, lead_out.geom.rho1) == pytest.approx((7, 10), abs=TOL)
