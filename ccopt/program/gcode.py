@@ -405,8 +405,10 @@ class _Reader:
                 raise self.error(f"unexpected {code[q]!r} after {_olabel(label)}: a program number "
                                  "O-word must be alone on its line, a control O-word needs a "
                                  "keyword (sub, call, if, while, ...)", q, i)
-            raise self.error(f"unknown O-word keyword {keyword!r}: use sub, endsub, call, if, "
-                             "elseif, else, endif, do, while, endwhile, repeat, endrepeat, "
+            hint = (f" (a program number {_olabel(label).upper()} must be alone on its line)"
+                    if label.isdigit() else "")
+            raise self.error(f"unknown O-word keyword {keyword!r}{hint}: use sub, endsub, call, "
+                             "if, elseif, else, endif, do, while, endwhile, repeat, endrepeat, "
                              "break, continue or return", q, i)
         return _OWord(label, keyword, col, k)
 
