@@ -311,3 +311,17 @@ def test_bare_body():
     assert p.meta["program"] is None and p[0].end == (1, 0, 0)
     with pytest.raises(ProgramError):
         read_pmac("X1", program=1)
+
+
+def test_statement_order_on_one_line():
+    # F after the axis words applies to that move (QRG p.49: "X3 Y4 F50");
+    # a mode or compensation command after axis words acts from the next move.
+    p = read_pmac(wrap("X3 Y4 F50 TA10\nX1 CC1 CIRCLE1 X3 Y4 R5 F2"))
+    assert p[0].feed == 50 and p[0].modal.accel_time == pytest.approx(0.01)
+    assert p[1].motion is Motion.LINE and p[1].modal.side == 0 and p[1].feed == 2
+    assert p[2].motion is Motion.ARC_CW and p[2].modal.side == 1
+
+
+def test_online_ccbuf_and_break_cos():
+    p = read_pmac("DEFINE CCBUF 5\nI5199=0.99\nOPEN PROG 1\nF1 X1\nCLOSE")
+    assert p.meta["ccbuf"] == 5 and p.meta["break_cos"] == pytest.approx(0.99)
