@@ -81,7 +81,8 @@ def path_table(path: ToolPath) -> str:
 
 
 def emit_json(obj) -> None:
-    json.dump(obj, sys.stdout, indent=1)
+    """One JSON document on stdout (compact: it is for programs)."""
+    json.dump(obj, sys.stdout, separators=(",", ":"))
     sys.stdout.write("\n")
 
 
@@ -129,6 +130,13 @@ def cmd_compensate(args: argparse.Namespace) -> int:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
+    """The main job, as far as the pipeline goes today: read and compensate
+    every input, write the tool paths as JSON, print a summary.
+
+    A case whose ``case.toml`` says ``expect = "error"`` passes when the
+    compensation refuses it with a located error; any other error is reported
+    on its own line and makes the exit code 2 after every input has run.
+    """
     if args.inputs:
         inputs = [resolve_input(a) for a in args.inputs]
     else:
@@ -136,33 +144,53 @@ def cmd_run(args: argparse.Namespace) -> int:
         if not inputs:
             raise ProgramError("no bundled cases found (is the cases/ folder next to ccopt/?)",
                                "cases")
-    results = []
+    out = Path(args.out) if args.out else None
+    if out is not None:
+        try:
+            out.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise ProgramError(f"cannot create output folder: {exc.strerror or exc}",
+                               str(out)) from None
+    from ccopt.export.atomic import write_text_atomic
+    results, failed = [], False
     for inp in inputs:
-        prog = load(inp, args)
-        path = programmed_path(prog)
-        results.append({
-            "name": inp.label,
-            "program": str(inp.program),
-            "title": inp.case.title if inp.case else "",
-            "blocks": len(prog.blocks),
-            "segments": len(path.segments),
-            "length": path.length,
-            "units": prog.units,
-        })
-    if args.out:
-        out = Path(args.out)
-        out.mkdir(parents=True, exist_ok=True)
-        from ccopt.export.atomic import write_text_atomic
+        expect = inp.case.expect if inp.case else "ok"
+        row = {"name": inp.label, "program": str(inp.program), "expect": expect}
+        try:
+            prog = load(inp, args)
+            path = compensate_input(inp, prog, args)
+        except CcoptError as exc:
+            row.update(status="error", message=str(exc))
+            if expect == "error":
+                row["status"] = "error (expected)"
+            else:
+                failed = True
+                print(str(exc), file=sys.stderr)
+            results.append(row)
+            continue
+        row.update(status="ok" if expect != "error" else "UNEXPECTED SUCCESS",
+                   style=path.style, radius=path.radius, blocks=len(prog.blocks),
+                   segments=len(path.segments), length=path.length, units=path.units)
+        if expect == "error":
+            failed = True
+        if out is not None:
+            row["toolpath"] = str(out / f"{inp.label}.toolpath.json")
+            write_text_atomic(row["toolpath"], json.dumps(path.to_json()) + "\n")
+        results.append(row)
+    if out is not None:
         write_text_atomic(out / "summary.json", json.dumps({"cases": results}, indent=1) + "\n")
     if args.json:
         emit_json({"cases": results})
     else:
         w = max([len(r["name"]) for r in results] + [4])
-        print(f"{'case'.ljust(w)}  blocks  segments  programmed length")
+        print(f"{'case'.ljust(w)}  style  radius  segments  tool path length  status")
         for r in results:
-            print(f"{r['name'].ljust(w)}  {r['blocks']:6d}  {r['segments']:8d}  "
-                  f"{r['length']:.4f} {r['units']}")
-    return EXIT_OK
+            if "length" in r:
+                print(f"{r['name'].ljust(w)}  {r['style']:5s}  {r['radius']:6g}  {r['segments']:8d}  "
+                      f"{r['length']:13.4f} {r['units']:4s}  {r['status']}")
+            else:
+                print(f"{r['name'].ljust(w)}  {'':5s}  {'':6s}  {'':8s}  {'':18s}  {r['status']}")
+    return EXIT_BAD_INPUT if failed else EXIT_OK
 
 
 Command = Callable[[argparse.Namespace], int]
@@ -221,6 +249,7 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
     p.add_argument("inputs", nargs="*", metavar="CASE|PROGRAM")
     p.add_argument("--out", metavar="DIR", help="write results into DIR")
     program_args(p)
+    style_args(p)
     commands["run"] = cmd_run
     return parser, commands
 
@@ -236,6 +265,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     except CcoptError as exc:
         print(str(exc), file=sys.stderr)
         return EXIT_BAD_INPUT
+    except BrokenPipeError:
+        # The reader went away (``ccopt ... | head``): not an error of ours.
+        try:
+            sys.stdout = open(os.devnull, "w")
+        except OSError:
+            pass
+        return EXIT_OK
     except KeyboardInterrupt:
         print("ccopt: interrupted", file=sys.stderr)
         return 130
