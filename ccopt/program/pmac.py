@@ -59,11 +59,12 @@ case-insensitive. ``N{n}`` / ``O{n}`` labels are ignored.
 
 Moves. The axis words of one line (``X``, ``Y``, ``Z``, centre vector ``I``,
 ``J``, ``K``, radius ``R``) form one move, executed at the end of the line
-(QRG p.49: ``X3 Y4 F50`` runs that very move at F50). ``F``, ``TM``, ``TA`` and
-``TS`` anywhere on the line apply to the line's move; a move-mode,
-``ABS``/``INC``, ``CC*``, ``CCR``, ``NORMAL``, ``DWELL``/``DELAY`` or
-``RETURN`` statement placed *after* axis words first executes the move
-written before it (decision: reading order). Whether a coordinate is absolute
+(QRG p.49: ``X3 Y4 F50`` runs that very move at F50). So ``F``, ``TM``, ``TA``
+and ``TS`` read after axis words still apply to the move being written. A
+move-mode, ``ABS``/``INC``, ``CC*``, ``CCR``, ``NORMAL``, ``DWELL``/``DELAY``
+or ``RETURN`` statement placed *after* axis words first executes the move
+written before it, and acts from the next move on (decision: reading order);
+a later ``F`` on the same line then belongs to that next move. Whether a coordinate is absolute
 or incremental is taken when the word is read. An axis word twice in one
 move is an error. Other axes (``A B C U V W``) are an error: ccopt carries X,
 Y, Z only. A move needs at least one of ``X Y Z``.

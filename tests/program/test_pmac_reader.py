@@ -318,8 +318,9 @@ def test_statement_order_on_one_line():
     # a mode or compensation command after axis words acts from the next move.
     p = read_pmac(wrap("X3 Y4 F50 TA10\nX1 CC1 CIRCLE1 X3 Y4 R5 F2"))
     assert p[0].feed == 50 and p[0].modal.accel_time == pytest.approx(0.01)
-    assert p[1].motion is Motion.LINE and p[1].modal.side == 0 and p[1].feed == 2
-    assert p[2].motion is Motion.ARC_CW and p[2].modal.side == 1
+    # "X1" is executed when CC1 is read, before F2: it keeps F50
+    assert p[1].motion is Motion.LINE and p[1].modal.side == 0 and p[1].feed == 50
+    assert p[2].motion is Motion.ARC_CW and p[2].modal.side == 1 and p[2].feed == 2
 
 
 def test_online_ccbuf_and_break_cos():
