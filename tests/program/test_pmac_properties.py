@@ -176,8 +176,7 @@ def test_ijk_arcs_keep_the_programmed_centre(start, vec, absolute, cw):
     vmode = "ABS(R)" if absolute else "INC(R)"
     prog = read_pmac(f"F1 X{sx} Y{sy}\n{vmode} {mode} X({ex}) Y({ey}) I({vec[0]}) J({vec[1]})")
     arc = prog[1]
-    assis = (Motion.ARC_CW if cw else Motion.ARC_CCW)
-    assert arc.motion is assis
+    assert arc.motion is (Motion.ARC_CW if cw else Motion.ARC_CCW)
     assert math.isclose(arc.center[0], cx, abs_tol=1e-12)
     assert math.isclose(arc.center[1], cy, abs_tol=1e-12)
     assert not arc.is_spiral(tol=1e-9 * max(1.0, r))

@@ -9,7 +9,6 @@ from ccopt.errors import ProgramError
 from ccopt.program.model import Motion
 from ccopt.program.pmac import read_pmac
 
-APPROX = dict(abs=1e-9)
 
 
 def pts(p):
