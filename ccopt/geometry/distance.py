@@ -189,9 +189,10 @@ def point_arc(p, c, R, theta0, sweep):
 def segment_segment(a0, a1, b0, b1):
     """Distance between segments ``[a0, a1]`` and ``[b0, b1]``.
 
-    Two segments in the plane either cross (``d = 0``, witnesses the crossing
-    computed on each segment) or are closest with an end point of one of them
-    involved, so the four end-point-to-segment distances complete the set.
+    Two segments in the plane either cross (``d = 0`` up to rounding: ``d``
+    is then the gap between the crossing computed on each segment, ~1e-16)
+    or are closest with an end point of one of them involved, so the four
+    end-point-to-segment distances complete the set.
     Collinear overlaps are caught by those too (an end point lies on the other
     segment). Zero-length segments are points.
     """
@@ -259,10 +260,21 @@ def segment_segment(a0, a1, b0, b1):
     o4 = o3 - rxs                           # side of a1
     cross = (o1 * o2 < 0.0) & (o3 * o4 < 0.0)
     if cross.any():
-        best[cross] = 0.0
         ic = np.nonzero(cross)[0]
-        tA[ic] = o3[ic] / (o3[ic] - o4[ic])
-        uB[ic] = o1[ic] / (o1[ic] - o2[ic])
+        tc = o3[ic] / (o3[ic] - o4[ic])
+        uc = o1[ic] / (o1[ic] - o2[ic])
+        # The crossing is scored by the gap between its two computed witnesses
+        # (rounding level) rather than declared 0: for nearly collinear
+        # overlapping segments the side tests are rounding noise and tc, uc
+        # meaningless, and then the end-point candidates (also ~0) must win.
+        gx = (a0x[ic] + tc * rx[ic]) - (b0x[ic] + uc * sx[ic])
+        gy = (a0y[ic] + tc * ry[ic]) - (b0y[ic] + uc * sy[ic])
+        d2c = gx * gx + gy * gy
+        take = d2c < best[ic]
+        it = ic[take]
+        best[it] = d2c[take]
+        tA[it] = tc[take]
+        uB[it] = uc[take]
     np.sqrt(best, out=best)
     wa = np.empty((best.shape[0], 2))
     wb = np.empty_like(wa)
