@@ -21,3 +21,9 @@ PMAC_BREAK_COS = 0.9998
 
 #: Default verification tolerance (program units), see ccopt.verify.
 VERIFY_EPS = 1e-6
+
+#: A compensated arc whose two end points lie within this (relative to
+#: max(1, R')) of its offset circle R' is that offset arc, radius exactly R'.
+#: Corner intersections with nearly straight arcs (R of thousands of units)
+#: lose ~1e-10 to rounding; without this they would read as tiny spirals.
+OFFSET_CIRCLE_REL_TOL = 1e-9

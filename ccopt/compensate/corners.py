@@ -19,7 +19,7 @@ from ccopt.compensate import decisions
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral, intersect
 from ccopt.program.model import Block, Motion
-from ccopt.tolerances import POINT_EPS, TURN_EPS
+from ccopt.tolerances import OFFSET_CIRCLE_REL_TOL, POINT_EPS, TURN_EPS
 from ccopt.toolpath import block_geometry
 
 TWO_PI = 2.0 * math.pi
@@ -229,9 +229,15 @@ def tool_geometry(el: Element, s, e):
     prog_start = g.theta0
     prog_end = g.theta0 + g.sweep
     sweep = g.sweep + wrap_pi(th_e - prog_end) - wrap_pi(th_s - prog_start)
+    cc = (float(c[0]), float(c[1]))
+    if isinstance(g, Arc):
+        on = g.radius - el.k * el.r * (1.0 if g.sweep > 0 else -1.0)
+        tol = OFFSET_CIRCLE_REL_TOL * max(1.0, on)
+        if on > 0 and abs(rs - on) <= tol and abs(re - on) <= tol:
+            return Arc(cc, on, th_s, sweep)
     if abs(re - rs) <= 1e-12 * max(1.0, rs):
-        return Arc((float(c[0]), float(c[1])), rs, th_s, sweep)
-    return Spiral((float(c[0]), float(c[1])), rs, re, th_s, sweep)
+        return Arc(cc, rs, th_s, sweep)
+    return Spiral(cc, rs, re, th_s, sweep)
 
 
 def is_rapid(block: Block) -> bool:

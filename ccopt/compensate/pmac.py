@@ -20,12 +20,16 @@ import numpy as np
 
 from ccopt.compensate import decisions
 from ccopt.compensate.corners import (
-    Corner, Element, carrier_intersections, classify, corner_arc, element_of,
-    offset_dir, reversal_sweep, tool_geometry, turn,
+    Corner, Element, carrier_intersections, classify, corner_arc, reversal_sweep, tool_geometry,
+    turn,
+)
+from ccopt.compensate.batch import (
+    ARC, SPIRAL, ElementArrays, classify_turn, corner_turn, nearest_corner_points,
+    offset_points, tool_segments,
 )
 from ccopt.compensate.scan import ScanResult, scan_program
-from ccopt.geometry import Line
-from ccopt.program.model import Block, Motion, Program
+from ccopt.geometry import Arc, Line
+from ccopt.program.model import PLANE_AXES, Block, Motion, Program
 from ccopt.tolerances import PMAC_BREAK_COS, POINT_EPS
 from ccopt.toolpath import PathSegment, Role, ToolPath
 
@@ -158,6 +162,31 @@ class PmacStyle:
         # (decisions.RADIUS_CHANGE_OVER_NEXT_MOVE).
         return self.full_corner(a, b, a.k, a.r, look_ahead_ok)
 
+    def batch_corners(self, arr: ElementArrays, ia: np.ndarray):
+        """:meth:`full_corner` for many joints at once (same side, no gap, no
+        spiral, look-ahead available). Returns ``(done, end_prev, start_next,
+        arcs)``; joints not ``done`` (reversals, near-degenerate intersections)
+        go to :meth:`joint`."""
+        k, r = arr.k[ia], arr.r[ia]
+        c, d = corner_turn(arr, ia)
+        kind = classify_turn(k, c, d)
+        A, B = offset_points(arr, ia, k, r)
+        X, found, delicate = nearest_corner_points(arr, ia, k, r, A, B)
+        inside, outside, tangent = kind == 0, kind == 1, kind == 2
+        sharp = outside & (d < self.break_cos)
+        shallow = outside & ~sharp
+        shallow_arc = shallow & ~found & (decisions.SHALLOW_WITHOUT_INTERSECTION == "arc")
+        has_arc = sharp | shallow_arc
+        use_x = (inside | shallow) & found
+        done = tangent | has_arc | ((inside | shallow) & ~delicate)
+        done &= ~(delicate & (inside | shallow))
+        end_prev = np.where(use_x[:, None], X, A)
+        start_next = np.where(use_x[:, None], X, np.where(has_arc[:, None], B, A))
+        o = k[:, None] * np.c_[-arr.te[ia][:, 1], arr.te[ia][:, 0]]
+        arcs = {"has": has_arc, "theta0": np.arctan2(o[:, 1], o[:, 0]),
+                "sweep": np.arctan2(c, d)}
+        return done, end_prev, start_next, arcs
+
     # -- the whole program ---------------------------------------------------------
     def compensate(self, program: Program, radius: float | None = None,
                    side: int | None = None) -> ToolPath:
@@ -165,53 +194,85 @@ class PmacStyle:
         return assemble(self, scan, program)
 
 
-def classes_of(elements: list[Element]) -> list[str]:
-    out = []
-    prev_k = 0
-    for el in elements:
-        if el.k == 0:
-            out.append(UNCOMP if prev_k == 0 else LEAD_OUT)
-        else:
-            out.append(LEAD_IN if prev_k == 0 else COMP)
-        prev_k = el.k
-    return out
+def classes_of(k: np.ndarray) -> list[str]:
+    """Class of each in-plane move from the side in force before and for it."""
+    prev = np.r_[0, k[:-1]] if len(k) else np.zeros(0, int)
+    codes = np.where(k == 0, np.where(prev == 0, 0, 3), np.where(prev == 0, 1, 2))
+    names = (UNCOMP, LEAD_IN, COMP, LEAD_OUT)
+    return [names[c] for c in codes]
 
 
-def assemble(style, scan: ScanResult, program: Program) -> ToolPath:
-    """Turn the scanned elements into a ToolPath using ``style.joint``."""
-    els = scan.elements
-    classes = classes_of(els)
-    for el, cl in zip(els, classes):
-        # The offset of a fully compensated arc must exist (spec rule 7);
-        # lead-in/out arcs are spirals that only reach the offset at one end.
-        if cl == COMP:
-            el.check_offset(el.k, el.r)
-    n = len(els)
-    starts: list[np.ndarray] = [None] * n  # type: ignore[list-item]
-    ends: list[np.ndarray] = [None] * n  # type: ignore[list-item]
-    corners: list[list] = [[] for _ in range(n)]
+def assemble(style, scan: ScanResult, program: Program, vectorised: bool = True) -> ToolPath:
+    """Turn the scanned moves into a ToolPath using ``style.joint``.
+
+    With ``vectorised`` (the default) the joints a style can decide in bulk
+    (``style.batch_corners``, when it has one) and the line/arc tool segments
+    go through :mod:`.batch`; every other joint and segment through the
+    one-at-a-time reference. Both routes give the same path (tested).
+    """
+    n = len(scan)
+    k, r = scan.k, scan.r
+    classes = classes_of(k)
+    comp = np.array([c == COMP for c in classes], bool)
+    arr = ElementArrays.from_blocks(scan.blocks, scan.plane, k, r) if n else None
+    # The offset of a fully compensated arc must exist (spec rule 7); lead-in
+    # and lead-out arcs are spirals that only reach the offset at one end.
     if n:
-        starts[0] = els[0].start
-    for i in range(n - 1):
-        j = style.joint(els[i], classes[i], els[i + 1], classes[i + 1], len(scan.gaps[i + 1]))
+        bad = comp & (arr.kind == ARC) & (arr.offset_radius(np.arange(n), k, r) <= POINT_EPS) & (k != 0)
+        for i in np.flatnonzero(comp & ((arr.kind == SPIRAL) | bad)):
+            scan.element(i).check_offset(int(k[i]), float(r[i]))
+    starts = np.full((n, 2), np.nan)
+    ends = np.full((n, 2), np.nan)
+    corners: dict[int, list] = {}
+    if n:
+        starts[0] = arr.S[0]
+    todo = np.arange(max(n - 1, 0))
+    if vectorised and n > 1 and hasattr(style, "batch_corners"):
+        gap_counts = np.array([len(g) for g in scan.gaps[1:n]], int)
+        ia = np.flatnonzero(comp[:-1] & comp[1:] & (k[:-1] == k[1:]) & (gap_counts == 0)
+                            & (arr.kind[:-1] != SPIRAL) & (arr.kind[1:] != SPIRAL))
+        if len(ia):
+            done, e_prev, s_next, arcs = style.batch_corners(arr, ia)
+            ends[ia[done]] = e_prev[done]
+            starts[ia[done] + 1] = s_next[done]
+            for q in np.flatnonzero(done & arcs["has"]):
+                corners[int(ia[q])] = [Arc(_pt(arr.E[ia[q]]), float(r[ia[q]]),
+                                           float(arcs["theta0"][q]), float(arcs["sweep"][q]))]
+            handled = np.zeros(n - 1, bool)
+            handled[ia[done]] = True
+            todo = np.flatnonzero(~handled)
+    for i in todo:
+        j = style.joint(scan.element(i), classes[i], scan.element(i + 1), classes[i + 1],
+                        len(scan.gaps[i + 1]))
         ends[i] = j.end_prev
         starts[i + 1] = j.start_next
-        corners[i] = j.corner
+        if j.corner:
+            corners[int(i)] = j.corner
     tail_return = None
     if n:
-        last = els[-1]
-        if last.k != 0:
+        if k[-1] != 0:
             # Still on at the end of the in-plane moves: PMAC's automatic
             # zero-distance lead-out (decisions.AUTOMATIC_ZERO_DISTANCE_LEADOUT).
+            last = scan.element(n - 1)
             ends[-1] = last.offset_point(True, last.k, last.r)
             tail_return = (ends[-1], last.end)
         else:
-            ends[-1] = last.end
+            ends[-1] = arr.E[-1]
+
+    # exact tool geometry of every move
+    geoms: list = [None] * n
+    if n:
+        fast = np.flatnonzero(arr.kind != SPIRAL) if vectorised else np.zeros(0, int)
+        for i, g in zip(fast, tool_segments(arr, fast, starts, ends)):
+            geoms[i] = g
+        for i in range(n):
+            if geoms[i] is None:
+                geoms[i] = tool_geometry(scan.element(i), starts[i], ends[i])
 
     segs: list[PathSegment] = []
     dwells: list[tuple[int, float, Block]] = []
 
-    def emit_gap(blocks: list[Block], at: np.ndarray, comp_on_default: bool) -> None:
+    def emit_gap(blocks: list[Block], at: np.ndarray, comp_on: bool) -> None:
         for blk in blocks:
             if blk.motion is Motion.DWELL:
                 dwells.append((len(segs), blk.dwell, blk))
@@ -219,35 +280,39 @@ def assemble(style, scan: ScanResult, program: Program) -> ToolPath:
             w0 = blk.uvw(blk.start)[2]
             w1 = blk.uvw(blk.end)[2]
             role = Role.RAPID if blk.motion is Motion.RAPID and blk.modal.side == 0 else (
-                Role.COMPENSATED if comp_on_default else Role.UNCOMPENSATED)
+                Role.COMPENSATED if comp_on else Role.UNCOMPENSATED)
             segs.append(PathSegment(Line(_pt(at), _pt(at)), role, blk, w0, w1, blk.feed))
 
     if n == 0:
         emit_gap(scan.gaps[0], np.asarray(scan.start_uv, float), False)
-    for i, el in enumerate(els):
-        emit_gap(scan.gaps[i], starts[i], el.k != 0 and classes[i] != LEAD_IN)
-        geom = tool_geometry(el, starts[i], ends[i])
+    plane_w = PLANE_AXES[scan.plane][2]
+    for i, blk in enumerate(scan.blocks):
+        if scan.gaps[i]:
+            emit_gap(scan.gaps[i], starts[i], k[i] != 0 and classes[i] != LEAD_IN)
+        geom = geoms[i]
         role = ROLE_OF[classes[i]]
-        if classes[i] == UNCOMP and el.block.motion is Motion.RAPID:
+        if classes[i] == UNCOMP and blk.motion is Motion.RAPID:
             role = Role.RAPID
-        if geom.length > POINT_EPS or el.w0 != el.w1:
-            segs.append(PathSegment(geom, role, el.block, el.w0, el.w1, el.block.feed))
-        for cg in corners[i]:
-            segs.append(PathSegment(cg, Role.CORNER, el.block, el.w1, el.w1, el.block.feed))
+        w0, w1 = blk.start[plane_w], blk.end[plane_w]
+        if geom.length > POINT_EPS or w0 != w1:
+            segs.append(PathSegment(geom, role, blk, w0, w1, blk.feed))
+        for cg in corners.get(i, ()):
+            segs.append(PathSegment(cg, Role.CORNER, blk, w1, w1, blk.feed))
     if n:
         trailing = scan.gaps[n]
+        last_blk = scan.blocks[-1]
+        w_last = last_blk.end[plane_w]
         if tail_return is not None:
             # The return happens before the first trailing block with
             # compensation off, or at the very end.
             split = next((q for q, blk in enumerate(trailing) if blk.modal.side == 0), len(trailing))
             emit_gap(trailing[:split], tail_return[0], True)
-            last = els[-1]
             segs.append(PathSegment(Line(_pt(tail_return[0]), _pt(tail_return[1])), Role.LEAD_OUT,
-                                    last.block, last.w1, last.w1, last.block.feed))
+                                    last_blk, w_last, w_last, last_blk.feed))
             emit_gap(trailing[split:], tail_return[1], False)
         else:
             emit_gap(trailing, ends[-1], False)
-    radius = max((el.r for el in els if el.k != 0), default=0.0)
+    radius = float(r[k != 0].max()) if n and (k != 0).any() else 0.0
     return ToolPath(tuple(segs), plane=scan.plane, style=style.name, radius=radius,
                     dwells=tuple(dwells), units=program.units,
                     meta={"break_cos": getattr(style, "break_cos", None)})

@@ -1,0 +1,145 @@
+"""Benchmark: PMAC compensation of a 100,000-element closed contour vs shapely.
+
+The contour is a star-shaped closed path around the origin, counter-clockwise,
+whose edges alternate between straight lines and arcs bulging in or out, so it
+has inside and outside corners, line-arc, arc-line and arc-arc joints. ccopt
+compensates it (CC1, r = 0.001) into exact lines, arcs and corner arcs; shapely
+offsets the same contour, as a polyline with every arc replaced by
+``ARC_POINTS`` chords, with ``offset_curve`` (round joins), in the same run.
+
+Prints medians of repeated runs, blocks per second, the ratio ccopt/shapely and
+the peak memory of ccopt's run per block at two sizes (linear memory check).
+
+    python bench/compensate.py [--n 100000] [--repeat 5]
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import sys
+import time
+import tracemalloc
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from ccopt.compensate import compensate  # noqa: E402
+from ccopt.program.model import Block, Modal, Motion, Program, Source  # noqa: E402
+
+ARC_POINTS = 8
+RADIUS = 0.001  # edges are 2*pi*100/n = 0.0063 long at n = 100,000
+
+
+def contour(n: int, seed: int = 1):
+    """Vertices and per-edge bulge (0 = line, +-b = arc) of a closed star contour."""
+    rng = np.random.default_rng(seed)
+    theta = np.sort(rng.uniform(0, 2 * np.pi, n))
+    theta = np.linspace(0, 2 * np.pi, n, endpoint=False) + 0.2 * (theta - theta.mean()) / n
+    # radial jitter of a third of an edge gives inside and outside corners
+    rad = 100.0 + rng.uniform(-1.0, 1.0, n) * (2 * np.pi * 100 / n) / 3
+    pts = np.c_[rad * np.cos(theta), rad * np.sin(theta)]
+    bulge = np.where(np.arange(n) % 2 == 0, 0.0, rng.choice([-0.2, 0.2], n))
+    return pts, bulge
+
+
+def arc_centre(p, q, b):
+    half = math.dist(p, q) / 2
+    sag = abs(b) * half
+    R = (half * half + sag * sag) / (2 * sag)
+    m = ((p[0] + q[0]) / 2, (p[1] + q[1]) / 2)
+    t = ((q[0] - p[0]) / (2 * half), (q[1] - p[1]) / (2 * half))
+    side = 1.0 if b > 0 else -1.0
+    return (m[0] - side * (R - sag) * t[1], m[1] + side * (R - sag) * t[0]), R
+
+
+def program(pts, bulge) -> Program:
+    n = len(pts)
+    on = Modal(side=1, radius=RADIUS)
+    blocks = [Block(Source("bench", 1), Motion.LINE, (0.0, 0.0, 0.0), (*pts[0], 0.0), on, feed=10.0)]
+    for i in range(n):
+        p, q = tuple(pts[i]), tuple(pts[(i + 1) % n])
+        if bulge[i] == 0:
+            blocks.append(Block(Source("bench", i + 2), Motion.LINE, (*p, 0.0), (*q, 0.0), on, feed=10.0))
+        else:
+            c, _ = arc_centre(p, q, bulge[i])
+            motion = Motion.ARC_CCW if bulge[i] > 0 else Motion.ARC_CW
+            blocks.append(Block(Source("bench", i + 2), motion, (*p, 0.0), (*q, 0.0), on,
+                                center=(*c, 0.0), feed=10.0))
+    blocks.append(Block(Source("bench", n + 2), Motion.LINE, (*pts[0], 0.0), (0.0, 0.0, 0.0),
+                        Modal(side=0, radius=RADIUS), feed=10.0))
+    return Program(tuple(blocks), "bench", "pmac")
+
+
+def polyline(pts, bulge) -> np.ndarray:
+    out = []
+    n = len(pts)
+    for i in range(n):
+        p, q = pts[i], pts[(i + 1) % n]
+        if bulge[i] == 0:
+            out.append(p)
+            continue
+        c, R = arc_centre(tuple(p), tuple(q), bulge[i])
+        a0 = math.atan2(p[1] - c[1], p[0] - c[0])
+        a1 = math.atan2(q[1] - c[1], q[0] - c[0])
+        sweep = (a1 - a0) % (2 * math.pi) if bulge[i] > 0 else -((a0 - a1) % (2 * math.pi))
+        for k in range(ARC_POINTS):
+            a = a0 + sweep * k / ARC_POINTS
+            out.append((c[0] + R * math.cos(a), c[1] + R * math.sin(a)))
+    out.append(pts[0])
+    return np.asarray(out)
+
+
+def median_time(fn, repeat):
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times)
+
+
+def peak_memory(fn) -> int:
+    tracemalloc.start()
+    fn()
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    return peak
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--n", type=int, default=100_000)
+    ap.add_argument("--repeat", type=int, default=5)
+    args = ap.parse_args()
+    import shapely
+
+    pts, bulge = contour(args.n)
+    prog = program(pts, bulge)
+    line = shapely.linestrings(polyline(pts, bulge))
+
+    t_ccopt = median_time(lambda: compensate(prog, "pmac"), args.repeat)
+    t_shapely = median_time(lambda: shapely.offset_curve(line, RADIUS, join_style="round"),
+                            args.repeat)
+    path = compensate(prog, "pmac")
+    kinds = {}
+    for s in path.segments:
+        kinds[s.kind] = kinds.get(s.kind, 0) + 1
+    print(f"contour: {args.n} elements ({int((bulge != 0).sum())} arcs), r = {RADIUS}")
+    print(f"ccopt  pmac compensate : {t_ccopt * 1e3:9.1f} ms median of {args.repeat} "
+          f"({args.n / t_ccopt:,.0f} blocks/s) -> {len(path.segments)} exact segments {kinds}")
+    print(f"shapely offset_curve   : {t_shapely * 1e3:9.1f} ms median of {args.repeat} "
+          f"({args.n / t_shapely:,.0f} blocks/s, arcs as {ARC_POINTS} chords, round joins)")
+    print(f"ratio ccopt/shapely    : {t_ccopt / t_shapely:9.2f}  (target <= 5)")
+    small = args.n // 10
+    p_small = program(*contour(small))
+    m_small = peak_memory(lambda: compensate(p_small, "pmac"))
+    m_big = peak_memory(lambda: compensate(prog, "pmac"))
+    print(f"peak memory per block  : {m_small / small:9.0f} B at n={small}, "
+          f"{m_big / args.n:9.0f} B at n={args.n} (linear if about equal)")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,209 @@
+"""Array form of the shared corner machinery, for long runs of ordinary corners.
+
+:mod:`.corners` is the readable reference, one corner at a time. Here the same
+formulas run over all elements at once: the programmed geometry as arrays
+(:class:`ElementArrays`), offset points, carrier intersections with the
+nearest-root rule, and the exact tool segments between corner points. Styles
+use it for the joints their rules make ordinary (same side, no gap, no
+spiral) and fall back to the reference for everything else; tests require
+both routes to give the same path to 1e-9.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ccopt.geometry import Arc, Line, Spiral
+from ccopt.geometry.intersect_many import circles_circles, lines_circles, lines_lines
+from ccopt.program.model import PLANE_AXES, Block, Motion
+from ccopt.tolerances import OFFSET_CIRCLE_REL_TOL, POINT_EPS, TURN_EPS
+
+LINE, ARC, SPIRAL = 0, 1, 2
+TWO_PI = 2.0 * math.pi
+
+
+def _perp(t: np.ndarray) -> np.ndarray:
+    return np.c_[-t[:, 1], t[:, 0]]
+
+
+def wrap_pi(a: np.ndarray) -> np.ndarray:
+    """Angles folded into (-pi, pi] (same rule as :func:`corners.wrap_pi`)."""
+    a = np.fmod(a + math.pi, TWO_PI)
+    a = np.where(a <= 0.0, a + TWO_PI, a)
+    return a - math.pi
+
+
+@dataclass
+class ElementArrays:
+    """Programmed in-plane moves as arrays (plane coordinates).
+
+    kind: LINE/ARC/SPIRAL; S, E: start/end points; C: centre (nan for lines);
+    R: start radius; sgn: +1 counter-clockwise, -1 clockwise, 0 line;
+    theta0, sweep: programmed start angle and signed sweep; ts, te: unit
+    tangents at start and end; k, r: side and radius in force.
+    """
+
+    kind: np.ndarray
+    S: np.ndarray
+    E: np.ndarray
+    C: np.ndarray
+    R: np.ndarray
+    sgn: np.ndarray
+    theta0: np.ndarray
+    sweep: np.ndarray
+    ts: np.ndarray
+    te: np.ndarray
+    k: np.ndarray
+    r: np.ndarray
+
+    @classmethod
+    def from_blocks(cls, blocks: list[Block], plane: str, k: np.ndarray, r: np.ndarray):
+        i, j, _ = PLANE_AXES[plane]
+        n = len(blocks)
+        st = np.array([b.start for b in blocks], float).reshape(n, 3)
+        en = np.array([b.end for b in blocks], float).reshape(n, 3)
+        nan3 = (math.nan, math.nan, math.nan)
+        ce = np.array([b.center if b.center is not None else nan3 for b in blocks], float).reshape(n, 3)
+        motion_arc = np.array([b.motion.is_arc for b in blocks], bool)
+        ccw = np.array([b.motion is Motion.ARC_CCW for b in blocks], bool)
+        turns = np.array([b.turns for b in blocks], float)
+        S, E, C = st[:, [i, j]], en[:, [i, j]], ce[:, [i, j]]
+        R0 = np.hypot(*(S - C).T)
+        R1 = np.hypot(*(E - C).T)
+        # Same spiral criterion as toolpath.block_geometry.
+        spiral = motion_arc & (np.abs(R1 - R0) > 1e-9 * np.maximum(1.0, R0))
+        kind = np.where(motion_arc, np.where(spiral, SPIRAL, ARC), LINE)
+        sgn = np.where(motion_arc, np.where(ccw, 1.0, -1.0), 0.0)
+        th0 = np.arctan2(S[:, 1] - C[:, 1], S[:, 0] - C[:, 0])
+        th1 = np.arctan2(E[:, 1] - C[:, 1], E[:, 0] - C[:, 0])
+        # geometry.angles.sweep_between, elementwise (full circle when the gap
+        # is within the Arc.from_points tolerance 1e-9*max(1, R) as a length).
+        gap = np.fmod(np.where(ccw, th1 - th0, th0 - th1), TWO_PI)
+        gap = np.where(gap < 0.0, gap + TWO_PI, gap)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            full_if_below = 1e-9 * np.maximum(1.0, R0) / R0
+        full = (gap <= full_if_below) | (TWO_PI - gap <= full_if_below) | (gap >= TWO_PI)
+        gap = np.where(full, TWO_PI, gap) + TWO_PI * turns
+        sweep = np.where(motion_arc, np.where(ccw, gap, -gap), 0.0)
+        # tangents
+        d = E - S
+        L = np.hypot(d[:, 0], d[:, 1])
+        with np.errstate(invalid="ignore", divide="ignore"):
+            t_line = d / L[:, None]
+        th_end = th0 + sweep
+        t_arc_s = sgn[:, None] * np.c_[-np.sin(th0), np.cos(th0)]
+        t_arc_e = sgn[:, None] * np.c_[-np.sin(th_end), np.cos(th_end)]
+        is_line = (kind == LINE)[:, None]
+        ts = np.where(is_line, t_line, t_arc_s)
+        te = np.where(is_line, t_line, t_arc_e)
+        return cls(kind, S, E, C, R0, sgn, th0, sweep, ts, te,
+                   np.asarray(k, float), np.asarray(r, float))
+
+    def offset_radius(self, idx: np.ndarray, k: np.ndarray, r: np.ndarray) -> np.ndarray:
+        """Offset arc radius ``R - k*r`` counter-clockwise, ``R + k*r`` clockwise."""
+        return self.R[idx] - k * r * self.sgn[idx]
+
+
+def nearest_corner_points(arr: ElementArrays, ia: np.ndarray, k: np.ndarray, r: np.ndarray,
+                          A: np.ndarray, B: np.ndarray):
+    """Intersections of the offsets of elements ``ia`` and ``ia + 1`` (side
+    ``k``, radius ``r``) nearest the nominal points ``A``, ``B``
+    (decisions.nearest_root, vectorised).
+
+    Returns ``(X, found, delicate)``: ``found`` false where the carriers miss,
+    ``delicate`` where the configuration is near-degenerate and the scalar
+    reference must decide.
+    """
+    ib = ia + 1
+    m = len(ia)
+    X = np.full((m, 2), np.nan)
+    found = np.zeros(m, bool)
+    delicate = np.zeros(m, bool)
+    la = arr.kind[ia] == LINE
+    lb = arr.kind[ib] == LINE
+    Ra = np.where(la, np.nan, arr.offset_radius(ia, k, r))
+    Rb = np.where(lb, np.nan, arr.offset_radius(ib, k, r))
+    te, ts = arr.te[ia], arr.ts[ib]
+    Ca, Cb = arr.C[ia], arr.C[ib]
+    for mask, fn, args in (
+        (la & lb, lines_lines, lambda s: (A[s], te[s], B[s], ts[s])),
+        (la & ~lb, lines_circles, lambda s: (A[s], te[s], Cb[s], Rb[s])),
+        (~la & lb, lines_circles, lambda s: (B[s], ts[s], Ca[s], Ra[s])),
+        (~la & ~lb, circles_circles, lambda s: (Ca[s], Ra[s], Cb[s], Rb[s])),
+    ):
+        if not mask.any():
+            continue
+        x1, x2, n, deli = fn(*args(mask))
+        a, b = A[mask], B[mask]
+        cost1 = np.hypot(*(x1 - a).T) + np.hypot(*(x1 - b).T)
+        cost2 = np.hypot(*(x2 - a).T) + np.hypot(*(x2 - b).T)
+        # ties keep the first candidate, like the scalar loop (strict <)
+        pick2 = (n == 2) & (cost2 < cost1)
+        X[mask] = np.where(pick2[:, None], x2, x1)
+        found[mask] = n > 0
+        delicate[mask] = deli
+    return X, found, delicate
+
+
+def corner_turn(arr: ElementArrays, ia: np.ndarray):
+    """Cross ``c`` and dot ``d`` of the turn at the end of elements ``ia``."""
+    te, ts = arr.te[ia], arr.ts[ia + 1]
+    c = te[:, 0] * ts[:, 1] - te[:, 1] * ts[:, 0]
+    d = te[:, 0] * ts[:, 0] + te[:, 1] * ts[:, 1]
+    return c, d
+
+
+def offset_points(arr: ElementArrays, ia: np.ndarray, k: np.ndarray, r: np.ndarray):
+    """Nominal offset points ``A = P + r*o(t_in)`` and ``B = P + r*o(t_out)``."""
+    P = arr.E[ia]
+    A = P + (k * r)[:, None] * _perp(arr.te[ia])
+    B = P + (k * r)[:, None] * _perp(arr.ts[ia + 1])
+    return A, B
+
+
+def classify_turn(k: np.ndarray, c: np.ndarray, d: np.ndarray, eps: float = TURN_EPS):
+    """Codes 0 inside, 1 outside, 2 tangent, 3 reversal (as :func:`corners.classify`)."""
+    kc = k * c
+    return np.where(kc > eps, 0, np.where(kc < -eps, 1, np.where(d > 0, 2, 3)))
+
+
+def tool_segments(arr: ElementArrays, idx: np.ndarray, starts: np.ndarray, ends: np.ndarray):
+    """Exact tool geometry of line and arc elements ``idx`` between corner
+    points, as :func:`corners.tool_geometry` builds it one at a time.
+
+    Returns a list of geometry objects, or ``None`` at positions the caller
+    must build with the reference (an arc through its own centre).
+    """
+    out: list = [None] * len(idx)
+    s, e = starts[idx], ends[idx]
+    kind = arr.kind[idx]
+    C = arr.C[idx]
+    rs = np.hypot(*(s - C).T)
+    re = np.hypot(*(e - C).T)
+    th_s = np.arctan2(s[:, 1] - C[:, 1], s[:, 0] - C[:, 0])
+    th_e = np.arctan2(e[:, 1] - C[:, 1], e[:, 0] - C[:, 0])
+    th0, sw = arr.theta0[idx], arr.sweep[idx]
+    sweep = sw + wrap_pi(th_e - (th0 + sw)) - wrap_pi(th_s - th0)
+    same_r = np.abs(re - rs) <= 1e-12 * np.maximum(1.0, rs)
+    # corners.tool_geometry: both ends on the offset circle -> exactly that arc
+    on = arr.offset_radius(idx, arr.k[idx], arr.r[idx])
+    tol = OFFSET_CIRCLE_REL_TOL * np.maximum(1.0, on)
+    on_offset = (kind == ARC) & (on > 0) & (np.abs(rs - on) <= tol) & (np.abs(re - on) <= tol)
+    for q in range(len(idx)):
+        if kind[q] == LINE:
+            out[q] = Line((float(s[q, 0]), float(s[q, 1])), (float(e[q, 0]), float(e[q, 1])))
+        elif rs[q] > POINT_EPS and re[q] > POINT_EPS:
+            c = (float(C[q, 0]), float(C[q, 1]))
+            if on_offset[q]:
+                out[q] = Arc(c, float(on[q]), float(th_s[q]), float(sweep[q]))
+            elif same_r[q]:
+                out[q] = Arc(c, float(rs[q]), float(th_s[q]), float(sweep[q]))
+            else:
+                out[q] = Spiral(c, float(rs[q]), float(re[q]), float(th_s[q]), float(sweep[q]))
+    return out
+
+
+__all__ = ["ARC", "ElementArrays", "LINE", "SPIRAL", "classify_turn", "corner_turn",
+           "nearest_corner_points", "offset_points", "tool_segments", "wrap_pi"]
