@@ -49,6 +49,12 @@ def compensate(program: Program, style: str = "pmac", *, radius: float | None = 
         if side not in SIDES:
             raise ProgramError(f"side must be left or right, not {side!r}", program.file)
         side = SIDES[side]
+    # Controller settings written in a PMAC file (Isx99, DEFINE CCBUF) apply
+    # unless the caller overrides them.
+    if style == "pmac":
+        for key in ("break_cos", "ccbuf"):
+            if key not in options and program.meta.get(key) is not None:
+                options[key] = program.meta[key]
     try:
         engine = STYLES[style](**options)
     except (TypeError, ValueError) as exc:

@@ -394,3 +394,30 @@ def test_profile_key_points():
     assert lead_out.kind == "spiral" and lead_out.role.value == "lead-out"
     assert np.allclose(lead_out.start, (-3, 15), atol=TOL)
     assert (lead_out.geom.rho0, lead_out.geom.rho1) == pytest.approx((7, 10), abs=TOL)
+
+
+def test_gcode_twin_of_the_pocket_gives_the_same_path():
+    # G41.1 D6 (diameter) read through the G-code reader and compensated PMAC
+    # style is the same tool path as the PMAC program with CC1 CCR3.
+    folder = bundled_cases_dir() / "pocket"
+    pmc = compensate(ccopt.read_program(folder / "pocket.pmc"), "pmac")
+    nc = compensate(ccopt.read_program(folder / "pocket.nc"), "pmac")
+    a = [s for s in pmc.segments if s.role.value != "rapid"]
+    b = [s for s in nc.segments if s.role.value != "rapid"]
+    assert [(s.kind, s.role) for s in a] == [(s.kind, s.role) for s in b]
+    for x, y in zip(a, b):
+        assert np.allclose(x.start, y.start, atol=TOL) and np.allclose(x.end, y.end, atol=TOL)
+        assert x.feed == pytest.approx(y.feed)   # F1800 per minute = 30 per second
+
+
+def test_isx99_written_in_the_pmac_file_is_used(tmp_path):
+    # Turbo PMAC: coordinate system 1's Isx99 is I5199. 0.99999 makes the 0.5-degree
+    # corner of outside-break sharp (three corner arcs instead of two).
+    src = (bundled_cases_dir() / "outside-break" / "part.pmc").read_text()
+    prog_file = tmp_path / "break.pmc"
+    prog_file.write_text("I5199=0.99999\n" + src)
+    path = compensate(ccopt.read_program(prog_file), "pmac")
+    assert sum(s.role.value == "corner" for s in path.segments) == 3
+    # an explicit option wins over the file
+    path = compensate(ccopt.read_program(prog_file), "pmac", break_cos=0.9998)
+    assert sum(s.role.value == "corner" for s in path.segments) == 2
