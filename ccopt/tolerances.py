@@ -15,6 +15,11 @@ TURN_EPS = 1e-9
 ARC_RADIUS_ABS_TOL_MM = 0.002
 ARC_RADIUS_REL_TOL = 0.001
 
+#: An R-format arc whose |R| is shorter than half its chord by at most this
+#: fraction is read as a half circle (rounding in the program's numbers);
+#: shorter still is an error. Both readers' R arcs use it.
+R_CHORD_REL_TOL = 1e-9
+
 #: PMAC break point (Isx99): cos of the turn above which an outside corner is
 #: "shallow" and the offsets are extended instead of adding an arc.
 PMAC_BREAK_COS = 0.9998

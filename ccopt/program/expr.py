@@ -305,3 +305,10 @@ def parse_bracketed(text: str, pos: int, grammar: Grammar) -> tuple[float, int]:
 def parse_operand(text: str, pos: int, grammar: Grammar) -> tuple[float, int]:
     """Evaluate one operand (number, variable, function or bracketed expression)."""
     return _Parser(text, grammar).operand(pos)
+
+
+def parse_expression(text: str, pos: int, grammar: Grammar) -> tuple[float, int]:
+    """Evaluate an unbracketed expression starting at ``text[pos]`` (e.g. the
+    right-hand side of a PMAC ``P1=P2*2+1``); stops at the first character
+    that cannot continue it. Returns ``(value, position after it)``."""
+    return _Parser(text, grammar).expression(pos, 0)

@@ -169,14 +169,12 @@ from ccopt.program import expr as _expr
 from ccopt.program.expr import (ExprError, Grammar, PMAC_BINARY, PMAC_FUNCTIONS,
                                 parse_bracketed)
 from ccopt.program.model import PLANE_AXES, Block, Modal, Motion, Program, Source, Vec3
-from ccopt.tolerances import POINT_EPS
+from ccopt.tolerances import POINT_EPS, R_CHORD_REL_TOL
 
 __all__ = ["read_pmac"]
 
 #: Highest P/Q/I/M variable number of a Turbo PMAC.
 MAX_VARIABLE = 8191
-#: Relative tolerance on "R shorter than half the chord" (decision).
-R_CHORD_REL_TOL = 1e-9
 #: Bits after the binary point used for the bit-by-bit operators.
 _FRACTION_BITS = 48
 
@@ -531,7 +529,7 @@ class _Reader:
             if bare:
                 # The shared evaluator only exposes bracketed expressions; an
                 # assignment's right-hand side may be unbracketed.
-                value, end = _expr._Parser(text, self.grammar).expression(pos, 0)
+                value, end = _expr.parse_expression(text, pos, self.grammar)
             else:
                 value, end = parse_bracketed(text, pos, self.grammar)
             return _check_finite_expr(value, pos), end
