@@ -21,10 +21,16 @@ def _pmac(**options):
     return PmacStyle(**options)
 
 
+def _linuxcnc(**options):
+    from ccopt.compensate.linuxcnc import LinuxcncStyle
+    return LinuxcncStyle(**options)
+
+
 #: style name -> factory(**options) returning an object with
 #: ``compensate(program, radius=, side=) -> ToolPath``.
 STYLES: dict[str, Callable[..., object]] = {
     "pmac": _pmac,
+    "linuxcnc": _linuxcnc,
 }
 
 
