@@ -1,0 +1,159 @@
+"""LinuxCNC conformance of the ``linuxcnc`` compensation style.
+
+For every one of the 75 subroutine calls of LinuxCNC's own cutter-compensation
+torture test (``crazy-paths/test.ngc``: 25 paths x no compensation, right and
+left with r = 0.25), the tool path ccopt makes must be the same sequence of
+canonical moves LinuxCNC's interpreter prints in ``expected``:
+``STRAIGHT_TRAVERSE``/``STRAIGHT_FEED`` (end point) and ``ARC_FEED`` (end
+point, centre, turn), every figure within 5e-5 (``expected`` prints 4
+decimals).
+
+The data lives next to the repository in ``shared/conformance/linuxcnc``; it is
+never copied into the project. A missing copy is a failure, not a skip.
+"""
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import pytest
+
+from ccopt.compensate import compensate
+from ccopt.geometry import Line
+from ccopt.program.gcode import read_gcode
+from ccopt.program.model import Motion
+
+DATA = Path(__file__).resolve().parents[2] / ".." / "shared" / "conformance" / "linuxcnc" / "crazy-paths"
+TOL = 5e-5  # expected figures are printed to 4 decimals
+N_CALLS = 75
+_CANON = re.compile(r"\b(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED)\((.*)\)\s*$")
+
+
+def _data(name: str) -> Path:
+    path = DATA / name
+    if not path.is_file():
+        pytest.fail(f"LinuxCNC conformance data missing: {path.resolve()} (expected the shared "
+                    "folder next to the repository: shared/conformance/linuxcnc/crazy-paths)")
+    return path
+
+
+def _split_calls(moves):
+    """Split a list of (kind, numbers) at every STRAIGHT_TRAVERSE: one call each
+    (every call of test.ngc starts with its own G0 and has no other)."""
+    calls = []
+    for kind, nums in moves:
+        if kind == "STRAIGHT_TRAVERSE" or not calls:
+            calls.append([])
+        calls[-1].append((kind, nums))
+    return calls
+
+
+def expected_calls():
+    moves = []
+    for line in _data("expected").read_text().splitlines():
+        m = _CANON.search(line)
+        if m:
+            kind, args = m.groups()
+            moves.append((kind, [float(a) for a in args.split(",")]))
+    return _split_calls(moves)
+
+
+def canonical_moves(path):
+    """The tool path as LinuxCNC canonical moves.
+
+    A line of a ``G0`` block is a STRAIGHT_TRAVERSE, any other line a
+    STRAIGHT_FEED; an arc (or spiral) is ARC_FEED(end, centre, turn) with
+    ``turn = sign(sweep) * (number of started turns)``.
+    """
+    out = []
+    for seg in path.segments:
+        g = seg.geom
+        if isinstance(g, Line):
+            kind = "STRAIGHT_TRAVERSE" if seg.block.motion is Motion.RAPID else "STRAIGHT_FEED"
+            out.append((kind, [g.end[0], g.end[1]]))
+        else:
+            turns = math.floor(abs(g.sweep) / (2 * math.pi) - 1e-9) + 1
+            out.append(("ARC_FEED", [g.end[0], g.end[1], g.center[0], g.center[1],
+                                     math.copysign(turns, g.sweep)]))
+    return out
+
+
+@pytest.fixture(scope="module")
+def program():
+    path = _data("test.ngc")
+    return read_gcode(path.read_text(), str(path))
+
+
+@pytest.fixture(scope="module")
+def ours(program):
+    return _split_calls(canonical_moves(compensate(program, style="linuxcnc")))
+
+
+@pytest.fixture(scope="module")
+def theirs():
+    return expected_calls()
+
+
+def _label(k: int) -> str:
+    arg = ("0", "-.5 (right, r 0.25)", ".5 (left, r 0.25)")[k % 3]
+    return f"call {k} (path {k // 3}, #1 = {arg})"
+
+
+def test_every_call_is_there(ours, theirs):
+    assert len(theirs) == N_CALLS, "expected output should hold 25 paths x 3 radii"
+    assert len(ours) == N_CALLS, f"the linuxcnc tool path splits into {len(ours)} calls, want 75"
+
+
+def _compare(k: int, got, want) -> list[str]:
+    """Every difference of one call, as readable lines (empty: identical)."""
+    kinds_got = [g[0] for g in got]
+    kinds_want = [w[0] for w in want]
+    if kinds_got != kinds_want:
+        return [f"{_label(k)}: move sequence differs:\n  ccopt    {kinds_got}\n"
+                f"  LinuxCNC {kinds_want}"]
+    problems = []
+    for i, ((kind, a), (_, b)) in enumerate(zip(got, want)):
+        names = ("end x", "end y") if kind != "ARC_FEED" else (
+            "end x", "end y", "centre x", "centre y")
+        for q, name in enumerate(names):
+            if not abs(a[q] - b[q]) <= TOL:
+                problems.append(f"{_label(k)} move {i} ({kind}) {name}: ccopt {a[q]:.6f}, "
+                                f"LinuxCNC {b[q]:.4f} (off by {abs(a[q] - b[q]):.2e})")
+        if kind == "ARC_FEED" and int(a[4]) != int(b[4]):
+            problems.append(f"{_label(k)} move {i} (ARC_FEED) turn: ccopt {int(a[4])}, "
+                            f"LinuxCNC {int(b[4])}")
+    return problems
+
+
+@pytest.mark.parametrize("k", range(N_CALLS))
+def test_call_matches_linuxcnc(k, ours, theirs):
+    assert k < len(ours) and k < len(theirs), f"{_label(k)} missing"
+    problems = _compare(k, ours[k], theirs[k])
+    assert not problems, "\n".join(problems)
+
+
+def test_all_calls_match_and_largest_deviation(ours, theirs):
+    """One summary: how many calls match, and the largest deviation of any figure."""
+    matching, worst, where = 0, 0.0, None
+    for k, (got, want) in enumerate(zip(ours, theirs)):
+        if _compare(k, got, want):
+            continue
+        matching += 1
+        for i, ((kind, a), (_, b)) in enumerate(zip(got, want)):
+            for q in range(4 if kind == "ARC_FEED" else 2):
+                if abs(a[q] - b[q]) > worst:
+                    worst, where = abs(a[q] - b[q]), (k, i)
+    print(f"linuxcnc conformance: {matching}/{N_CALLS} calls match, largest deviation "
+          f"{worst:.3e} at call/move {where}")
+    assert matching == N_CALLS
+    assert worst <= TOL
+
+
+def test_the_spec_example_entry_point(ours):
+    """Spec, LinuxCNC rule 2: the left-side entry of the first path is pulled back
+    to (-99.7500, -101.0449) by the inside corner that follows it."""
+    kind, nums = ours[2][1]
+    assert kind == "STRAIGHT_FEED"
+    assert nums[0] == pytest.approx(-99.75, abs=TOL)
+    assert nums[1] == pytest.approx(-101.0449, abs=TOL)
