@@ -34,7 +34,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ccopt.geometry.angles import angle_in_sweep
+from ccopt.geometry.angles import in_sweep_prepared
 from ccopt.geometry.primitives import Arc, Line, Spiral
 
 __all__ = [
@@ -67,6 +67,25 @@ def _columns(points, scalars=()):
     return cols[:k], cols[k:2 * k], cols[2 * k:]
 
 
+#: Pairs per block: temporaries of this many doubles (64 KiB) stay in cache and
+#: in the allocator's pool instead of being page-faulted in for every call.
+CHUNK = 8192
+
+
+def _run_chunked(kernel, cols):
+    """Apply ``kernel(*cols) -> (d, wa, wb)`` block by block over 1-D columns."""
+    n = cols[0].shape[0]
+    if n <= CHUNK:
+        return kernel(*cols)
+    d = np.empty(n)
+    wa = np.empty((n, 2))
+    wb = np.empty((n, 2))
+    for i in range(0, n, CHUNK):
+        sl = slice(i, i + CHUNK)
+        d[sl], wa[sl], wb[sl] = kernel(*(c[sl] for c in cols))
+    return d, wa, wb
+
+
 def _stack(x, y):
     out = np.empty((x.shape[0], 2))
     out[:, 0] = x
@@ -74,11 +93,30 @@ def _stack(x, y):
     return out
 
 
+def _norm(x, y):
+    # sqrt(x^2 + y^2) is several times faster than np.hypot on large arrays;
+    # over/underflow would need coordinates beyond 1e150, far outside any machine.
+    return np.sqrt(x * x + y * y)
+
+
+def _blend(dst, src, take):
+    """``dst[take] = src[take]`` branch-free: ``take`` is a 0/1 float array.
+
+    Random masks make ``np.where``/``np.copyto(where=)`` mispredict on every
+    element; this is a subtract, multiply and add. The result can differ from
+    ``src`` by one rounding (``x + (y - x)``), far below any tolerance here.
+    ``src`` must be finite where ``take`` is 0.
+    """
+    tmp = np.subtract(src, dst)
+    tmp *= take
+    dst += tmp
+
+
 class _Best:
     """Running minimum over candidate pairs, with their witness coordinates.
 
-    Candidates not on both curves are passed with ``valid=False`` (or an
-    infinite distance) and never win.
+    Candidates that are not on both curves are offered with ``valid=False``
+    and never win; every offered distance and witness must be finite.
     """
 
     __slots__ = ("d", "ax", "ay", "bx", "by")
@@ -86,23 +124,46 @@ class _Best:
     def __init__(self, d, ax, ay, bx, by):
         n = d.shape[0]
         self.d = np.array(d, dtype=float)
-        self.ax = np.broadcast_to(ax, (n,)).astype(float)
-        self.ay = np.broadcast_to(ay, (n,)).astype(float)
-        self.bx = np.broadcast_to(bx, (n,)).astype(float)
-        self.by = np.broadcast_to(by, (n,)).astype(float)
+        self.ax = np.array(np.broadcast_to(ax, (n,)), dtype=float)
+        self.ay = np.array(np.broadcast_to(ay, (n,)), dtype=float)
+        self.bx = np.array(np.broadcast_to(bx, (n,)), dtype=float)
+        self.by = np.array(np.broadcast_to(by, (n,)), dtype=float)
 
     def offer(self, d, ax, ay, bx, by, valid=None):
         better = d < self.d
         if valid is not None:
             better &= valid
-        np.copyto(self.d, d, where=better)
-        np.copyto(self.ax, ax, where=better)
-        np.copyto(self.ay, ay, where=better)
-        np.copyto(self.bx, bx, where=better)
-        np.copyto(self.by, by, where=better)
+        if not better.any():
+            return
+        take = better.astype(float)
+        _blend(self.d, d, take)
+        _blend(self.ax, ax, take)
+        _blend(self.ay, ay, take)
+        _blend(self.bx, bx, take)
+        _blend(self.by, by, take)
 
     def result(self):
         return self.d, _stack(self.ax, self.ay), _stack(self.bx, self.by)
+
+
+class _Arcs:
+    """Per-arc quantities every kernel needs, computed once per call."""
+
+    __slots__ = ("cx", "cy", "R", "th0", "sign", "abs_sweep", "e0x", "e0y", "e1x", "e1y")
+
+    def __init__(self, cx, cy, R, th0, sw):
+        self.cx, self.cy, self.R, self.th0 = cx, cy, R, th0
+        self.sign = np.copysign(1.0, sw)
+        self.abs_sweep = np.abs(sw)
+        th1 = th0 + sw
+        self.e0x = cx + R * np.cos(th0)
+        self.e0y = cy + R * np.sin(th0)
+        self.e1x = cx + R * np.cos(th1)
+        self.e1y = cy + R * np.sin(th1)
+
+    def contains(self, phi):
+        """Is polar angle ``phi`` on the arc (see :func:`angle_in_sweep`)."""
+        return in_sweep_prepared(phi, self.th0, self.sign, self.abs_sweep)
 
 
 # --------------------------------------------------------------------------- point kernels
@@ -111,7 +172,7 @@ class _Best:
 def point_point(p, q):
     """Distance between points ``p`` and ``q``; the witnesses are the points."""
     (px, qx), (py, qy), _ = _columns((p, q))
-    d = np.hypot(px - qx, py - qy)
+    d = _norm(px - qx, py - qy)
     return d, _stack(px, py), _stack(qx, qy)
 
 
@@ -120,14 +181,16 @@ def _point_segment_cols(px, py, ax, ay, bx, by):
     rx = bx - ax
     ry = by - ay
     rr = rx * rx + ry * ry
+    rr += rr == 0.0          # zero-length segment: w.r = 0, so t = 0 (its start point)
     wx = px - ax
     wy = py - ay
-    # A zero-length segment is its start point: any denominator works as w.r = 0.
-    t = (wx * rx + wy * ry) / np.where(rr > 0.0, rr, 1.0)
+    t = wx * rx
+    t += wy * ry
+    t /= rr
     np.clip(t, 0.0, 1.0, out=t)
     wx -= t * rx
     wy -= t * ry
-    return np.hypot(wx, wy), t
+    return _norm(wx, wy), t
 
 
 def point_segment(p, a, b):
@@ -137,36 +200,45 @@ def point_segment(p, a, b):
     perpendicular, clamped to the segment). A zero-length segment is a point.
     """
     (px, ax, bx), (py, ay, by), _ = _columns((p, a, b))
+    return _run_chunked(_point_segment_witness_cols, (px, py, ax, ay, bx, by))
+
+
+def _point_segment_witness_cols(px, py, ax, ay, bx, by):
     d, t = _point_segment_cols(px, py, ax, ay, bx, by)
     return d, _stack(px, py), _stack(ax + t * (bx - ax), ay + t * (by - ay))
 
 
-def _arc_ends(cx, cy, R, th0, sw):
-    th1 = th0 + sw
-    return (cx + R * np.cos(th0), cy + R * np.sin(th0),
-            cx + R * np.cos(th1), cy + R * np.sin(th1))
-
-
-def _point_arc_cols(px, py, cx, cy, R, th0, sw, ends=None):
+def _point_arc_cols(px, py, arc: _Arcs):
     """``(d, qx, qy)``: distance from p to the arc and the nearest arc point."""
-    vx = px - cx
-    vy = py - cy
-    rho = np.hypot(vx, vy)
+    vx = px - arc.cx
+    vy = py - arc.cy
+    rho = _norm(vx, vy)
     # Radial projection is the answer when p's angle is on the arc; at the
     # centre every arc point is at distance R and the end points say so.
-    inside = angle_in_sweep(np.arctan2(vy, vx), th0, sw) & (rho > 0.0)
-    e0x, e0y, e1x, e1y = _arc_ends(cx, cy, R, th0, sw) if ends is None else ends
-    d0 = np.hypot(px - e0x, py - e0y)
-    d1 = np.hypot(px - e1x, py - e1y)
-    first = d0 <= d1
-    d = np.where(first, d0, d1)
-    qx = np.where(first, e0x, e1x)
-    qy = np.where(first, e0y, e1y)
-    if inside.any():
-        scale = R / np.where(inside, rho, 1.0)
-        np.copyto(d, np.abs(rho - R), where=inside)
-        np.copyto(qx, cx + vx * scale, where=inside)
-        np.copyto(qy, cy + vy * scale, where=inside)
+    radial = arc.contains(np.arctan2(vy, vx)) & (rho > 0.0)
+    fx = px - arc.e0x
+    fy = py - arc.e0y
+    d0 = fx * fx + fy * fy
+    fx = px - arc.e1x
+    fy = py - arc.e1y
+    d1 = fx * fx + fy * fy
+    to_end = (d1 < d0).astype(float)
+    d = np.minimum(d0, d1)
+    np.sqrt(d, out=d)
+    qx = arc.e0x.copy()
+    qy = arc.e0y.copy()
+    _blend(qx, arc.e1x, to_end)
+    _blend(qy, arc.e1y, to_end)
+    if radial.any():
+        take = radial.astype(float)
+        scale = arc.R / (rho + (rho == 0.0))
+        _blend(d, np.abs(rho - arc.R), take)
+        vx *= scale
+        vy *= scale
+        vx += arc.cx
+        vy += arc.cy
+        _blend(qx, vx, take)
+        _blend(qy, vy, take)
     return d, qx, qy
 
 
@@ -175,11 +247,15 @@ def point_arc(p, c, R, theta0, sweep):
 
     ``|rho - R|`` (``rho = |p - c|``) with the radial projection as witness
     when ``p``'s polar angle lies inside the sweep; otherwise the nearer end
-    point. A point at the centre is at distance ``R`` (witness: the start).
+    point. A point at the centre is at distance ``R`` (witness: an end point).
     Witnesses: ``p`` and the arc point.
     """
     (px, cx), (py, cy), (R, th0, sw) = _columns((p, c), (R, theta0, sweep))
-    d, qx, qy = _point_arc_cols(px, py, cx, cy, R, th0, sw)
+    return _run_chunked(_point_arc_witness_cols, (px, py, cx, cy, R, th0, sw))
+
+
+def _point_arc_witness_cols(px, py, cx, cy, R, th0, sw):
+    d, qx, qy = _point_arc_cols(px, py, _Arcs(cx, cy, R, th0, sw))
     return d, _stack(px, py), _stack(qx, qy)
 
 
@@ -192,66 +268,74 @@ def segment_segment(a0, a1, b0, b1):
     Two segments in the plane either cross (``d = 0`` up to rounding: ``d``
     is then the gap between the crossing computed on each segment, ~1e-16)
     or are closest with an end point of one of them involved, so the four
-    end-point-to-segment distances complete the set.
-    Collinear overlaps are caught by those too (an end point lies on the other
-    segment). Zero-length segments are points.
+    end-point-to-segment distances complete the set. Collinear overlaps are
+    caught by those too (an end point lies on the other segment).
+    Zero-length segments are points.
     """
     (a0x, a1x, b0x, b1x), (a0y, a1y, b0y, b1y), _ = _columns((a0, a1, b0, b1))
+    return _run_chunked(_segment_segment_cols, (a0x, a0y, a1x, a1y, b0x, b0y, b1x, b1y))
+
+
+def _segment_segment_cols(a0x, a0y, a1x, a1y, b0x, b0y, b1x, b1y):
     rx = a1x - a0x
     ry = a1y - a0y
     sx = b1x - b0x
     sy = b1y - b0y
     wx = b0x - a0x
     wy = b0y - a0y
-    rr = rx * rx + ry * ry
-    ss = sx * sx + sy * sy
-    rr[rr == 0.0] = 1.0      # zero-length: every dot below is 0, so t = 0
-    ss[ss == 0.0] = 1.0
-    wr = wx * rx + wy * ry
-    ws = wx * sx + wy * sy
-    rs = rx * sx + ry * sy
+    wr = wx * rx
+    wr += wy * ry
+    ws = wx * sx
+    ws += wy * sy
+    rs = rx * sx
+    rs += ry * sy
+    inv_rr = rx * rx
+    inv_rr += ry * ry
+    inv_rr += inv_rr == 0.0     # zero-length: every dot with it is 0, so t = 0
+    np.reciprocal(inv_rr, out=inv_rr)
+    inv_ss = sx * sx
+    inv_ss += sy * sy
+    inv_ss += inv_ss == 0.0
+    np.reciprocal(inv_ss, out=inv_ss)
 
-    def clamp(v):
+    def clamp01(v):
         np.maximum(v, 0.0, out=v)
         np.minimum(v, 1.0, out=v)
         return v
 
-    def dist2(ex, ey, fx, fy, k):
-        """|e - k f|^2 with explicit differences (no cancellation-prone expansion)."""
-        ex = ex - k * fx
-        ey = ey - k * fy
-        ex *= ex
-        ey *= ey
-        ex += ey
-        return ex
+    def gap2(ex, ey, k, fx, fy):
+        """|e - k f|^2 from explicit differences (the expanded dot form cancels)."""
+        gx = ex - k * fx
+        gy = ey - k * fy
+        gx *= gx
+        gy *= gy
+        gx += gy
+        return gx
 
-    # Fractions tA along A and uB along B of the current best pair.
-    # b0 onto A.
-    t = clamp(wr / rr)
-    best = dist2(wx, wy, rx, ry, t)
-    tA = t
-    uB = np.zeros_like(t)
-    # b1 onto A: b1 - a0 = w + s.
-    t = clamp((wr + rs) / rr)
-    d2 = dist2(wx + sx, wy + sy, rx, ry, t)
-    m = d2 < best
-    np.copyto(best, d2, where=m)
-    np.copyto(tA, t, where=m)
-    np.copyto(uB, 1.0, where=m)
-    # a0 onto B: a0 - b0 = -w.
-    u = clamp(-ws / ss)
-    d2 = dist2(wx, wy, sx, sy, -u)          # |-w - u s| = |w + u s|
-    m = d2 < best
-    np.copyto(best, d2, where=m)
-    np.copyto(tA, 0.0, where=m)
-    np.copyto(uB, u, where=m)
-    # a1 onto B: a1 - b0 = r - w.
-    u = clamp((rs - ws) / ss)
-    d2 = dist2(rx - wx, ry - wy, sx, sy, u)
-    m = d2 < best
-    np.copyto(best, d2, where=m)
-    np.copyto(tA, 1.0, where=m)
-    np.copyto(uB, u, where=m)
+    # Witnesses are a0 + tA r on A and b0 + uB s on B.
+    # End points of B onto A: b0 - a0 = w, b1 - a0 = w + s.
+    t1 = clamp01(wr * inv_rr)
+    d1 = gap2(wx, wy, t1, rx, ry)
+    t2 = clamp01((wr + rs) * inv_rr)
+    d2 = gap2(wx + sx, wy + sy, t2, rx, ry)
+    on_b1 = (d2 < d1).astype(float)
+    dB = np.minimum(d1, d2)
+    _blend(t1, t2, on_b1)                   # t1 now the A fraction of the better B end
+    # End points of A onto B: a0 - b0 = -w, a1 - b0 = r - w.
+    u3 = clamp01(ws * -inv_ss)
+    d3 = gap2(wx, wy, -u3, sx, sy)          # |-w - u s| = |w + u s|
+    u4 = clamp01((rs - ws) * inv_ss)
+    d4 = gap2(rx - wx, ry - wy, u4, sx, sy)
+    on_a1 = (d4 < d3).astype(float)
+    best = np.minimum(d3, d4)
+    _blend(u3, u4, on_a1)                   # u3 now the B fraction of the better A end
+    # Choose between the two groups: (t1, on_b1) versus (on_a1, u3).
+    take_b = (dB < best).astype(float)
+    np.minimum(best, dB, out=best)
+    tA = on_a1
+    _blend(tA, t1, take_b)
+    uB = u3
+    _blend(uB, on_b1, take_b)
     # Proper crossing: each segment's ends strictly on both sides of the other's line.
     o1 = rx * wy - ry * wx                  # side of b0 w.r.t. line A
     rxs = rx * sy - ry * sx
@@ -259,8 +343,8 @@ def segment_segment(a0, a1, b0, b1):
     o3 = wx * sy - wy * sx                  # side of a0 w.r.t. line B (= cross(s, a0 - b0))
     o4 = o3 - rxs                           # side of a1
     cross = (o1 * o2 < 0.0) & (o3 * o4 < 0.0)
-    if cross.any():
-        ic = np.nonzero(cross)[0]
+    ic = np.flatnonzero(cross)
+    if ic.size:
         tc = o3[ic] / (o3[ic] - o4[ic])
         uc = o1[ic] / (o1[ic] - o2[ic])
         # The crossing is scored by the gap between its two computed witnesses
@@ -276,12 +360,21 @@ def segment_segment(a0, a1, b0, b1):
         tA[it] = tc[take]
         uB[it] = uc[take]
     np.sqrt(best, out=best)
-    wa = np.empty((best.shape[0], 2))
-    wb = np.empty_like(wa)
-    wa[:, 0] = a0x + tA * rx
-    wa[:, 1] = a0y + tA * ry
-    wb[:, 0] = b0x + uB * sx
-    wb[:, 1] = b0y + uB * sy
+    n = best.shape[0]
+    wa = np.empty((n, 2))
+    wb = np.empty((n, 2))
+    rx *= tA
+    rx += a0x
+    ry *= tA
+    ry += a0y
+    wa[:, 0] = rx
+    wa[:, 1] = ry
+    sx *= uB
+    sx += b0x
+    sy *= uB
+    sy += b0y
+    wb[:, 0] = sx
+    wb[:, 1] = sy
     return best, wa, wb
 
 
@@ -289,27 +382,28 @@ def segment_segment(a0, a1, b0, b1):
 
 
 def _segment_arc_cols(a0x, a0y, a1x, a1y, cx, cy, R, th0, sw):
+    arc = _Arcs(cx, cy, R, th0, sw)
     rx = a1x - a0x
     ry = a1y - a0y
-    L = np.hypot(rx, ry)
-    Ls = np.where(L > 0.0, L, 1.0)
-    ex = np.where(L > 0.0, rx / Ls, 1.0)    # any unit vector serves a point-segment
-    ey = ry / Ls
+    L = _norm(rx, ry)
+    inv_L = 1.0 / (L + (L == 0.0))
+    ex = rx * inv_L
+    ex += L == 0.0                          # any unit vector serves a zero-length segment
+    ey = ry * inv_L
     nx, ny = -ey, ex                        # left normal of the segment
-    gx = cx - a0x
-    gy = cy - a0y
+    gx = arc.cx - a0x
+    gy = arc.cy - a0y
     along_c = gx * ex + gy * ey             # foot of the centre, length from a0
     h = gx * nx + gy * ny                   # signed centre offset from the line
+    R = arc.R
 
     # End points of the segment against the arc.
-    ends = _arc_ends(cx, cy, R, th0, sw)
-    d, qx, qy = _point_arc_cols(a0x, a0y, cx, cy, R, th0, sw, ends)
+    d, qx, qy = _point_arc_cols(a0x, a0y, arc)
     best = _Best(d, a0x, a0y, qx, qy)
-    d, qx, qy = _point_arc_cols(a1x, a1y, cx, cy, R, th0, sw, ends)
+    d, qx, qy = _point_arc_cols(a1x, a1y, arc)
     best.offer(d, a1x, a1y, qx, qy)
     # End points of the arc against the segment.
-    e0x, e0y, e1x, e1y = ends
-    for qx, qy in ((e0x, e0y), (e1x, e1y)):
+    for qx, qy in ((arc.e0x, arc.e0y), (arc.e1x, arc.e1y)):
         d, t = _point_segment_cols(qx, qy, a0x, a0y, a1x, a1y)
         best.offer(d, a0x + t * rx, a0y + t * ry, qx, qy)
     # Interior-interior: circle points c +- R n, both with foot along_c.
@@ -319,20 +413,20 @@ def _segment_arc_cols(a0x, a0y, a1x, a1y, cx, cy, R, th0, sw):
         fy = a0y + along_c * ey
         psi = np.arctan2(ny, nx)
         for sgn in (1.0, -1.0):
-            ok = foot_ok & angle_in_sweep(psi if sgn > 0 else psi + math.pi, th0, sw)
-            best.offer(np.abs(h + sgn * R), fx, fy, cx + sgn * R * nx, cy + sgn * R * ny, ok)
+            ok = foot_ok & arc.contains(psi if sgn > 0 else psi + math.pi)
+            best.offer(np.abs(h + sgn * R), fx, fy, arc.cx + sgn * R * nx, arc.cy + sgn * R * ny, ok)
     # Crossings of the segment with the arc: c + (+-w) e - h n, w the half chord.
     w2 = (R - h) * (R + h)
     meets = w2 >= 0.0
     if meets.any():
-        w = np.sqrt(np.where(meets, w2, 0.0))
+        w = np.sqrt(np.maximum(w2, 0.0))
         zero = np.zeros_like(w)
         for sgn in (1.0, -1.0):
             along = along_c + sgn * w
             vx = sgn * w * ex - h * nx
             vy = sgn * w * ey - h * ny
-            ok = meets & (along >= 0.0) & (along <= L) & angle_in_sweep(np.arctan2(vy, vx), th0, sw)
-            best.offer(zero, a0x + along * ex, a0y + along * ey, cx + vx, cy + vy, ok)
+            ok = meets & (along >= 0.0) & (along <= L) & arc.contains(np.arctan2(vy, vx))
+            best.offer(zero, a0x + along * ex, a0y + along * ey, arc.cx + vx, arc.cy + vy, ok)
     return best.result()
 
 
@@ -346,61 +440,61 @@ def segment_arc(a0, a1, c, R, theta0, sweep):
     distances.
     """
     (a0x, a1x, cx), (a0y, a1y, cy), (R, th0, sw) = _columns((a0, a1, c), (R, theta0, sweep))
-    return _segment_arc_cols(a0x, a0y, a1x, a1y, cx, cy, R, th0, sw)
+    return _run_chunked(_segment_arc_cols, (a0x, a0y, a1x, a1y, cx, cy, R, th0, sw))
 
 
 # --------------------------------------------------------------------------- arc-arc
 
 
 def _arc_arc_cols(c1x, c1y, R1, th1, sw1, c2x, c2y, R2, th2, sw2):
-    ends1 = _arc_ends(c1x, c1y, R1, th1, sw1)
-    ends2 = _arc_ends(c2x, c2y, R2, th2, sw2)
-    e10x, e10y, e11x, e11y = ends1
-    e20x, e20y, e21x, e21y = ends2
+    A = _Arcs(c1x, c1y, R1, th1, sw1)
+    B = _Arcs(c2x, c2y, R2, th2, sw2)
     # End points of each arc against the other arc (this also covers concentric arcs).
-    d, qx, qy = _point_arc_cols(e10x, e10y, c2x, c2y, R2, th2, sw2, ends2)
-    best = _Best(d, e10x, e10y, qx, qy)
-    d, qx, qy = _point_arc_cols(e11x, e11y, c2x, c2y, R2, th2, sw2, ends2)
-    best.offer(d, e11x, e11y, qx, qy)
-    d, qx, qy = _point_arc_cols(e20x, e20y, c1x, c1y, R1, th1, sw1, ends1)
-    best.offer(d, qx, qy, e20x, e20y)
-    d, qx, qy = _point_arc_cols(e21x, e21y, c1x, c1y, R1, th1, sw1, ends1)
-    best.offer(d, qx, qy, e21x, e21y)
+    d, qx, qy = _point_arc_cols(A.e0x, A.e0y, B)
+    best = _Best(d, A.e0x, A.e0y, qx, qy)
+    d, qx, qy = _point_arc_cols(A.e1x, A.e1y, B)
+    best.offer(d, A.e1x, A.e1y, qx, qy)
+    d, qx, qy = _point_arc_cols(B.e0x, B.e0y, A)
+    best.offer(d, qx, qy, B.e0x, B.e0y)
+    d, qx, qy = _point_arc_cols(B.e1x, B.e1y, A)
+    best.offer(d, qx, qy, B.e1x, B.e1y)
 
-    gx = c2x - c1x
-    gy = c2y - c1y
-    D = np.hypot(gx, gy)
+    gx = B.cx - A.cx
+    gy = B.cy - A.cy
+    D = _norm(gx, gy)
     apart = D > 0.0
     if not apart.any():
         return best.result()
-    Ds = np.where(apart, D, 1.0)
-    ux = gx / Ds                            # unit vector c1 -> c2
-    uy = gy / Ds
+    inv_D = 1.0 / (D + ~apart)
+    ux = gx * inv_D                         # unit vector c1 -> c2 (0 when concentric)
+    uy = gy * inv_D
     psi = np.arctan2(uy, ux)
+    psi_back = psi + math.pi
+    R1, R2 = A.R, B.R
     # Interior pairs on the line of centres: p = c1 + s1 R1 u, q = c2 + s2 R2 u.
-    on1 = {1.0: angle_in_sweep(psi, th1, sw1), -1.0: angle_in_sweep(psi + math.pi, th1, sw1)}
-    on2 = {1.0: angle_in_sweep(psi, th2, sw2), -1.0: angle_in_sweep(psi + math.pi, th2, sw2)}
+    on1 = {1.0: A.contains(psi), -1.0: A.contains(psi_back)}
+    on2 = {1.0: B.contains(psi), -1.0: B.contains(psi_back)}
     for s1 in (1.0, -1.0):
+        px = A.cx + s1 * R1 * ux
+        py = A.cy + s1 * R1 * uy
         for s2 in (1.0, -1.0):
             ok = apart & on1[s1] & on2[s2]
             if ok.any():
-                best.offer(np.abs(D + s2 * R2 - s1 * R1),
-                           c1x + s1 * R1 * ux, c1y + s1 * R1 * uy,
-                           c2x + s2 * R2 * ux, c2y + s2 * R2 * uy, ok)
+                best.offer(np.abs(D + s2 * R2 - s1 * R1), px, py,
+                           B.cx + s2 * R2 * ux, B.cy + s2 * R2 * uy, ok)
     # Crossings: c1 + a u +- h u_perp with a = (D^2 + R1^2 - R2^2) / (2D).
-    a = (D * D + R1 * R1 - R2 * R2) / (2.0 * Ds)
+    a = (D * D + R1 * R1 - R2 * R2) * (0.5 * inv_D)
     h2 = (R1 - a) * (R1 + a)
     meets = apart & (h2 >= 0.0)
     if meets.any():
-        h = np.sqrt(np.where(meets, h2, 0.0))
+        h = np.sqrt(np.maximum(h2, 0.0))
         zero = np.zeros_like(h)
         for sgn in (1.0, -1.0):
             vx = a * ux - sgn * h * uy       # crossing relative to c1
             vy = a * uy + sgn * h * ux
-            px = c1x + vx
-            py = c1y + vy
-            ok = (meets & angle_in_sweep(np.arctan2(vy, vx), th1, sw1)
-                  & angle_in_sweep(np.arctan2(py - c2y, px - c2x), th2, sw2))
+            px = A.cx + vx
+            py = A.cy + vy
+            ok = meets & A.contains(np.arctan2(vy, vx)) & B.contains(np.arctan2(py - B.cy, px - B.cx))
             best.offer(zero, px, py, px, py, ok)
     return best.result()
 
@@ -415,7 +509,7 @@ def arc_arc(c1, R1, th1, sw1, c2, R2, th2, sw2):
     """
     (c1x, c2x), (c1y, c2y), (R1, th1, sw1, R2, th2, sw2) = _columns(
         (c1, c2), (R1, th1, sw1, R2, th2, sw2))
-    return _arc_arc_cols(c1x, c1y, R1, th1, sw1, c2x, c2y, R2, th2, sw2)
+    return _run_chunked(_arc_arc_cols, (c1x, c1y, R1, th1, sw1, c2x, c2y, R2, th2, sw2))
 
 
 # --------------------------------------------------------------------------- objects
