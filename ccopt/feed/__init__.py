@@ -1,0 +1,82 @@
+"""Feed planning: how fast the machine can run a compensated tool path.
+
+``feed`` consumes a :class:`~ccopt.toolpath.ToolPath` and never compensates.
+One concept per module, after toppra's layout:
+
+- :mod:`.limits`: :class:`AxisLimits` (per-axis velocity and acceleration,
+  optional tangential and centripetal limits);
+- :mod:`.path`: :class:`ExactPath`, the tool path as a toppra
+  ``AbstractGeometricPath`` parameterised by arc length, exact derivatives;
+- :mod:`.grid`: gridpoints (every segment boundary, per-segment density);
+- :mod:`.constraints`: the limits as small toppra constraint objects;
+- :mod:`.junction`: corner speeds (stop, or grbl's junction deviation);
+- :mod:`.toppra_planner`: the time-optimal planner (TOPPRA);
+- :mod:`.baselines`: stop-per-block and grbl-style junction planners;
+- :mod:`.profile`: :class:`FeedProfile`, its samples and CSV.
+
+Example::
+
+    prof = ccopt.plan_feed(path, ccopt.AxisLimits(v=[100, 100, 30], a=[1000, 1000, 300]))
+    prof.duration, prof.sample(1e-3).feed
+"""
+from __future__ import annotations
+
+from typing import Callable
+
+from ccopt.feed.baselines import plan_junction, plan_stop_per_block
+from ccopt.feed.errors import FeedError
+from ccopt.feed.grid import GridOptions
+from ccopt.feed.limits import AxisLimits
+from ccopt.feed.path import ExactPath
+from ccopt.feed.profile import FeedProfile, FeedSamples
+from ccopt.feed.toppra_planner import plan_toppra
+from ccopt.toolpath import ToolPath
+
+#: planner name -> function(path, limits, junction_deviation=..., grid=...) -> FeedProfile
+PLANNERS: dict[str, Callable[..., FeedProfile]] = {
+    "toppra": plan_toppra,
+    "stop": plan_stop_per_block,
+    "junction": plan_junction,
+}
+
+
+def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: str = "toppra",
+              junction_deviation: float | None = None,
+              grid: GridOptions | None = None) -> FeedProfile:
+    """Feed profile of ``toolpath`` under ``limits``.
+
+    Parameters
+    ----------
+    toolpath: the exact tool path (or an :class:`ExactPath` built from one,
+        to share it between planners).
+    limits: :class:`AxisLimits` in machine axis order X, Y[, Z].
+    planner: ``"toppra"`` (time-optimal, default), ``"stop"`` (stop after
+        every block) or ``"junction"`` (grbl-style look-ahead).
+    junction_deviation: ``None`` (default) stops at every tangent
+        discontinuity; a length ``delta > 0`` (program units) allows grbl's
+        corner speed there instead (an approximation, see
+        :mod:`ccopt.feed.junction`).
+    grid: gridpoint options for TOPPRA (:class:`GridOptions`).
+
+    Raises :class:`FeedError` (a located :class:`~ccopt.errors.ProgramError`)
+    when the limits do not fit the path or TOPPRA fails.
+    """
+    if planner not in PLANNERS:
+        raise ValueError(f"unknown planner {planner!r}; choose one of {', '.join(PLANNERS)}")
+    if not isinstance(limits, AxisLimits):
+        raise TypeError("limits must be an AxisLimits")
+    if junction_deviation is not None and not junction_deviation >= 0:
+        raise ValueError(f"junction_deviation must be >= 0, got {junction_deviation!r}")
+    path = toolpath if isinstance(toolpath, ExactPath) else ExactPath(toolpath)
+    try:
+        limits.in_plane(path.toolpath.plane, path.dof)
+    except ValueError as exc:
+        raise FeedError(str(exc), path.source_file) from None
+    kwargs: dict = {"junction_deviation": junction_deviation}
+    if planner == "toppra":
+        kwargs["grid"] = grid if grid is not None else GridOptions()
+    return PLANNERS[planner](path, limits, **kwargs)
+
+
+__all__ = ["AxisLimits", "ExactPath", "FeedError", "FeedProfile", "FeedSamples", "GridOptions",
+           "PLANNERS", "plan_feed", "plan_junction", "plan_stop_per_block", "plan_toppra"]

@@ -1,0 +1,336 @@
+"""``ExactPath``: a :class:`~ccopt.toolpath.ToolPath` as a toppra geometric path.
+
+The path parameter ``s`` is the arc length along the whole tool path in
+program units, measured in 3-D when the out-of-plane axis ``w`` moves: a
+segment with in-plane length ``L`` and ``w`` change ``dw`` has length
+``S = hypot(L, dw)``, ``w`` runs linearly in in-plane arc length (so a Z
+plunge, ``L = 0``, is parameterised by its ``w`` length). With this choice
+``|q'(s)| = 1`` everywhere, so the path speed ``ds/dt`` *is* the tangential
+feed, and ``|q''(s)|`` is the curvature of the 3-D path.
+
+Positions and derivatives come from the exact primitives
+(:mod:`ccopt.geometry`), never from a fit of sampled points::
+
+    q(s)   = (geom.point(l),          w0 + dw * sigma / S)
+    q'(s)  = (geom.d1(l) * L / S,     dw / S)
+    q''(s) = (geom.d2(l) * (L / S)^2, 0)
+
+with ``sigma = s - offset`` the 3-D arc length into the segment and
+``l = sigma * L / S`` the in-plane arc length. Lines and arcs are evaluated by
+vectorised kernels over all segments at once (the same formulas as
+:class:`~ccopt.geometry.Line` and :class:`~ccopt.geometry.Arc`, checked
+against them in the tests); spirals and other curves call their own methods.
+
+At a segment boundary the path has two one-sided derivatives. ``__call__``
+(what toppra calls) is right-continuous, and :meth:`ExactPath.eval_sided`
+gives either side, so the constraints in :mod:`ccopt.feed.constraints`
+evaluate each grid interval with its own segment's derivatives on both of its
+ends: a curvature break (line to arc) lies exactly on a gridpoint and each
+side is checked with its own curvature.
+
+Segments shorter than :data:`ccopt.tolerances.POINT_EPS` (in 3-D) do not move
+the tool and are left out. Coordinates are plane coordinates ``(u, v[, w])``;
+``dof`` is 3 only when some segment moves ``w``.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from toppra.interpolator import AbstractGeometricPath
+
+from ccopt.geometry import Arc, Line, Spiral
+from ccopt.tolerances import POINT_EPS, TURN_EPS
+from ccopt.toolpath import Role, ToolPath
+
+_LINE, _ARC, _OTHER = 0, 1, 2
+
+#: Two consecutive segments whose end and start points are further apart than
+#: this are not connected: the path must stop there (program units).
+GAP_EPS = 1e-6
+
+
+@dataclass(frozen=True)
+class Dwell:
+    """A dwell at path position ``s`` (program units) lasting ``seconds``."""
+
+    s: float
+    seconds: float
+    line: int | None
+
+
+class ExactPath(AbstractGeometricPath):
+    """The exact tool path, parameterised by (3-D) arc length.
+
+    Attributes (arrays over the ``K`` moving segments, in order)
+    ----------
+    toolpath: the :class:`ToolPath` it was built from.
+    segments: the moving :class:`~ccopt.toolpath.PathSegment` objects.
+    source_index: index of each in ``toolpath.segments``.
+    lengths: 3-D lengths ``S``; ``offsets``: ``K + 1`` cumulative positions.
+    feeds: programmed tangential speed cap (units/s), ``inf`` for rapids.
+    start_tangent, end_tangent: ``(K, dof)`` unit tangents ``q'``.
+    tangent_break: ``(K + 1,)`` True at the interior boundaries where the
+        tangent is discontinuous (turn above :data:`TURN_EPS`, a reversal,
+        or a gap above :data:`GAP_EPS`); the ends are False.
+    dwells: tuple of :class:`Dwell`.
+    """
+
+    def __init__(self, toolpath: ToolPath):
+        super().__init__()
+        self.toolpath = toolpath
+        keep, S, L, dw = [], [], [], []
+        for i, seg in enumerate(toolpath.segments):
+            l_in = float(seg.geom.length)
+            d = float(seg.w1) - float(seg.w0)
+            s3 = math.hypot(l_in, d)
+            if s3 > POINT_EPS:
+                keep.append(i)
+                S.append(s3)
+                L.append(l_in)
+                dw.append(d)
+        self.segments = tuple(toolpath.segments[i] for i in keep)
+        self.source_index = np.array(keep, dtype=int)
+        self.lengths = np.array(S, dtype=float)
+        self._L = np.array(L, dtype=float)
+        self._dw = np.array(dw, dtype=float)
+        self._w0 = np.array([float(s.w0) for s in self.segments])
+        self._ratio = np.divide(self._L, self.lengths, out=np.zeros(len(S)),
+                                where=self.lengths > 0)
+        self.offsets = np.concatenate([[0.0], np.cumsum(self.lengths)])
+        self._dof = 3 if np.any(self._dw != 0.0) else 2
+        self.feeds = np.array([np.inf if (s.feed is None or s.role is Role.RAPID) else float(s.feed)
+                               for s in self.segments])
+        self._prepare_kernels()
+        K = len(self.segments)
+        if K:
+            self.start_tangent = self._segment_tangents(at_end=False)
+            self.end_tangent = self._segment_tangents(at_end=True)
+        else:
+            self.start_tangent = self.end_tangent = np.zeros((0, self._dof))
+        self.tangent_break = np.zeros(K + 1, dtype=bool)
+        self.turn_cos = np.ones(K + 1)
+        if K > 1:
+            t_in, t_out = self.end_tangent[:-1], self.start_tangent[1:]
+            dot = np.einsum("ij,ij->i", t_in, t_out)
+            if self._dof == 2:
+                cross = np.abs(t_in[:, 0] * t_out[:, 1] - t_in[:, 1] * t_out[:, 0])
+            else:
+                cross = np.linalg.norm(np.cross(t_in, t_out), axis=1)
+            inner = self.offsets[1:-1]
+            ends_out = self.eval_segments(np.arange(K - 1), inner, 0)
+            starts_in = self.eval_segments(np.arange(1, K), inner, 0)
+            gap = np.linalg.norm(ends_out - starts_in, axis=1)
+            self.tangent_break[1:-1] = (cross > TURN_EPS) | (dot <= 0.0) | (gap > GAP_EPS)
+            self.turn_cos[1:-1] = dot
+        self.dwells = self._map_dwells()
+
+    # -- toppra's interface --------------------------------------------------
+
+    @property
+    def dof(self) -> int:
+        return self._dof
+
+    @property
+    def path_interval(self) -> np.ndarray:
+        return np.array([0.0, float(self.offsets[-1])])
+
+    @property
+    def waypoints(self):
+        """``(offsets, positions)`` of the segment boundaries."""
+        if not self.segments:
+            return None
+        return self.offsets, self(self.offsets)
+
+    def __call__(self, path_positions, order: int = 0) -> np.ndarray:
+        """Position (``order`` 0), ``q'`` (1) or ``q''`` (2) at arc lengths ``s``.
+
+        Right-continuous at segment boundaries (the last point belongs to the
+        last segment). A scalar gives shape ``(dof,)``, an array ``(N, dof)``.
+        """
+        return self.eval_sided(path_positions, order, "right")
+
+    def get_duration(self) -> float:
+        """Length of the path (toppra's C++-era wrappers ask for it)."""
+        return float(self.offsets[-1])
+
+    # -- evaluation ----------------------------------------------------------
+
+    @property
+    def length(self) -> float:
+        return float(self.offsets[-1])
+
+    def locate(self, s, side: str = "right") -> np.ndarray:
+        """Segment index of each ``s``; ``side`` picks the segment at a boundary."""
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        K = len(self.segments)
+        if side == "right":
+            k = np.searchsorted(self.offsets, s, side="right") - 1
+        elif side == "left":
+            k = np.searchsorted(self.offsets, s, side="left") - 1
+        else:
+            raise ValueError(f"side must be 'left' or 'right', not {side!r}")
+        return np.clip(k, 0, K - 1)
+
+    def eval_sided(self, s, order: int = 0, side: str = "right") -> np.ndarray:
+        """Like ``__call__`` but choosing the ``left`` or ``right`` limit at boundaries."""
+        if not self.segments:
+            raise ValueError("the path has no motion")
+        scalar = np.ndim(s) == 0
+        s1 = np.atleast_1d(np.asarray(s, dtype=float))
+        out = self.eval_segments(self.locate(s1, side), s1, order)
+        return out[0] if scalar else out
+
+    def eval_segments(self, k, s, order: int = 0) -> np.ndarray:
+        """``q``, ``q'`` or ``q''`` at path positions ``s`` taken on segments ``k``.
+
+        ``s`` is clipped into each segment, so ``s`` at a boundary evaluates
+        the end of segment ``k`` exactly whichever side it lies on.
+        """
+        if order not in (0, 1, 2):
+            raise ValueError(f"order must be 0, 1 or 2, not {order!r}")
+        k = np.asarray(k, dtype=int)
+        s = np.asarray(s, dtype=float)
+        sigma = np.clip(s - self.offsets[k], 0.0, self.lengths[k])
+        lam = sigma * self._ratio[k]
+        out = np.empty((s.size, self._dof))
+        kind = self._kind[k]
+        for code, kernel in ((_LINE, self._line_kernel), (_ARC, self._arc_kernel)):
+            sel = np.flatnonzero(kind == code)
+            if sel.size:
+                out[sel, :2] = kernel(k[sel], lam[sel], order)
+        sel = np.flatnonzero(kind == _OTHER)
+        if sel.size:
+            ks = k[sel]
+            order_idx = np.argsort(ks, kind="stable")
+            ks_sorted = ks[order_idx]
+            cuts = np.flatnonzero(np.diff(ks_sorted)) + 1
+            for grp in np.split(order_idx, cuts):
+                kk = int(ks[grp[0]])
+                rows = sel[grp]
+                geom = self.segments[kk].geom
+                r = self._ratio[kk]
+                if order == 0:
+                    out[rows, :2] = geom.point(lam[rows])
+                elif order == 1:
+                    out[rows, :2] = geom.d1(lam[rows]) * r
+                else:
+                    out[rows, :2] = geom.d2(lam[rows]) * (r * r)
+        if self._dof == 3:
+            if order == 0:
+                out[:, 2] = self._w0[k] + self._dw[k] * (sigma / self.lengths[k])
+            elif order == 1:
+                out[:, 2] = self._dw[k] / self.lengths[k]
+            else:
+                out[:, 2] = 0.0
+        return out
+
+    def curvature_norm(self, k, s) -> np.ndarray:
+        """``|q''|`` (curvature of the 3-D path, 1/units) at ``s`` on segments ``k``."""
+        return np.linalg.norm(self.eval_segments(k, s, 2), axis=1)
+
+    def turning(self, k: int) -> float:
+        """Total turning of the tangent along segment ``k`` (radians), for grid density."""
+        geom = self.segments[k].geom
+        if isinstance(geom, Line):
+            return 0.0
+        if isinstance(geom, (Arc, Spiral)):
+            return abs(geom.sweep)
+        s = np.linspace(0.0, float(geom.length), 257)
+        kappa = np.abs(np.asarray(geom.curvature(s), dtype=float))
+        return float(np.trapz(kappa, s))
+
+    def block_line(self, s: float) -> int | None:
+        """Source line of the block the path is in at ``s`` (``None`` if unknown)."""
+        if not self.segments:
+            return None
+        blk = self.segments[int(self.locate(s)[0])].block
+        return blk.source.line if blk is not None else None
+
+    @property
+    def source_file(self) -> str:
+        for seg in self.toolpath.segments:
+            if seg.block is not None:
+                return seg.block.source.file
+        for _, _, blk in self.toolpath.dwells:
+            return blk.source.file
+        return "<toolpath>"
+
+    @property
+    def stop_positions(self) -> np.ndarray:
+        """Interior path positions where the path must stop: tangent breaks and dwells."""
+        pos = set(self.offsets[self.tangent_break].tolist())
+        pos.update(d.s for d in self.dwells)
+        return np.array(sorted(pos), dtype=float)
+
+    # -- internals -----------------------------------------------------------
+
+    def _prepare_kernels(self) -> None:
+        K = len(self.segments)
+        self._kind = np.full(K, _OTHER, dtype=np.int8)
+        self._p0 = np.zeros((K, 2))
+        self._p1 = np.zeros((K, 2))
+        self._dir = np.zeros((K, 2))
+        self._c = np.zeros((K, 2))
+        self._R = np.ones(K)
+        self._th0 = np.zeros(K)
+        self._sweep = np.zeros(K)
+        self._sg = np.ones(K)
+        for i, seg in enumerate(self.segments):
+            g = seg.geom
+            if type(g) is Line:
+                self._kind[i] = _LINE
+                self._p0[i], self._p1[i], self._dir[i] = g.p0, g.p1, g.direction
+            elif type(g) is Arc:
+                self._kind[i] = _ARC
+                self._c[i], self._R[i] = g.center, g.radius
+                self._th0[i], self._sweep[i] = g.theta0, g.sweep
+                self._sg[i] = 1.0 if g.sweep > 0 or (g.sweep == 0 and math.copysign(1, g.sweep) > 0) \
+                    else -1.0
+
+    def _line_kernel(self, k, lam, order):
+        # Same formulas as Line.point/d1/d2: (1-t) p0 + t p1 hits both ends exactly.
+        if order == 0:
+            Lk = self._L[k]
+            t = np.divide(lam, Lk, out=np.zeros_like(lam), where=Lk > 0)[:, None]
+            return (1.0 - t) * self._p0[k] + t * self._p1[k]
+        if order == 1:
+            return self._dir[k] * self._ratio[k][:, None]
+        return np.zeros((k.size, 2))
+
+    def _arc_kernel(self, k, lam, order):
+        # Same formulas as Arc.point/d1/d2 (phi = theta0 + sweep * l / L).
+        Lk = self._L[k]
+        phi = self._th0[k] + self._sweep[k] * np.divide(lam, Lk, out=np.zeros_like(lam),
+                                                         where=Lk > 0)
+        c, s = np.cos(phi), np.sin(phi)
+        out = np.empty((k.size, 2))
+        if order == 0:
+            out[:, 0] = self._c[k, 0] + self._R[k] * c
+            out[:, 1] = self._c[k, 1] + self._R[k] * s
+        elif order == 1:
+            f = self._sg[k] * self._ratio[k]
+            out[:, 0] = -f * s
+            out[:, 1] = f * c
+        else:
+            f = self._ratio[k] ** 2 / self._R[k]
+            out[:, 0] = -c * f
+            out[:, 1] = -s * f
+        return out
+
+    def _segment_tangents(self, at_end: bool) -> np.ndarray:
+        k = np.arange(len(self.segments))
+        s = self.offsets[1:] if at_end else self.offsets[:-1]
+        t = self.eval_segments(k, s, 1)
+        n = np.linalg.norm(t, axis=1, keepdims=True)
+        return np.divide(t, n, out=np.zeros_like(t), where=n > 0)
+
+    def _map_dwells(self) -> tuple[Dwell, ...]:
+        out = []
+        for before, seconds, blk in self.toolpath.dwells:
+            # first kept segment at or after the toolpath index ``before``
+            j = int(np.searchsorted(self.source_index, before, side="left"))
+            out.append(Dwell(float(self.offsets[j]), float(seconds),
+                             blk.source.line if blk is not None else None))
+        return tuple(out)

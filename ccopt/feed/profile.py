@@ -1,0 +1,313 @@
+"""``FeedProfile``: motion along the path in time, and its samples.
+
+Every planner (TOPPRA and the baselines) produces the same thing: a path
+position ``s(t)`` that is piecewise constant-acceleration in time (exactly
+what toppra's ``ParametrizeConstAccel`` builds from a TOPPRA solution, and
+what a trapezoid is). A profile is stored as knots
+
+    t[0..M], s[0..M], sd[0..M]   time (s), path position (units), path speed (units/s)
+    sdd[0..M-1], segment[0..M-1] path acceleration and path segment of each interval
+
+with ``s[k+1] = s[k] + sd[k] dt + sdd[k] dt^2 / 2`` and ``sd[k+1] = sd[k] + sdd[k] dt``.
+A dwell is an interval with ``segment = -1``, zero speed and zero length.
+
+:meth:`FeedProfile.sample` evaluates it at a fixed time step: axis positions,
+velocities ``q' s'`` and accelerations ``q'' s'^2 + q' s''`` from the exact
+path, the tangential feed ``s'`` (``|q'| = 1``), and which limit is active.
+"""
+from __future__ import annotations
+
+import io
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ccopt.feed.errors import FeedError
+from ccopt.feed.limits import AxisLimits
+from ccopt.feed.path import ExactPath
+
+#: A limit counts as active where its ratio |value| / limit is at least this.
+ACTIVE_RATIO = 0.99
+
+
+@dataclass(frozen=True, eq=False)
+class FeedSamples:
+    """A profile sampled at times ``t`` (arrays over the samples).
+
+    ``position``, ``velocity``, ``acceleration`` are ``(n, dof)`` in plane
+    coordinates, named by ``axes`` (machine axis letters, e.g. X, Y, Z).
+    ``feed`` is the tangential speed (units/s), ``tangential_acc`` its rate of
+    change, ``curvature`` ``|q''|`` (1/units). ``active`` indexes
+    ``limit_names`` (the largest ratio, if at least :data:`ACTIVE_RATIO`;
+    ``"none"`` otherwise, ``"dwell"`` during dwells).
+    """
+
+    t: np.ndarray
+    s: np.ndarray
+    segment: np.ndarray
+    line: np.ndarray
+    position: np.ndarray
+    velocity: np.ndarray
+    acceleration: np.ndarray
+    feed: np.ndarray
+    tangential_acc: np.ndarray
+    curvature: np.ndarray
+    feed_cap: np.ndarray
+    axes: tuple[str, ...]
+    v_limit: np.ndarray
+    a_limit: np.ndarray
+    tangential_limit: float | None
+    centripetal_limit: float | None
+    limit_names: tuple[str, ...] = field(init=False)
+    active: np.ndarray = field(init=False)
+
+    def __post_init__(self):
+        names, cols = self._ratio_columns()
+        ratios = np.column_stack(cols) if cols else np.zeros((self.t.size, 0))
+        best = np.argmax(ratios, axis=1)
+        top = ratios[np.arange(self.t.size), best]
+        names = tuple(names) + ("none", "dwell")
+        active = np.where(top >= ACTIVE_RATIO, best, len(names) - 2)
+        active = np.where(self.segment < 0, len(names) - 1, active)
+        object.__setattr__(self, "limit_names", names)
+        object.__setattr__(self, "active", active)
+
+    def __len__(self) -> int:
+        return int(self.t.size)
+
+    def _ratio_columns(self):
+        names, cols = [], []
+        for i, ax in enumerate(self.axes):
+            names.append(f"velocity {ax}")
+            cols.append(self.axis_velocity_ratio[:, i])
+        for i, ax in enumerate(self.axes):
+            names.append(f"acceleration {ax}")
+            cols.append(self.axis_acceleration_ratio[:, i])
+        names.append("feed")
+        cols.append(self.feed_ratio)
+        if self.tangential_limit is not None:
+            names.append("tangential acceleration")
+            cols.append(np.abs(self.tangential_acc) / self.tangential_limit)
+        if self.centripetal_limit is not None:
+            names.append("centripetal acceleration")
+            cols.append(self.curvature * self.feed ** 2 / self.centripetal_limit)
+        return names, cols
+
+    @property
+    def axis_velocity_ratio(self) -> np.ndarray:
+        """``|v_i| / vmax_i``, shape ``(n, dof)``."""
+        return np.abs(self.velocity) / self.v_limit
+
+    @property
+    def axis_acceleration_ratio(self) -> np.ndarray:
+        """``|a_i| / amax_i``, shape ``(n, dof)``."""
+        return np.abs(self.acceleration) / self.a_limit
+
+    @property
+    def feed_ratio(self) -> np.ndarray:
+        """Tangential speed over the programmed feed (0 on rapids and dwells)."""
+        return np.where(np.isfinite(self.feed_cap), self.feed / np.where(
+            np.isfinite(self.feed_cap) & (self.feed_cap > 0), self.feed_cap, 1.0), 0.0)
+
+    @property
+    def active_names(self) -> list[str]:
+        return [self.limit_names[i] for i in self.active]
+
+    def to_csv_text(self) -> str:
+        """CSV: ``t, s, block, <axes>, v<axes>, a<axes>, feed, tangential_acc, active``."""
+        ax = [a.lower() for a in self.axes]
+        header = (["t", "s", "block"] + ax + [f"v{a}" for a in ax] + [f"a{a}" for a in ax]
+                  + ["feed", "tangential_acc", "active"])
+        num = np.column_stack([self.t, self.s, self.position, self.velocity, self.acceleration,
+                               self.feed, self.tangential_acc])
+        buf = io.StringIO()
+        buf.write(",".join(header) + "\n")
+        body = np.char.mod("%.10g", num)
+        lines = np.where(self.line >= 0, self.line, 0).astype(str)
+        lines = np.where(self.line >= 0, lines, "")
+        active = np.array(self.limit_names, dtype=object)[self.active]
+        for i in range(self.t.size):
+            row = body[i]
+            buf.write(f"{row[0]},{row[1]},{lines[i]},{','.join(row[2:])},{active[i]}\n")
+        return buf.getvalue()
+
+
+@dataclass(frozen=True, eq=False)
+class FeedProfile:
+    """Motion along an :class:`ExactPath` in time (see the module docstring).
+
+    Attributes: ``path``, ``limits``, ``planner`` (``"toppra" | "stop" |
+    "junction"``), the knot arrays ``t, s, sd, sdd, segment`` and ``info``
+    (planner details such as the number of gridpoints).
+    """
+
+    path: ExactPath
+    limits: AxisLimits
+    planner: str
+    t: np.ndarray
+    s: np.ndarray
+    sd: np.ndarray
+    sdd: np.ndarray
+    segment: np.ndarray
+    info: dict = field(default_factory=dict)
+
+    # -- construction --------------------------------------------------------
+
+    @classmethod
+    def from_path_velocity(cls, path: ExactPath, limits: AxisLimits, planner: str,
+                           gridpoints, sd, info: dict | None = None) -> "FeedProfile":
+        """Constant acceleration between gridpoints, as toppra's ``ParametrizeConstAccel``.
+
+        ``dt_i = 2 ds_i / (sd_i + sd_i+1)``, ``sdd_i = (sd_i+1^2 - sd_i^2) / (2 ds_i)``.
+        """
+        s = np.asarray(gridpoints, dtype=float)
+        sd = np.asarray(sd, dtype=float)
+        ds = np.diff(s)
+        denom = sd[:-1] + sd[1:]
+        if np.any(denom <= 0.0):
+            i = int(np.flatnonzero(denom <= 0.0)[0])
+            raise FeedError(f"feed planning stalled: zero speed on both ends of the grid interval "
+                            f"at s = {s[i]:.6g} (a segment too short for its gridpoints?)",
+                            path.source_file, path.block_line(s[i]))
+        dt = 2.0 * ds / denom
+        sdd = (sd[1:] ** 2 - sd[:-1] ** 2) / (2.0 * ds)
+        seg = path.locate(0.5 * (s[:-1] + s[1:]))
+        t = np.concatenate([[0.0], np.cumsum(dt)])
+        return cls._build(path, limits, planner, t, s, sd, sdd, seg, info)
+
+    @classmethod
+    def from_knots(cls, path: ExactPath, limits: AxisLimits, planner: str, dt, s, sd, sdd,
+                   segment, info: dict | None = None) -> "FeedProfile":
+        """From interval durations ``dt`` and knots ``s``, ``sd`` (``len(dt) + 1``)."""
+        t = np.concatenate([[0.0], np.cumsum(np.asarray(dt, dtype=float))])
+        return cls._build(path, limits, planner, t, np.asarray(s, float), np.asarray(sd, float),
+                          np.asarray(sdd, float), np.asarray(segment, int), info)
+
+    @classmethod
+    def _build(cls, path, limits, planner, t, s, sd, sdd, seg, info):
+        if path.dwells:
+            dt = np.diff(t)
+            for d in sorted(path.dwells, key=lambda d: d.s, reverse=True):
+                i = int(np.clip(np.searchsorted(s, d.s), 0, s.size - 1))
+                s = np.insert(s, i, s[i])
+                sd = np.insert(sd, i, 0.0)
+                sd[i + 1] = 0.0
+                dt = np.insert(dt, i, d.seconds)
+                sdd = np.insert(sdd, i, 0.0)
+                seg = np.insert(seg, i, -1)
+            t = np.concatenate([[0.0], np.cumsum(dt)])
+        return cls(path, limits, planner, t, s, sd, sdd, seg, dict(info or {}))
+
+    @classmethod
+    def empty(cls, path: ExactPath, limits: AxisLimits, planner: str) -> "FeedProfile":
+        """The profile of a path with no motion (only its dwells, if any)."""
+        return cls._build(path, limits, planner, np.zeros(1), np.zeros(1), np.zeros(1),
+                          np.zeros(0), np.zeros(0, dtype=int), {})
+
+    # -- queries -------------------------------------------------------------
+
+    @property
+    def duration(self) -> float:
+        """Total time (s), dwells included."""
+        return float(self.t[-1])
+
+    @property
+    def dwell_time(self) -> float:
+        return float(sum(d.seconds for d in self.path.dwells))
+
+    def speed_at(self, s) -> np.ndarray:
+        """Path speed (units/s) when the tool passes path positions ``s``.
+
+        Within an interval ``sd^2`` is linear in ``s``; at a knot shared by
+        two intervals the later one is used (the same value, speed being
+        continuous).
+        """
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        move = self.segment >= 0
+        s0 = self.s[:-1][move]
+        s1 = self.s[1:][move]
+        v0 = self.sd[:-1][move]
+        a = self.sdd[move]
+        i = np.clip(np.searchsorted(s0, s, side="right") - 1, 0, max(s0.size - 1, 0))
+        if s0.size == 0:
+            return np.zeros_like(s)
+        x = v0[i] ** 2 + 2.0 * a[i] * (np.clip(s, s0[i], s1[i]) - s0[i])
+        return np.sqrt(np.maximum(x, 0.0))
+
+    def sample(self, dt: float = 1e-3) -> FeedSamples:
+        """Samples every ``dt`` seconds from 0, plus the final instant."""
+        if not dt > 0:
+            raise ValueError("dt must be > 0")
+        T = self.duration
+        n = int(np.floor(T / dt + 1e-9)) + 1
+        times = np.arange(n) * dt
+        if times[-1] < T:
+            times = np.append(times, T)
+        return self.at(times)
+
+    def at(self, times) -> FeedSamples:
+        """The profile at the given times (s), clipped to ``[0, duration]``."""
+        times = np.clip(np.atleast_1d(np.asarray(times, dtype=float)), 0.0, self.duration)
+        M = self.sdd.size
+        path = self.path
+        dof = path.dof
+        axes = self.limits.axis_names(path.toolpath.plane, dof)
+        vlim, alim = self.limits.in_plane(path.toolpath.plane, dof)
+        n = times.size
+        if M == 0:
+            z = np.zeros(n)
+            pos = np.zeros((n, dof))
+            if path.segments:
+                pos[:] = path.eval_segments(np.zeros(1, int), np.zeros(1), 0)[0]
+            return FeedSamples(times, z, np.full(n, -1), np.full(n, -1), pos, np.zeros((n, dof)),
+                               np.zeros((n, dof)), z, z, z, np.full(n, np.inf), axes, vlim, alim,
+                               self.limits.tangential_acc, self.limits.centripetal_acc)
+        idx = np.clip(np.searchsorted(self.t, times, side="right") - 1, 0, M - 1)
+        tau = np.clip(times - self.t[idx], 0.0, self.t[idx + 1] - self.t[idx])
+        u = self.sdd[idx]
+        v = np.maximum(self.sd[idx] + u * tau, 0.0)
+        s = np.clip(self.s[idx] + self.sd[idx] * tau + 0.5 * u * tau * tau,
+                    self.s[idx], self.s[idx + 1])
+        seg = self.segment[idx]
+        seg_eval = np.where(seg >= 0, seg, path.locate(s))
+        q = path.eval_segments(seg_eval, s, 0)
+        q1 = path.eval_segments(seg_eval, s, 1)
+        q2 = path.eval_segments(seg_eval, s, 2)
+        vel = q1 * v[:, None]
+        acc = q2 * (v * v)[:, None] + q1 * u[:, None]
+        line = np.array([b.source.line if b is not None else -1
+                         for b in (sg.block for sg in path.segments)], dtype=int)
+        feed_cap = np.where(seg >= 0, path.feeds[seg_eval], np.inf)
+        return FeedSamples(times, s, seg, np.where(seg >= 0, line[seg_eval], -1), q, vel, acc, v,
+                           u, np.linalg.norm(q2, axis=1), feed_cap, axes, vlim, alim,
+                           self.limits.tangential_acc, self.limits.centripetal_acc)
+
+    # -- reports -------------------------------------------------------------
+
+    def summary(self, dt: float = 1e-3, samples: FeedSamples | None = None) -> dict:
+        """``duration``, ``samples`` (how many at ``dt``), the largest axis
+        velocity and acceleration ratios ``|value| / limit`` seen in them, the
+        largest feed ratio, and planner details."""
+        smp = self.sample(dt) if samples is None else samples
+        out = {
+            "planner": self.planner,
+            "duration": self.duration,
+            "dwell_time": self.dwell_time,
+            "samples": len(smp),
+            "dt": dt,
+            "max_axis_vel_ratio": float(smp.axis_velocity_ratio.max(initial=0.0)),
+            "max_axis_acc_ratio": float(smp.axis_acceleration_ratio.max(initial=0.0)),
+            "max_feed_ratio": float(smp.feed_ratio.max(initial=0.0)),
+            "axes": list(smp.axes),
+        }
+        names = np.array(smp.limit_names, dtype=object)
+        counts = np.bincount(smp.active, minlength=len(names))
+        out["active_share"] = {str(names[i]): round(float(c) / max(len(smp), 1), 6)
+                               for i, c in enumerate(counts) if c}
+        out.update({k: v for k, v in self.info.items() if isinstance(v, (int, float, str))})
+        return out
+
+    def to_csv(self, file, dt: float = 1e-3) -> None:
+        """Write :meth:`sample` ``(dt)`` as CSV, atomically."""
+        from ccopt.export.atomic import write_text_atomic
+        write_text_atomic(file, self.sample(dt).to_csv_text())
