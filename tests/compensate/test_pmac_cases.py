@@ -334,66 +334,77 @@ def test_inside_corners_line_arc_arc_line():
     ])
 
 
-def test_pocket_key_points():
-    path = run_case("pocket")
-    segs = [s for s in path.segments if s.role.value not in ("rapid",) and s.length > 0]
-    r = 3.0
-    # Inside lead-in: (20,20)->(0,20) then -Y (left turn): ends at (0,20) + 3*(1,0).
-    assert segs[0].role.value == "lead-in"
-    assert np.allclose(segs[0].end, (3, 20), atol=TOL)
-    # Concave R6 corner about (6,6): tool radius 6 - 3 = 3, tangent joins.
-    arc = next(s for s in segs if s.kind == "arc" and np.allclose(s.geom.center, (6, 6)))
-    assert arc.geom.radius == pytest.approx(3.0, abs=TOL)
-    assert np.allclose(arc.start, (3, 6), atol=TOL) and np.allclose(arc.end, (6, 3), atol=TOL)
-    # Boss: inside corner at (25,0) -> (22,3); outside corners at (25,8) and (35,8).
-    ends = [s.end for s in segs]
-    assert any(np.allclose(e, (22, 3), atol=TOL) for e in ends)
-    corners = [s for s in segs if s.role.value == "corner"]
-    centres = sorted(tuple(np.round(s.geom.center, 9)) for s in corners)
-    assert centres == [(25.0, 8.0), (35.0, 8.0)]
-    for c in corners:
-        assert c.geom.radius == pytest.approx(r, abs=TOL)
-        assert abs(c.geom.sweep) == pytest.approx(math.pi / 2, abs=TOL)
-    # Bulge, clockwise R10 about (30,40) with CC1: tool radius 13. Inside corner
-    # with the line y = 40 - 3: x = 30 +- sqrt(13^2 - 3^2) (nearest roots).
-    bulge = next(s for s in segs if s.kind == "arc" and np.allclose(s.geom.center, (30, 40)))
-    dx = math.sqrt(13 ** 2 - 3 ** 2)
+def test_pocket_every_segment():
+    # CC1 (tool inside, counter-clockwise), r = 3. Concave R6 corners give tool
+    # arcs of radius 3; the lines' offsets are x=3, y=3, x=57, y=37; the boss
+    # (25..35 x 0..8) gives inside corners (22,3), (38,3) and outside arcs about
+    # (25,8) and (35,8); the clockwise R10 bulge about (30,40) gives a tool arc
+    # of radius 13 meeting y = 37 at x = 30 +- sqrt(13^2 - 3^2).
+    q = math.sqrt(13 ** 2 - 3 ** 2)
+    bulge_sweep = -math.pi + 2 * math.atan2(3, q)
+    P = math.pi
+    check(run_case("pocket"), [
+        L("uncompensated", (20, 20), (20, 20)),           # Z-2 plunge
+        L("lead-in", (20, 20), (3, 20)),                  # inside: P + 3*o(-Y)
+        L("compensated", (3, 20), (3, 6)),
+        A("compensated", (6, 6), (3, 6), (6, 3), P / 2),
+        L("compensated", (6, 3), (22, 3)),
+        L("compensated", (22, 3), (22, 8)),
+        A("corner", (25, 8), (22, 8), (25, 11), -P / 2),
+        L("compensated", (25, 11), (35, 11)),
+        A("corner", (35, 8), (35, 11), (38, 8), -P / 2),
+        L("compensated", (38, 8), (38, 3)),
+        L("compensated", (38, 3), (54, 3)),
+        A("compensated", (54, 6), (54, 3), (57, 6), P / 2),
+        L("compensated", (57, 6), (57, 34)),
+        A("compensated", (54, 34), (57, 34), (54, 37), P / 2),
+        L("compensated", (54, 37), (30 + q, 37)),
+        A("compensated", (30, 40), (30 + q, 37), (30 - q, 37), bulge_sweep),
+        L("compensated", (30 - q, 37), (6, 37)),
+        A("compensated", (6, 34), (6, 37), (3, 34), P / 2),
+        L("compensated", (3, 34), (3, 20)),
+        L("lead-out", (3, 20), (20, 20)),                 # inside lead-out
+        L("uncompensated", (20, 20), (20, 20)),           # Z5 retract
+    ])
+    bulge = next(s for s in run_case("pocket").segments
+                 if s.kind == "arc" and np.allclose(s.geom.center, (30, 40)))
     assert bulge.geom.radius == pytest.approx(13, abs=TOL)
-    assert np.allclose(bulge.start, (30 + dx, 37), atol=TOL)
-    assert np.allclose(bulge.end, (30 - dx, 37), atol=TOL)
-    # Inside lead-out at (0,20): last move ends at (0,20) + 3*(1,0), lead-out to (20,20).
-    assert segs[-1].role.value == "lead-out"
-    assert np.allclose(segs[-1].start, (3, 20), atol=TOL)
 
 
-def test_profile_key_points():
-    path = run_case("profile")
-    segs = [s for s in path.segments if s.role.value != "rapid" and s.length > 0]
-    r = 3.0
-    # Tangent CIRCLE lead-in about (-10,15): spiral from rho 10 to rho 10 - 3
-    # (CCW with CC1 is toward the centre), ending at (0,15) + 3*(-1,0).
-    lead_in = segs[0]
-    assert lead_in.kind == "spiral" and lead_in.role.value == "lead-in"
-    assert (lead_in.geom.rho0, lead_in.geom.rho1) == pytest.approx((10, 7), abs=TOL)
-    assert np.allclose(lead_in.end, (-3, 15), atol=TOL)
-    # Convex R5 corners: tool radius 8.
+def test_profile_every_segment():
+    # CC1 (tool outside, clockwise), r = 3. Tangent CIRCLE lead-in about
+    # (-10,15): spiral from rho 10 to rho 10 - 3 = 7 (counter-clockwise with CC1
+    # is toward the centre); convex R5 corners give tool arcs of radius 8; the
+    # V-notch gives outside arcs about (15,30) and (25,30) (45 degrees) and the
+    # inside corner (20, 25 + 3*sqrt2); the sharp corner (0,0) an arc to (-3,0).
+    P = math.pi
+    h = 3 * H
+    check(run_case("profile"), [
+        L("uncompensated", (-10, 5), (-10, 5)),           # Z-3 plunge
+        SP("lead-in", (-10, 15), (-10, 5), (-3, 15), P / 2),
+        L("compensated", (-3, 15), (-3, 25)),
+        A("compensated", (5, 25), (-3, 25), (5, 33), -P / 2),
+        L("compensated", (5, 33), (15, 33)),
+        A("corner", (15, 30), (15, 33), (15 + h, 30 + h), -P / 4),
+        L("compensated", (15 + h, 30 + h), (20, 25 + 3 * S2)),
+        L("compensated", (20, 25 + 3 * S2), (25 - h, 30 + h)),
+        A("corner", (25, 30), (25 - h, 30 + h), (25, 33), -P / 4),
+        L("compensated", (25, 33), (35, 33)),
+        A("compensated", (35, 25), (35, 33), (43, 25), -P / 2),
+        L("compensated", (43, 25), (43, 5)),
+        A("compensated", (35, 5), (43, 5), (35, -3), -P / 2),
+        L("compensated", (35, -3), (0, -3)),
+        A("corner", (0, 0), (0, -3), (-3, 0), -P / 2),
+        L("compensated", (-3, 0), (-3, 15)),
+        SP("lead-out", (-10, 15), (-3, 15), (-10, 25), P / 2),
+        L("uncompensated", (-10, 25), (-10, 25)),         # Z5 retract
+    ])
+    segs = run_case("profile").segments
+    spirals = [s.geom for s in segs if s.kind == "spiral"]
+    assert [(g.rho0, g.rho1) for g in spirals] == [pytest.approx((10, 7)), pytest.approx((7, 10))]
     for c in [(5, 25), (35, 25), (35, 5)]:
         arc = next(s for s in segs if s.kind == "arc" and np.allclose(s.geom.center, c))
-        assert arc.geom.radius == pytest.approx(5 + r, abs=TOL)
-    # V-notch: outside corners at (15,30) and (25,30) (45 deg arcs), inside at
-    # (20,25): offsets of the two 45-degree lines meet at (20, 25 + 3*sqrt2).
-    assert any(np.allclose(s.end, (20, 25 + 3 * S2), atol=TOL) for s in segs)
-    corner_centres = sorted(tuple(np.round(s.geom.center, 9)) for s in segs if s.role.value == "corner")
-    assert corner_centres == [(0.0, 0.0), (15.0, 30.0), (25.0, 30.0)]
-    # Sharp corner at (0,0): arc from (0,-3) to (-3,0), 90 deg clockwise.
-    sharp = next(s for s in segs if s.role.value == "corner" and np.allclose(s.geom.center, (0, 0)))
-    assert np.allclose(sharp.start, (0, -3), atol=TOL) and np.allclose(sharp.end, (-3, 0), atol=TOL)
-    assert sharp.geom.sweep == pytest.approx(-math.pi / 2, abs=TOL)
-    # Tangent lead-out about (-10,15): from (-3,15) (rho 7) to (-10,25) (rho 10).
-    lead_out = segs[-1]
-    assert lead_out.kind == "spiral" and lead_out.role.value == "lead-out"
-    assert np.allclose(lead_out.start, (-3, 15), atol=TOL)
-    assert (lead_out.geom.rho0, lead_out.geom.rho1) == pytest.approx((7, 10), abs=TOL)
+        assert arc.geom.radius == pytest.approx(8, abs=TOL)
 
 
 def test_gcode_twin_of_the_pocket_gives_the_same_path():
