@@ -662,6 +662,8 @@ def pair_distance(A: SegmentArray, idx_a, B: SegmentArray, idx_b):
             f"pair_distance: {int(spiral.sum())} pair(s) involve a spiral (first: pair {k}, "
             f"A row {int(ia[k])}, B row {int(ib[k])}); spirals have no closed-form distance")
     n = ia.size
+    if n == 0:
+        return np.empty(0), np.empty((0, 2)), np.empty((0, 2))
     d = np.empty(n)
     wa = np.empty((n, 2))
     wb = np.empty((n, 2))

@@ -378,3 +378,17 @@ def test_pair_distance_rejects_spirals():
         pair_distance(A, [0, 1], A, [0, 0])
     with pytest.raises(ValueError):
         A.kind[0] = 1                       # read-only packing
+
+
+def test_pair_distance_empty_and_blocks():
+    A = SegmentArray.from_segments([Line((0, 0), (1, 0)), Arc((0, 3), 1.0, math.pi, math.pi)])
+    d, wa, wb = pair_distance(A, [], A, [])
+    assert d.shape == (0,) and wa.shape == (0, 2) and wb.shape == (0, 2)
+    # More pairs than one processing block: results do not depend on the blocking.
+    rng = np.random.default_rng(12)
+    n = 20000
+    ia, ib = rng.integers(0, 2, n), rng.integers(0, 2, n)
+    d, _, _ = pair_distance(A, ia, A, ib)
+    ref = {(i, j): distance(A.segment(i), A.segment(j))[0] for i in (0, 1) for j in (0, 1)}
+    assert np.array_equal(d, np.array([ref[i, j] for i, j in zip(ia, ib)]))
+    assert math.isclose(ref[0, 1], 2.0)
