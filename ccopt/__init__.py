@@ -14,6 +14,7 @@ from __future__ import annotations
 from importlib.metadata import PackageNotFoundError, version as _version
 
 from ccopt.errors import CcoptError, CompensationError, ProgramError
+from ccopt.feed import AxisLimits, plan_feed
 from ccopt.program import read_program, read_text
 from ccopt.program.model import Block, Modal, Motion, Program, Source
 from ccopt.toolpath import PathSegment, Role, ToolPath, programmed_path
@@ -24,6 +25,7 @@ except PackageNotFoundError:  # running from a source tree without install
     __version__ = "0.0.0+unknown"
 
 __all__ = [
+    "AxisLimits", "plan_feed",
     "Block", "CcoptError", "CompensationError", "Modal", "Motion", "PathSegment", "Program",
     "ProgramError", "Role", "Source", "ToolPath", "programmed_path", "read_program",
     "read_text", "__version__",

@@ -21,28 +21,55 @@ Example::
 """
 from __future__ import annotations
 
-from typing import Callable
+import importlib
+from typing import TYPE_CHECKING
 
-from ccopt.feed.baselines import plan_junction, plan_stop_per_block
 from ccopt.feed.errors import FeedError
-from ccopt.feed.grid import GridOptions
 from ccopt.feed.limits import AxisLimits
-from ccopt.feed.path import ExactPath
-from ccopt.feed.profile import FeedProfile, FeedSamples
-from ccopt.feed.toppra_planner import plan_toppra
-from ccopt.toolpath import ToolPath
 
-#: planner name -> function(path, limits, junction_deviation=..., grid=...) -> FeedProfile
-PLANNERS: dict[str, Callable[..., FeedProfile]] = {
-    "toppra": plan_toppra,
-    "stop": plan_stop_per_block,
-    "junction": plan_junction,
+if TYPE_CHECKING:  # pragma: no cover
+    from ccopt.feed.grid import GridOptions
+    from ccopt.feed.path import ExactPath
+    from ccopt.feed.profile import FeedProfile
+    from ccopt.toolpath import ToolPath
+
+#: planner name -> "module:function"; each takes (path, limits, junction_deviation=..., grid=...)
+PLANNERS: dict[str, str] = {
+    "toppra": "ccopt.feed.toppra_planner:plan_toppra",
+    "stop": "ccopt.feed.baselines:plan_stop_per_block",
+    "junction": "ccopt.feed.baselines:plan_junction",
+}
+
+# Names importing toppra (which imports scipy.interpolate and matplotlib, ~2 s)
+# load on first use, so ``import ccopt`` stays fast.
+_LAZY = {
+    "ExactPath": "ccopt.feed.path",
+    "FeedProfile": "ccopt.feed.profile",
+    "FeedSamples": "ccopt.feed.profile",
+    "GridOptions": "ccopt.feed.grid",
+    "plan_toppra": "ccopt.feed.toppra_planner",
+    "plan_stop_per_block": "ccopt.feed.baselines",
+    "plan_junction": "ccopt.feed.baselines",
 }
 
 
-def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: str = "toppra",
+def __getattr__(name):
+    if name in _LAZY:
+        return getattr(importlib.import_module(_LAZY[name]), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def planner_function(name: str):
+    """The planner function registered as ``name`` in :data:`PLANNERS`."""
+    if name not in PLANNERS:
+        raise ValueError(f"unknown planner {name!r}; choose one of {', '.join(PLANNERS)}")
+    module, func = PLANNERS[name].split(":")
+    return getattr(importlib.import_module(module), func)
+
+
+def plan_feed(toolpath: "ToolPath | ExactPath", limits: AxisLimits, *, planner: str = "toppra",
               junction_deviation: float | None = None,
-              grid: GridOptions | None = None) -> FeedProfile:
+              grid: "GridOptions | None" = None) -> "FeedProfile":
     """Feed profile of ``toolpath`` under ``limits``.
 
     Parameters
@@ -55,14 +82,16 @@ def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: st
     junction_deviation: ``None`` (default) stops at every tangent
         discontinuity; a length ``delta > 0`` (program units) allows grbl's
         corner speed there instead (an approximation, see
-        :mod:`ccopt.feed.junction`).
+        :mod:`ccopt.feed.junction`). Used by ``toppra`` and ``junction``.
     grid: gridpoint options for TOPPRA (:class:`GridOptions`).
 
     Raises :class:`FeedError` (a located :class:`~ccopt.errors.ProgramError`)
     when the limits do not fit the path or TOPPRA fails.
     """
-    if planner not in PLANNERS:
-        raise ValueError(f"unknown planner {planner!r}; choose one of {', '.join(PLANNERS)}")
+    from ccopt.feed.grid import GridOptions
+    from ccopt.feed.path import ExactPath
+
+    func = planner_function(planner)
     if not isinstance(limits, AxisLimits):
         raise TypeError("limits must be an AxisLimits")
     if junction_deviation is not None and not junction_deviation >= 0:
@@ -75,8 +104,9 @@ def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: st
     kwargs: dict = {"junction_deviation": junction_deviation}
     if planner == "toppra":
         kwargs["grid"] = grid if grid is not None else GridOptions()
-    return PLANNERS[planner](path, limits, **kwargs)
+    return func(path, limits, **kwargs)
 
 
 __all__ = ["AxisLimits", "ExactPath", "FeedError", "FeedProfile", "FeedSamples", "GridOptions",
-           "PLANNERS", "plan_feed", "plan_junction", "plan_stop_per_block", "plan_toppra"]
+           "PLANNERS", "plan_feed", "plan_junction", "plan_stop_per_block", "plan_toppra",
+           "planner_function"]
