@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from importlib.metadata import PackageNotFoundError, version as _version
 
+from ccopt.compensate import compensate
 from ccopt.errors import CcoptError, CompensationError, ProgramError
 from ccopt.feed import AxisLimits, plan_feed
 from ccopt.program import read_program, read_text
@@ -27,6 +28,6 @@ except PackageNotFoundError:  # running from a source tree without install
 __all__ = [
     "AxisLimits", "plan_feed",
     "Block", "CcoptError", "CompensationError", "Modal", "Motion", "PathSegment", "Program",
-    "ProgramError", "Role", "Source", "ToolPath", "programmed_path", "read_program",
+    "ProgramError", "Role", "Source", "ToolPath", "compensate", "programmed_path", "read_program",
     "read_text", "__version__",
 ]
