@@ -4,6 +4,7 @@ Imports nothing else from ccopt (numpy and scipy only). Lengths are in
 program units, angles in radians; a signed sweep is counter-clockwise when
 positive; "left" is the tangent rotated by +90 degrees.
 
+- :mod:`~ccopt.geometry.angles`: sweep conventions and the inside-the-sweep test.
 - :mod:`~ccopt.geometry.primitives`: :class:`Line`, :class:`Arc`,
   :class:`Spiral`, evaluated by arc length.
 - :mod:`~ccopt.geometry.offset`: :func:`offset` (raw offset to the left).
