@@ -193,6 +193,77 @@ def cmd_run(args: argparse.Namespace) -> int:
     return EXIT_BAD_INPUT if failed else EXIT_OK
 
 
+def cmd_feed(args: argparse.Namespace) -> int:
+    """Feed profiles of the compensated path: TOPPRA and/or the baselines."""
+    from ccopt.feed import AxisLimits, ExactPath, plan_feed
+    inp = resolve_input(args.program)
+    prog = load(inp, args)
+    path = compensate_input(inp, prog, args)
+    vmax = args.vmax or (inp.case.vmax if inp.case else None)
+    amax = args.amax or (inp.case.amax if inp.case else None)
+    if vmax is None or amax is None:
+        raise ProgramError("no axis limits: give --vmax and --amax (X,Y[,Z]) or use a case "
+                           "whose case.toml has [limits]", str(inp.program))
+    try:
+        limits = AxisLimits(vmax, amax, tangential_acc=args.tangential_acc,
+                            centripetal_acc=args.centripetal_acc)
+    except ValueError as exc:
+        raise ProgramError(f"bad limits: {exc}", str(inp.program)) from None
+    planners = list(dict.fromkeys(p for group in (args.planner or [["toppra"]]) for p in group))
+    exact = ExactPath(path)
+    out: dict = {}
+    for i, name in enumerate(planners):
+        prof = plan_feed(exact, limits, planner=name, junction_deviation=args.junction_deviation)
+        smp = prof.sample(args.dt)
+        out[name] = prof.summary(args.dt, smp)
+        if args.csv:
+            csv = Path(args.csv)
+            if len(planners) > 1:
+                csv = csv.with_name(f"{csv.stem}.{name}{csv.suffix}")
+            from ccopt.export.atomic import write_text_atomic
+            write_text_atomic(csv, smp.to_csv_text())
+            out[name]["csv"] = str(csv)
+    first = out[planners[0]]
+    if args.json:
+        emit_json({"program": str(inp.program), "style": path.style, "units": path.units,
+                   "limits": limits.to_json(), "planner": planners[0],
+                   **{k: first[k] for k in ("duration", "samples", "max_axis_acc_ratio",
+                                            "max_axis_vel_ratio", "max_feed_ratio")},
+                   "planners": out})
+    else:
+        print(f"{prog.file}: style {path.style}, tool path {path.length:.4f} {path.units}, "
+              f"limits v={list(limits.v)} a={list(limits.a)}")
+        print("planner   duration_s  vs_first  max_vel_ratio  max_acc_ratio  max_feed_ratio")
+        for name, r in out.items():
+            print(f"{name:8s}  {r['duration']:10.4f}  {r['duration'] / first['duration']:8.4f}  "
+                  f"{r['max_axis_vel_ratio']:13.4f}  {r['max_axis_acc_ratio']:13.4f}  "
+                  f"{r['max_feed_ratio']:14.4f}")
+    return EXIT_OK
+
+
+def _axis_values(text: str) -> tuple[float, ...]:
+    parts = text.split(",")
+    if not 2 <= len(parts) <= 3:
+        raise argparse.ArgumentTypeError(f"give 2 or 3 comma-separated numbers X,Y[,Z]: {text!r}")
+    return tuple(_positive_float(x) for x in parts)
+
+
+def _positive_float(text: str) -> float:
+    x = _nonneg_float(text)
+    if x == 0:
+        raise argparse.ArgumentTypeError(f"must be a number > 0: {text!r}")
+    return x
+
+
+def _planner_names(text: str) -> list[str]:
+    names = [n.strip() for n in text.split(",")]
+    known = ("toppra", "stop", "junction")
+    for n in names:
+        if n not in known + ("all",):
+            raise argparse.ArgumentTypeError(f"unknown planner {n!r} (toppra, stop, junction, all)")
+    return list(known) if "all" in names else names
+
+
 Command = Callable[[argparse.Namespace], int]
 
 
@@ -244,6 +315,28 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
     program_args(p)
     style_args(p)
     commands["compensate"] = cmd_compensate
+
+    p = sub.add_parser("feed", help="time-optimal feed (TOPPRA) and baseline planners")
+    p.add_argument("program", metavar="PROGRAM", help="program file, case folder or case name")
+    program_args(p)
+    style_args(p)
+    p.add_argument("--vmax", type=_axis_values, metavar="X,Y[,Z]",
+                   help="axis velocity limits, units/s (default: the case's [limits] v)")
+    p.add_argument("--amax", type=_axis_values, metavar="X,Y[,Z]",
+                   help="axis acceleration limits, units/s^2 (default: the case's [limits] a)")
+    p.add_argument("--tangential-acc", type=_positive_float, metavar="A",
+                   help="limit on the acceleration along the path, units/s^2")
+    p.add_argument("--centripetal-acc", type=_positive_float, metavar="A",
+                   help="limit on speed^2 * curvature, units/s^2")
+    p.add_argument("--planner", type=_planner_names, action="append", metavar="NAME[,NAME]",
+                   help="toppra (default), stop, junction or all; repeat or comma-separate")
+    p.add_argument("--junction-deviation", type=_positive_float, metavar="D",
+                   help="allow grbl's corner speed at tangent breaks (default: stop there)")
+    p.add_argument("--dt", type=_positive_float, default=1e-3, metavar="S",
+                   help="sampling step for ratios and CSV, seconds (default 0.001)")
+    p.add_argument("--csv", metavar="FILE", help="write the samples as CSV "
+                   "(FILE.<planner>.csv per planner when several)")
+    commands["feed"] = cmd_feed
 
     p = sub.add_parser("run", help="the main job, on bundled cases or given programs")
     p.add_argument("inputs", nargs="*", metavar="CASE|PROGRAM")
