@@ -200,6 +200,9 @@ _PLANE_G = {"XY": "G17", "ZX": "G18", "YZ": "G19"}
 _FUNC_NAMES = sorted(set(GCODE_FUNCTIONS) | {"ATAN"}, key=len, reverse=True)
 
 _LINE_SPLIT = re.compile(r"\r\n|\r|\n")
+_BLANKS = re.compile(r"[ \t]*")
+# A literal number not followed by a blank and a digit (the common, fast case).
+_NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?![.\d]|[ \t]+[.\d])")
 
 
 def _fmt(x: float) -> str:
@@ -255,6 +258,7 @@ class _Reader:
             self.lines.pop()
         self._lexed: dict[int, _Lexed] = {}
         self._match: dict[int, tuple] = {}
+        self._constant: dict[int, _Words] = {}
         self.tool_table = tool_table
         self.grammar = Grammar("[", "]", GCODE_BINARY, GCODE_FUNCTIONS, atan2_form=True,
                                variable=self._variable)
@@ -433,11 +437,9 @@ class _Reader:
         return first, n
 
     # -- parameters --------------------------------------------------------
-    def _skip(self, code: str, p: int) -> int:
-        n = len(code)
-        while p < n and _is_blank(code[p]):
-            p += 1
-        return p
+    @staticmethod
+    def _skip(code: str, p: int) -> int:
+        return _BLANKS.match(code, p).end()
 
     def _variable(self, text: str, pos: int):
         if text[pos] != "#":
@@ -506,6 +508,11 @@ class _Reader:
     # -- values --------------------------------------------------------------
     def _read_number(self, code: str, p: int, letter: str) -> tuple[float, int]:
         """A literal number (sign, digits, one point; blanks allowed inside)."""
+        m = _NUMBER.match(code, p)
+        if m is not None:
+            value = float(m.group())
+            if math.isfinite(value):
+                return value, m.end()
         n = len(code)
         start = p
         chars = []
@@ -885,9 +892,14 @@ class _Reader:
 
     # -- ordinary lines --------------------------------------------------------
     def _exec_line(self, lx: _Lexed) -> None:
-        words, settings = self._parse_words(lx)
-        for kind, key, value in settings:
-            self._set(kind, key, value)
+        words = self._constant.get(self.line_no)
+        if words is None:
+            words, settings = self._parse_words(lx)
+            for kind, key, value in settings:
+                self._set(kind, key, value)
+            if not settings and "#" not in lx.code and "[" not in lx.code:
+                # No parameter or expression: the words are the same every time.
+                self._constant[self.line_no] = words
         if words.letters or words.g or words.m:
             self._execute(words, lx)
 
@@ -973,7 +985,9 @@ class _Reader:
             words.mcodes.append(m)
 
     def _execute(self, words: "_Words", lx: _Lexed) -> None:
-        self._classify(words)
+        if not words.classified:
+            self._classify(words)
+            words.classified = True
         gc = words.gcodes
         L = words.letters
         axis = any(a in L for a in _AXES)
@@ -1318,6 +1332,7 @@ class _Words:
     gcodes: dict = field(default_factory=dict)
     mcodes: list = field(default_factory=list)
     first: int | None = None
+    classified: bool = False
 
 
 def _check_inputs(file, tool_table, start):
