@@ -26,11 +26,17 @@ def _linuxcnc(**options):
     return LinuxcncStyle(**options)
 
 
+def _fagor(**options):
+    from ccopt.compensate.fagor import FagorStyle
+    return FagorStyle(**options)
+
+
 #: style name -> factory(**options) returning an object with
 #: ``compensate(program, radius=, side=) -> ToolPath``.
 STYLES: dict[str, Callable[..., object]] = {
     "pmac": _pmac,
     "linuxcnc": _linuxcnc,
+    "fagor": _fagor,
 }
 
 
