@@ -92,3 +92,78 @@ ARC_SWEEP_CONTINUOUS = True
 #: lead-out returns to the programmed point, before the first trailing block
 #: that has compensation off (or at the very end).
 AUTOMATIC_ZERO_DISTANCE_LEADOUT = True
+
+
+# -- LinuxCNC style (ccopt/compensate/linuxcnc.py) ---------------------------------
+
+#: [ccopt decision] The spec's LinuxCNC rule 2 says "corners within 0.05 rad of
+#: straight are concave"; LinuxCNC's code (and its crazy-paths test) treat a
+#: turn of at most 0.05 rad either way as *straight on*: no corner arc and no
+#: pull-back; the queued move keeps its offset end and the next move starts
+#: there (a tiny diagonal step for a slight turn). ccopt follows the code.
+LINUXCNC_SLIGHT_TURN_IS_STRAIGHT_ON = True
+
+#: [ccopt decision] Program end while LinuxCNC compensation is still on: the
+#: queued move is sent with its offset end point and the path ends there (no
+#: return move: LinuxCNC has no automatic lead-out).
+LINUXCNC_PROGRAM_END_WHILE_ON = "stay-at-offset"
+
+#: [ccopt decision] LinuxCNC locates the arc-to-line pull-back point with the
+#: previous arc's *programmed* radius (compensated radius +- r); ccopt uses the
+#: equivalent geometric statement (the intersection of the queued arc's tool
+#: circle with the new offset line, LinuxCNC's root). The two agree whenever
+#: the queued arc's centre lies at its tool radius +- r from the programmed
+#: corner: for every fully compensated arc, and for an entry arc unless its
+#: re-centred circle's centre falls on the far side of the programmed end
+#: point (then LinuxCNC's point is off the new offset line).
+LINUXCNC_ARC_LINE_PULLBACK = "geometric"
+
+#: [ccopt decision] Gouge errors found while the queued move is sent (a
+#: straight that would run backwards, an arc that would sweep further than
+#: programmed) are located at the block being converted, as LinuxCNC reports
+#: them; G40 on a line of its own is located at the next motion block (the
+#: program model has no block for a line without motion).
+LINUXCNC_ERROR_LOCATION = "converting-block"
+
+
+# -- Fagor 8070 style (ccopt/compensate/fagor.py) -----------------------------------
+
+#: [spec decision, made exact here] G137 linear transition at an outside
+#: corner, turning angle up to 90 degrees: the incoming offset's tangent line
+#: at ``A = P + r*o(t_in)`` and the outgoing one's at ``B = P + r*o(t_out)``
+#: meet at ``X``; the path goes ``A -> X -> B``. Beyond 90 degrees:
+#: ``A -> A + r*t_in -> B - r*t_out -> B``. A piece lying on a compensated
+#: line's own offset becomes part of that line, so the inserted straight
+#: segments are LIN-LIN 0/1, LIN-ARC 1/2, ARC-ARC 2/3 (up to / beyond 90
+#: degrees): the ISG/Beckhoff G25 block counts. Activation and cancellation
+#: moves are not along their offsets: their piece stays a separate segment.
+FAGOR_G137_LINEAR_TRANSITION = "tangent-lines-isg-g25"
+
+#: [ccopt decision] G136/G137 in force at a corner is the outgoing block's
+#: (the cancellation block's at the end); G138/G139 is the activation block's
+#: at the start and the cancellation block's at the end.
+FAGOR_MODAL_OF_CORNER = "outgoing-block"
+
+#: [ccopt decision] A reversal (the path turns back on itself) while Fagor
+#: compensation is on is an outside corner of 180 degrees: a half-turn arc
+#: (G136) or the G137 construction beyond 90 degrees.
+FAGOR_REVERSAL_IS_OUTSIDE = True
+
+#: [ccopt decision] Fagor inside corners whose offsets do not intersect, side
+#: changes (G41 <-> G42) and radius changes (new D) while on follow the PMAC
+#: rules (the change is introduced over the next move).
+FAGOR_CHANGES_WHILE_ON = "as-pmac"
+
+#: [ccopt decision] The manual describes activation by a straight move only:
+#: an arc as the first move in the plane after G41/G42 is an error, like an
+#: arc as the cancellation move after G40 (which the manual forbids).
+FAGOR_ARC_ACTIVATION_IS_AN_ERROR = True
+
+#: [ccopt decision] Program end while Fagor compensation is on behaves as a
+#: cancellation without motion in the plane (spec Fagor rule 4): the last move
+#: ends at its offset end and the tool goes straight to its programmed end.
+FAGOR_PROGRAM_END_WHILE_ON = "cancel-in-place"
+
+#: [ccopt decision] Moves with no in-plane component between two compensated
+#: moves run after the corner transition (as PMAC, GAP_MOVES_AFTER_CORNER_ARC).
+FAGOR_GAP_MOVES_AFTER_TRANSITION = True
