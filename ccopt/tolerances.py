@@ -32,3 +32,20 @@ VERIFY_EPS = 1e-6
 #: Corner intersections with nearly straight arcs (R of thousands of units)
 #: lose ~1e-10 to rounding; without this they would read as tiny spirals.
 OFFSET_CIRCLE_REL_TOL = 1e-9
+
+#: Verifier: a tool-path limit sample may exceed its limit by this fraction
+#: before the limits check fails (planners work to ~1e-9; samples of a
+#: constant-acceleration profile are exact, so this only absorbs rounding).
+VERIFY_LIMIT_REL_TOL = 1e-6
+
+#: Verifier: two consecutive tool segments whose tangents differ by more than
+#: this angle (radians) are listed as a tangent break (informative, not a fault).
+VERIFY_TANGENT_BREAK = 1e-6
+
+#: Verifier: certified bounds (spirals, curves) stop refining once the gap
+#: between lower and upper bound is at most this fraction of ``eps``.
+VERIFY_CERTIFIED_GAP = 0.1
+
+#: Verifier: at most this many subdivision rounds for a certified bound; a
+#: bound not tight by then is reported with its actual gap.
+VERIFY_CERTIFIED_MAX_ROUNDS = 40
