@@ -34,7 +34,7 @@ from ccopt.feed.path import ExactPath
 class GridOptions:
     """How densely to grid the path (see the module docstring)."""
 
-    density: float = 8.0
+    density: float = 16.0
     max_angle: float = 0.05
     min_intervals: int = 4
     max_intervals: int = 2000
@@ -64,7 +64,7 @@ def intervals_per_segment(path: ExactPath, v_axis: np.ndarray, a_axis: np.ndarra
         ds = np.full(S.size, options.ds)
     else:
         v = np.minimum(path.feeds, float(np.min(v_axis)))
-        ds = v * v / float(np.max(a_axis)) / options.density
+        ds = np.minimum(v * v / float(np.max(a_axis)), S) / options.density
     n = np.ceil(S / ds)
     turn = np.array([path.turning(k) for k in range(S.size)])
     n = np.maximum(n, np.ceil(turn / options.max_angle))

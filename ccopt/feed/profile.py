@@ -227,12 +227,16 @@ class FeedProfile:
         s0 = self.s[:-1][move]
         s1 = self.s[1:][move]
         v0 = self.sd[:-1][move]
+        v1 = self.sd[1:][move]
         a = self.sdd[move]
-        i = np.clip(np.searchsorted(s0, s, side="right") - 1, 0, max(s0.size - 1, 0))
         if s0.size == 0:
             return np.zeros_like(s)
+        i = np.clip(np.searchsorted(s0, s, side="right") - 1, 0, s0.size - 1)
         x = v0[i] ** 2 + 2.0 * a[i] * (np.clip(s, s0[i], s1[i]) - s0[i])
-        return np.sqrt(np.maximum(x, 0.0))
+        v = np.sqrt(np.maximum(x, 0.0))
+        # at a knot, its own speed (no rounding from the square root)
+        v = np.where(s <= s0[i], v0[i], v)
+        return np.where(s >= s1[i], v1[i], v)
 
     def sample(self, dt: float = 1e-3) -> FeedSamples:
         """Samples every ``dt`` seconds from 0, plus the final instant."""
