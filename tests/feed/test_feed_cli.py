@@ -1,0 +1,111 @@
+"""``ccopt feed``: JSON per planner, limits from case.toml, CSV, one-line errors."""
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from ccopt.cli import main
+
+CASES = Path(__file__).resolve().parents[2] / "cases"
+KEYS = {"duration", "samples", "max_axis_acc_ratio", "max_axis_vel_ratio"}
+
+
+def run(capsys, *argv):
+    try:
+        code = main(list(argv))
+    except SystemExit as exc:        # argparse errors
+        code = exc.code
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_json_on_a_bundled_case_uses_its_limits(capsys):
+    code, out, err = run(capsys, "feed", "pocket", "--json")
+    assert code == 0 and err == ""
+    data = json.loads(out)
+    assert KEYS <= set(data)
+    assert data["limits"] == {"v": [100.0, 100.0, 30.0], "a": [1000.0, 1000.0, 300.0]}
+    assert data["planner"] == "toppra" and list(data["planners"]) == ["toppra"]
+    assert data["max_axis_vel_ratio"] <= 1.005 and data["max_axis_acc_ratio"] <= 1.005
+    assert data["samples"] == int(data["duration"] / 1e-3) + 1 or \
+        data["samples"] == int(data["duration"] / 1e-3) + 2
+
+
+def test_every_planner_asked_is_reported(capsys):
+    code, out, _ = run(capsys, "feed", str(CASES / "profile"), "--planner", "all", "--json")
+    assert code == 0
+    data = json.loads(out)
+    assert list(data["planners"]) == ["toppra", "stop", "junction"]
+    for name, rep in data["planners"].items():
+        assert KEYS <= set(rep), name
+        assert rep["max_axis_vel_ratio"] <= 1.005 and rep["max_axis_acc_ratio"] <= 1.005
+    T = data["planners"]["toppra"]["duration"]
+    assert T <= data["planners"]["stop"]["duration"]
+    assert T <= data["planners"]["junction"]["duration"] * (1 + 1e-9)
+    code, out2, _ = run(capsys, "feed", "profile", "--planner", "stop", "--planner", "junction",
+                        "--json")
+    assert list(json.loads(out2)["planners"]) == ["stop", "junction"]
+
+
+def test_limits_from_the_command_line_override_the_case(capsys):
+    code, out, _ = run(capsys, "feed", "pocket", "--vmax", "50,50,10", "--amax", "200,200,50",
+                       "--json")
+    assert code == 0
+    slow = json.loads(out)
+    code, out, _ = run(capsys, "feed", "pocket", "--json")
+    assert slow["duration"] > json.loads(out)["duration"]
+    assert slow["limits"]["v"] == [50.0, 50.0, 10.0]
+
+
+def test_program_file_needs_limits(capsys, tmp_path):
+    prog = tmp_path / "p.nc"
+    prog.write_text("G21 G90 F600\nG1 X10 Y0\nG3 X0 Y10 I-10 J0\n")
+    code, out, err = run(capsys, "feed", str(prog), "--json")
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and "no axis limits" in err and str(prog) in err
+    code, out, err = run(capsys, "feed", str(prog), "--vmax", "100,100", "--amax", "1000,1000",
+                         "--json")
+    assert code == 0 and json.loads(out)["duration"] > 0
+
+
+def test_csv_per_planner(capsys, tmp_path):
+    one = tmp_path / "one.csv"
+    code, _, _ = run(capsys, "feed", "z-plunges", "--csv", str(one))
+    assert code == 0 and one.read_text().startswith("t,s,block,x,y,z,")
+    many = tmp_path / "many.csv"
+    code, out, _ = run(capsys, "feed", "z-plunges", "--planner", "toppra,stop", "--csv", str(many),
+                       "--json")
+    assert code == 0
+    assert (tmp_path / "many.toppra.csv").is_file() and (tmp_path / "many.stop.csv").is_file()
+    assert json.loads(out)["planners"]["stop"]["csv"] == str(tmp_path / "many.stop.csv")
+
+
+def test_text_output(capsys):
+    code, out, err = run(capsys, "feed", "pocket", "--planner", "all")
+    assert code == 0 and err == ""
+    lines = out.splitlines()
+    assert lines[1].split()[0] == "planner"
+    assert [ln.split()[0] for ln in lines[2:]] == ["toppra", "stop", "junction"]
+
+
+@pytest.mark.parametrize("argv,needle", [
+    (["--vmax", "1,x"], "--vmax"),
+    (["--vmax", "100"], "--vmax"),
+    (["--vmax", "1,2,3,4"], "--vmax"),
+    (["--amax", "0,100"], "--amax"),
+    (["--amax", "-5,100,1"], "--amax"),
+    (["--vmax", "nan,1"], "--vmax"),
+    (["--planner", "fastest"], "--planner"),
+    (["--dt", "0"], "--dt"),
+    (["--junction-deviation", "-1"], "--junction-deviation"),
+    (["--vmax", "100,100", "--amax", "1000,1000"], "axis Z"),     # the pocket plunges in Z
+    (["--vmax", "100,100", "--amax", "1000,1000,300"], "same axes"),
+])
+def test_bad_values_exit_2_with_one_line(capsys, argv, needle):
+    code, out, err = run(capsys, "feed", "pocket", *argv)
+    assert code == 2
+    assert out == ""
+    assert err.count("\n") == 1 and needle in err
+    assert "Traceback" not in err
