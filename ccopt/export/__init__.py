@@ -1,1 +1,192 @@
-"""Writers for verified tool paths. Every write is atomic (see :mod:`.atomic`)."""
+"""Export a tool path: G-code (``.nc``/``.ngc``), PMAC (``.pmc``), SVG, JSON.
+
+Every program export is **read back** with ccopt's own reader before it is
+kept: the read-back path must lie within the export tolerance of the computed
+one (rounding of the written numbers plus the certified error of arcs fitted
+to spirals), and, when the programmed contour is given, it is verified
+against it. The verdict goes into the file's header comments and into the
+returned :class:`ExportResult`. Writes are atomic (:mod:`.atomic`): a failure
+leaves no partial file and never replaces a good one.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ccopt.errors import ProgramError
+from ccopt.export.atomic import write_text_atomic
+from ccopt.export.gcode import write_gcode
+from ccopt.export.pmacprog import write_pmac
+from ccopt.export.svg import write_svg
+from ccopt.geometry import Arc, Line
+from ccopt.program import read_text
+from ccopt.program.model import Program
+from ccopt.toolpath import PathSegment, Role, ToolPath, programmed_path
+
+#: Default tolerance for arcs fitted to spirals: 0.001 mm, or its inch equivalent.
+DEFAULT_TOL = {"mm": 1e-3, "inch": 1e-3 / 25.4}
+
+FORMATS = {".nc": "gcode", ".ngc": "gcode", ".gcode": "gcode", ".tap": "gcode",
+           ".pmc": "pmac", ".pmac": "pmac", ".svg": "svg", ".json": "json"}
+
+
+@dataclass
+class ExportResult:
+    """What was written and how it was checked.
+
+    roundtrip_error: largest distance between the read-back path and the
+        computed one (program units): rounding of written numbers plus the
+        certified fit error of spiral arcs.
+    fit_error: certified bound of the arcs fitted to spirals (0 if none).
+    verified: verdict of the verifier on the read-back path (``None`` when no
+        program was given to verify against).
+    """
+
+    file: str
+    format: str
+    tolerance: float
+    roundtrip_error: float = 0.0
+    fit_error: float = 0.0
+    verified: bool | None = None
+    certificate: dict | None = None
+    notes: list[str] = field(default_factory=list)
+
+    def to_json(self) -> dict:
+        return {"file": self.file, "format": self.format, "tolerance": self.tolerance,
+                "roundtrip_error": self.roundtrip_error, "fit_error": self.fit_error,
+                "verified": self.verified, "certificate": self.certificate, "notes": self.notes}
+
+
+def readback_path(text: str, dialect: str, original: ToolPath, moves: list, file: str) -> ToolPath:
+    """Read exported text back and give each move the role and source block of
+    the tool-path segment it came from (``moves`` as the writers return it)."""
+    prog = read_text(text, file, dialect)
+    back = programmed_path(prog)
+    if len(back.segments) != len(moves):
+        raise ProgramError(f"read-back has {len(back.segments)} moves, {len(moves)} were written",
+                           file)
+    segs = []
+    for seg, (src, _, _) in zip(back.segments, moves):
+        if src < 0:
+            segs.append(PathSegment(seg.geom, Role.RAPID, seg.block, seg.w0, seg.w1, None))
+        else:
+            o = original.segments[src]
+            segs.append(PathSegment(seg.geom, o.role, o.block, seg.w0, seg.w1, seg.feed))
+    return ToolPath(tuple(segs), plane=original.plane, style=original.style,
+                    radius=original.radius, dwells=back.dwells, units=original.units,
+                    meta={"readback_of": file})
+
+
+def displacement(meant, got) -> float:
+    """Bound on the distance between two lines, or two arcs/spirals about
+    nearly the same centre, from their defining points.
+
+    Lines: the larger end point displacement (a segment lies within that of
+    the other). Arcs and spirals: centre displacement plus the larger change of
+    radius at either end plus the end point displacements.
+    """
+    dev = max(math.dist(meant.start, got.start), math.dist(meant.end, got.end))
+    if isinstance(meant, Line) or isinstance(got, Line):
+        if type(meant) is not type(got):
+            return math.inf
+        return dev
+    r_m = (meant.radius, meant.radius) if isinstance(meant, Arc) else (meant.rho0, meant.rho1)
+    r_g = (got.radius, got.radius) if isinstance(got, Arc) else (got.rho0, got.rho1)
+    if (meant.sweep > 0) != (got.sweep > 0) or abs(abs(meant.sweep) - abs(got.sweep)) > math.pi:
+        return math.inf
+    return dev + math.dist(meant.center, got.center) + max(abs(r_m[0] - r_g[0]), abs(r_m[1] - r_g[1]))
+
+
+def roundtrip_error(back: ToolPath, moves: list) -> float:
+    """Largest deviation of the read-back path from the computed one: per move,
+    the displacement of the read-back geometry from the geometry the writer
+    meant, plus that geometry's certified bound (the spiral arc fit)."""
+    worst = 0.0
+    for seg, (src, meant, bound) in zip(back.segments, moves):
+        if src < 0 or meant is None:
+            continue
+        worst = max(worst, displacement(meant, seg.geom) + bound)
+    return worst
+
+
+def _verify(path: ToolPath, program: Program | None):
+    """Certificate of ``path`` against ``program``'s contour, or ``None``."""
+    if program is None:
+        return None
+    from ccopt.verify import verify  # verify consumes ToolPath; export calls it
+    return verify(path, program)
+
+
+def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = None,
+           tol: float | None = None, fmt: str | None = None, title: str = "") -> ExportResult:
+    """Write ``path`` to ``out`` in the format its suffix names (or ``fmt``).
+
+    Program formats are read back and checked first (see module docstring);
+    ``program`` is the programmed contour to verify the read-back against.
+    Raises :class:`ProgramError` (nothing written) when the read-back does not
+    reproduce the path within ``tol``.
+    """
+    out = Path(out)
+    fmt = fmt or FORMATS.get(out.suffix.lower())
+    if fmt is None:
+        raise ProgramError(f"unknown export format {out.suffix!r}; use one of "
+                           f"{', '.join(sorted(FORMATS))}", str(out))
+    tol = DEFAULT_TOL[path.units] if tol is None else float(tol)
+    if not tol > 0:
+        raise ProgramError("export tolerance must be > 0", str(out))
+    res = ExportResult(str(out), fmt, tol)
+    if fmt in ("gcode", "pmac"):
+        header = [f"ccopt {_version()} export: style {path.style}, cutter radius {path.radius:g} "
+                  f"{path.units}, tool-centre path (no compensation words)"]
+        if title:
+            header.insert(0, title)
+        if fmt == "gcode":
+            text, moves, res.fit_error = write_gcode(path, tol, header)
+        else:
+            text, moves = write_pmac(path, header)
+        back = readback_path(text, fmt, path, moves, str(out))
+        res.roundtrip_error = roundtrip_error(back, moves)
+        if res.roundtrip_error > tol:
+            raise ProgramError(f"read-back deviates {res.roundtrip_error:.3g} from the computed "
+                               f"path, more than the tolerance {tol:g}; nothing written", str(out))
+        cert = _verify(back, program)
+        verdict = [f"read back with ccopt: within {res.roundtrip_error:.3g} {path.units} of the "
+                   f"computed path (tolerance {tol:g}, spiral arc fit {res.fit_error:.3g})"]
+        if cert is not None:
+            res.verified = bool(cert.ok)
+            res.certificate = cert.to_json()
+            verdict.append(f"verified against the programmed contour: "
+                           f"{'OK' if cert.ok else 'FAILED'}, minimum clearance "
+                           f"{cert.min_clearance:.6g} for radius {path.radius:g}")
+        else:
+            verdict.append("not verified: no programmed contour given")
+        full_header = header + verdict
+        text = (write_gcode(path, tol, full_header)[0] if fmt == "gcode"
+                else write_pmac(path, full_header)[0])
+        write_text_atomic(out, text)
+    elif fmt == "svg":
+        contour = programmed_path(program) if program is not None else None
+        write_text_atomic(out, write_svg(path, contour, title))
+    else:  # json
+        cert = _verify(path, program)
+        doc = {"toolpath": path.to_json(), "certificate": cert.to_json() if cert else None}
+        write_text_atomic(out, json.dumps(doc) + "\n")
+        if cert is not None:
+            res.verified = bool(cert.ok)
+            res.certificate = doc["certificate"]
+    return res
+
+
+def _version() -> str:
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        return version("ccopt")
+    except PackageNotFoundError:
+        return "(source)"
+
+
+__all__ = ["DEFAULT_TOL", "ExportResult", "FORMATS", "export", "readback_path", "roundtrip_error",
+           "write_gcode", "write_pmac", "write_svg"]

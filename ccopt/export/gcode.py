@@ -1,0 +1,119 @@
+"""ISO/RS274 G-code of a tool path: G0/G1 lines, G2/G3 arcs with I/J/K.
+
+The exported program carries no compensation words: it is the tool-centre
+path itself. Spirals (and blend curves) become arcs within ``tol``
+(:mod:`.arcfit`, certified bound). Feeds are written per minute (G94).
+"""
+from __future__ import annotations
+
+import math
+
+from ccopt.export.arcfit import fit_arcs
+from ccopt.geometry import Arc, Line, Spiral
+from ccopt.program.model import PLANE_AXES
+from ccopt.toolpath import ToolPath
+
+PLANE_WORD = {"XY": "G17", "ZX": "G18", "YZ": "G19"}
+AXES = "XYZ"
+CENTRE = "IJK"
+
+
+def fmt(x: float, digits: int = 6) -> str:
+    """A coordinate with ``digits`` decimals, trailing zeros removed."""
+    s = f"{x:.{digits}f}".rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+class _Writer:
+    def __init__(self, path: ToolPath, digits: int):
+        self.path = path
+        self.digits = digits
+        iu, iv, iw = PLANE_AXES[path.plane]
+        self.u, self.v, self.w = AXES[iu], AXES[iv], AXES[iw]
+        self.ci, self.cj = CENTRE[iu], CENTRE[iv]
+        self.lines: list[str] = []
+        self.source: list[int] = []   # original segment index of each move line
+        self.intended: list = []      # (geometry meant by the line, certified bound)
+        self.feed: float | None = None
+
+    def coords(self, uv, w) -> str:
+        return (f"{self.u}{fmt(uv[0], self.digits)} {self.v}{fmt(uv[1], self.digits)} "
+                f"{self.w}{fmt(w, self.digits)}")
+
+    def feed_word(self, feed: float | None) -> str:
+        if feed is None or feed == self.feed:
+            return ""
+        self.feed = feed
+        return f" F{fmt(feed * 60.0, 4)}"
+
+    def move(self, idx: int, text: str, geom=None, bound: float = 0.0) -> None:
+        self.lines.append(text)
+        self.source.append(idx)
+        self.intended.append((geom, bound))
+
+    def arc(self, idx: int, arc: Arc, w0: float, w1: float, feed, bound: float = 0.0) -> None:
+        s, e = arc.start, arc.end
+        word = "G3" if arc.sweep > 0 else "G2"
+        # Incremental centre from the *written* start keeps the reader's
+        # start and end radii consistent after rounding.
+        su, sv = round(s[0], self.digits), round(s[1], self.digits)
+        i, j = arc.center[0] - su, arc.center[1] - sv
+        turns = max(int(math.ceil(abs(arc.sweep) / (2 * math.pi) - 1e-12)) - 1, 0)
+        p = f" P{turns + 1}" if turns else ""
+        self.move(idx, f"{word} {self.coords(e, w1)} {self.ci}{fmt(i, self.digits)} "
+                       f"{self.cj}{fmt(j, self.digits)}{p}{self.feed_word(feed)}", arc, bound)
+
+
+def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, digits: int = 6):
+    """G-code text of ``path``.
+
+    Returns ``(text, moves, max_fit_error)``: ``moves[m] = (source, geometry,
+    bound)`` for the m-th move: the index of the tool-path segment it came from
+    (-1 for the initial positioning rapid), the exact geometry the line means
+    before rounding, and the certified deviation of that geometry from the
+    segment (0 for lines and arcs, the fit bound for arcs replacing a spiral);
+    ``max_fit_error`` is the largest such bound.
+    """
+    wr = _Writer(path, digits)
+    out = ["%"]
+    for h in header or []:
+        out.append(f"({h.replace('(', '[').replace(')', ']')})")
+    out.append(f"G21 {PLANE_WORD[path.plane]} G90 G94" if path.units == "mm"
+               else f"G20 {PLANE_WORD[path.plane]} G90 G94")
+    max_err = 0.0
+    dwell_at: dict[int, list[float]] = {}
+    for idx, seconds, _ in path.dwells:
+        dwell_at.setdefault(idx, []).append(seconds)
+    if path.segments:
+        first = path.segments[0]
+        wr.move(-1, f"G0 {wr.coords(first.start, first.w0)}")  # positioning, no segment
+    for idx, seg in enumerate(path.segments):
+        for seconds in dwell_at.get(idx, ()):
+            wr.lines.append(f"G4 P{fmt(seconds, 4)}")
+        g = seg.geom
+        rapid = seg.feed is None
+        if isinstance(g, Line):
+            if rapid:
+                wr.move(idx, f"G0 {wr.coords(g.end, seg.w1)}", g)
+            else:
+                wr.move(idx, f"G1 {wr.coords(g.end, seg.w1)}{wr.feed_word(seg.feed)}", g)
+        elif isinstance(g, Arc):
+            wr.arc(idx, g, seg.w0, seg.w1, seg.feed)
+        elif isinstance(g, Spiral):
+            # Leave room for the rounding of the written digits (centre and
+            # end points move by up to half a unit of the last digit each).
+            pieces = fit_arcs(g, max(tol - 4 * 10.0 ** -digits, tol / 2))
+            total = g.length
+            s_acc = 0.0
+            for piece in pieces:
+                s_acc += piece.arc.length
+                w = seg.w0 + (seg.w1 - seg.w0) * min(s_acc / total, 1.0)
+                wr.arc(idx, piece.arc, seg.w0, w, seg.feed, piece.bound)
+                max_err = max(max_err, piece.bound)
+        else:
+            raise ValueError(f"cannot export a {type(g).__name__} segment to G-code yet")
+    for seconds in dwell_at.get(len(path.segments), ()):
+        wr.lines.append(f"G4 P{fmt(seconds, 4)}")
+    out += wr.lines
+    out += ["M2", "%"]
+    return "\n".join(out) + "\n", list(zip(wr.source, *zip(*wr.intended))), max_err
