@@ -125,10 +125,10 @@ class FagorStyle:
         d = -1.0 if reversal else float(np.dot(t_in, t_out))
         pts = linear_transition(A, B, t_in, t_out, d, r)
         end_prev, start_next = pts[0], pts[-1]
-        if merge_in and len(pts) > 2:
+        if merge_in and len(pts) >= 2:
             pts = pts[1:]
             end_prev = pts[0]
-        if merge_out and len(pts) > 2:
+        if merge_out and len(pts) >= 2:
             pts = pts[:-1]
             start_next = pts[-1]
         pieces = [_line(a, b) for a, b in zip(pts, pts[1:])
