@@ -124,12 +124,15 @@ def test_modal_of_the_outgoing_block_decides_the_transition():
     # the corner before it stays circular (G136 default).
     path = comp(HEAD + "G1 X10 Y0\nG1 X10 Y-10\nG137 G1 X0 Y-10\nG40 G1 X0 Y-30\n")
     kinds = [s.kind for s in path.segments if s.role.value == "corner"]
-    # activation corner (G136 default, outgoing block X10 Y0): arc; corner at
-    # (10,0) (outgoing X10 Y-10, still G136): arc; corner at (10,-10)
-    # (outgoing block has G137, 90 deg): X merged into both lines: nothing;
-    # cancellation at (0,-10), G137 modal, 90 deg right... a left turn here?
-    assert kinds[:2] == ["arc", "arc"]
-    assert "arc" not in kinds[2:]
+    # activation corner at (0,0) (outgoing block X10 Y0, G136 default): arc;
+    # corner at (10,0) (outgoing X10 Y-10, still G136): arc; corner at
+    # (10,-10) (outgoing block carries G137, 90 deg line-line): the tangent
+    # lines' intersection (12,-12) is merged into both lines, no segment;
+    # cancellation at (0,-10) turns left (inside): as G138, no transition.
+    assert kinds == ["arc", "arc"]
+    comp_lines = [s for s in path.segments if s.role.value == "compensated"]
+    assert comp_lines[1].end == pytest.approx((12, -12))
+    assert comp_lines[2].start == pytest.approx((12, -12))
 
 
 def test_options_override_the_program():
