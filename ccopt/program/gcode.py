@@ -1263,7 +1263,6 @@ class _Reader:
         center[iu] = cu
         center[iv] = cv
         ccw = motion == 30
-        block_feed = None
         if not (math.isfinite(cu) and math.isfinite(cv)):
             raise self.error("arc centre overflows (not a finite number)", gcol)
         r0 = math.hypot(u0 - cu, v0 - cv)

@@ -5,6 +5,7 @@ import math
 
 import pytest
 
+from ccopt.errors import ProgramError
 from ccopt.program.gcode import read_gcode
 from ccopt.program.model import PLANE_AXES, Motion
 
@@ -227,6 +228,16 @@ def test_arc_radius_tolerance_absolute_or_relative():
     assert len(moves("G0 X10\nG3 X0 Y10.0015 I-10 F60")) == 2
     # r0 = 100, r1 = 100.05: 0.05 > 0.002 but 0.05/100.05 < 0.1 % relative
     assert len(moves("G0 X100\nG3 X0 Y100.05 I-100 F60")) == 2
+
+
+def test_arc_radius_tolerance_scales_with_inch():
+    # r0 = 0.05, r1 = 0.0501: 0.0001 apart, 0.2 % relative.
+    text = "G0 X0.05\nG3 X0 Y0.0501 I-0.05 F60\n"
+    # mm: 0.0001 mm is within the 0.002 mm absolute tolerance
+    assert len(moves("G21\n" + text)) == 2
+    # inch: 0.0001 in exceeds 0.002/25.4 = 0.0000787 in and the 0.1 % relative tolerance
+    with pytest.raises(ProgramError, match="inconsistent arc radii"):
+        read_gcode("G20\n" + text)
 
 
 # -- parameters and expressions ---------------------------------------------------
