@@ -378,9 +378,9 @@ class _Interpreter:
         turn = (blk.turns + 1) * (1 if blk.motion is Motion.ARC_CCW else -1)
         chord = math.hypot(*(p - S))
         if chord <= r:
-            raise _err(blk, f"cutter compensation entry arc reaches only {chord:.6g} from its "
-                            f"start, not more than the cutter radius {r:.6g}: start the entry "
-                            "further from the contour")
+            raise _err(blk, f"radius of the cutter compensation entry arc is not greater than "
+                            f"the cutter radius {r:.6g}: its end point is only {chord:.6g} from "
+                            "its start; start the entry further from the contour")
         R = math.hypot(*(C - S))
         inside = tool_inside_arc(k, turn)
         if inside and R <= r:

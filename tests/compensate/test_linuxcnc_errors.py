@@ -37,7 +37,7 @@ CASES = {
         4, ["entry move is 0 long"]),
     "entry arc not greater than the radius": (
         "G21 F60\nG0 X0 Y0\nG41.1 D4\nG3 X1 Y0 I0.5 J0\nG1 X10 Y0\nG40\nG1 X10 Y-10\n",
-        4, ["entry arc", "not more than the cutter radius 2"]),
+        4, ["entry arc is not greater than the cutter radius 2", "only 1 from its start"]),
     "entry arc smaller than the tool, tool inside": (
         "G21 F60\nG0 X0 Y0\nG41.1 D4\nG3 X3 Y0 I1.5 J0\nG1 X10 Y0\nG40\nG1 X10 Y-10\n",
         4, ["entry arc radius 1.5", "not larger than the cutter radius 2"]),
