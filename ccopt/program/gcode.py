@@ -532,9 +532,12 @@ class _Reader:
                     raise ExprError(f"number with two decimal points after {letter}", p)
                 chars.append(ch)
             elif _is_blank(ch):
-                # RS274NGC ignores blanks: "X1 0" is X10, but not across another word.
+                # RS274NGC ignores blanks: "X1 0" is X10, but not across another
+                # word or a comment (comments are blanked in ``code``).
                 q = self._skip(code, p)
-                if q < n and (code[q].isdigit() or code[q] == "."):
+                original = self.lines[self.line_no]
+                if q < n and (code[q].isdigit() or code[q] == ".") and \
+                        original[p:q].strip(" \t") == "":
                     p = q
                     continue
                 break

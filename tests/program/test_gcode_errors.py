@@ -39,6 +39,7 @@ CASES = [
     ("G1 N10 X1 F60", 1, 4, "N (line number) must be the first word"),
     ("G1 X1 ü F60", 1, 7, "not allowed outside comments"),
     ("G1 X1 F60 @", 1, 11, "unexpected character '@'"),
+    ("G1 X1 Y2 (a comment) 3 F60", 1, 22, "unexpected character '3'"),
     ("/G1 X1 F60", 1, 1, "block delete"),
     ("M98 P100", 1, 1, "M98"),
     ("G1 X1 F60 M2.5", 1, 11, "whole number"),
