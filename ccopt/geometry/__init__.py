@@ -19,12 +19,13 @@ from ccopt.geometry.distance import (
     point_arc, point_point, point_segment, segment_arc, segment_segment,
 )
 from ccopt.geometry.intersect import circle_circle, intersections, line_circle, line_line
+from ccopt.geometry.curve import BezierCurve
 from ccopt.geometry.offset import offset
 from ccopt.geometry.primitives import Arc, Line, Point, Primitive, Spiral
 
 __all__ = [
     "TWO_PI", "angle_along", "angle_in_sweep", "sweep_between", "sweep_sign",
-    "Arc", "Line", "Point", "Primitive", "Spiral",
+    "Arc", "BezierCurve", "Line", "Point", "Primitive", "Spiral",
     "offset",
     "line_line", "line_circle", "circle_circle", "intersections",
     "point_point", "point_segment", "point_arc", "segment_segment", "segment_arc", "arc_arc",
