@@ -119,6 +119,9 @@ class FagorStyle:
         lies on that line) becomes part of it instead of a separate segment
         (decisions.FAGOR_G137_LINEAR_TRANSITION: the ISG G25 block counts).
         """
+        if r <= POINT_EPS:
+            # radius 0 (D with no radius): A, B and P coincide, nothing to add
+            return Joint(A, B)
         if mode == "circular":
             sweep = reversal_sweep(k) if reversal else None
             return Joint(A, B, [corner_arc(P, r, t_in, t_out, k, sweep)])

@@ -177,6 +177,13 @@ def test_z_only_cancellation_block_moves_to_the_programmed_point():
     assert segs[-1].kind == "arc" and segs[-1].role.value == "uncompensated"
 
 
+def test_radius_zero_is_the_programmed_path():
+    path = comp(HEAD + "G1 X10 Y0\nG1 X10 Y-10\nG40 G1 X0 Y-20\n", radius=0.0)
+    assert [(s.start, s.end) for s in path.segments if s.length > 0] == [
+        ((0, 0), (0, -20)), ((0, -20), (0, 0)), ((0, 0), (10, 0)), ((10, 0), (10, -10)),
+        ((10, -10), (0, -20))]
+
+
 def test_program_end_while_on_returns_to_the_programmed_point():
     path = comp(HEAD + "G1 X10 Y0\n")
     last = path.segments[-1]
