@@ -57,7 +57,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ccopt.compensate.corners import element_of, offset_dir, perp
+from ccopt.compensate.corners import offset_dir, perp
 from ccopt.compensate.scan import effective_side_radius
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral
@@ -229,7 +229,11 @@ class _Interpreter:
         self.endpoint_valid = True
 
     def move_endpoint_and_flush(self, x, block: Block) -> None:
-        """Move the end of every queued move to ``x``, check it, send them."""
+        """Move the end of every queued move to ``x``, check it, send them.
+
+        A gouge is reported at ``block``, the block being converted
+        (decisions.LINUXCNC_ERROR_LOCATION).
+        """
         x = np.asarray(x, float)
         if not self.queue:
             return
@@ -273,6 +277,8 @@ class _Interpreter:
                 self.enqueue(_Dwell(blk.dwell, blk))
                 continue
             self.move(blk)
+        # decisions.LINUXCNC_PROGRAM_END_WHILE_ON: whatever is queued is sent
+        # as it is; the path ends at the last offset point.
         self.dequeue()
         return ToolPath(tuple(self.segs), plane=self.plane, style=LinuxcncStyle.name,
                         radius=self.used_radius, dwells=tuple(self.dwells),
@@ -456,7 +462,8 @@ class _Interpreter:
                 x = self._pull_back_arc_line(blk, front, t_new)
             self.move_endpoint_and_flush(x, blk)
         else:
-            # Within the tolerance of straight on: nothing to adjust.
+            # Within the tolerance of straight on: nothing to adjust
+            # (decisions.LINUXCNC_SLIGHT_TURN_IS_STRAIGHT_ON).
             self.dequeue()
             self.set_endpoint(c)
         self.enqueue(_Move("line", end, w, blk, Role.COMPENSATED, rapid=rapid,
@@ -478,7 +485,8 @@ class _Interpreter:
 
         Of the two intersections LinuxCNC takes, measured along ``t_new`` from
         the circle centre's foot on that line, the one behind it when the tool
-        is inside the queued arc and the one ahead of it when outside.
+        is inside the queued arc and the one ahead of it when outside
+        (decisions.LINUXCNC_ARC_LINE_PULLBACK).
         """
         k, r = self.k, self.r
         Cp = front.centre
