@@ -103,6 +103,8 @@ class FagorStyle:
         self.start_end = start_end
         self._pmac = PmacStyle()
 
+    # decisions.FAGOR_MODAL_OF_CORNER: callers pass the outgoing block for
+    # G136/G137 and the activation/cancellation block for G138/G139.
     def _corner_mode(self, blk: Block) -> str:
         return self.corner or blk.modal.corner
 
@@ -151,8 +153,8 @@ class FagorStyle:
             hits = carrier_intersections(a.carrier(True, k, r), b.carrier(False, k, r))
             x = decisions.nearest_root(hits, A, B)
             if x is None:
-                # decisions.FAGOR_INSIDE_WITHOUT_INTERSECTION: as PMAC, the
-                # change is introduced over the next move.
+                # decisions.FAGOR_CHANGES_WHILE_ON: as PMAC, the change is
+                # introduced over the next move.
                 return Joint(A, A)
             return Joint(x, x)
         # outside (and reversal: decisions.FAGOR_REVERSAL_IS_OUTSIDE)
@@ -253,6 +255,7 @@ class FagorStyle:
                 emit_gap(scan.gaps[i], ends[i - 1], True, ends[i - 1], cancel_at[i],
                          els[i - 1].end)
             else:
+                # decisions.FAGOR_GAP_MOVES_AFTER_TRANSITION: at the next start.
                 emit_gap(scan.gaps[i], starts[i], classes[i] in (COMP, LEAD_OUT))
             geom = tool_geometry(el, starts[i], ends[i])
             role = ROLE_OF[classes[i]]
