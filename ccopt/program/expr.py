@@ -182,8 +182,15 @@ PMAC_FUNCTIONS: dict[str, Callable[[float], float]] = {
 }
 
 
+_DIGITS = frozenset("0123456789")
+
+#: Deepest bracket/operator nesting accepted (deeper is an error, not a crash).
+MAX_DEPTH = 200
+
+
 class _Parser:
     def __init__(self, text: str, grammar: Grammar):
+        self.depth = 0
         self.text = text
         self.upper = text.upper()
         self.g = grammar
@@ -206,19 +213,24 @@ class _Parser:
         return pos + 1
 
     def number(self, pos: int) -> tuple[float, int] | None:
+        # ASCII digits only: str.isdigit() also accepts "²" and other digits
+        # float() refuses.
         start = pos
         digits = False
-        while pos < len(self.text) and self.text[pos].isdigit():
+        while pos < len(self.text) and self.text[pos] in _DIGITS:
             pos += 1
             digits = True
         if pos < len(self.text) and self.text[pos] == ".":
             pos += 1
-            while pos < len(self.text) and self.text[pos].isdigit():
+            while pos < len(self.text) and self.text[pos] in _DIGITS:
                 pos += 1
                 digits = True
         if not digits:
             return None
-        return float(self.text[start:pos]), pos
+        value = float(self.text[start:pos])
+        if not math.isfinite(value):
+            raise ExprError("number is not finite (too large)", start)
+        return value, pos
 
     # -- grammar --------------------------------------------------------
     def bracketed(self, pos: int) -> tuple[float, int]:
@@ -228,6 +240,15 @@ class _Parser:
         return value, pos
 
     def expression(self, pos: int, min_prec: int) -> tuple[float, int]:
+        self.depth += 1
+        try:
+            if self.depth > MAX_DEPTH:
+                raise ExprError(f"expression nested too deeply (more than {MAX_DEPTH} levels)", pos)
+            return self._expression(pos, min_prec)
+        finally:
+            self.depth -= 1
+
+    def _expression(self, pos: int, min_prec: int) -> tuple[float, int]:
         left, pos = self.operand(pos)
         while True:
             p = self.skip(pos)
@@ -246,9 +267,11 @@ class _Parser:
         for op in self._ops:
             if self.upper.startswith(op, pos):
                 if op[0].isalpha():
-                    # A word operator must not be the prefix of a longer word.
+                    # A word operator must not be the prefix of a longer word,
+                    # unless that word is a function (``1ANDABS[2]``).
                     end = pos + len(op)
-                    if end < len(self.upper) and self.upper[end].isalpha():
+                    if end < len(self.upper) and self.upper[end].isalpha() and not any(
+                            self.upper.startswith(f, end) for f in self._funcs):
                         continue
                 return op
         return None
@@ -260,6 +283,15 @@ class _Parser:
             raise ExprError(str(exc), col) from None
 
     def operand(self, pos: int) -> tuple[float, int]:
+        self.depth += 1
+        try:
+            if self.depth > MAX_DEPTH:
+                raise ExprError(f"expression nested too deeply (more than {MAX_DEPTH} levels)", pos)
+            return self._operand(pos)
+        finally:
+            self.depth -= 1
+
+    def _operand(self, pos: int) -> tuple[float, int]:
         pos = self.skip(pos)
         if pos >= len(self.text):
             raise ExprError("expression ends too early", pos)

@@ -30,7 +30,7 @@ CASES = [
     ("G1 X", 1, 4, "X word has no value"),
     ("G1 X1 Y Z2", 1, 7, "Y word has no value"),
     ("G1 X" + BIG + " F60", 1, 5, "too large"),
-    ("G1 X[" + BIG + "] F60", 1, 5, "finite"),
+    ("G1 X[" + BIG + "] F60", 1, 6, "finite"),  # column of the number itself
     ("G0 G1 X1", 1, 4, "same modal group"),
     ("G41.1 G42.1 D1", 1, 7, "same modal group"),
     ("G41 D1 D2", 1, 8, "two D words"),
