@@ -1,0 +1,129 @@
+"""Broad phase: which tool segments can come near which contour elements.
+
+A static uniform grid over the contour. Each contour element's bounding box,
+grown by its reach (required clearance plus a margin), is entered in every
+cell it covers; each tool segment's bounding box looks up the cells it
+covers. A pair is reported once, in the cell holding the lower-left corner of
+the intersection of the two boxes, and only when the boxes really overlap, so
+no pair with a tool-to-element distance within reach is missed and none is
+repeated. Everything is array arithmetic (sort and search, no Python loop
+over elements); boxes covering more than :data:`MAX_CELLS` cells (a few very
+long elements) are tested against every box of the other side directly.
+
+The cell size is the median box size (at least the largest reach), so a
+typical box covers up to four cells.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+#: A box covering more cells than this is paired by a direct overlap test.
+MAX_CELLS = 64
+
+#: Pairs are produced in chunks of about this many to bound memory.
+CHUNK = 1 << 21
+
+
+def _cells(box: np.ndarray, origin: np.ndarray, h: float):
+    lo = np.floor((box[:, :2] - origin) / h).astype(np.int64)
+    hi = np.floor((box[:, 2:] - origin) / h).astype(np.int64)
+    return lo, hi
+
+
+def _expand(lo: np.ndarray, hi: np.ndarray, ids: np.ndarray, ncol: np.int64):
+    """``(cell key, id)`` for every cell of every box (``ids`` are the rows)."""
+    nx = hi[:, 0] - lo[:, 0] + 1
+    ny = hi[:, 1] - lo[:, 1] + 1
+    cnt = nx * ny
+    total = int(cnt.sum())
+    rep = np.repeat(np.arange(ids.size), cnt)
+    start = np.cumsum(cnt) - cnt
+    local = np.arange(total, dtype=np.int64) - np.repeat(start, cnt)
+    nxr = nx[rep]
+    cx = lo[rep, 0] + local % nxr
+    cy = lo[rep, 1] + local // nxr
+    return cy * ncol + cx, ids[rep]
+
+
+def _overlap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    return ((a[:, 0] <= b[:, 2]) & (b[:, 0] <= a[:, 2])
+            & (a[:, 1] <= b[:, 3]) & (b[:, 1] <= a[:, 3]))
+
+
+def candidate_pairs(tool_box: np.ndarray, elem_box: np.ndarray, reach: np.ndarray):
+    """Index pairs ``(tool, element)`` whose boxes come within ``reach[element]``.
+
+    ``tool_box``, ``elem_box``: ``(N, 4)`` ``xmin, ymin, xmax, ymax``;
+    ``reach``: ``(M,)`` program units. Returns two ``intp`` arrays. A pair
+    whose segments are closer than the element's reach is always included.
+    """
+    nt, ne = tool_box.shape[0], elem_box.shape[0]
+    empty = (np.zeros(0, np.intp), np.zeros(0, np.intp))
+    if nt == 0 or ne == 0:
+        return empty
+    grown = elem_box + np.c_[-reach, -reach, reach, reach]
+    allbox = np.r_[tool_box, grown]
+    ext = np.maximum(allbox[:, 2] - allbox[:, 0], allbox[:, 3] - allbox[:, 1])
+    h = float(max(np.median(ext), float(reach.max(initial=0.0)), 1e-12))
+    origin = allbox[:, :2].min(axis=0)
+    span = (allbox[:, 2:].max(axis=0) - origin) / h
+    ncol = np.int64(np.floor(span[0])) + 2
+    if float(span[0] + 2) * float(span[1] + 2) > 2.0 ** 62:
+        raise ValueError("broad phase: the path is too large for the grid")
+    lo_t, hi_t = _cells(tool_box, origin, h)
+    lo_e, hi_e = _cells(grown, origin, h)
+    cnt_t = (hi_t[:, 0] - lo_t[:, 0] + 1) * (hi_t[:, 1] - lo_t[:, 1] + 1)
+    cnt_e = (hi_e[:, 0] - lo_e[:, 0] + 1) * (hi_e[:, 1] - lo_e[:, 1] + 1)
+    big_t = cnt_t > MAX_CELLS
+    big_e = cnt_e > MAX_CELLS
+    out_t, out_e = [], []
+
+    # Grid join for ordinary boxes.
+    ti = np.flatnonzero(~big_t)
+    ei = np.flatnonzero(~big_e)
+    if ti.size and ei.size:
+        ek, eid = _expand(lo_e[ei], hi_e[ei], ei, ncol)
+        order = np.argsort(ek, kind="stable")
+        ek, eid = ek[order], eid[order]
+        tk, tid = _expand(lo_t[ti], hi_t[ti], ti, ncol)
+        first = np.searchsorted(ek, tk, side="left")
+        last = np.searchsorted(ek, tk, side="right")
+        cnt = last - first
+        keep = cnt > 0
+        tk, tid, first, cnt = tk[keep], tid[keep], first[keep], cnt[keep]
+        csum = np.cumsum(cnt)
+        # process in chunks of ~CHUNK pairs
+        pos = 0
+        while pos < tk.size:
+            base = csum[pos - 1] if pos else 0
+            stop = int(np.searchsorted(csum, base + CHUNK, side="right"))
+            stop = max(stop, pos + 1)
+            c = cnt[pos:stop]
+            rep = np.repeat(np.arange(pos, stop), c)
+            off = np.arange(int(c.sum())) - np.repeat(np.cumsum(c) - c, c)
+            pt = tid[rep]
+            pe = eid[first[rep] + off]
+            key = tk[rep]
+            tb, gb = tool_box[pt], grown[pe]
+            ok = _overlap(tb, gb)
+            # report each pair once: in the cell of the overlap's lower-left corner
+            cx = np.floor((np.maximum(tb[:, 0], gb[:, 0]) - origin[0]) / h).astype(np.int64)
+            cy = np.floor((np.maximum(tb[:, 1], gb[:, 1]) - origin[1]) / h).astype(np.int64)
+            ok &= (cy * ncol + cx) == key
+            out_t.append(pt[ok])
+            out_e.append(pe[ok])
+            pos = stop
+
+    # Direct tests for big boxes (each against every box of the other side).
+    for i in np.flatnonzero(big_t):
+        m = np.flatnonzero(_overlap(np.broadcast_to(tool_box[i], grown.shape), grown))
+        out_t.append(np.full(m.size, i, np.intp))
+        out_e.append(m)
+    small_t = np.flatnonzero(~big_t)
+    for j in np.flatnonzero(big_e):
+        m = small_t[_overlap(tool_box[small_t], np.broadcast_to(grown[j], (small_t.size, 4)))]
+        out_t.append(m)
+        out_e.append(np.full(m.size, j, np.intp))
+    if not out_t:
+        return empty
+    return (np.concatenate(out_t).astype(np.intp), np.concatenate(out_e).astype(np.intp))

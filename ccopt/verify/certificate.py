@@ -1,0 +1,166 @@
+"""``Certificate``: what was checked, with which figure, and what failed.
+
+JSON (DESIGN.md)::
+
+    {"ok": bool, "min_clearance": float|null, "radius": float,
+     "checks": [Check...], "violations": [Violation...], ...}
+
+Every figure says how it was obtained (``basis``):
+
+- ``"exact"``: closed form (line/arc distances), exact up to rounding;
+- ``"certified-bound"``: a certified bound for spirals and curves (a lower
+  bound of a distance, an upper bound of a contact gap), within the stated
+  gap of the true value;
+- ``"sampled"``: from feed-profile samples (limits);
+- ``"not-run"``: the check did not apply (e.g. no feed profile given).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+EXACT, CERTIFIED, SAMPLED, NOT_RUN = "exact", "certified-bound", "sampled", "not-run"
+
+
+def _num(x):
+    if x is None:
+        return None
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+def _pt(p):
+    return None if p is None else [float(p[0]), float(p[1])]
+
+
+@dataclass(frozen=True)
+class Violation:
+    """One failure.
+
+    ``kind``: ``gouge | contact | side | gap | velocity | acceleration | feed``.
+    ``depth``: how far past the requirement, in the check's unit (gouge: how
+    far the tool centre is inside the clearance; contact: how far beyond
+    ``r``; side: how far on the wrong side; gap: the jump; limits: the excess
+    ratio ``value / limit - 1``). Tool segment and contour element are indices
+    into the tool path and the contour; ``*_block`` are source lines.
+    """
+
+    kind: str
+    depth: float
+    tool_segment: int | None = None
+    tool_block: int | None = None
+    tool_role: str | None = None
+    element: int | None = None
+    element_block: int | None = None
+    witness_tool: tuple[float, float] | None = None
+    witness_contour: tuple[float, float] | None = None
+    basis: str = EXACT
+    detail: dict = field(default_factory=dict)
+
+    def to_json(self) -> dict:
+        out: dict[str, Any] = {
+            "kind": self.kind, "depth": _num(self.depth), "basis": self.basis,
+            "tool_segment": self.tool_segment, "tool_block": self.tool_block,
+            "tool_role": self.tool_role,
+            "element": self.element, "element_block": self.element_block,
+            "witness_tool": _pt(self.witness_tool), "witness_contour": _pt(self.witness_contour),
+        }
+        out.update({k: v for k, v in self.detail.items()})
+        return out
+
+
+@dataclass(frozen=True)
+class Check:
+    """One check: ``figure`` against ``tolerance`` (``unit``), how it was
+    obtained (``basis``), how many items it covered (``count``)."""
+
+    name: str
+    ok: bool
+    figure: float | None
+    tolerance: float
+    basis: str
+    unit: str
+    requirement: str
+    count: int = 0
+    violations: int = 0
+    detail: dict = field(default_factory=dict)
+
+    def to_json(self) -> dict:
+        out = {"name": self.name, "ok": self.ok, "figure": _num(self.figure),
+               "tolerance": self.tolerance, "basis": self.basis, "unit": self.unit,
+               "requirement": self.requirement, "count": self.count,
+               "violations": self.violations}
+        if self.detail:
+            out["detail"] = self.detail
+        return out
+
+
+@dataclass(frozen=True, eq=False)
+class Certificate:
+    """The verifier's answer. ``ok`` is True when every check holds.
+
+    ``min_clearance``: the smallest distance from the tool centre to the
+    contour (program units; ``None`` when the program has no contour or the
+    tool never comes within reach), ``min_clearance_basis`` how it was
+    obtained; ``radius``: the largest cutter radius of the contour; ``eps``:
+    the tolerance used. ``context`` holds the arrays behind the figures (for
+    cross-checks; not part of the JSON).
+    """
+
+    ok: bool
+    min_clearance: float | None
+    min_clearance_basis: str
+    radius: float
+    eps: float
+    checks: tuple[Check, ...]
+    violations: tuple[Violation, ...]
+    units: str = "mm"
+    notes: tuple[str, ...] = ()
+    context: Any = field(default=None, repr=False)
+
+    def check(self, name: str) -> Check:
+        for c in self.checks:
+            if c.name == name:
+                return c
+        raise KeyError(name)
+
+    def violations_of(self, kind: str) -> list[Violation]:
+        return [v for v in self.violations if v.kind == kind]
+
+    def to_json(self) -> dict:
+        return {
+            "ok": self.ok,
+            "min_clearance": _num(self.min_clearance),
+            "min_clearance_basis": self.min_clearance_basis,
+            "radius": self.radius,
+            "eps": self.eps,
+            "units": self.units,
+            "checks": [c.to_json() for c in self.checks],
+            "violations": [v.to_json() for v in self.violations],
+            "notes": list(self.notes),
+        }
+
+    def summary(self) -> str:
+        """A few human lines: one per check, then the violations (first 20)."""
+        lines = [f"verification {'PASSED' if self.ok else 'FAILED'}: cutter radius {self.radius:g} "
+                 f"{self.units}, eps {self.eps:g}, min clearance "
+                 + ("n/a" if self.min_clearance is None else
+                    f"{self.min_clearance:.9g} ({self.min_clearance_basis})")]
+        for c in self.checks:
+            fig = "n/a" if c.figure is None else f"{c.figure:.9g}"
+            lines.append(f"  {c.name:11s} {'ok ' if c.ok else 'FAIL'}  {fig:>16s} {c.unit:5s} "
+                         f"[{c.basis}] {c.requirement} ({c.count} checked, {c.violations} violations)")
+        for v in self.violations[:20]:
+            where = f"tool segment {v.tool_segment} (line {v.tool_block}, {v.tool_role})" \
+                if v.tool_segment is not None else ""
+            elem = f" vs element {v.element} (line {v.element_block})" if v.element is not None else ""
+            wit = ""
+            if v.witness_tool is not None:
+                wit = f" at ({v.witness_tool[0]:.6g}, {v.witness_tool[1]:.6g})"
+            lines.append(f"  - {v.kind}: depth {v.depth:.9g}, {where}{elem}{wit}".rstrip())
+        if len(self.violations) > 20:
+            lines.append(f"  ... {len(self.violations) - 20} more")
+        for n in self.notes:
+            lines.append(f"  note: {n}")
+        return "\n".join(lines)

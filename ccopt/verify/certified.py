@@ -1,0 +1,379 @@
+"""Certified distance bounds for spirals and parametric curves.
+
+A curve without a closed-form distance is cut into pieces ``[u0, u1]`` of a
+parameter ``u``; on each piece it is replaced by its chord. With
+``|p''(u)| <= K`` on the piece, every curve point is within
+
+    delta = K (u1 - u0)^2 / 8
+
+of the chord point at the same parameter (``g = p - chord`` vanishes at both
+ends and ``|g''| <= K``, so ``|g(u)| <= K (u - u0)(u1 - u) / 2``; this is
+the second-order bound). Hence for a piece against another object ``B``:
+
+    dist(chord, B) - delta  <=  dist(piece, B)
+
+(a certified lower bound, the chord distance being exact), and the curve
+point at the chord's witness parameter gives a true distance, an upper
+bound. Pieces are split in two (branch and bound) until the lowest lower
+bound is within ``tol`` of the best upper bound; pieces whose lower bound
+is already above ``best - tol`` (or above a caller's ``cap``) are dropped.
+The answer is ``[lb, ub]`` with ``ub - lb <= tol`` unless the round limit
+stopped it, and then the gap says how far it got.
+
+Parameters: a spiral by its swept angle ``phi`` (``|p''| = sqrt(rho^2 +
+4 b^2)``, exact and monotone in ``rho``), an arc by its swept angle
+(``|p''| = R``), a line by its fraction (``p'' = 0``) and any other curve
+by arc length, through its own ``d2_bound(s0, s1)`` (an upper bound of
+``|d^2 p / ds^2|``, i.e. of the curvature, on ``[s0, s1]``); a Bezier curve
+(``control_points``) by its own parameter, bounded by its second hodograph.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ccopt.geometry import Arc, Line, Spiral
+from ccopt.geometry.distance import (
+    point_arc, point_segment, segment_arc, segment_segment,
+)
+from ccopt.geometry.angles import sweep_sign
+from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
+
+#: Pieces per pair are never more than this (the bound is then reported with its gap).
+MAX_PIECES = 1 << 18
+
+
+# --------------------------------------------------------------------------- parameterisations
+
+
+class Param:
+    """A curve as ``p(u)``, ``u`` in ``[0, U]``, with a bound of ``|p''|`` on intervals."""
+
+    U: float
+
+    def eval(self, u: np.ndarray) -> np.ndarray:
+        raise NotImplementedError
+
+    def d2(self, u0: np.ndarray, u1: np.ndarray) -> np.ndarray:
+        raise NotImplementedError
+
+    def delta(self, u0, u1):
+        """Largest distance from the curve to its chord on each ``[u0, u1]``."""
+        h = u1 - u0
+        return self.d2(u0, u1) * h * h / 8.0
+
+
+class LineParam(Param):
+    def __init__(self, g: Line):
+        self.p0 = np.asarray(g.p0, float)
+        self.p1 = np.asarray(g.p1, float)
+        self.U = 1.0
+
+    def eval(self, u):
+        u = np.asarray(u, float)[:, None]
+        return (1.0 - u) * self.p0 + u * self.p1
+
+    def d2(self, u0, u1):
+        return np.zeros(np.shape(u0))
+
+
+class SpiralParam(Param):
+    """Arc or spiral by swept angle ``phi``: ``rho = rho0 + b phi``."""
+
+    def __init__(self, g):
+        self.c = np.asarray(g.center, float)
+        if isinstance(g, Arc):
+            self.rho0, self.b = g.radius, 0.0
+        else:
+            self.rho0, self.b = g.rho0, g.b
+        self.th0 = g.theta0
+        self.sg = sweep_sign(g.sweep)
+        self.U = abs(g.sweep)
+
+    def eval(self, u):
+        u = np.asarray(u, float)
+        rho = self.rho0 + self.b * u
+        ang = self.th0 + self.sg * u
+        return np.c_[self.c[0] + rho * np.cos(ang), self.c[1] + rho * np.sin(ang)]
+
+    def d2(self, u0, u1):
+        rho = np.maximum(self.rho0 + self.b * np.asarray(u0), self.rho0 + self.b * np.asarray(u1))
+        return np.sqrt(rho * rho + 4.0 * self.b * self.b)
+
+
+class BezierParam(Param):
+    """A Bezier curve by its own parameter ``t`` in ``[0, 1]``; ``|p''(t)|`` is at
+    most the largest second-hodograph control point (convex hull property)."""
+
+    def __init__(self, g):
+        P = np.asarray(g.control_points, float)
+        self.P = P
+        n = len(P) - 1
+        D2 = n * (n - 1) * np.diff(P, n=2, axis=0) if n >= 2 else np.zeros((1, 2))
+        self.K = float(np.hypot(D2[:, 0], D2[:, 1]).max())
+        self.U = 1.0
+
+    def eval(self, u):
+        u = np.asarray(u, float)
+        pts = np.broadcast_to(self.P, (u.size,) + self.P.shape).copy()
+        tt = u[:, None, None]
+        m = len(self.P)
+        for r in range(1, m):
+            pts[:, : m - r] = (1 - tt) * pts[:, : m - r] + tt * pts[:, 1: m - r + 1]
+        return pts[:, 0]
+
+    def d2(self, u0, u1):
+        return np.full(np.shape(u0), self.K)
+
+
+class CurveParam(Param):
+    """Any curve by arc length, via its ``point(s)`` and ``d2_bound(s0, s1)``."""
+
+    def __init__(self, g):
+        if not hasattr(g, "d2_bound"):
+            raise TypeError(f"{type(g).__name__} has no d2_bound(s0, s1): the verifier cannot "
+                            "bound its distances")
+        self.g = g
+        self.U = float(g.length)
+
+    def eval(self, u):
+        return np.asarray(self.g.point(np.asarray(u, float)), float).reshape(-1, 2)
+
+    def d2(self, u0, u1):
+        try:
+            return np.asarray(self.g.d2_bound(u0, u1), float) * np.ones(np.shape(u0))
+        except (TypeError, ValueError):
+            return np.array([float(self.g.d2_bound(a, b)) for a, b in zip(u0, u1)])
+
+
+def param_of(g) -> Param:
+    if isinstance(g, Line):
+        return LineParam(g)
+    if isinstance(g, (Arc, Spiral)):
+        return SpiralParam(g)
+    if getattr(g, "control_points", None) is not None and not hasattr(g, "d2_bound"):
+        return BezierParam(g)
+    return CurveParam(g)
+
+
+def is_exact(g) -> bool:
+    return isinstance(g, (Line, Arc))
+
+
+# --------------------------------------------------------------------------- kernels against exact objects
+
+
+def _chords_to(g, c0, c1):
+    """``(d, w_chord, w_g)`` from chords ``c0 c1`` to an exact primitive ``g``."""
+    if isinstance(g, Line):
+        return segment_segment(c0, c1, np.asarray(g.p0), np.asarray(g.p1))
+    return segment_arc(c0, c1, np.asarray(g.center), g.radius, g.theta0, g.sweep)
+
+
+def _points_to(g, q):
+    if isinstance(g, Line):
+        return point_segment(q, np.asarray(g.p0), np.asarray(g.p1))
+    return point_arc(q, np.asarray(g.center), g.radius, g.theta0, g.sweep)
+
+
+def _fraction(w, c0, c1):
+    r = c1 - c0
+    rr = np.einsum("ij,ij->i", r, r)
+    t = np.einsum("ij,ij->i", w - c0, r) / np.where(rr > 0.0, rr, 1.0)
+    return np.clip(t, 0.0, 1.0)
+
+
+@dataclass(frozen=True)
+class Bound:
+    """Certified ``lb <= true value <= ub``; witnesses realise ``ub`` (min
+    distance) or ``lb`` (max distance). ``converged``: ``ub - lb <= tol``."""
+
+    lb: float
+    ub: float
+    wa: tuple[float, float] | None
+    wb: tuple[float, float] | None
+    converged: bool
+    pieces: int
+
+    @property
+    def gap(self) -> float:
+        return self.ub - self.lb
+
+
+def _initial(U, n0=8):
+    u = np.linspace(0.0, U, n0 + 1)
+    return u[:-1], u[1:]
+
+
+def min_distance(a, b, tol: float, cap: float = math.inf, exempt=None,
+                 max_rounds: int = VERIFY_CERTIFIED_MAX_ROUNDS) -> Bound:
+    """Certified bounds of ``min dist(a, b)``; at least one of ``a``, ``b`` is curved.
+
+    ``cap``: pieces whose lower bound reaches it are dropped (the caller only
+    cares below it); when everything is dropped ``lb >= cap`` and ``ub`` may be
+    ``inf``. ``exempt``: optional ``(inside_by(points, margin) -> bool mask,
+    contains(points) -> bool mask)`` describing a region of ``a``'s points not
+    to be counted (the open-end exemption of an exact ``b``): a piece whose
+    chord lies inside it by ``delta`` is skipped, and upper bounds only come
+    from points outside it.
+    """
+    if is_exact(a) and not is_exact(b):
+        if exempt is not None:
+            raise ValueError("exemptions apply to the first (curved) argument")
+        r = min_distance(b, a, tol, cap, None, max_rounds)
+        return Bound(r.lb, r.ub, r.wb, r.wa, r.converged, r.pieces)
+    pa = param_of(a)
+    b_exact = is_exact(b)
+    pb = None if b_exact else param_of(b)
+    n0a = max(8, int(math.ceil(pa.U / (math.pi / 16)))) if isinstance(pa, SpiralParam) else 8
+    ua0, ua1 = _initial(pa.U, n0a)
+    if b_exact:
+        ub0 = ub1 = None
+    else:
+        n0b = max(8, int(math.ceil(pb.U / (math.pi / 16)))) if isinstance(pb, SpiralParam) else 8
+        b0, b1 = _initial(pb.U, n0b)
+        # all piece pairs
+        ua0, ub0 = np.repeat(ua0, b0.size), np.tile(b0, ua0.size)
+        ua1, ub1 = np.repeat(ua1, b1.size), np.tile(b1, ua1.size)
+    best = math.inf
+    wa = wb = None
+    dropped_lb = math.inf
+    rounds = 0
+    remaining_lb = math.inf
+    while ua0.size:
+        rounds += 1
+        c0, c1 = pa.eval(ua0), pa.eval(ua1)
+        da = pa.delta(ua0, ua1)
+        if b_exact:
+            d, w_a, w_b = _chords_to(b, c0, c1)
+            db = 0.0
+        else:
+            e0, e1 = pb.eval(ub0), pb.eval(ub1)
+            db = pb.delta(ub0, ub1)
+            d, w_a, w_b = segment_segment(c0, c1, e0, e1)
+        lb = d - da - db
+        skip = np.zeros(ua0.size, bool)
+        if exempt is not None:
+            inside_by, _ = exempt
+            skip = inside_by(c0, da) & inside_by(c1, da)
+        # upper bounds from genuine curve points at the chord witnesses
+        ta = _fraction(w_a, c0, c1)
+        qa = pa.eval(ua0 + ta * (ua1 - ua0))
+        if b_exact:
+            dq, _, qb = _points_to(b, qa)
+        else:
+            tb = _fraction(w_b, e0, e1)
+            qb = pb.eval(ub0 + tb * (ub1 - ub0))
+            dq = np.hypot(*(qa - qb).T)
+        ok_ub = ~skip
+        if exempt is not None:
+            ok_ub &= ~exempt[1](qa)
+        if ok_ub.any():
+            k = int(np.argmin(np.where(ok_ub, dq, np.inf)))
+            if dq[k] < best:
+                best = float(dq[k])
+                wa, wb = (float(qa[k, 0]), float(qa[k, 1])), (float(qb[k, 0]), float(qb[k, 1]))
+        live = ~skip
+        keep = live & (lb < best - tol) & (lb < cap)
+        gone = live & ~keep
+        if gone.any():
+            dropped_lb = min(dropped_lb, float(lb[gone].min()))
+        if not keep.any():
+            remaining_lb = math.inf
+            break
+        remaining_lb = float(lb[keep].min())
+        if rounds >= max_rounds or 2 * keep.sum() * (1 if b_exact else 2) > MAX_PIECES:
+            break
+        ua0, ua1 = ua0[keep], ua1[keep]
+        mid = 0.5 * (ua0 + ua1)
+        if b_exact:
+            ua0, ua1 = np.r_[ua0, mid], np.r_[mid, ua1]
+        else:
+            ub0, ub1 = ub0[keep], ub1[keep]
+            midb = 0.5 * (ub0 + ub1)
+            A0 = np.r_[ua0, ua0, mid, mid]
+            A1 = np.r_[mid, mid, ua1, ua1]
+            B0 = np.r_[ub0, midb, ub0, midb]
+            B1 = np.r_[midb, ub1, midb, ub1]
+            ua0, ua1, ub0, ub1 = A0, A1, B0, B1
+    lbv = min(dropped_lb, remaining_lb, best)
+    converged = best - lbv <= tol or lbv >= cap
+    return Bound(lbv, best, wa, wb, bool(converged), int(ua0.size))
+
+
+def _chords(p: Param, n: int):
+    u = np.linspace(0.0, p.U, n + 1)
+    pts = p.eval(u)
+    return pts[:-1], pts[1:], p.delta(u[:-1], u[1:]), u
+
+
+def _poly_dist(q, e0, e1, chunk=1 << 22):
+    """Distance from points ``q`` to the polyline of chords ``e0 e1`` (brute force, chunked)."""
+    n, m = q.shape[0], e0.shape[0]
+    out = np.empty(n)
+    step = max(1, chunk // max(m, 1))
+    for s in range(0, n, step):
+        qq = q[s:s + step]
+        d, _, _ = point_segment(np.repeat(qq, m, axis=0), np.tile(e0, (qq.shape[0], 1)),
+                                np.tile(e1, (qq.shape[0], 1)))
+        out[s:s + step] = d.reshape(qq.shape[0], m).min(axis=1)
+    return out
+
+
+def max_distance(t, e, tol: float, max_rounds: int = 12, n0: int = 16) -> Bound:
+    """Certified bounds of ``max_{q in t} dist(q, e)`` (contact), ``t`` or ``e`` curved.
+
+    ``t`` is cut into ``n`` chords and ``e`` (when curved) into ``n`` chords,
+    doubled each round. Upper bound: for each chord of ``t`` the farthest
+    distance to the chord of ``e`` nearest its middle (exact: at a chord end,
+    distance to a segment being convex) plus both deltas; lower bound: the
+    largest distance from a genuine point of ``t`` (chord ends) to the
+    polyline of ``e`` minus ``e``'s delta (or the exact distance when ``e`` is
+    a line or arc).
+    """
+    from ccopt.verify.maxdist import max_distance as exact_max
+    from ccopt.geometry import SegmentArray
+    pt = param_of(t)
+    e_exact = is_exact(e)
+    pe = None if e_exact else param_of(e)
+    n = n0
+    lb = -math.inf
+    ubv = math.inf
+    witness = None
+    for _ in range(max_rounds):
+        c0, c1, dt, _ = _chords(pt, n)
+        ends = np.r_[c0, c1[-1:]]
+        if e_exact:
+            chords = SegmentArray.from_segments([Line(tuple(a), tuple(b)) for a, b in zip(c0, c1)])
+            earr = SegmentArray.from_segments([e])
+            dmax, _, _ = exact_max(chords, np.arange(n), earr, np.zeros(n, np.intp))
+            ub_n = float((dmax + dt).max())
+            dq = _points_to(e, ends)[0]
+            de = 0.0
+        else:
+            f0, f1, de_arr, _ = _chords(pe, n)
+            de = float(de_arr.max())
+            mids = 0.5 * (c0 + c1)
+            fm = 0.5 * (f0 + f1)
+            # chord of e nearest each middle
+            near = np.empty(n, np.intp)
+            step = max(1, (1 << 22) // n)
+            for s in range(0, n, step):
+                dd = np.hypot(mids[s:s + step, None, 0] - fm[None, :, 0],
+                              mids[s:s + step, None, 1] - fm[None, :, 1])
+                near[s:s + step] = np.argmin(dd, axis=1)
+            d0 = point_segment(c0, f0[near], f1[near])[0]
+            d1 = point_segment(c1, f0[near], f1[near])[0]
+            ub_n = float((np.maximum(d0, d1) + dt + de_arr[near]).max())
+            dq = _poly_dist(ends, f0, f1) - de
+        k = int(np.argmax(dq))
+        if dq[k] > lb:
+            lb = float(dq[k])
+            witness = (float(ends[k, 0]), float(ends[k, 1]))
+        ubv = min(ubv, ub_n)
+        if ubv - lb <= tol or n >= 4096:
+            break
+        n *= 2
+    return Bound(lb, ubv, witness, None, bool(ubv - lb <= tol), n)

@@ -1,0 +1,199 @@
+"""Contact: wherever the tool runs alongside its element, it reaches it.
+
+(:data:`ccopt.verify.decisions.CONTACT_ALONGSIDE`.) For the tool segment
+``T`` of every *steady* contour element ``e`` (compensated with the same side
+and radius as the move before) the largest distance to ``e`` from the points
+of ``T`` that lie alongside ``e`` (whose nearest point on ``e`` is not one of
+its end points: the band normal to a line, the sector of an arc) must be at
+most ``r + eps``. Every added corner arc must stay within ``r + eps`` of its
+corner point ``P`` (the programmed end of its block).
+
+Alongside ``e`` the distance is ``|signed distance to e's line|`` or
+``|rho - R|``, so for a line tool segment against a line element the
+largest value is at an end of the part of ``T`` inside the band, and for an
+arc concentric with its element it is ``|R_T - R_e|``: both in closed form,
+vectorised. Any other line/arc pair (a displaced segment) is cut at the band
+boundaries and measured with the exact farthest-point kernel
+(:mod:`.maxdist`); spirals and curves get a certified upper bound over the
+whole segment (:func:`.certified.max_distance`, conservative). A tool segment
+nowhere alongside its element is measured by its smallest distance to it.
+
+Where the spec says the tool cannot touch (an inside corner, where the tool
+stops short of the corner point; a shallow outside corner, where the offsets
+are extended past the normal at ``P``) the tool is not alongside the
+element, so nothing needs excepting by name. The figure is the largest
+excess ``distance - r`` (the "contact gap"); moving a segment away from its
+element by ``g`` makes it ``g``.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ccopt.geometry import Arc, Line, distance
+from ccopt.geometry.angles import angle_in_sweep
+from ccopt.program.model import PLANE_AXES
+from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
+from ccopt.toolpath import Role
+from ccopt.verify import certified
+from ccopt.verify.certificate import CERTIFIED, EXACT, Check, Violation
+from ccopt.verify.clearance import clip_pieces, end_regions
+from ccopt.verify.contour import STATUS_STEADY, Contour
+from ccopt.verify.maxdist import max_distance, max_distance_to_point
+from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed, pack
+
+
+def contact_pairs(toolpath, contour: Contour, lengths: np.ndarray):
+    """``(steady tool segments, their elements, corner arcs, corner points, corner radii)``."""
+    seg_i, elem_j, corner_i, corner_p, corner_r = [], [], [], [], []
+    i0, j0, _ = PLANE_AXES[contour.plane]
+    for i, s in enumerate(toolpath.segments):
+        if s.role is Role.COMPENSATED:
+            if lengths[i] <= POINT_EPS:
+                continue
+            hit = contour.lookup(s.block)
+            if hit is not None and hit[0] == STATUS_STEADY and hit[3] >= 0:
+                seg_i.append(i)
+                elem_j.append(hit[3])
+        elif s.role is Role.CORNER and s.block is not None and isinstance(s.geom, Arc):
+            hit = contour.lookup(s.block)
+            if hit is None or hit[2] <= 0.0:
+                continue
+            corner_i.append(i)
+            corner_p.append((s.block.end[i0], s.block.end[j0]))
+            corner_r.append(hit[2])
+    return (np.asarray(seg_i, np.intp), np.asarray(elem_j, np.intp), np.asarray(corner_i, np.intp),
+            np.asarray(corner_p, float).reshape(-1, 2), np.asarray(corner_r, float))
+
+
+def _line_line(T, ti, E, ej):
+    """Largest distance alongside, line tool segments vs line elements:
+    ``(dmax, point, alongside)``."""
+    a0, a1 = T.p0[ti], T.p1[ti]
+    p0, p1 = E.p0[ej], E.p1[ej]
+    d = p1 - p0
+    L = np.hypot(d[:, 0], d[:, 1])
+    t = d / L[:, None]
+    s0 = np.einsum("ij,ij->i", a0 - p0, t)
+    s1 = np.einsum("ij,ij->i", a1 - p0, t)
+    ds = s1 - s0
+    flat = ds == 0.0
+    den = np.where(flat, 1.0, ds)
+    # fractions along T where s = 0 and s = L
+    ua = np.where(flat, -np.inf, (0.0 - s0) / den)
+    ub = np.where(flat, np.inf, (L - s0) / den)
+    lo = np.maximum(np.minimum(ua, ub), 0.0)
+    hi = np.minimum(np.maximum(ua, ub), 1.0)
+    inband_flat = (s0 >= 0.0) & (s0 <= L)
+    lo = np.where(flat, 0.0, lo)
+    hi = np.where(flat, 1.0, hi)
+    along = np.where(flat, inband_flat, lo <= hi)
+    h0 = t[:, 0] * (a0[:, 1] - p0[:, 1]) - t[:, 1] * (a0[:, 0] - p0[:, 0])
+    h1 = t[:, 0] * (a1[:, 1] - p0[:, 1]) - t[:, 1] * (a1[:, 0] - p0[:, 0])
+    hlo = np.abs(h0 + lo * (h1 - h0))
+    hhi = np.abs(h0 + hi * (h1 - h0))
+    first = hlo >= hhi
+    dmax = np.where(first, hlo, hhi)
+    u = np.where(first, lo, hi)
+    q = a0 + u[:, None] * (a1 - a0)
+    return dmax, q, along
+
+
+def _arc_arc_concentric(T, ti, E, ej):
+    cT, cE = T.center[ti], E.center[ej]
+    scale = np.maximum(1.0, np.maximum(T.radius[ti], E.radius[ej]))
+    conc = np.hypot(*(cT - cE).T) <= 1e-12 * scale
+    # angular overlap: an end of one inside the other's sweep
+    aT0 = np.arctan2(T.p0[ti, 1] - cE[:, 1], T.p0[ti, 0] - cE[:, 0])
+    aT1 = np.arctan2(T.p1[ti, 1] - cE[:, 1], T.p1[ti, 0] - cE[:, 0])
+    aE0 = np.arctan2(E.p0[ej, 1] - cT[:, 1], E.p0[ej, 0] - cT[:, 0])
+    inside_T0 = angle_in_sweep(aT0, E.theta0[ej], E.sweep[ej])
+    inside_T1 = angle_in_sweep(aT1, E.theta0[ej], E.sweep[ej])
+    inside_E0 = angle_in_sweep(aE0, T.theta0[ti], T.sweep[ti])
+    along = inside_T0 | inside_T1 | inside_E0
+    dmax = np.abs(T.radius[ti] - E.radius[ej])
+    q = np.where(inside_T0[:, None], T.p0[ti], T.p1[ti])
+    return dmax, q, conc, along
+
+
+def _general(tg, eg, E: Packed, j):
+    """Clip ``tg`` to the band of element ``j`` and take the exact farthest distance."""
+    regions = end_regions(E, j, True, True)
+    pieces = clip_pieces(tg, regions) if tg.length > 0.0 else []
+    if not pieces:
+        d, wt, _ = distance(tg, eg)
+        return d, wt
+    pk = pack(pieces)
+    earr = pack([eg]).arr
+    dm, q, _ = max_distance(pk.arr, np.arange(len(pieces)), earr, np.zeros(len(pieces), np.intp))
+    k = int(np.argmax(dm))
+    return float(dm[k]), (float(q[k, 0]), float(q[k, 1]))
+
+
+def check_contact(tool: Packed, toolpath, contour: Contour, eps: float, lengths, info):
+    """``(Check, [Violation])``; ``info(i)`` gives ``(block line, role)`` of tool segment ``i``."""
+    si, ej, ci, cp, cr = contact_pairs(toolpath, contour, lengths)
+    T, E = tool.arr, contour.elements.arr
+    n = si.size
+    dmax = np.full(n, np.nan)
+    wq = np.zeros((n, 2))
+    exact = tool.exact[si] & contour.elements.exact[ej]
+    todo = np.zeros(n, bool)
+    kt, ke = T.kind[si], E.kind[ej]
+    ll = exact & (kt == KIND_LINE) & (ke == KIND_LINE)
+    if ll.any():
+        q = np.flatnonzero(ll)
+        dm, pts, along = _line_line(T, si[q], E, ej[q])
+        dmax[q], wq[q] = dm, pts
+        todo[q[~along]] = True
+    aa = exact & (kt == KIND_ARC) & (ke == KIND_ARC)
+    if aa.any():
+        q = np.flatnonzero(aa)
+        dm, pts, conc, along = _arc_arc_concentric(T, si[q], E, ej[q])
+        ok = conc & along
+        dmax[q[ok]], wq[q[ok]] = dm[ok], pts[ok]
+        todo[q[~ok]] = True
+    todo |= exact & ~(ll | aa)
+    for q in np.flatnonzero(todo):
+        dmax[q], wq[q] = _general(tool.geom(si[q]), contour.elements.geom(ej[q]),
+                                  contour.elements, int(ej[q]))
+    tol = VERIFY_CERTIFIED_GAP * eps
+    for q in np.flatnonzero(~exact):
+        b = certified.max_distance(tool.geom(si[q]), contour.elements.geom(ej[q]), tol)
+        dmax[q] = b.ub
+        wq[q] = b.wa if b.wa is not None else T.p0[si[q]]
+    gap = dmax - contour.radius[ej]
+    # corner arcs
+    cgap = np.full(ci.size, -np.inf)
+    cq = np.zeros((ci.size, 2))
+    if ci.size:
+        dd, cq[:] = max_distance_to_point(T, ci, cp)
+        cgap[:] = dd - cr
+    viol = []
+    for q in np.flatnonzero(gap > eps):
+        i, j = int(si[q]), int(ej[q])
+        line, role = info(i)
+        viol.append(Violation("contact", float(gap[q]), i, line, role, j, contour.element_line(j),
+                              (float(wq[q, 0]), float(wq[q, 1])), None,
+                              EXACT if exact[q] else CERTIFIED,
+                              {"max_distance": float(dmax[q]), "radius": float(contour.radius[j])}))
+    for q in np.flatnonzero(cgap > eps):
+        i = int(ci[q])
+        line, role = info(i)
+        viol.append(Violation("contact", float(cgap[q]), i, line, role, None, line,
+                              (float(cq[q, 0]), float(cq[q, 1])), (float(cp[q, 0]), float(cp[q, 1])),
+                              EXACT, {"corner_point": [float(cp[q, 0]), float(cp[q, 1])],
+                                      "radius": float(cr[q])}))
+    allgap = np.r_[gap, cgap]
+    if allgap.size:
+        k = int(np.argmax(allgap))
+        basis = EXACT if (k >= n or exact[k]) else CERTIFIED
+        figure = float(allgap[k])
+    else:
+        figure, basis = None, EXACT
+    check = Check("contact", not viol, figure, eps, basis, "length",
+                  "wherever a steady tool segment runs alongside its element it is within "
+                  "r + eps of it; every corner arc within r + eps of its corner point "
+                  "(figure: largest excess over r)", int(n + ci.size), len(viol))
+    return check, viol

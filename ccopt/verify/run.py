@@ -1,0 +1,135 @@
+"""``verify``: every check on one tool path, gathered into a Certificate."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ccopt.errors import ProgramError
+from ccopt.program.model import Program
+from ccopt.tolerances import VERIFY_EPS
+from ccopt.toolpath import Role, ToolPath
+from ccopt.verify.certificate import CERTIFIED, EXACT, Certificate, Check, Violation
+from ccopt.verify.clearance import PairDistances, pair_distances
+from ccopt.verify.contact import check_contact
+from ccopt.verify.continuity import check_continuity
+from ccopt.verify.contour import Contour, contour_of
+from ccopt.verify.limits import check_limits
+from ccopt.verify.segments import Packed, lengths, pack
+from ccopt.verify.side import check_side
+
+SIDES = {"left": 1, "right": -1, 1: 1, -1: -1, None: None}
+
+
+@dataclass(frozen=True, eq=False)
+class VerifyContext:
+    """What the figures were computed from (for cross-checks and reports)."""
+
+    toolpath: ToolPath
+    program: Program
+    contour: Contour
+    tool: Packed
+    pairs: PairDistances
+    eps: float
+
+    def nearest_pairs(self, count: int = 100) -> np.ndarray:
+        """Indices into ``pairs`` of the ``count`` smallest margins (most critical first)."""
+        m = self.pairs.margin
+        if m.size <= count:
+            return np.argsort(m, kind="stable")
+        part = np.argpartition(m, count)[:count]
+        return part[np.argsort(m[part], kind="stable")]
+
+
+#: Uncompensated approaches listed in the gouge check's detail.
+LISTED_APPROACHES = 20
+
+
+def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info):
+    viol = []
+    bad = pairs.margin < -eps
+    for q in np.flatnonzero(bad & pairs.counted):
+        i, j = int(pairs.tool[q]), int(pairs.elem[q])
+        line, role = info(i)
+        viol.append(Violation(
+            "gouge", float(-pairs.margin[q]), i, line, role, j, contour.element_line(j),
+            (float(pairs.wt[q, 0]), float(pairs.wt[q, 1])),
+            (float(pairs.we[q, 0]), float(pairs.we[q, 1])),
+            EXACT if pairs.exact[q] else CERTIFIED,
+            {"distance": float(pairs.d[q]), "clearance": float(contour.clearance[j])}))
+    viol.sort(key=lambda v: -v.depth)
+    approaches = []
+    for q in np.flatnonzero(bad & ~pairs.counted)[:LISTED_APPROACHES]:
+        i, j = int(pairs.tool[q]), int(pairs.elem[q])
+        line, role = info(i)
+        approaches.append({"tool_segment": i, "tool_block": line, "tool_role": role,
+                           "element": j, "element_block": contour.element_line(j),
+                           "depth": float(-pairs.margin[q]),
+                           "witness_tool": [float(pairs.wt[q, 0]), float(pairs.wt[q, 1])]})
+    c = np.flatnonzero(pairs.counted)
+    if c.size:
+        k = c[int(np.argmin(pairs.margin[c]))]
+        figure, basis = float(pairs.margin[k]), EXACT if pairs.exact[k] else CERTIFIED
+    else:
+        figure, basis = None, EXACT
+    return Check("gouge", not viol, figure, eps, basis, "length",
+                 "every tool position made with compensation in force at least the element's "
+                 "clearance r - eps from every contour element (figure: smallest distance - r)",
+                 int(c.size), len(viol),
+                 {"elements": len(contour), "certified_pairs": int((~pairs.exact).sum()),
+                  "uncompensated_within_clearance": int((bad & ~pairs.counted).sum()),
+                  "uncompensated_listed": approaches}), viol
+
+
+def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = VERIFY_EPS,
+           radius: float | None = None, side=None) -> Certificate:
+    """Certify that ``toolpath`` keeps the radius offset of ``program``'s contour.
+
+    Parameters
+    ----------
+    toolpath: the tool-centre path (from :func:`ccopt.compensate` or elsewhere).
+    program: the program it was made from; its fully compensated moves are the
+        contour (see :mod:`ccopt.verify.decisions`).
+    profile: optional feed profile (:class:`ccopt.feed.FeedProfile` or samples
+        shaped like it) for the limits check.
+    eps: tolerance in program units (default ``VERIFY_EPS`` = 1e-6).
+    radius, side: the overrides the path was compensated with, if any
+        (``side``: ``"left"``/``"right"`` or +1/-1).
+
+    Returns a :class:`~ccopt.verify.certificate.Certificate`: checks ``gouge``,
+    ``contact``, ``side``, ``continuity`` and ``limits``, each with its figure.
+    """
+    if not (eps > 0.0):
+        raise ProgramError(f"eps must be > 0, got {eps!r}", program.file)
+    if side not in SIDES:
+        raise ProgramError(f"side must be left or right, not {side!r}", program.file)
+    contour = contour_of(program, radius=radius, side=SIDES[side],
+                         toolpath_radius=toolpath.radius if radius is None else None)
+    segs = toolpath.segments
+    tool = pack([s.geom for s in segs])
+    seg_len = lengths(tool)
+
+    def info(i: int):
+        s = segs[i]
+        return (s.block.source.line if s.block is not None else None), s.role.value
+
+    counted = np.fromiter((s.role not in (Role.RAPID, Role.UNCOMPENSATED) for s in segs),
+                          bool, len(segs))
+    pairs = pair_distances(tool, contour, eps, counted)
+    results = [check_gouge(pairs, contour, eps, info),
+               check_contact(tool, toolpath, contour, eps, seg_len, info),
+               check_side(tool, toolpath, contour, eps, seg_len, info),
+               check_continuity(tool, toolpath, eps, seg_len, info),
+               check_limits(profile)]
+    checks = tuple(c for c, _ in results)
+    violations = tuple(v for _, vs in results for v in vs)
+    c = np.flatnonzero(pairs.counted)
+    if c.size:
+        k = c[int(np.argmin(pairs.d[c]))]
+        min_clear, basis = float(pairs.d[k]), EXACT if pairs.exact[k] else CERTIFIED
+    else:
+        min_clear, basis = None, EXACT
+    rad = float(contour.radius.max()) if len(contour) else float(toolpath.radius)
+    ctx = VerifyContext(toolpath, program, contour, tool, pairs, eps)
+    return Certificate(all(c.ok for c in checks), min_clear, basis, rad, float(eps), checks,
+                       violations, toolpath.units, contour.notes, ctx)

@@ -1,0 +1,116 @@
+"""Side: the tool is on the programmed side of its element, not just at ``r``.
+
+For the tool segment of every steady contour element with ``r > eps``, the
+segment's middle point ``q`` is projected on its element (nearest point ``w``,
+exact kernels; a certified nearest point for spirals and curves) and the
+signed offset ``k * cross(t(w), q - w)`` must be positive (``k = +1`` left,
+``-1`` right; ``t(w)`` the element's unit tangent at ``w``). Within the
+element's band it equals the signed distance, so the figure (the smallest
+signed offset) is ``r`` on a correct path and ``-r`` on one mirrored onto the
+wrong side. A tool segment that does not cross its element (the no-gouge
+check makes sure) stays on one side, so its middle point decides for all of it.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ccopt.geometry import Line
+from ccopt.geometry.distance import point_arc, point_segment
+from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
+from ccopt.toolpath import Role
+from ccopt.verify import certified
+from ccopt.verify.certificate import CERTIFIED, EXACT, Check, Violation
+from ccopt.verify.contour import STATUS_STEADY, Contour
+from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed
+
+
+def _midpoints(tool: Packed, idx):
+    A = tool.arr
+    out = np.empty((idx.size, 2))
+    k = A.kind[idx]
+    ln = k == KIND_LINE
+    out[ln] = 0.5 * (A.p0[idx[ln]] + A.p1[idx[ln]])
+    ar = k == KIND_ARC
+    if ar.any():
+        a = idx[ar]
+        ang = A.theta0[a] + 0.5 * A.sweep[a]
+        out[ar] = A.center[a] + A.radius[a][:, None] * np.c_[np.cos(ang), np.sin(ang)]
+    for q in np.flatnonzero(~(ln | ar)):
+        g = tool.geom(idx[q])
+        out[q] = g.point(0.5 * g.length)
+    return out
+
+
+def _tangent_at(E, j, w):
+    """Unit tangent of elements ``j`` at their points ``w``."""
+    A = E.arr
+    t = np.zeros((j.size, 2))
+    k = A.kind[j]
+    ln = k == KIND_LINE
+    d = A.p1[j[ln]] - A.p0[j[ln]]
+    t[ln] = d / np.hypot(d[:, 0], d[:, 1])[:, None]
+    cur = ~ln
+    if cur.any():
+        jj = j[cur]
+        c = A.center[jj]
+        v = w[cur] - c
+        a = np.arctan2(v[:, 1], v[:, 0])
+        rho = np.hypot(v[:, 0], v[:, 1])
+        sg = np.copysign(1.0, A.sweep[jj])
+        # spiral: rho' = b per radian of sweep; b = 0 for arcs
+        b = np.where(A.kind[jj] == KIND_ARC, 0.0,
+                     (A.radius_end[jj] - A.radius[jj]) / np.where(A.sweep[jj] != 0, np.abs(A.sweep[jj]), 1.0))
+        tv = np.c_[b * np.cos(a) - sg * rho * np.sin(a), b * np.sin(a) + sg * rho * np.cos(a)]
+        t[cur] = tv / np.hypot(tv[:, 0], tv[:, 1])[:, None]
+    return t
+
+
+def check_side(tool: Packed, toolpath, contour: Contour, eps: float, lengths, info):
+    seg_i, elem_j = [], []
+    for i, s in enumerate(toolpath.segments):
+        if s.role is not Role.COMPENSATED or lengths[i] <= POINT_EPS:
+            continue
+        hit = contour.lookup(s.block)
+        if hit is not None and hit[0] == STATUS_STEADY and hit[3] >= 0 and hit[2] > eps:
+            seg_i.append(i)
+            elem_j.append(hit[3])
+    si = np.asarray(seg_i, np.intp)
+    ej = np.asarray(elem_j, np.intp)
+    E = contour.elements
+    q = _midpoints(tool, si)
+    w = np.zeros_like(q)
+    k = E.arr.kind[ej]
+    ln = k == KIND_LINE
+    if ln.any():
+        w[ln] = point_segment(q[ln], E.arr.p0[ej[ln]], E.arr.p1[ej[ln]])[2]
+    ar = k == KIND_ARC
+    if ar.any():
+        a = ej[ar]
+        w[ar] = point_arc(q[ar], E.arr.center[a], E.arr.radius[a], E.arr.theta0[a], E.arr.sweep[a])[2]
+    exact = ln | ar
+    tol = VERIFY_CERTIFIED_GAP * eps
+    for m in np.flatnonzero(~exact):
+        b = certified.min_distance(E.geom(ej[m]), Line(tuple(q[m]), tuple(q[m])), tol)
+        w[m] = b.wa
+    t = _tangent_at(E, ej, w)
+    v = q - w
+    signed = contour.side[ej] * (t[:, 0] * v[:, 1] - t[:, 1] * v[:, 0])
+    viol = []
+    for m in np.flatnonzero(~(signed > 0.0)):
+        i, j = int(si[m]), int(ej[m])
+        line, role = info(i)
+        viol.append(Violation("side", float(-signed[m]), i, line, role, j, contour.element_line(j),
+                              (float(q[m, 0]), float(q[m, 1])), (float(w[m, 0]), float(w[m, 1])),
+                              EXACT if exact[m] else CERTIFIED,
+                              {"programmed_side": "left" if contour.side[j] > 0 else "right",
+                               "signed_offset": float(signed[m])}))
+    if si.size:
+        m = int(np.argmin(signed))
+        figure, basis = float(signed[m]), EXACT if exact[m] else CERTIFIED
+    else:
+        figure, basis = None, EXACT
+    return Check("side", not viol, figure, 0.0, basis, "length",
+                 "every steady tool segment on the programmed side of its element "
+                 "(figure: smallest signed offset, > 0 required)", int(si.size), len(viol)), viol
