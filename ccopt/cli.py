@@ -130,13 +130,13 @@ def cmd_compensate(args: argparse.Namespace) -> int:
 
 
 def cmd_run(args: argparse.Namespace) -> int:
-    """The main job, as far as the pipeline goes today: read and compensate
-    every input, write the tool paths as JSON, print a summary.
+    """The main job (:mod:`ccopt.run`): compensate, plan the feed, verify,
+    compare blends, export and report, for every input; then a summary table.
 
-    A case whose ``case.toml`` says ``expect = "error"`` passes when the
-    compensation refuses it with a located error; any other error is reported
-    on its own line and makes the exit code 2 after every input has run.
+    Exit 0 when every input did what its case expects, 1 when a verification
+    failed, 2 when an input could not be read or compensated.
     """
+    from ccopt.run import RunOptions, default_out, exit_code, run_all
     if args.inputs:
         inputs = [resolve_input(a) for a in args.inputs]
     else:
@@ -144,53 +144,43 @@ def cmd_run(args: argparse.Namespace) -> int:
         if not inputs:
             raise ProgramError("no bundled cases found (is the cases/ folder next to ccopt/?)",
                                "cases")
-    out = Path(args.out) if args.out else None
-    if out is not None:
-        try:
-            out.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise ProgramError(f"cannot create output folder: {exc.strerror or exc}",
-                               str(out)) from None
-    from ccopt.export.atomic import write_text_atomic
-    results, failed = [], False
-    for inp in inputs:
-        expect = inp.case.expect if inp.case else "ok"
-        row = {"name": inp.label, "program": str(inp.program), "expect": expect}
-        try:
-            prog = load(inp, args)
-            path = compensate_input(inp, prog, args)
-        except CcoptError as exc:
-            row.update(status="error", message=str(exc))
-            if expect == "error":
-                row["status"] = "error (expected)"
-            else:
-                failed = True
-                print(str(exc), file=sys.stderr)
-            results.append(row)
-            continue
-        row.update(status="ok" if expect != "error" else "UNEXPECTED SUCCESS",
-                   style=path.style, radius=path.radius, blocks=len(prog.blocks),
-                   segments=len(path.segments), length=path.length, units=path.units)
-        if expect == "error":
-            failed = True
-        if out is not None:
-            row["toolpath"] = str(out / f"{inp.label}.toolpath.json")
-            write_text_atomic(row["toolpath"], json.dumps(path.to_json()) + "\n")
-        results.append(row)
-    if out is not None:
-        write_text_atomic(out / "summary.json", json.dumps({"cases": results}, indent=1) + "\n")
+    out = Path(args.out) if args.out else default_out()
+    style_options = {}
+    if args.break_cos is not None:
+        style_options["break_cos"] = args.break_cos
+    if args.ccbuf is not None:
+        style_options["ccbuf"] = args.ccbuf
+    opts = RunOptions(style=args.style, radius=args.radius, side=args.side, dialect=args.dialect,
+                      tool_table=args.tool_table, vmax=args.vmax, amax=args.amax,
+                      compare=not args.no_compare, style_options=style_options)
+
+    def progress(k: int, n: int, label: str) -> None:
+        if sys.stderr.isatty() and not args.json:
+            bar = "#" * int(30 * k / max(n, 1))
+            sys.stderr.write(f"\r[{bar:30s}] {k}/{n} {label[:40]:40s}")
+            if k == n:
+                sys.stderr.write("\n")
+            sys.stderr.flush()
+
+    rows = run_all([(i.label, i.program, i.case) for i in inputs], out, opts, progress)
     if args.json:
-        emit_json({"cases": results})
+        emit_json({"out": str(out), "cases": [
+            {k: v for k, v in r.items() if k not in ("plots", "compare", "feed", "certificate")}
+            for r in rows]})
     else:
-        w = max([len(r["name"]) for r in results] + [4])
-        print(f"{'case'.ljust(w)}  style  radius  segments  tool path length  status")
-        for r in results:
-            if "length" in r:
-                print(f"{r['name'].ljust(w)}  {r['style']:5s}  {r['radius']:6g}  {r['segments']:8d}  "
-                      f"{r['length']:13.4f} {r['units']:4s}  {r['status']}")
+        w = max([len(r["name"]) for r in rows] + [4])
+        print(f"{'case'.ljust(w)}  style     radius  cycle time  min clearance  status")
+        for r in rows:
+            if "duration" in r:
+                print(f"{r['name'].ljust(w)}  {r['style']:8s}  {r['radius']:6g}  "
+                      f"{r['duration']:8.3f} s  {r['min_clearance']:13.6g}  {r['status']}")
             else:
-                print(f"{r['name'].ljust(w)}  {'':5s}  {'':6s}  {'':8s}  {'':18s}  {r['status']}")
-    return EXIT_BAD_INPUT if failed else EXIT_OK
+                print(f"{r['name'].ljust(w)}  {'':8s}  {'':6s}  {'':10s}  {'':13s}  {r['status']}")
+        for r in rows:
+            if r.get("message") and r["status"] != "error (expected)":
+                print(r["message"], file=sys.stderr)
+        print(f"report: {out / 'index.html'}")
+    return exit_code(rows)
 
 
 def cmd_feed(args: argparse.Namespace) -> int:
@@ -340,7 +330,13 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
 
     p = sub.add_parser("run", help="the main job, on bundled cases or given programs")
     p.add_argument("inputs", nargs="*", metavar="CASE|PROGRAM")
-    p.add_argument("--out", metavar="DIR", help="write results into DIR")
+    p.add_argument("--out", metavar="DIR",
+                   help="write the report and exported files into DIR (default ccopt-out)")
+    p.add_argument("--vmax", type=_axis_values, metavar="X,Y[,Z]",
+                   help="axis velocity limits, units/s (default: the case's, else 100)")
+    p.add_argument("--amax", type=_axis_values, metavar="X,Y[,Z]",
+                   help="axis acceleration limits, units/s^2 (default: the case's, else 1000)")
+    p.add_argument("--no-compare", action="store_true", help="skip the blend comparison")
     program_args(p)
     style_args(p)
     commands["run"] = cmd_run

@@ -49,3 +49,8 @@ VERIFY_CERTIFIED_GAP = 0.1
 #: Verifier: at most this many subdivision rounds for a certified bound; a
 #: bound not tight by then is reported with its actual gap.
 VERIFY_CERTIFIED_MAX_ROUNDS = 40
+
+#: A circular move whose end radius differs from its start radius by more
+#: than this (relative to max(1, R)) is a spiral; within it, an arc (the
+#: difference is rounding of the written numbers).
+SPIRAL_RADIUS_REL_TOL = 1e-9

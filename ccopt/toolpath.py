@@ -19,6 +19,7 @@ from typing import Any, Iterator
 
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
+from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL
 
 
 class Role(str, enum.Enum):
@@ -169,7 +170,7 @@ def block_geometry(block: Block, start_uv=None, end_uv=None):
         ccw = block.motion is Motion.ARC_CCW
         r0 = math.hypot(s[0] - c[0], s[1] - c[1])
         r1 = math.hypot(e[0] - c[0], e[1] - c[1])
-        if abs(r1 - r0) > 1e-9 * max(1.0, r0):
+        if abs(r1 - r0) > SPIRAL_RADIUS_REL_TOL * max(1.0, r0):
             return Spiral.from_points(s, e, c, ccw, turns=block.turns)
         return Arc.from_points(s, e, c, ccw, turns=block.turns)
     return Line(tuple(s), tuple(e))

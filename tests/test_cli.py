@@ -114,26 +114,38 @@ def test_pmac_conditions_that_cannot_be_compensated(capsys, tmp_path, text, line
     assert fragment in err
 
 
-def test_run_writes_toolpaths_and_summary(capsys, tmp_path):
-    code, out, err = run_cli(capsys, "run", str(CASES / "pocket"), str(CASES / "profile"),
-                             "--out", str(tmp_path), "--json")
+def test_run_writes_report_and_exports(capsys, tmp_path):
+    code, out, err = run_cli(capsys, "run", str(CASES / "pocket"), str(CASES / "short-move-overcut"),
+                             "--out", str(tmp_path), "--json", "--no-compare")
     assert code == 0, err
     rows = json.loads(out)["cases"]
-    assert [r["name"] for r in rows] == ["pocket", "profile"]
-    for r in rows:
-        data = json.loads(Path(r["toolpath"]).read_text())
-        assert data["style"] == "pmac" and data["radius"] == 3
-    assert (tmp_path / "summary.json").is_file()
+    assert [r["name"] for r in rows] == ["pocket", "short-move-overcut"]
+    assert [r["status"] for r in rows] == ["ok", "gouge (expected)"]
+    for name in ("pocket", "short-move-overcut"):
+        for suffix in (".nc", ".pmc", ".svg", ".feed.csv", ".certificate.json", ".toolpath.json"):
+            f = tmp_path / f"{name}{suffix}"
+            assert f.is_file() and f.stat().st_size > 0, f
+        cert = json.loads((tmp_path / f"{name}.certificate.json").read_text())
+        assert cert["radius"] in (2, 3)
+        # the exported G-code says how it was checked
+        head = (tmp_path / f"{name}.nc").read_text().splitlines()[:6]
+        assert any("read back with ccopt" in h for h in head)
+        assert any("verified against the programmed contour" in h for h in head)
+    html = (tmp_path / "index.html").read_text()
+    assert html.count("data:image/png;base64,") == 6   # three plots per case
+    assert 'href="pocket.nc"' in html
+    assert json.loads((tmp_path / "summary.json").read_text())["cases"][0]["name"] == "pocket"
 
 
-def test_run_without_arguments_runs_every_bundled_case(capsys, tmp_path):
-    code, out, err = run_cli(capsys, "run", "--json")
-    assert code == 0, err
-    rows = json.loads(out)["cases"]
-    names = {p.name for p in CASES.iterdir() if (p / "case.toml").is_file()}
-    assert {r["name"] for r in rows} == names
-    err_row = next(r for r in rows if r["name"] == "concave-arc-too-small")
-    assert err_row["status"] == "error (expected)"
+def test_run_exit_codes(capsys, tmp_path):
+    # an expected error is fine; an unexpected one is exit 2
+    code, _, _ = run_cli(capsys, "run", str(CASES / "concave-arc-too-small"), "--out",
+                         str(tmp_path), "--no-compare")
+    assert code == 0
+    bad = tmp_path / "bad.pmc"
+    bad.write_text("LINEAR ABS F10\nCCR5 CC1\nX10 Y0\nCIRCLE2 X10 Y2 I0 J1\nLINEAR X0 Y2\nCC0\nX0 Y0\n")
+    code, _, err = run_cli(capsys, "run", str(bad), "--out", str(tmp_path), "--no-compare")
+    assert code == 2 and "concave arc radius 1" in err
 
 
 # -- property: random text never gives anything but exit 0 or a one-line error --------

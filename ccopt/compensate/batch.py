@@ -18,7 +18,7 @@ import numpy as np
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.intersect_many import circles_circles, lines_circles, lines_lines
 from ccopt.program.model import PLANE_AXES, Block, Motion
-from ccopt.tolerances import OFFSET_CIRCLE_REL_TOL, POINT_EPS, TURN_EPS
+from ccopt.tolerances import OFFSET_CIRCLE_REL_TOL, POINT_EPS, SPIRAL_RADIUS_REL_TOL, TURN_EPS
 
 LINE, ARC, SPIRAL = 0, 1, 2
 TWO_PI = 2.0 * math.pi
@@ -73,7 +73,7 @@ class ElementArrays:
         R0 = np.hypot(*(S - C).T)
         R1 = np.hypot(*(E - C).T)
         # Same spiral criterion as toolpath.block_geometry.
-        spiral = motion_arc & (np.abs(R1 - R0) > 1e-9 * np.maximum(1.0, R0))
+        spiral = motion_arc & (np.abs(R1 - R0) > SPIRAL_RADIUS_REL_TOL * np.maximum(1.0, R0))
         kind = np.where(motion_arc, np.where(spiral, SPIRAL, ARC), LINE)
         sgn = np.where(motion_arc, np.where(ccw, 1.0, -1.0), 0.0)
         th0 = np.arctan2(S[:, 1] - C[:, 1], S[:, 0] - C[:, 0])

@@ -62,6 +62,7 @@ from ccopt.compensate.scan import effective_side_radius
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.program.model import Block, Motion, Program
+from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL
 from ccopt.toolpath import PathSegment, Role, ToolPath
 
 TWO_PI = 2.0 * math.pi
@@ -207,7 +208,7 @@ class _Interpreter:
                                    "use a smaller cutter or change the arc")
         sweep = find_turn(s, c, item.turn, item.end)
         th0 = math.atan2(s[1] - c[1], s[0] - c[0])
-        if abs(re - rs) <= 1e-12 * max(1.0, rs):
+        if abs(re - rs) <= SPIRAL_RADIUS_REL_TOL * max(1.0, rs):
             return Arc(_pt(c), rs, th0, sweep)
         return Spiral(_pt(c), rs, re, th0, sweep)
 

@@ -150,6 +150,18 @@ class PmacStyle:
         if cb in (UNCOMP, LEAD_IN):
             # a ends on the programmed point (it is uncompensated or a lead-out).
             return Joint(P, P)
+        # Radius 0 in force at the corner (CCR0, or a change from 0 starting
+        # here): the tool is on the programmed point, no corner is added.
+        if cb == LEAD_OUT:
+            r_here = a.r
+        elif ca == LEAD_IN:
+            r_here = b.r
+        elif a.k != b.k:
+            r_here = max(a.r, b.r)
+        else:
+            r_here = a.r
+        if r_here <= 0.0:
+            return Joint(P, P)
         if cb == LEAD_OUT:
             return self.lead_out_corner(a, b, a.k, a.r)
         # b is fully compensated
@@ -173,6 +185,9 @@ class PmacStyle:
         A, B = offset_points(arr, ia, k, r)
         X, found, delicate = nearest_corner_points(arr, ia, k, r, A, B)
         inside, outside, tangent = kind == 0, kind == 1, kind == 2
+        # radius 0 at the corner: the programmed point, no arc (as joint())
+        zero = r <= 0.0
+        inside, outside, tangent = inside & ~zero, outside & ~zero, tangent | zero
         sharp = outside & (d < self.break_cos)
         shallow = outside & ~sharp
         shallow_arc = shallow & ~found & (decisions.SHALLOW_WITHOUT_INTERSECTION == "arc")

@@ -432,3 +432,16 @@ def test_isx99_written_in_the_pmac_file_is_used(tmp_path):
     # an explicit option wins over the file
     path = compensate(ccopt.read_program(prog_file), "pmac", break_cos=0.9998)
     assert sum(s.role.value == "corner" for s in path.segments) == 2
+
+
+def test_radius_zero_runs_on_the_programmed_path(tmp_path):
+    # CCR0 with CC1 on: every corner point is the programmed point, including
+    # the outside corner at (10,-10) (no zero-radius arc).
+    f = tmp_path / "r0.pmc"
+    f.write_text("LINEAR ABS F10\nCCR0 CC1\nX10 Y0\nX10 Y-10\nX20 Y-10\nCC0\nX30 Y-10\n")
+    check(compensate(ccopt.read_program(f), "pmac"), [
+        L("lead-in", (0, 0), (10, 0)),
+        L("compensated", (10, 0), (10, -10)),
+        L("compensated", (10, -10), (20, -10)),
+        L("lead-out", (20, -10), (30, -10)),
+    ])

@@ -87,7 +87,9 @@ def test_invariants_on_bundled_cases():
         # the step runs backwards (PMAC's overcut) and meets the next corner arc
         # anti-tangent by design (its own test checks that geometry), and in the
         # side/radius-change cases a neighbour is a gradual diagonal.
-        check_invariants(path, lambda b: (b.modal.side, b.modal.radius or 0.0), roles,
+        r_case = case.radius
+        check_invariants(path, lambda b: (b.modal.side, r_case if r_case is not None
+                                          else (b.modal.radius or 0.0)), roles,
                          tangency=case.name in EXACT_CASES - {"short-move-overcut"})
         seen.add(case.name)
     assert EXACT_CASES <= seen

@@ -1,0 +1,122 @@
+"""Plots of a case (matplotlib, Agg), returned as PNG bytes for embedding.
+
+Drawing samples the exact segments finely; that is for the eye only — every
+figure ccopt reports comes from the exact geometry.
+"""
+from __future__ import annotations
+
+import io
+
+import numpy as np
+
+from ccopt.toolpath import Role, ToolPath
+
+ROLE_STYLE = {
+    Role.RAPID: dict(color="#999999", lw=0.8, ls=":"),
+    Role.LEAD_IN: dict(color="#2a9d8f", lw=1.6),
+    Role.COMPENSATED: dict(color="#1d3557", lw=1.6),
+    Role.CORNER: dict(color="#e76f51", lw=1.8),
+    Role.LEAD_OUT: dict(color="#8338ec", lw=1.6),
+    Role.UNCOMPENSATED: dict(color="#457b9d", lw=1.2),
+}
+
+
+def _figure(width=7.0, height=5.0):
+    import matplotlib
+    matplotlib.use("Agg", force=True)
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(width, height), dpi=110)
+    return plt, fig, ax
+
+
+def _png(plt, fig) -> bytes:
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", bbox_inches="tight")
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def _samples(geom, step: float) -> np.ndarray:
+    n = max(2, int(np.ceil(geom.length / step)) + 1)
+    return geom.point(np.linspace(0.0, geom.length, n))
+
+
+def _step(path: ToolPath) -> float:
+    total = max(path.length, 1e-9)
+    return total / 2000
+
+
+def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
+              violations: list | None = None, title: str = "") -> bytes:
+    """Programmed contour (black), tool-centre path by role, tool circles
+    along it, violations marked with red crosses at their witness points."""
+    plt, fig, ax = _figure()
+    step = _step(path)
+    if contour is not None:
+        for seg in contour.segments:
+            if seg.length > 0 and seg.role is not Role.RAPID:
+                p = _samples(seg.geom, step)
+                ax.plot(p[:, 0], p[:, 1], color="black", lw=1.0)
+    seen = set()
+    for seg in path.segments:
+        if seg.length <= 0:
+            continue
+        p = _samples(seg.geom, step)
+        label = seg.role.value if seg.role not in seen else None
+        seen.add(seg.role)
+        ax.plot(p[:, 0], p[:, 1], label=label, **ROLE_STYLE[seg.role])
+    if radius > 0:
+        from matplotlib.patches import Circle
+        cut = [s for s in path.segments if s.role is not Role.RAPID and s.length > 0]
+        total = sum(s.length for s in cut)
+        spacing = max(total / 60, radius)
+        acc = 0.0
+        for seg in cut:
+            for s in np.arange((-acc) % spacing, seg.length, spacing):
+                c = seg.geom.point(s)
+                ax.add_patch(Circle(c, radius, fill=False, lw=0.4, color="#888888", alpha=0.6))
+            acc = (acc + seg.length) % spacing
+    for v in violations or []:
+        w = v.get("witness_tool") or v.get("witness")
+        if w:
+            ax.plot([w[0]], [w[1]], "x", color="red", ms=10, mew=2)
+    ax.set_aspect("equal")
+    ax.set_title(title)
+    ax.legend(fontsize=7, loc="best")
+    ax.grid(alpha=0.3)
+    return _png(plt, fig)
+
+
+def feed_plot(profile, title: str = "") -> bytes:
+    """Tool path coloured by the planned tangential speed."""
+    from matplotlib.collections import LineCollection
+    plt, fig, ax = _figure()
+    samples = profile.sample(max(profile.duration / 4000, 1e-4)) if profile.duration > 0 else None
+    if samples is not None and len(samples) > 1:
+        xy = samples.position[:, :2]
+        segs = np.stack([xy[:-1], xy[1:]], axis=1)
+        lc = LineCollection(segs, array=samples.feed[:-1], cmap="viridis", lw=2.0)
+        ax.add_collection(lc)
+        fig.colorbar(lc, ax=ax, label="feed (units/s)")
+        ax.set_xlim(xy[:, 0].min() - 1, xy[:, 0].max() + 1)
+        ax.set_ylim(xy[:, 1].min() - 1, xy[:, 1].max() + 1)
+    ax.set_aspect("equal")
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    return _png(plt, fig)
+
+
+def speed_time_plot(profiles: dict, title: str = "") -> bytes:
+    """Tangential speed against time, one curve per planner."""
+    plt, fig, ax = _figure(7.0, 3.2)
+    for name, prof in profiles.items():
+        if prof is None or prof.duration <= 0:
+            continue
+        smp = prof.sample(max(prof.duration / 4000, 1e-4))
+        ax.plot(smp.t, smp.feed, label=f"{name} ({prof.duration:.3f} s)", lw=1.2)
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("feed (units/s)")
+    ax.set_title(title)
+    ax.legend(fontsize=7)
+    ax.grid(alpha=0.3)
+    return _png(plt, fig)
