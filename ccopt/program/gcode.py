@@ -1174,7 +1174,7 @@ class _Reader:
         src = Source(self.file, self.line_no + 1, first_col + 1)
         if motion == 0:
             block = Block(src, Motion.RAPID, cur, end_t, self.modal(), mcodes=mcodes)
-        elif motion == 10:
+        elif motion == 10 or self._modal_arc_without_plane_motion(L, cur, end_t):
             length = math.dist(cur, end_t)
             feed = self._feed(L, length, gcol)
             block = Block(src, Motion.LINE, cur, end_t, self.modal(), feed=feed, mcodes=mcodes)
@@ -1183,6 +1183,17 @@ class _Reader:
         self._emit(block)
         self.moved = True
         self.pos = end_t
+
+    def _modal_arc_without_plane_motion(self, L: dict, cur, end) -> bool:
+        """G2/G3 still modal, no centre word and no in-plane displacement (the
+        Fagor 8070 manual's ``G91 G40 Y0`` after a G03): no arc is asked for,
+        so it is a straight move (of zero length in the plane). With a centre
+        word or in-plane motion an arc needs its centre, and its absence stays
+        an error."""
+        iu, iv, _ = PLANE_AXES[self.plane]
+        wu, wv = _CENTRE_WORDS[self.plane]
+        return (not any(w in L for w in (wu, wv, "R", "P"))
+                and cur[iu] == end[iu] and cur[iv] == end[iv])
 
     def _feed(self, L: dict, length: float, col: int) -> float:
         if self.feed_mode == "inverse":

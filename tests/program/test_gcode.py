@@ -428,3 +428,15 @@ def test_fagor_modal_flags():
 def test_plane_recorded_in_modal():
     b = moves("G18 G1 X1 F60\nG19 X2\nG17 X3\n")
     assert [m.modal.plane for m in b] == ["ZX", "YZ", "XY"]
+
+
+def test_modal_arc_with_no_plane_motion_is_a_zero_length_move():
+    # Fagor 8070 manual, 9.1.5, first example: G03 is still modal when
+    # "G91 G40 Y0" cancels compensation without moving in the plane.
+    prog = read_gcode("G21 G90 F600\nG1 X0 Y0\nG03 X-20 Y-20 I0 J-20\nG91 G40 Y0\nG01 X-20\n")
+    b = prog.blocks[2]
+    assert b.motion.value == "line" and b.start == b.end == (-20.0, -20.0, 0.0)
+    assert b.source.line == 4
+    # with in-plane motion the missing centre is still an error
+    with pytest.raises(ProgramError, match="no centre"):
+        read_gcode("G21 G90 F600\nG3 X1 Y1\n")
