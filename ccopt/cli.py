@@ -254,6 +254,33 @@ def _planner_names(text: str) -> list[str]:
     return list(known) if "all" in names else names
 
 
+def cmd_verify(args: argparse.Namespace) -> int:
+    """Compensate, then certify the radius offset (exit 1 when a check fails)."""
+    from ccopt.verify import verify
+    inp = resolve_input(args.program)
+    prog = load(inp, args)
+    path = compensate_input(inp, prog, args)
+    radius = args.radius if args.radius is not None else (inp.case.radius if inp.case else None)
+    cert = verify(path, prog, eps=args.eps, radius=radius, side=args.side)
+    report = cert.to_json()
+    agree = True
+    if args.crosscheck:
+        from ccopt.verify.crosschecks import run_crosschecks
+        report["crosschecks"] = run_crosschecks(cert)
+        agree = all(x["agree"] for x in report["crosschecks"])
+    if args.json:
+        emit_json(report)
+    else:
+        print(f"{prog.file}: style {path.style}, {len(path.segments)} tool segments")
+        print(cert.summary())
+        for x in report.get("crosschecks", ()):
+            print(f"  cross-check {x['name']}: {'agrees' if x['agree'] else 'DISAGREES'} - "
+                  f"{x.get('summary', '')}")
+        if args.crosscheck and not report["crosschecks"]:
+            print("  cross-checks: none installed (entry points 'ccopt.crosschecks')")
+    return EXIT_OK if cert.ok and agree else EXIT_FAILED
+
+
 Command = Callable[[argparse.Namespace], int]
 
 
@@ -264,6 +291,13 @@ def _nonneg_float(text: str) -> float:
         raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
     if not (x >= 0 and x < float("inf")):
         raise argparse.ArgumentTypeError(f"must be a finite number >= 0: {text!r}")
+    return x
+
+
+def _pos_float(text: str) -> float:
+    x = _nonneg_float(text)
+    if x <= 0:
+        raise argparse.ArgumentTypeError(f"must be > 0: {text!r}")
     return x
 
 
@@ -327,6 +361,16 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
     p.add_argument("--csv", metavar="FILE", help="write the samples as CSV "
                    "(FILE.<planner>.csv per planner when several)")
     commands["feed"] = cmd_feed
+
+    p = sub.add_parser("verify", help="certify that the tool path keeps the radius offset")
+    p.add_argument("program", metavar="PROGRAM", help="program file, case folder or case name")
+    program_args(p)
+    style_args(p)
+    p.add_argument("--eps", type=_pos_float, default=1e-6, metavar="E",
+                   help="tolerance in program units (default 1e-6)")
+    p.add_argument("--crosscheck", action="store_true",
+                   help="also run the registered cross-check formulations (CVXPY, CasADi)")
+    commands["verify"] = cmd_verify
 
     p = sub.add_parser("run", help="the main job, on bundled cases or given programs")
     p.add_argument("inputs", nargs="*", metavar="CASE|PROGRAM")

@@ -39,31 +39,27 @@ from ccopt.toolpath import Role
 from ccopt.verify import certified
 from ccopt.verify.certificate import CERTIFIED, EXACT, Check, Violation
 from ccopt.verify.clearance import clip_pieces, end_regions
-from ccopt.verify.contour import STATUS_STEADY, Contour
+from ccopt.verify.contour import Contour
 from ccopt.verify.maxdist import max_distance, max_distance_to_point
 from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed, pack
 
 
-def contact_pairs(toolpath, contour: Contour, lengths: np.ndarray):
+def contact_pairs(toolpath, contour: Contour, lengths: np.ndarray, table):
     """``(steady tool segments, their elements, corner arcs, corner points, corner radii)``."""
-    seg_i, elem_j, corner_i, corner_p, corner_r = [], [], [], [], []
+    steady = table.is_role(Role.COMPENSATED) & table.steady & (table.element >= 0) \
+        & (lengths > POINT_EPS)
+    si = np.flatnonzero(steady)
+    ej = table.element[si]
+    corner_i, corner_p, corner_r = [], [], []
     i0, j0, _ = PLANE_AXES[contour.plane]
-    for i, s in enumerate(toolpath.segments):
-        if s.role is Role.COMPENSATED:
-            if lengths[i] <= POINT_EPS:
-                continue
-            hit = contour.lookup(s.block)
-            if hit is not None and hit[0] == STATUS_STEADY and hit[3] >= 0:
-                seg_i.append(i)
-                elem_j.append(hit[3])
-        elif s.role is Role.CORNER and s.block is not None and isinstance(s.geom, Arc):
-            hit = contour.lookup(s.block)
-            if hit is None or hit[2] <= 0.0:
-                continue
-            corner_i.append(i)
-            corner_p.append((s.block.end[i0], s.block.end[j0]))
-            corner_r.append(hit[2])
-    return (np.asarray(seg_i, np.intp), np.asarray(elem_j, np.intp), np.asarray(corner_i, np.intp),
+    for i in np.flatnonzero(table.is_role(Role.CORNER) & (table.r > 0.0)):
+        s = toolpath.segments[i]
+        if s.block is None or not isinstance(s.geom, Arc):
+            continue
+        corner_i.append(i)
+        corner_p.append((s.block.end[i0], s.block.end[j0]))
+        corner_r.append(table.r[i])
+    return (si, ej, np.asarray(corner_i, np.intp),
             np.asarray(corner_p, float).reshape(-1, 2), np.asarray(corner_r, float))
 
 
@@ -131,9 +127,10 @@ def _general(tg, eg, E: Packed, j):
     return float(dm[k]), (float(q[k, 0]), float(q[k, 1]))
 
 
-def check_contact(tool: Packed, toolpath, contour: Contour, eps: float, lengths, info):
-    """``(Check, [Violation])``; ``info(i)`` gives ``(block line, role)`` of tool segment ``i``."""
-    si, ej, ci, cp, cr = contact_pairs(toolpath, contour, lengths)
+def check_contact(tool: Packed, toolpath, contour: Contour, eps: float, lengths, info, table):
+    """``(Check, [Violation])``; ``info(i)`` gives ``(block line, role)`` of tool segment
+    ``i``; ``table`` is the run's :class:`~ccopt.verify.run.SegmentTable`."""
+    si, ej, ci, cp, cr = contact_pairs(toolpath, contour, lengths, table)
     T, E = tool.arr, contour.elements.arr
     n = si.size
     dmax = np.full(n, np.nan)

@@ -112,14 +112,16 @@ def _uniform_program_radius(moves, k) -> float | None:
     return radii.pop() if len(radii) == 1 and None not in radii else None
 
 
-def element_geometry(blocks: list[Block], plane: str) -> Packed:
-    """Programmed geometry of ``blocks`` as :func:`block_geometry` makes it, packed."""
+def element_geometry(blocks: list[Block], plane: str, st=None, en=None) -> Packed:
+    """Programmed geometry of ``blocks`` as :func:`block_geometry` makes it, packed
+    (``st``, ``en``: their in-plane start and end points, if already known)."""
     n = len(blocks)
     if n == 0:
         return pack([])
     i, j, _ = PLANE_AXES[plane]
-    st = np.array([b.start for b in blocks], float).reshape(n, 3)[:, [i, j]]
-    en = np.array([b.end for b in blocks], float).reshape(n, 3)[:, [i, j]]
+    if st is None:
+        st = np.array([b.start for b in blocks], float).reshape(n, 3)[:, [i, j]]
+        en = np.array([b.end for b in blocks], float).reshape(n, 3)[:, [i, j]]
     nan3 = (math.nan, math.nan, math.nan)
     ce = np.array([b.center if b.center is not None else nan3 for b in blocks],
                   float).reshape(n, 3)[:, [i, j]]
@@ -181,9 +183,18 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
     tool path says it was made with
     (:data:`~ccopt.verify.decisions.RADIUS_FROM_TOOLPATH_WHEN_UNIFORM`).
     """
-    moves = [b for b in program.blocks if b.motion.is_move and b.in_plane]
-    plane = moves[0].modal.plane if moves else (program.blocks[0].modal.plane
-                                                if program.blocks else "XY")
+    allmoves = [b for b in program.blocks if b.motion.is_move]
+    plane = allmoves[0].modal.plane if allmoves else (program.blocks[0].modal.plane
+                                                      if program.blocks else "XY")
+    i0, j0, _ = PLANE_AXES[plane]
+    m = len(allmoves)
+    st_all = np.array([b.start for b in allmoves], float).reshape(m, 3)[:, [i0, j0]]
+    en_all = np.array([b.end for b in allmoves], float).reshape(m, 3)[:, [i0, j0]]
+    arc_all = np.fromiter((b.motion.is_arc for b in allmoves), bool, m)
+    # Block.in_plane, for all moves at once
+    inp = arc_all | (np.hypot(*(en_all - st_all).T) > 0.0)
+    moves = [b for b, ok in zip(allmoves, inp) if ok]
+    st_mv, en_mv = st_all[inp], en_all[inp]
     notes: list[str] = []
     raw_k = [b.modal.side for b in moves]
     if radius is None and toolpath_radius is not None and toolpath_radius > 0.0:
@@ -197,14 +208,17 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
             notes.append(f"the program's radius {r_prog:g} differs from the tool path's "
                          f"{toolpath_radius:g}: verified with {toolpath_radius:g} "
                          "(a compensate(radius=...) override)")
-    ks, rs = [], []
-    for b in moves:
-        k, r = effective_side_radius(b, radius, side)
-        ks.append(k)
-        rs.append(r)
     n = len(moves)
-    k = np.array(ks, int)
-    r = np.array(rs, float)
+    k = np.fromiter((b.modal.side for b in moves), int, n)
+    rad = [b.modal.radius for b in moves]
+    if radius is None and any(rr is None for rr, kk in zip(rad, k) if kk):
+        q = next(q for q in range(n) if k[q] and rad[q] is None)
+        effective_side_radius(moves[q], None, None)      # raises, located
+    r = np.array([0.0 if rr is None else rr for rr in rad], float) if radius is None \
+        else np.full(n, float(radius))
+    if side is not None:
+        k = np.where(k != 0, int(side), 0)
+    r = np.where(k != 0, r, 0.0)
     prev_k = np.r_[0, k[:-1]] if n else k
     prev_r = np.r_[0.0, r[:-1]] if n else r
     on = (k != 0) & (prev_k != 0)
@@ -218,15 +232,14 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
     status[radius_change] = STATUS_RADIUS_CHANGE
     status[side_change] = STATUS_SIDE_CHANGE
     idx = np.cumsum(in_contour) - 1
-    move_of = {}
-    for q, b in enumerate(moves):
-        move_of[id(b)] = (str(status[q]), int(k[q]), float(r[q]),
-                          int(idx[q]) if in_contour[q] else -1)
+    elem_idx = np.where(in_contour, idx, -1).tolist()
+    move_of = {id(b): v for b, v in zip(moves, zip(status.tolist(), k.tolist(), r.tolist(),
+                                                     elem_idx))}
     sel = np.flatnonzero(in_contour)
     prev_in = np.r_[False, in_contour[:-1]] if n else in_contour
     next_in = np.r_[in_contour[1:], False] if n else in_contour
     cblocks = tuple(moves[q] for q in sel)
-    elements = element_geometry(list(cblocks), plane)
+    elements = element_geometry(list(cblocks), plane, st_mv[sel], en_mv[sel])
     clearance = np.where(radius_change[sel], np.minimum(r[sel], prev_r[sel]), r[sel])
     c = Contour(cblocks, elements, k[sel], r[sel], clearance, steady[sel],
                 ~prev_in[sel], ~next_in[sel], plane, move_of, tuple(notes))

@@ -13,12 +13,55 @@ from ccopt.verify.certificate import CERTIFIED, EXACT, Certificate, Check, Viola
 from ccopt.verify.clearance import PairDistances, pair_distances
 from ccopt.verify.contact import check_contact
 from ccopt.verify.continuity import check_continuity
-from ccopt.verify.contour import Contour, contour_of
+from ccopt.verify.contour import STATUS_STEADY, Contour, contour_of
 from ccopt.verify.limits import check_limits
 from ccopt.verify.segments import Packed, lengths, pack
 from ccopt.verify.side import check_side
 
 SIDES = {"left": 1, "right": -1, 1: 1, -1: -1, None: None}
+
+
+ROLE_CODES = {r: q for q, r in enumerate(Role)}
+
+
+@dataclass(frozen=True, eq=False)
+class SegmentTable:
+    """Per tool segment: ``role`` (index into :class:`Role`), source ``line``
+    (-1 when unknown), contour ``element`` (-1 when not a contour element's
+    segment), ``steady`` (its element is steady), radius ``r`` in force."""
+
+    role: np.ndarray
+    line: np.ndarray
+    element: np.ndarray
+    steady: np.ndarray
+    r: np.ndarray
+
+    @classmethod
+    def build(cls, toolpath: ToolPath, contour: Contour) -> "SegmentTable":
+        segs = toolpath.segments
+        n = len(segs)
+        role = np.empty(n, np.int8)
+        line = np.full(n, -1, np.int64)
+        elem = np.full(n, -1, np.intp)
+        steady = np.zeros(n, bool)
+        r = np.zeros(n)
+        lookup = contour.lookup
+        codes = ROLE_CODES
+        for i, s in enumerate(segs):
+            role[i] = codes[s.role]
+            b = s.block
+            if b is None:
+                continue
+            line[i] = b.source.line
+            hit = lookup(b)
+            if hit is not None:
+                elem[i] = hit[3]
+                steady[i] = hit[0] == STATUS_STEADY
+                r[i] = hit[2]
+        return cls(role, line, elem, steady, r)
+
+    def is_role(self, role: Role) -> np.ndarray:
+        return self.role == ROLE_CODES[role]
 
 
 @dataclass(frozen=True, eq=False)
@@ -109,16 +152,17 @@ def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = V
     tool = pack([s.geom for s in segs])
     seg_len = lengths(tool)
 
+    table = SegmentTable.build(toolpath, contour)
+
     def info(i: int):
         s = segs[i]
         return (s.block.source.line if s.block is not None else None), s.role.value
 
-    counted = np.fromiter((s.role not in (Role.RAPID, Role.UNCOMPENSATED) for s in segs),
-                          bool, len(segs))
+    counted = ~(table.is_role(Role.RAPID) | table.is_role(Role.UNCOMPENSATED))
     pairs = pair_distances(tool, contour, eps, counted)
     results = [check_gouge(pairs, contour, eps, info),
-               check_contact(tool, toolpath, contour, eps, seg_len, info),
-               check_side(tool, toolpath, contour, eps, seg_len, info),
+               check_contact(tool, toolpath, contour, eps, seg_len, info, table),
+               check_side(tool, contour, eps, seg_len, info, table),
                check_continuity(tool, toolpath, eps, seg_len, info),
                check_limits(profile)]
     checks = tuple(c for c, _ in results)

@@ -22,7 +22,7 @@ from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
 from ccopt.toolpath import Role
 from ccopt.verify import certified
 from ccopt.verify.certificate import CERTIFIED, EXACT, Check, Violation
-from ccopt.verify.contour import STATUS_STEADY, Contour
+from ccopt.verify.contour import Contour
 from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed
 
 
@@ -67,17 +67,11 @@ def _tangent_at(E, j, w):
     return t
 
 
-def check_side(tool: Packed, toolpath, contour: Contour, eps: float, lengths, info):
-    seg_i, elem_j = [], []
-    for i, s in enumerate(toolpath.segments):
-        if s.role is not Role.COMPENSATED or lengths[i] <= POINT_EPS:
-            continue
-        hit = contour.lookup(s.block)
-        if hit is not None and hit[0] == STATUS_STEADY and hit[3] >= 0 and hit[2] > eps:
-            seg_i.append(i)
-            elem_j.append(hit[3])
-    si = np.asarray(seg_i, np.intp)
-    ej = np.asarray(elem_j, np.intp)
+def check_side(tool: Packed, contour: Contour, eps: float, lengths, info, table):
+    sel = (table.is_role(Role.COMPENSATED) & table.steady & (table.element >= 0)
+           & (lengths > POINT_EPS) & (table.r > eps))
+    si = np.flatnonzero(sel)
+    ej = table.element[si]
     E = contour.elements
     q = _midpoints(tool, si)
     w = np.zeros_like(q)
