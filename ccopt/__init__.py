@@ -19,6 +19,7 @@ from ccopt.feed import AxisLimits, plan_feed
 from ccopt.program import read_program, read_text
 from ccopt.program.model import Block, Modal, Motion, Program, Source
 from ccopt.toolpath import PathSegment, Role, ToolPath, programmed_path
+from ccopt.verify import Certificate, verify
 
 try:
     __version__ = _version("ccopt")
@@ -26,6 +27,7 @@ except PackageNotFoundError:  # running from a source tree without install
     __version__ = "0.0.0+unknown"
 
 __all__ = [
+    "Certificate", "verify",
     "AxisLimits", "plan_feed",
     "Block", "CcoptError", "CompensationError", "Modal", "Motion", "PathSegment", "Program",
     "ProgramError", "Role", "Source", "ToolPath", "compensate", "programmed_path", "read_program",
