@@ -160,7 +160,8 @@ def _junction_speeds(path, limits, v_cap, a_tan, junction_deviation):
 
 
 def baseline_knot_positions(path: ExactPath, limits: AxisLimits,
-                            junction_deviation: float | None = None) -> np.ndarray:
+                            junction_deviation: float | None = None,
+                            budgets: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
     """Path positions where either baseline switches between accelerating,
     cruising and braking (block ends included).
 
@@ -168,11 +169,12 @@ def baseline_knot_positions(path: ExactPath, limits: AxisLimits,
     points of the optimum on straight moves between stops, and with them every
     baseline profile is a feasible point of TOPPRA's discretised problem, whose
     solution is the largest feasible speed at every gridpoint; so TOPPRA can
-    never come out slower than a baseline.
+    never come out slower than a baseline. ``budgets``: the result of
+    :func:`segment_budgets`, if already at hand.
     """
     if not path.segments:
         return np.zeros(0)
-    v_cap, a_tan = segment_budgets(path, limits)
+    v_cap, a_tan = segment_budgets(path, limits) if budgets is None else budgets
     _, s_stop, _, _, _ = _trapezoid_knots(path, v_cap, a_tan, np.zeros(len(path.segments) + 1))
     vb = _junction_speeds(path, limits, v_cap, a_tan, junction_deviation)
     _, s_junc, _, _, _ = _trapezoid_knots(path, v_cap, a_tan, vb)

@@ -27,7 +27,7 @@ from ccopt.feed.constraints import (
     PathSpeedConstraint, TangentialAccelerationConstraint,
 )
 from ccopt.feed.errors import FeedError
-from ccopt.feed.baselines import baseline_knot_positions
+from ccopt.feed.baselines import baseline_knot_positions, segment_budgets
 from ccopt.feed.grid import GridOptions, gridpoints as make_gridpoints, refine
 from ccopt.feed.junction import boundary_speed_caps
 from ccopt.feed.limits import AxisLimits
@@ -35,6 +35,36 @@ from ccopt.feed.path import ExactPath
 from ccopt.feed.profile import FeedProfile
 
 logger = logging.getLogger(__name__)
+
+
+#: Rounding allowance (relative to the squared speeds involved) when the
+#: lower end of a controllable set comes out above its upper end.
+CROSSING_TOL = 1e-9
+
+
+class StoppingTOPPRA(TOPPRA):
+    """toppra's TOPPRA with one numerical guard for paths that stop on the way.
+
+    At a gridpoint whose speed is pinned to 0 the controllable set is
+    ``[0, 0]``, and the one-step LPs next to it come out at rounding level
+    on the wrong side: an upper end of ``-1e-14`` (the forward pass then takes
+    the square root of a negative ``x`` and fails with ``ErrUnknown``) or a
+    lower end a few ``1e-14`` above the upper one (toppra then reports the
+    instance as not controllable, ``FailUncontrollable``). Ends off by no
+    more than rounding (:data:`CROSSING_TOL` relative) are put back: the
+    upper end to 0, the lower end to the upper one. Nothing else of the
+    algorithm changes.
+    """
+
+    def _one_step(self, i, K_next):
+        res = super()._one_step(i, K_next)
+        tol = CROSSING_TOL * max(1.0, abs(float(K_next[1])))
+        lo, hi = res
+        if -tol <= hi < 0.0:
+            res[1] = hi = 0.0
+        if hi < lo <= hi + tol:
+            res[0] = hi
+        return res
 
 
 def speed_caps(path: ExactPath, gridpoints: np.ndarray, a_axis,
@@ -53,15 +83,39 @@ def speed_caps(path: ExactPath, gridpoints: np.ndarray, a_axis,
     return cap
 
 
-def build_constraints(path: ExactPath, limits: AxisLimits, cap: np.ndarray) -> list:
-    """The toppra constraint list for ``path`` under ``limits`` and speed caps ``cap``."""
+def speed_scale(path: ExactPath, v_caps: np.ndarray) -> float:
+    """Reference speed (units/s) for :func:`build_constraints`: the largest
+    budget speed (:func:`ccopt.feed.baselines.segment_budgets`) of the feed
+    moves, a cruise speed the cut really reaches (of the rapids only when
+    there is nothing else): cutting, where the time goes, then runs at
+    squared speeds of order 1."""
+    ok = np.isfinite(v_caps) & (v_caps > 0)
+    feed = ok & np.isfinite(path.feeds)
+    pick = v_caps[feed] if feed.any() else v_caps[ok]
+    return float(pick.max()) if pick.size else 1.0
+
+
+def build_constraints(path: ExactPath, limits: AxisLimits, cap: np.ndarray,
+                      scale: float = 1.0) -> list:
+    """The toppra constraint list for ``path`` under ``limits`` and speed caps ``cap``.
+
+    With ``scale`` the problem is posed in time units of ``1/scale`` seconds:
+    speeds divided by ``scale``, accelerations by ``scale^2``, so squared path
+    speeds are at most about 1. toppra's seidel solver works with absolute
+    tolerances (``1e-10`` on coefficients, ``1e-8`` on feasibility) that
+    suit squared speeds of order 1, not the ``1e4`` of mm/s; the solution
+    ``sd`` is then in units of ``scale``. (Squared speeds much below 1 are
+    not wanted either: toppra's forward pass lowers each one by ``1e-8`` as
+    a safety margin, which costs ``1e-8 / x`` of the time spent at ``x``.)
+    """
     v, a = limits.in_plane(path.toolpath.plane, path.dof)
-    out = [AxisVelocityConstraint(v), AxisAccelerationConstraint(a),
-           PathSpeedConstraint(cap, path.dof)]
+    s2 = scale * scale
+    out = [AxisVelocityConstraint(v / scale), AxisAccelerationConstraint(a / s2),
+           PathSpeedConstraint(cap / scale, path.dof)]
     if limits.tangential_acc is not None:
-        out.append(TangentialAccelerationConstraint(limits.tangential_acc, path.dof))
+        out.append(TangentialAccelerationConstraint(limits.tangential_acc / s2, path.dof))
     if limits.centripetal_acc is not None:
-        out.append(CentripetalAccelerationConstraint(limits.centripetal_acc, path.dof))
+        out.append(CentripetalAccelerationConstraint(limits.centripetal_acc / s2, path.dof))
     return out
 
 
@@ -75,19 +129,23 @@ def plan_toppra(path: ExactPath, limits: AxisLimits, *, junction_deviation: floa
     if not path.segments:
         return FeedProfile.empty(path, limits, "toppra")
     v, a = limits.in_plane(path.toolpath.plane, path.dof)
+    budgets = segment_budgets(path, limits)
     gp = make_gridpoints(path, v, a, grid)
     if grid.baseline_knots:
-        gp = refine(gp, baseline_knot_positions(path, limits, junction_deviation), grid.min_spacing)
+        gp = refine(gp, baseline_knot_positions(path, limits, junction_deviation, budgets),
+                    grid.min_spacing)
     cap = speed_caps(path, gp, a, junction_deviation)
-    algo = TOPPRA(build_constraints(path, limits, cap), path, gridpoints=gp,
-                  solver_wrapper="seidel", parametrizer="ParametrizeConstAccel")
+    scale = speed_scale(path, budgets[0])
+    algo = StoppingTOPPRA(build_constraints(path, limits, cap, scale), path, gridpoints=gp,
+                          solver_wrapper="seidel", parametrizer="ParametrizeConstAccel")
     _, sd, _, K = algo.compute_parameterization(0.0, 0.0, return_data=True)
     code = algo.problem_data.return_code
     if code != ParameterizationReturnCode.Ok or sd is None or np.isnan(sd).any():
         where = _failure_position(gp, sd, K)
         raise FeedError(f"TOPPRA failed ({code.value}) near s = {where:.6g} of "
                         f"{path.length:.6g}", path.source_file, path.block_line(where))
-    info = {"gridpoints": int(gp.size), "return_code": code.name,
+    sd = sd * scale
+    info = {"gridpoints": int(gp.size), "return_code": code.name, "time_scale": scale,
             "junction_deviation": junction_deviation if junction_deviation else 0.0}
     return FeedProfile.from_path_velocity(path, limits, "toppra", gp, sd, info)
 

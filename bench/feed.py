@@ -1,0 +1,185 @@
+"""Benchmark: feed planning of a long compensated pocket, ccopt vs plain toppra.
+
+The pocket is a closed contour of ``n`` blocks around a large circle,
+counter-clockwise, cut inside with CC1 (PMAC compensation, cutter radius
+0.5): a rapid, a Z plunge, a lead-in, the contour, a lead-out and a retract.
+Edges are about 2 mm long and repeat a motif of a straight edge, an arc
+tangent to it, a straight edge meeting the next at a corner, and an arc
+bulging the other way, with radial jitter, so the compensated path has tangent
+joins with curvature breaks, inside corners (sharp, stops) and outside
+corners (PMAC adds tangent arcs).
+
+Measured in the same run, medians of ``--repeat`` runs:
+
+- ccopt's planner (``plan_feed``, TOPPRA on the exact path: path set-up,
+  gridpoints, constraints, TOPPRA, profile), time per gridpoint;
+- plain toppra on the same gridpoints: ``SplineInterpolator`` through the
+  exact positions at the gridpoints, toppra's ``JointVelocityConstraint`` and
+  ``JointAccelerationConstraint`` (interpolation), ``TOPPRA`` with the
+  ``seidel`` solver, ``compute_trajectory`` with ``ParametrizeConstAccel``,
+  time per gridpoint (the spline smooths the corners instead of stopping, so
+  its cycle time is not comparable; it is the cost reference);
+- the cycle times (and planning times) of the three planners.
+
+    python bench/feed.py [--sizes 1000,10000] [--repeat 3]
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from ccopt.compensate import compensate  # noqa: E402
+from ccopt.feed import AxisLimits, ExactPath, GridOptions, plan_feed  # noqa: E402
+from ccopt.program.model import Block, Modal, Motion, Program, Source  # noqa: E402
+
+EDGE = 2.0          # mm, edge length of the contour
+RADIUS = 0.5        # cutter radius, mm
+FEED = 30.0         # mm/s
+DEPTH = -2.0
+LIMITS = AxisLimits(v=(100.0, 100.0, 30.0), a=(1000.0, 1000.0, 300.0))
+
+
+def pocket_program(n: int, seed: int = 1) -> Program:
+    """The pocket: ``n`` contour blocks plus rapid, plunge, lead-in/out, retract."""
+    rng = np.random.default_rng(seed)
+    R = n * EDGE / (2 * math.pi)
+    theta = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+    rad = R + rng.uniform(-0.25, 0.25, n) * EDGE
+    pts = np.c_[rad * np.cos(theta), rad * np.sin(theta)]
+    on = Modal(side=1, radius=RADIUS)
+    off = Modal(side=0, radius=RADIUS)
+    src = iter(range(1, n + 10))
+
+    def blk(motion, s, e, modal, z0=DEPTH, z1=DEPTH, center=None, feed=FEED):
+        return Block(Source("pocket", next(src), 1), motion, (s[0], s[1], z0), (e[0], e[1], z1),
+                     modal, center=None if center is None else (center[0], center[1], z1),
+                     feed=None if motion is Motion.RAPID else feed)
+
+    centre = (R - 10.0, 0.0)
+    blocks = [blk(Motion.RAPID, (0.0, 0.0), centre, off, 0.0, 5.0),
+              blk(Motion.LINE, centre, centre, off, 5.0, DEPTH),
+              blk(Motion.LINE, centre, pts[0], on)]
+    prev_dir = None
+    for i in range(n):
+        p, q = pts[i], pts[(i + 1) % n]
+        kind = i % 4
+        if kind in (1, 3) and prev_dir is not None:
+            # arc from p to q; kind 1 leaves p tangent to the previous edge
+            chord = q - p
+            if kind == 1:
+                t = prev_dir
+            else:
+                t = chord / np.linalg.norm(chord)
+                t = np.array([t[0] * math.cos(0.3) + t[1] * math.sin(0.3),
+                              -t[0] * math.sin(0.3) + t[1] * math.cos(0.3)])
+            nrm = np.array([-t[1], t[0]])
+            # centre on the normal through p, equidistant from p and q
+            denom = 2.0 * float(np.dot(chord, nrm))
+            if abs(denom) > 1e-9:
+                rho = float(np.dot(chord, chord)) / denom
+                c = p + rho * nrm
+                ccw = rho > 0
+                blocks.append(blk(Motion.ARC_CCW if ccw else Motion.ARC_CW, p, q, on, center=c))
+                rv = q - c
+                prev_dir = np.array([-rv[1], rv[0]]) * (1 if ccw else -1)
+                prev_dir = prev_dir / np.linalg.norm(prev_dir)
+                continue
+        blocks.append(blk(Motion.LINE, p, q, on))
+        d = q - p
+        prev_dir = d / np.linalg.norm(d)
+    blocks.append(blk(Motion.LINE, pts[0], centre, off))
+    blocks.append(blk(Motion.LINE, centre, centre, off, DEPTH, 5.0))
+    return Program(tuple(blocks), "pocket", "pmac")
+
+
+def median_time(fn, repeat):
+    times, out = [], None
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times), out
+
+
+def plain_toppra(path: ExactPath, gp: np.ndarray, scale: float):
+    """toppra's own pipeline on the same gridpoints (see the module docstring)."""
+    import toppra as ta
+    import toppra.algorithm as algo
+    import toppra.constraint as constraint
+
+    q = path(gp)
+    v, a = LIMITS.in_plane(path.toolpath.plane, path.dof)
+    # the same time unit as ccopt's planner (its speed_scale): in mm/s toppra's
+    # seidel solver fails on this path (see the module docstring)
+    v, a = v / scale, a / scale ** 2
+
+    def run():
+        spline = ta.SplineInterpolator(gp, q)
+        inst = algo.TOPPRA([constraint.JointVelocityConstraint(v),
+                            constraint.JointAccelerationConstraint(
+                                a, discretization_scheme=constraint.DiscretizationType.Interpolation)],
+                           spline, gridpoints=gp, solver_wrapper="seidel",
+                           parametrizer="ParametrizeConstAccel")
+        traj = inst.compute_trajectory(0, 0)
+        return inst.problem_data.return_code, traj
+    return run
+
+
+def bench(n: int, repeat: int) -> None:
+    prog = pocket_program(n)
+    tp = compensate(prog, "pmac")
+    kinds: dict[str, int] = {}
+    for s in tp.segments:
+        kinds[s.kind] = kinds.get(s.kind, 0) + 1
+    path = ExactPath(tp)
+    print(f"\npocket of {n:,} contour blocks -> {len(tp.segments):,} segments {kinds}, "
+          f"{path.length:,.1f} mm, {int(path.tangent_break.sum()):,} stops")
+
+    t_ccopt, prof = median_time(lambda: plan_feed(tp, LIMITS), repeat)
+    N = prof.info["gridpoints"]
+    # the same gridpoints for toppra: those of the profile's knots (no dwells here)
+    gp = prof.s
+    assert gp.size == N
+    t_peer, (code, traj) = median_time(plain_toppra(path, gp, prof.info["time_scale"]), repeat)
+    per_c, per_p = t_ccopt / N * 1e6, t_peer / N * 1e6
+    print(f"  gridpoints                       : {N:,}")
+    print(f"  ccopt plan_feed (toppra, exact)  : {t_ccopt:8.3f} s  {per_c:7.2f} us/gridpoint")
+    print(f"  plain toppra (SplineInterpolator): {t_peer:8.3f} s  {per_p:7.2f} us/gridpoint "
+          f"({code.name})")
+    print(f"  ratio ccopt / toppra per gridpoint: {per_c / per_p:6.2f}   (target <= 1.5)")
+
+    rows = []
+    for name in ("toppra", "stop", "junction"):
+        t_plan, p = (t_ccopt, prof) if name == "toppra" else \
+            median_time(lambda: plan_feed(tp, LIMITS, planner=name), repeat)
+        rows.append((name, p.duration, t_plan))
+    T0 = rows[0][1]
+    print("  planner    cycle time   vs toppra   planning time")
+    for name, T, t_plan in rows:
+        print(f"  {name:9s} {T:10.3f} s  {T / T0:9.4f}   {t_plan:10.3f} s")
+    if traj is not None:
+        print(f"  (plain toppra on the spline through the gridpoints, corners smoothed: "
+              f"{traj.duration:.3f} s, not comparable)")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--sizes", default="1000,10000")
+    ap.add_argument("--repeat", type=int, default=3)
+    args = ap.parse_args()
+    print(f"limits v={LIMITS.v} a={LIMITS.a}, feed {FEED} mm/s, cutter radius {RADIUS} mm; "
+          f"medians of {args.repeat} runs; grid {GridOptions()}")
+    for n in (int(x) for x in args.sizes.split(",")):
+        bench(n, args.repeat)
+
+
+if __name__ == "__main__":
+    main()
