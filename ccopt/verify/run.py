@@ -76,12 +76,14 @@ class VerifyContext:
     eps: float
 
     def nearest_pairs(self, count: int = 100) -> np.ndarray:
-        """Indices into ``pairs`` of the ``count`` smallest margins (most critical first)."""
-        m = self.pairs.margin
-        if m.size <= count:
-            return np.argsort(m, kind="stable")
-        part = np.argpartition(m, count)[:count]
-        return part[np.argsort(m[part], kind="stable")]
+        """Indices into ``pairs`` of the ``count`` smallest margins among the pairs
+        that count as gouges (most critical first)."""
+        c = np.flatnonzero(self.pairs.counted)
+        m = self.pairs.margin[c]
+        if m.size > count:
+            part = np.argpartition(m, count)[:count]
+            c, m = c[part], m[part]
+        return c[np.argsort(m, kind="stable")]
 
 
 #: Uncompensated approaches listed in the gouge check's detail.
