@@ -129,6 +129,24 @@ def cmd_compensate(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def cmd_export(args: argparse.Namespace) -> int:
+    """Compensate, then write the tool-centre path (read back and verified
+    first, see :mod:`ccopt.export`). Exit 1 when the verification fails."""
+    from ccopt.export import export
+    inp = resolve_input(args.program)
+    prog = load(inp, args)
+    path = compensate_input(inp, prog, args)
+    res = export(path, args.output, program=prog, tol=args.tol,
+                 title=inp.case.title if inp.case else "")
+    if args.json:
+        emit_json(res.to_json())
+    else:
+        verdict = {True: "verified OK", False: "verification FAILED", None: "not verified"}
+        print(f"{res.file}: {res.format}, read back within {res.roundtrip_error:.3g} "
+              f"{path.units} (tolerance {res.tolerance:g}), {verdict[res.verified]}")
+    return EXIT_FAILED if res.verified is False else EXIT_OK
+
+
 def cmd_run(args: argparse.Namespace) -> int:
     """The main job (:mod:`ccopt.run`): compensate, plan the feed, verify,
     compare blends, export and report, for every input; then a summary table.
@@ -371,6 +389,17 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
     p.add_argument("--crosscheck", action="store_true",
                    help="also run the registered cross-check formulations (CVXPY, CasADi)")
     commands["verify"] = cmd_verify
+
+    p = sub.add_parser("export", help="write the verified tool-centre path (.nc .pmc .svg .json)")
+    p.add_argument("program", metavar="PROGRAM", help="program file, case folder or case name")
+    p.add_argument("-o", "--output", required=True, metavar="OUT",
+                   help="output file; the suffix picks the format (.nc .ngc .pmc .svg .json)")
+    p.add_argument("--tol", type=_positive_float, metavar="T",
+                   help="arc-fit tolerance for spirals in G-code (default 0.001 mm or its inch "
+                        "equivalent)")
+    program_args(p)
+    style_args(p)
+    commands["export"] = cmd_export
 
     p = sub.add_parser("run", help="the main job, on bundled cases or given programs")
     p.add_argument("inputs", nargs="*", metavar="CASE|PROGRAM")

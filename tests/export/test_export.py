@@ -166,3 +166,17 @@ def test_read_only_folder_gives_a_located_error(tmp_path):
     assert str(out) in str(err.value)
     leftovers = [p for p in out.parent.iterdir() if p.name.startswith(".taken.nc")]
     assert leftovers == []
+
+
+@pytest.mark.parametrize("case", CASES, ids=lambda c: c.name)
+def test_readback_gets_the_same_verdict(case, tmp_path):
+    from ccopt.verify import verify
+    prog = read_program(case.program)
+    path = ccopt.compensate(prog, case.style, radius=case.radius)
+    before = verify(path, prog)
+    res = export(path, tmp_path / f"{case.name}.nc", program=prog)
+    assert res.verified == before.ok
+    # and the verdict is the case's expectation
+    assert before.ok == (case.expect == "ok")
+    head = (tmp_path / f"{case.name}.nc").read_text().splitlines()[:5]
+    assert any(("OK" if before.ok else "FAILED") in h for h in head)
