@@ -14,6 +14,7 @@ from ccopt import cli
 from ccopt.compensate import STYLES, compensate
 from ccopt.compensate.fagor import linear_transition
 from ccopt.program.gcode import read_gcode
+from segment_expect import L, A, check
 
 TOL = 1e-9
 PI = math.pi
@@ -23,29 +24,6 @@ R = 2.0
 def comp(text: str, **kw):
     kw.setdefault("radius", R)
     return compensate(read_gcode(text, "f.nc"), style="fagor", **kw)
-
-
-def L(role, s, e):
-    return ("line", role, s, e, None, None)
-
-
-def A(role, c, s, e, sweep):
-    return ("arc", role, s, e, c, sweep)
-
-
-def check(path, expected, skip_roles=("rapid",)):
-    segs = [s for s in path.segments if s.role.value not in skip_roles]
-    got = [(s.kind, s.role.value) for s in segs]
-    want = [(e[0], e[1]) for e in expected]
-    assert got == want, f"segment kinds/roles differ:\n got  {got}\n want {want}"
-    for i, (seg, exp) in enumerate(zip(segs, expected)):
-        kind, role, s, e, c, sweep = exp
-        d = seg.to_json()
-        assert np.allclose(d["start"], s, atol=TOL, rtol=0), f"seg {i} start {d['start']} != {s}"
-        assert np.allclose(d["end"], e, atol=TOL, rtol=0), f"seg {i} end {d['end']} != {e}"
-        if c is not None:
-            assert np.allclose(d["center"], c, atol=TOL, rtol=0), f"seg {i} centre {d['center']} != {c}"
-            assert d["sweep"] == pytest.approx(sweep, abs=TOL), f"seg {i} sweep {d['sweep']} != {sweep}"
 
 
 def test_registered():

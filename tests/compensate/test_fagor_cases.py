@@ -26,6 +26,7 @@ import ccopt
 from ccopt.cases import bundled_cases_dir, load_case
 from ccopt.compensate import compensate
 from ccopt.geometry import Arc, Line
+from segment_expect import A as A_, L, check
 
 TOL = 1e-9
 R_TOOL = 2.0
@@ -57,30 +58,6 @@ def run_case(name):
     prog = ccopt.read_program(case.program)
     assert case.style == "fagor" and case.radius == R_TOOL
     return prog, compensate(prog, style=case.style, radius=case.radius)
-
-
-# Expected segments: (kind, role, start, end, centre, sweep)
-def L(role, s, e):
-    return ("line", role, tuple(s), tuple(e), None, None)
-
-
-def A_(role, c, s, e, sweep):
-    return ("arc", role, tuple(s), tuple(e), tuple(c), sweep)
-
-
-def check(path, expected, skip_roles=("rapid",)):
-    segs = [s for s in path.segments if s.role.value not in skip_roles]
-    got = [(s.kind, s.role.value) for s in segs]
-    want = [(e[0], e[1]) for e in expected]
-    assert got == want, f"segment kinds/roles differ:\n got  {got}\n want {want}"
-    for i, (seg, exp) in enumerate(zip(segs, expected)):
-        kind, role, s, e, c, sweep = exp
-        d = seg.to_json()
-        assert np.allclose(d["start"], s, atol=TOL, rtol=0), f"seg {i} start {d['start']} != {s}"
-        assert np.allclose(d["end"], e, atol=TOL, rtol=0), f"seg {i} end {d['end']} != {e}"
-        if c is not None:
-            assert np.allclose(d["center"], c, atol=TOL, rtol=0), f"seg {i} centre {d['center']} != {c}"
-            assert d["sweep"] == pytest.approx(sweep, abs=TOL), f"seg {i} sweep {d['sweep']} != {sweep}"
 
 
 def transition(P, A, B, t_in, t_out, corner, merge_in, merge_out):

@@ -11,12 +11,12 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import pytest
 
 from ccopt.compensate import STYLES, compensate
 from ccopt.compensate.linuxcnc import CONCAVE_TOLERANCE, find_turn
 from ccopt.program.gcode import read_gcode
+from segment_expect import L, A, check
 
 TOL = 1e-9
 PI = math.pi
@@ -24,29 +24,6 @@ PI = math.pi
 
 def comp(text: str, **kw):
     return compensate(read_gcode(text, "t.ngc"), style="linuxcnc", **kw)
-
-
-def L(role, s, e):
-    return ("line", role, s, e, None, None)
-
-
-def A(role, c, s, e, sweep):
-    return ("arc", role, s, e, c, sweep)
-
-
-def check(path, expected, skip_roles=("rapid",)):
-    segs = [s for s in path.segments if s.role.value not in skip_roles]
-    got = [(s.kind, s.role.value) for s in segs]
-    want = [(e[0], e[1]) for e in expected]
-    assert got == want, f"segment kinds/roles differ:\n got  {got}\n want {want}"
-    for i, (seg, exp) in enumerate(zip(segs, expected)):
-        kind, role, s, e, c, sweep = exp
-        d = seg.to_json()
-        assert np.allclose(d["start"], s, atol=TOL, rtol=0), f"seg {i} start {d['start']} != {s}"
-        assert np.allclose(d["end"], e, atol=TOL, rtol=0), f"seg {i} end {d['end']} != {e}"
-        if c is not None:
-            assert np.allclose(d["center"], c, atol=TOL, rtol=0), f"seg {i} centre {d['center']} != {c}"
-            assert d["sweep"] == pytest.approx(sweep, abs=TOL), f"seg {i} sweep {d['sweep']} != {sweep}"
 
 
 def test_registered():

@@ -14,6 +14,7 @@ import pytest
 import ccopt
 from ccopt.cases import bundled_cases_dir, load_case
 from ccopt.compensate import compensate
+from segment_expect import L, A, SP, check
 
 TOL = 1e-9
 S2 = math.sqrt(2.0)
@@ -26,36 +27,8 @@ def run_case(name: str):
     return compensate(prog, style="pmac", radius=case.radius)
 
 
-# Expected segments: (kind, role, start, end[, centre, sweep])
-def L(role, s, e):
-    return ("line", role, s, e, None, None)
-
-
-def A(role, c, s, e, sweep):
-    return ("arc", role, s, e, c, sweep)
-
-
-def SP(role, c, s, e, sweep):
-    return ("spiral", role, s, e, c, sweep)
-
-
 def angle(c, p):
     return math.atan2(p[1] - c[1], p[0] - c[0])
-
-
-def check(path, expected, skip_roles=("rapid",)):
-    segs = [s for s in path.segments if s.role.value not in skip_roles]
-    got = [(s.kind, s.role.value) for s in segs]
-    want = [(e[0], e[1]) for e in expected]
-    assert got == want, f"segment kinds/roles differ:\n got  {got}\n want {want}"
-    for i, (seg, exp) in enumerate(zip(segs, expected)):
-        kind, role, s, e, c, sweep = exp
-        d = seg.to_json()
-        assert np.allclose(d["start"], s, atol=TOL, rtol=0), f"seg {i} start {d['start']} != {s}"
-        assert np.allclose(d["end"], e, atol=TOL, rtol=0), f"seg {i} end {d['end']} != {e}"
-        if c is not None:
-            assert np.allclose(d["center"], c, atol=TOL, rtol=0), f"seg {i} centre {d['center']} != {c}"
-            assert d["sweep"] == pytest.approx(sweep, abs=TOL), f"seg {i} sweep {d['sweep']} != {sweep}"
 
 
 def test_leadin_inside_line():
