@@ -1,7 +1,6 @@
 """The research notebooks run top to bottom (small settings)."""
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import nbformat

@@ -15,7 +15,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ccopt.compensate import decisions
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral, intersect
 from ccopt.program.model import Block, Motion

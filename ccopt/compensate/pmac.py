@@ -13,7 +13,6 @@ Move classes (by the side in force before and for the move):
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np

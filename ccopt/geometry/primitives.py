@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ccopt.geometry.angles import TWO_PI, angle_in_sweep, sweep_between, sweep_sign
+from ccopt.geometry.angles import angle_in_sweep, sweep_between, sweep_sign
 
 Point = tuple[float, float]
 

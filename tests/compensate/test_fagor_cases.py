@@ -163,7 +163,7 @@ def test_g137_inserted_segment_counts_follow_isg_g25():
     """Compensated line->line corners: no segment up to 90 degrees, one beyond;
     at activation/cancellation (not along their offsets) the piece there stays."""
     _, path = run_case("fagor-g137-g139")
-    per_episode, count = [], 0
+    per_episode = []
     for seg in path.segments:
         if seg.role.value == "rapid":
             per_episode.append(0)

@@ -18,7 +18,7 @@ import math
 import numpy as np
 import pytest
 from _geom_sampling import (TAU, dist_to_segment, on_arc, random_arcs, random_points,
-                            random_segments, sample_arc, sample_segment, sampled_min)
+                            random_segments, sample_arc, sample_segment)
 
 from ccopt.geometry import (KIND_ARC, KIND_LINE, KIND_SPIRAL, Arc, Line, SegmentArray, Spiral,
                             arc_arc, distance, pair_distance, point_arc, point_point,

@@ -2,7 +2,6 @@
 every malformed expression an ExprError (never another exception)."""
 from __future__ import annotations
 
-import math
 
 import pytest
 
