@@ -14,7 +14,6 @@ never copied into the project. A missing copy is a failure, not a skip.
 from __future__ import annotations
 
 import math
-import re
 from pathlib import Path
 
 import pytest
@@ -23,40 +22,11 @@ from ccopt.compensate import compensate
 from ccopt.geometry import Line
 from ccopt.program.gcode import read_gcode
 from ccopt.program.model import Motion
-
-DATA = Path(__file__).resolve().parents[2] / ".." / "shared" / "conformance" / "linuxcnc" / "crazy-paths"
-TOL = 5e-5  # expected figures are printed to 4 decimals
-N_CALLS = 75
-_CANON = re.compile(r"\b(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED)\((.*)\)\s*$")
+from linuxcnc_data import N_CALLS, TOL, data_file, expected_calls, split_calls
 
 
 def _data(name: str) -> Path:
-    path = DATA / name
-    if not path.is_file():
-        pytest.fail(f"LinuxCNC conformance data missing: {path.resolve()} (expected the shared "
-                    "folder next to the repository: shared/conformance/linuxcnc/crazy-paths)")
-    return path
-
-
-def _split_calls(moves):
-    """Split a list of (kind, numbers) at every STRAIGHT_TRAVERSE: one call each
-    (every call of test.ngc starts with its own G0 and has no other)."""
-    calls = []
-    for kind, nums in moves:
-        if kind == "STRAIGHT_TRAVERSE" or not calls:
-            calls.append([])
-        calls[-1].append((kind, nums))
-    return calls
-
-
-def expected_calls():
-    moves = []
-    for line in _data("expected").read_text().splitlines():
-        m = _CANON.search(line)
-        if m:
-            kind, args = m.groups()
-            moves.append((kind, [float(a) for a in args.split(",")]))
-    return _split_calls(moves)
+    return data_file(name)
 
 
 def canonical_moves(path):
@@ -87,7 +57,7 @@ def program():
 
 @pytest.fixture(scope="module")
 def ours(program):
-    return _split_calls(canonical_moves(compensate(program, style="linuxcnc")))
+    return split_calls(canonical_moves(compensate(program, style="linuxcnc")))
 
 
 @pytest.fixture(scope="module")

@@ -8,45 +8,21 @@ never copied into the project. A missing copy is a failure, not a skip.
 from __future__ import annotations
 
 import math
-import re
 from pathlib import Path
 
 import pytest
 
 from ccopt.program.gcode import read_gcode
 from ccopt.program.model import Motion
-
-DATA = Path(__file__).resolve().parents[2] / ".." / "shared" / "conformance" / "linuxcnc" / "crazy-paths"
-TOL = 5e-5  # expected figures are printed to 4 decimals
-N_CALLS = 75
-_CANON = re.compile(r"\b(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED|COMMENT)\((.*)\)\s*$")
+from linuxcnc_data import N_CALLS, TOL, data_file, expected_calls
 
 
 def _data(name: str) -> Path:
-    path = DATA / name
-    if not path.is_file():
-        pytest.fail(f"LinuxCNC conformance data missing: {path.resolve()} (expected the shared "
-                    "folder next to the repository: shared/conformance/linuxcnc/crazy-paths)")
-    return path
+    return data_file(name)
 
 
 def _expected_calls() -> list[list[tuple[str, object]]]:
-    """`expected` split at each STRAIGHT_TRAVERSE: [(kind, numbers or comment text)]."""
-    calls: list[list[tuple[str, object]]] = []
-    for line in _data("expected").read_text().splitlines():
-        m = _CANON.search(line)
-        if not m:
-            continue
-        kind, args = m.groups()
-        if kind == "COMMENT":
-            item = (kind, args.strip().strip('"'))
-        else:
-            item = (kind, [float(a) for a in args.split(",")])
-        if kind == "STRAIGHT_TRAVERSE":
-            calls.append([item])
-        elif calls:
-            calls[-1].append(item)
-    return calls
+    return expected_calls(comments=True)
 
 
 @pytest.fixture(scope="module")
