@@ -17,8 +17,8 @@ Measured in the same run, medians of ``--repeat`` runs:
   exact positions at the gridpoints, toppra's ``JointVelocityConstraint`` and
   ``JointAccelerationConstraint`` (interpolation), ``TOPPRA`` with the
   ``seidel`` solver, ``compute_trajectory`` with ``ParametrizeConstAccel``,
-  time per gridpoint (the spline smooths the corners instead of stopping, so
-  its cycle time is not comparable; it is the cost reference);
+  time per gridpoint (the spline rings through the corners instead of
+  stopping, so its cycle time means nothing; it is the cost reference);
 - the cycle times (and planning times) of the three planners.
 
     python bench/feed.py [--sizes 1000,10000] [--repeat 3]
@@ -100,13 +100,19 @@ def pocket_program(n: int, seed: int = 1) -> Program:
     return Program(tuple(blocks), "pocket", "pmac")
 
 
-def median_time(fn, repeat):
-    times, out = [], None
+def interleaved(fns: dict, repeat: int):
+    """Run each function ``repeat`` times, taking turns (so a change in the
+    machine's load hits all alike); ``{name: (median CPU s, median wall s, result)}``."""
+    cpu = {k: [] for k in fns}
+    wall = {k: [] for k in fns}
+    out = {}
     for _ in range(repeat):
-        t0 = time.perf_counter()
-        out = fn()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times), out
+        for name, fn in fns.items():
+            c0, w0 = time.process_time(), time.perf_counter()
+            out[name] = fn()
+            cpu[name].append(time.process_time() - c0)
+            wall[name].append(time.perf_counter() - w0)
+    return {k: (statistics.median(cpu[k]), statistics.median(wall[k]), out[k]) for k in fns}
 
 
 def plain_toppra(path: ExactPath, gp: np.ndarray, scale: float):
@@ -143,31 +149,31 @@ def bench(n: int, repeat: int) -> None:
     print(f"\npocket of {n:,} contour blocks -> {len(tp.segments):,} segments {kinds}, "
           f"{path.length:,.1f} mm, {int(path.tangent_break.sum()):,} stops")
 
-    t_ccopt, prof = median_time(lambda: plan_feed(tp, LIMITS), repeat)
+    prof = plan_feed(tp, LIMITS)            # the gridpoints (and a warm-up)
     N = prof.info["gridpoints"]
-    # the same gridpoints for toppra: those of the profile's knots (no dwells here)
-    gp = prof.s
+    gp = prof.s                             # the profile's knots are its gridpoints (no dwells)
     assert gp.size == N
-    t_peer, (code, traj) = median_time(plain_toppra(path, gp, prof.info["time_scale"]), repeat)
-    per_c, per_p = t_ccopt / N * 1e6, t_peer / N * 1e6
+    res = interleaved({
+        "ccopt": lambda: plan_feed(tp, LIMITS),
+        "toppra": plain_toppra(path, gp, prof.info["time_scale"]),
+        "stop": lambda: plan_feed(tp, LIMITS, planner="stop"),
+        "junction": lambda: plan_feed(tp, LIMITS, planner="junction"),
+    }, repeat)
+    (c_cpu, c_wall, prof), (p_cpu, p_wall, (code, _)) = res["ccopt"], res["toppra"]
     print(f"  gridpoints                       : {N:,}")
-    print(f"  ccopt plan_feed (toppra, exact)  : {t_ccopt:8.3f} s  {per_c:7.2f} us/gridpoint")
-    print(f"  plain toppra (SplineInterpolator): {t_peer:8.3f} s  {per_p:7.2f} us/gridpoint "
-          f"({code.name})")
-    print(f"  ratio ccopt / toppra per gridpoint: {per_c / per_p:6.2f}   (target <= 1.5)")
-
-    rows = []
-    for name in ("toppra", "stop", "junction"):
-        t_plan, p = (t_ccopt, prof) if name == "toppra" else \
-            median_time(lambda: plan_feed(tp, LIMITS, planner=name), repeat)
-        rows.append((name, p.duration, t_plan))
-    T0 = rows[0][1]
-    print("  planner    cycle time   vs toppra   planning time")
-    for name, T, t_plan in rows:
-        print(f"  {name:9s} {T:10.3f} s  {T / T0:9.4f}   {t_plan:10.3f} s")
-    if traj is not None:
-        print(f"  (plain toppra on the spline through the gridpoints, corners smoothed: "
-              f"{traj.duration:.3f} s, not comparable)")
+    print("                                      CPU s   us/gridpoint   (wall s)")
+    print(f"  ccopt plan_feed (toppra, exact)  : {c_cpu:7.3f}   {c_cpu / N * 1e6:8.2f}      "
+          f"({c_wall:.3f})")
+    print(f"  plain toppra (SplineInterpolator): {p_cpu:7.3f}   {p_cpu / N * 1e6:8.2f}      "
+          f"({p_wall:.3f})  return code {code.name}")
+    print(f"  ratio ccopt / toppra per gridpoint: {c_cpu / p_cpu:6.2f} CPU, "
+          f"{c_wall / p_wall:.2f} wall   (target <= 1.5)")
+    T0 = prof.duration
+    print("  planner    cycle time   vs toppra   planning CPU s")
+    for name in ("ccopt", "stop", "junction"):
+        cpu_s, _, p = res[name]
+        label = "toppra" if name == "ccopt" else name
+        print(f"  {label:9s} {p.duration:10.3f} s  {p.duration / T0:9.4f}   {cpu_s:10.3f}")
 
 
 def main() -> None:
@@ -176,7 +182,7 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3)
     args = ap.parse_args()
     print(f"limits v={LIMITS.v} a={LIMITS.a}, feed {FEED} mm/s, cutter radius {RADIUS} mm; "
-          f"medians of {args.repeat} runs; grid {GridOptions()}")
+          f"medians of {args.repeat} interleaved runs; grid {GridOptions()}")
     for n in (int(x) for x in args.sizes.split(",")):
         bench(n, args.repeat)
 

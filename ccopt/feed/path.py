@@ -239,7 +239,8 @@ class ExactPath(AbstractGeometricPath):
             return abs(geom.sweep)
         s = np.linspace(0.0, float(geom.length), 257)
         kappa = np.abs(np.asarray(geom.curvature(s), dtype=float))
-        return float(np.trapz(kappa, s))
+        trapezoid = getattr(np, "trapezoid", None) or np.trapz  # numpy 2 renamed it
+        return float(trapezoid(kappa, s))
 
     def block_line(self, s: float) -> int | None:
         """Source line of the block the path is in at ``s`` (``None`` if unknown)."""

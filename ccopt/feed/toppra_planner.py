@@ -58,12 +58,13 @@ class StoppingTOPPRA(TOPPRA):
 
     def _one_step(self, i, K_next):
         res = super()._one_step(i, K_next)
-        tol = CROSSING_TOL * max(1.0, abs(float(K_next[1])))
         lo, hi = res
-        if -tol <= hi < 0.0:
-            res[1] = hi = 0.0
-        if hi < lo <= hi + tol:
-            res[0] = hi
+        if hi < 0.0 or lo > hi:  # rare: only then pay for the checks
+            tol = CROSSING_TOL * max(1.0, abs(float(K_next[1])))
+            if -tol <= hi < 0.0:
+                res[1] = hi = 0.0
+            if hi < lo <= hi + tol:
+                res[0] = hi
         return res
 
 

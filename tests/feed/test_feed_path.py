@@ -152,3 +152,52 @@ def test_plain_toppra_constraints_accept_the_exact_path():
     traj = inst.compute_trajectory(0, 0)
     # direction (0.6, 0.8): v = 50, a = 500; T = L/v + v/a = 1 + 0.1
     assert traj.duration == pytest.approx(1.1, rel=1e-3)
+
+
+class Clothoid:
+    """Euler spiral from the origin along +X, curvature s / A^2: a stand-in for
+    a parametric blend curve (same interface as the primitives, by arc length)."""
+
+    def __init__(self, A: float, length: float):
+        self.A, self.length = A, length
+        self.start, self.end = (0.0, 0.0), tuple(self.point(length))
+
+    def point(self, s):
+        from scipy.special import fresnel
+        k = self.A * math.sqrt(math.pi)
+        S, C = fresnel(np.asarray(s, float) / k)
+        return np.stack([k * C, k * S], axis=-1)
+
+    def d1(self, s):
+        th = np.asarray(s, float) ** 2 / (2 * self.A ** 2)
+        return np.stack([np.cos(th), np.sin(th)], axis=-1)
+
+    def d2(self, s):
+        s = np.asarray(s, float)
+        th = s ** 2 / (2 * self.A ** 2)
+        return np.stack([-np.sin(th), np.cos(th)], axis=-1) * (s / self.A ** 2)[..., None]
+
+    def curvature(self, s):
+        return np.asarray(s, float) / self.A ** 2
+
+
+def test_blend_curve_from_its_own_methods():
+    """A segment that is neither line, arc nor spiral is evaluated through its
+    own point/d1/d2; its turning (for the grid) integrates the curvature."""
+    from ccopt.feed import plan_feed
+
+    cl = Clothoid(A=5.0, length=10.0)              # turns 10^2 / (2 * 25) = 2 rad
+    tp = ToolPath((seg(Line((-20.0, 0.0), (0.0, 0.0))), seg(cl)))
+    path = ExactPath(tp)
+    assert path.segments[1].kind == "curve"
+    assert path.turning(1) == pytest.approx(2.0, rel=1e-4)
+    assert not path.tangent_break[1]               # G2-continuous join
+    s = np.linspace(20.0, 30.0, 11)
+    k = np.full(s.size, 1)
+    assert np.allclose(path.eval_segments(k, s, 0), cl.point(s - 20.0), atol=1e-12)
+    assert np.allclose(path.eval_segments(k, s, 2), cl.d2(s - 20.0), atol=1e-12)
+    lim = AxisLimits((100.0, 100.0), (1000.0, 1000.0), centripetal_acc=300.0)
+    smp = plan_feed(path, lim).sample(1e-3)
+    kappa_v2 = smp.curvature * smp.feed ** 2
+    assert kappa_v2.max() <= 300.0 * 1.005
+    assert smp.axis_acceleration_ratio.max() <= 1.005

@@ -214,3 +214,17 @@ def test_large_radius_arc_is_planned():
     # a straight 250 mm at 140 mm/s and 2000 mm/s^2, the arc all but straight
     assert prof.duration == pytest.approx(250 / 140 + 140 / 2000, rel=1e-4)
     assert prof.info["time_scale"] == pytest.approx(140.0)
+
+
+def test_plan_feed_arguments():
+    tp = ToolPath((seg(Line((0, 0), (10, 0)), feed=10.0),))
+    lim = AxisLimits((100.0, 100.0), (1000.0, 1000.0))
+    with pytest.raises(ValueError, match="unknown planner"):
+        plan_feed(tp, lim, planner="fastest")
+    with pytest.raises(TypeError):
+        plan_feed(tp, {"v": [1, 1], "a": [1, 1]})
+    with pytest.raises(ValueError, match="junction_deviation"):
+        plan_feed(tp, lim, junction_deviation=-1.0)
+    # an ExactPath can be shared between planners
+    path = ExactPath(tp)
+    assert plan_feed(path, lim).path is path
