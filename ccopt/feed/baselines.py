@@ -169,7 +169,8 @@ def baseline_knot_positions(path: ExactPath, limits: AxisLimits,
     points of the optimum on straight moves between stops, and with them every
     baseline profile is a feasible point of TOPPRA's discretised problem, whose
     solution is the largest feasible speed at every gridpoint; so TOPPRA can
-    never come out slower than a baseline. ``budgets``: the result of
+    never come out slower than a baseline (but for toppra's ``1e-8`` margin on
+    squared speeds). ``budgets``: the result of
     :func:`segment_budgets`, if already at hand.
     """
     if not path.segments:

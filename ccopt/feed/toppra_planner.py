@@ -12,11 +12,17 @@ overshoots the limits between gridpoints).
 The gridpoints include the switch points of both baseline planners
 (:func:`ccopt.feed.baselines.baseline_knot_positions`): every baseline
 profile is then feasible for the discretised problem, so the TOPPRA profile,
-the largest feasible speed at every gridpoint, is never slower than either.
+the largest feasible speed at every gridpoint, is never slower than either
+(up to toppra's own margin: its forward pass lowers each squared speed by
+``1e-8``, a few ``1e-7`` of the duration at most).
+
+Two numerical matters, both from toppra's absolute tolerances: the problem
+is posed in a time unit where squared cruise speeds are about 1
+(:func:`speed_scale`, :func:`build_constraints`), and
+:class:`StoppingTOPPRA` puts back controllable-set ends that rounding pushed
+across each other next to zero-speed gridpoints.
 """
 from __future__ import annotations
-
-import logging
 
 import numpy as np
 from toppra.algorithm import TOPPRA
@@ -33,9 +39,6 @@ from ccopt.feed.junction import boundary_speed_caps
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.feed.profile import FeedProfile
-
-logger = logging.getLogger(__name__)
-
 
 #: Rounding allowance (relative to the squared speeds involved) when the
 #: lower end of a controllable set comes out above its upper end.
