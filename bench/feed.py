@@ -36,9 +36,9 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from ccopt.compensate import compensate  # noqa: E402
-from ccopt.feed import AxisLimits, ExactPath, GridOptions, plan_feed  # noqa: E402
-from ccopt.program.model import Block, Modal, Motion, Program, Source  # noqa: E402
+from ccopt.compensate import compensate
+from ccopt.feed import AxisLimits, ExactPath, GridOptions, plan_feed
+from ccopt.program.model import Block, Modal, Motion, Program, Source
 
 EDGE = 2.0          # mm, edge length of the contour
 RADIUS = 0.5        # cutter radius, mm
@@ -119,7 +119,7 @@ def plain_toppra(path: ExactPath, gp: np.ndarray, scale: float):
     """toppra's own pipeline on the same gridpoints (see the module docstring)."""
     import toppra as ta
     import toppra.algorithm as algo
-    import toppra.constraint as constraint
+    from toppra import constraint
 
     q = path(gp)
     v, a = LIMITS.in_plane(path.toolpath.plane, path.dof)

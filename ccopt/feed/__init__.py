@@ -67,9 +67,9 @@ def planner_function(name: str):
     return getattr(importlib.import_module(module), func)
 
 
-def plan_feed(toolpath: "ToolPath | ExactPath", limits: AxisLimits, *, planner: str = "toppra",
+def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: str = "toppra",
               junction_deviation: float | None = None,
-              grid: "GridOptions | None" = None) -> "FeedProfile":
+              grid: GridOptions | None = None) -> FeedProfile:
     """Feed profile of ``toolpath`` under ``limits``.
 
     Parameters
@@ -107,6 +107,17 @@ def plan_feed(toolpath: "ToolPath | ExactPath", limits: AxisLimits, *, planner: 
     return func(path, limits, **kwargs)
 
 
-__all__ = ["AxisLimits", "ExactPath", "FeedError", "FeedProfile", "FeedSamples", "GridOptions",
-           "PLANNERS", "plan_feed", "plan_junction", "plan_stop_per_block", "plan_toppra",
-           "planner_function"]
+__all__ = [
+    "PLANNERS",
+    "AxisLimits",
+    "ExactPath",
+    "FeedError",
+    "FeedProfile",
+    "FeedSamples",
+    "GridOptions",
+    "plan_feed",
+    "plan_junction",
+    "plan_stop_per_block",
+    "plan_toppra",
+    "planner_function",
+]

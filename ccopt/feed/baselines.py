@@ -33,10 +33,10 @@ import math
 import numpy as np
 
 from ccopt.feed.junction import boundary_speed_caps
-from ccopt.geometry import Arc
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.feed.profile import FeedProfile
+from ccopt.geometry import Arc
 
 #: Tangent turning between two samples of a curved segment for its budget (rad).
 BUDGET_SAMPLE_ANGLE = 0.01
@@ -48,7 +48,7 @@ def _budget_samples(path: ExactPath) -> tuple[np.ndarray, np.ndarray]:
     polar angle that is a multiple of pi/2 (where an axis component of ``q'``
     or ``q''`` peaks), so an arc's budget is exact."""
     K = len(path.segments)
-    n = np.array([max(3, int(math.ceil(path.turning(k) / BUDGET_SAMPLE_ANGLE)) + 1)
+    n = np.array([max(3, math.ceil(path.turning(k) / BUDGET_SAMPLE_ANGLE) + 1)
                   for k in range(K)])
     k = np.repeat(np.arange(K), n)
     first = np.concatenate([[0], np.cumsum(n)[:-1]])

@@ -155,7 +155,7 @@ class FeedProfile:
 
     @classmethod
     def from_path_velocity(cls, path: ExactPath, limits: AxisLimits, planner: str,
-                           gridpoints, sd, info: dict | None = None) -> "FeedProfile":
+                           gridpoints, sd, info: dict | None = None) -> FeedProfile:
         """Constant acceleration between gridpoints, as toppra's ``ParametrizeConstAccel``.
 
         ``dt_i = 2 ds_i / (sd_i + sd_i+1)``, ``sdd_i = (sd_i+1^2 - sd_i^2) / (2 ds_i)``.
@@ -177,7 +177,7 @@ class FeedProfile:
 
     @classmethod
     def from_knots(cls, path: ExactPath, limits: AxisLimits, planner: str, dt, s, sd, sdd,
-                   segment, info: dict | None = None) -> "FeedProfile":
+                   segment, info: dict | None = None) -> FeedProfile:
         """From interval durations ``dt`` and knots ``s``, ``sd`` (``len(dt) + 1``)."""
         t = np.concatenate([[0.0], np.cumsum(np.asarray(dt, dtype=float))])
         return cls._build(path, limits, planner, t, np.asarray(s, float), np.asarray(sd, float),
@@ -199,7 +199,7 @@ class FeedProfile:
         return cls(path, limits, planner, t, s, sd, sdd, seg, dict(info or {}))
 
     @classmethod
-    def empty(cls, path: ExactPath, limits: AxisLimits, planner: str) -> "FeedProfile":
+    def empty(cls, path: ExactPath, limits: AxisLimits, planner: str) -> FeedProfile:
         """The profile of a path with no motion (only its dwells, if any)."""
         return cls._build(path, limits, planner, np.zeros(1), np.zeros(1), np.zeros(1),
                           np.zeros(0), np.zeros(0, dtype=int), {})

@@ -28,13 +28,17 @@ import numpy as np
 from toppra.algorithm import TOPPRA
 from toppra.algorithm.algorithm import ParameterizationReturnCode
 
+from ccopt.feed.baselines import baseline_knot_positions, segment_budgets
 from ccopt.feed.constraints import (
-    AxisAccelerationConstraint, AxisVelocityConstraint, CentripetalAccelerationConstraint,
-    PathSpeedConstraint, TangentialAccelerationConstraint,
+    AxisAccelerationConstraint,
+    AxisVelocityConstraint,
+    CentripetalAccelerationConstraint,
+    PathSpeedConstraint,
+    TangentialAccelerationConstraint,
 )
 from ccopt.feed.errors import FeedError
-from ccopt.feed.baselines import baseline_knot_positions, segment_budgets
-from ccopt.feed.grid import GridOptions, gridpoints as make_gridpoints, refine
+from ccopt.feed.grid import GridOptions, refine
+from ccopt.feed.grid import gridpoints as make_gridpoints
 from ccopt.feed.junction import boundary_speed_caps
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
@@ -124,12 +128,13 @@ def build_constraints(path: ExactPath, limits: AxisLimits, cap: np.ndarray,
 
 
 def plan_toppra(path: ExactPath, limits: AxisLimits, *, junction_deviation: float | None = None,
-                grid: GridOptions = GridOptions()) -> FeedProfile:
+                grid: GridOptions | None = None) -> FeedProfile:
     """Time-optimal profile of ``path`` under ``limits`` (see the module docstring).
 
     Raises :class:`FeedError` naming the block where TOPPRA failed when its
     return code is not ``Ok``.
     """
+    grid = GridOptions() if grid is None else grid
     if not path.segments:
         return FeedProfile.empty(path, limits, "toppra")
     v, a = limits.in_plane(path.toolpath.plane, path.dof)

@@ -12,7 +12,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings, strategies as st
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import ccopt
 from ccopt.cases import bundled_cases
@@ -20,7 +21,7 @@ from ccopt.compensate import compensate
 from ccopt.feed import AxisLimits, ExactPath, plan_feed
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _contours import contour_program, random_limits  # noqa: E402
+from _contours import contour_program, random_limits
 
 OVER = 1.005        # axis limits: at most 0.5% over, sampled at 1 kHz
 FEED_ROUNDING = 1e-9

@@ -139,7 +139,7 @@ def test_limits_in_plane_order_and_missing_axis():
 def test_plain_toppra_constraints_accept_the_exact_path():
     """ExactPath plugs into toppra's own constraints and algorithm unchanged."""
     import toppra.algorithm as algo
-    import toppra.constraint as constraint
+    from toppra import constraint
 
     path = ExactPath(ToolPath((seg(Line((0, 0), (30, 40)), feed=None, role=Role.RAPID),)))
     gp = np.linspace(0, 50, 101)

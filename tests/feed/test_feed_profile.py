@@ -158,7 +158,9 @@ def test_missing_z_limit_is_a_located_error():
 def test_toppra_failure_is_a_located_error(monkeypatch):
     """A failed TOPPRA return code becomes a FeedError naming the block."""
     from toppra.algorithm.algorithm import ParameterizationReturnCode
-    from toppra.algorithm.reachabilitybased.reachability_algorithm import ReachabilityAlgorithm
+    from toppra.algorithm.reachabilitybased.reachability_algorithm import (
+        ReachabilityAlgorithm,
+    )
 
     def failing(self, sd_start, sd_end, return_data=False):
         K = np.zeros((self._N + 1, 2))
