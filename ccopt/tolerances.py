@@ -54,3 +54,19 @@ VERIFY_CERTIFIED_MAX_ROUNDS = 40
 #: than this (relative to max(1, R)) is a spiral; within it, an arc (the
 #: difference is rounding of the written numbers).
 SPIRAL_RADIUS_REL_TOL = 1e-9
+
+# -- feed planning (ccopt.feed) --------------------------------------------------
+
+#: Tangent turning between two samples of a curved segment for its budget (rad).
+BUDGET_SAMPLE_ANGLE = 0.01
+
+#: Two consecutive segments whose end and start points are further apart than
+#: this are not connected: the path must stop there (program units; ccopt.feed).
+GAP_EPS = 1e-6
+
+#: A limit counts as active where its ratio |value| / limit is at least this.
+ACTIVE_RATIO = 0.99
+
+#: Rounding allowance (relative to the squared speeds involved) when the
+#: lower end of a controllable set comes out above its upper end.
+CROSSING_TOL = 1e-9

@@ -37,9 +37,7 @@ from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.feed.profile import FeedProfile
 from ccopt.geometry import Arc
-
-#: Tangent turning between two samples of a curved segment for its budget (rad).
-BUDGET_SAMPLE_ANGLE = 0.01
+from ccopt.tolerances import BUDGET_SAMPLE_ANGLE
 
 
 def _budget_samples(path: ExactPath) -> tuple[np.ndarray, np.ndarray]:

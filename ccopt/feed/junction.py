@@ -22,7 +22,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ccopt.feed.path import GAP_EPS, ExactPath
+from ccopt.feed.path import ExactPath
+from ccopt.tolerances import GAP_EPS
 
 #: grbl's thresholds on cos(theta) for "reversal" and "straight".
 REVERSAL_COS = 0.999999

@@ -43,12 +43,9 @@ from toppra.interpolator import AbstractGeometricPath
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.tolerances import POINT_EPS, TURN_EPS
 from ccopt.toolpath import Role, ToolPath
+from ccopt.tolerances import GAP_EPS
 
 _LINE, _ARC, _OTHER = 0, 1, 2
-
-#: Two consecutive segments whose end and start points are further apart than
-#: this are not connected: the path must stop there (program units).
-GAP_EPS = 1e-6
 
 
 @dataclass(frozen=True)

@@ -25,9 +25,7 @@ import numpy as np
 from ccopt.feed.errors import FeedError
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
-
-#: A limit counts as active where its ratio |value| / limit is at least this.
-ACTIVE_RATIO = 0.99
+from ccopt.tolerances import ACTIVE_RATIO
 
 
 @dataclass(frozen=True, eq=False)

@@ -43,10 +43,7 @@ from ccopt.feed.junction import boundary_speed_caps
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.feed.profile import FeedProfile
-
-#: Rounding allowance (relative to the squared speeds involved) when the
-#: lower end of a controllable set comes out above its upper end.
-CROSSING_TOL = 1e-9
+from ccopt.tolerances import CROSSING_TOL
 
 
 class StoppingTOPPRA(TOPPRA):
