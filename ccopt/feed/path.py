@@ -41,9 +41,8 @@ import numpy as np
 from toppra.interpolator import AbstractGeometricPath
 
 from ccopt.geometry import Arc, Line, Spiral
-from ccopt.tolerances import POINT_EPS, TURN_EPS
+from ccopt.tolerances import GAP_EPS, POINT_EPS, TURN_EPS
 from ccopt.toolpath import Role, ToolPath
-from ccopt.tolerances import GAP_EPS
 
 _LINE, _ARC, _OTHER = 0, 1, 2
 
