@@ -1,0 +1,23 @@
+"""Compare lead-in, lead-out and corner blends of one program, certified and timed.
+
+::
+
+    from ccopt.compare import compare
+    cmp = compare(prog, limits=ccopt.AxisLimits(v=[100, 100, 30], a=[1000, 1000, 300]))
+    for row in cmp:
+        print(row.name, row.figures["duration"], row.figures["continuity"])
+    cmp.to_json()   # {"variants": [{"name", "duration", "min_clearance", ...}, ...]}
+
+Variants are the controller styles and geometric leads built in
+(:mod:`.registry`) plus every ``ccopt.blends`` entry point (the optimised
+blends and the smoother of :mod:`formulations` register there). A blend is
+``blend(problem: BlendProblem) -> ToolPath | BlendOutcome`` (:mod:`.blend`);
+leads are found and replaced with :mod:`.leads`; figures are in
+:mod:`.figures`.
+"""
+from ccopt.compare.blend import BlendOutcome, BlendProblem, BlendRejected
+from ccopt.compare.core import FIGURES, REFERENCE, Comparison, VariantResult, compare, measure
+from ccopt.compare.registry import ENTRY_POINT_GROUP, available, load
+
+__all__ = ["BlendOutcome", "BlendProblem", "BlendRejected", "Comparison", "ENTRY_POINT_GROUP",
+           "FIGURES", "REFERENCE", "VariantResult", "available", "compare", "load", "measure"]

@@ -1,0 +1,192 @@
+"""``compare``: every variant of one program, with the same figures.
+
+For each variant: build its tool path (timed: ``solve_time``), certify it
+with :func:`ccopt.verify.verify` against the program's contour, plan its feed
+with TOPPRA under the same limits, and measure it (:mod:`.figures`) against
+the reference, PMAC's path. A variant that a controller refuses
+(``refused``), that cannot be built or certified (``rejected``) or that fails
+unexpectedly (``failed``) is still listed, with the reason and no figures.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+from ccopt.compare.blend import BlendOutcome, BlendProblem, BlendRejected
+from ccopt.compare.figures import max_deviation, path_figures
+from ccopt.compare.leads import lead_joins
+from ccopt.compare.registry import available, load
+from ccopt.errors import CcoptError
+from ccopt.feed.limits import AxisLimits
+from ccopt.program.model import Program
+from ccopt.toolpath import ToolPath
+
+REFERENCE = "pmac"
+
+#: Figures every listed variant has (``None`` when it has no tool path).
+FIGURES = ("length", "max_curvature", "max_curvature_jump", "continuity", "path_continuity",
+           "tangent_breaks", "duration", "duration_ratio", "min_clearance", "certified",
+           "max_deviation", "max_deviation_bound", "solve_time")
+
+
+@dataclass
+class VariantResult:
+    """One row of the comparison."""
+
+    name: str
+    status: str                     # ok | refused | rejected | failed
+    message: str | None = None
+    toolpath: ToolPath | None = None
+    certificate: object | None = None
+    figures: dict = field(default_factory=dict)
+    info: dict = field(default_factory=dict)
+
+    def __getitem__(self, key):
+        return self.to_json()[key]
+
+    def to_json(self) -> dict:
+        out = {"name": self.name, "status": self.status, "message": self.message}
+        for k in FIGURES:
+            out[k] = self.figures.get(k)
+        for k, v in self.figures.items():
+            out.setdefault(k, v)
+        if self.info:
+            out["info"] = self.info
+        return out
+
+
+@dataclass
+class Comparison:
+    """Rows in variant order; iterable. ``reference`` is PMAC's path."""
+
+    variants: list[VariantResult]
+    reference: ToolPath | None
+    limits: AxisLimits | None
+    program: Program
+
+    def __iter__(self):
+        return iter(self.variants)
+
+    def __len__(self):
+        return len(self.variants)
+
+    def __getitem__(self, name: str) -> VariantResult:
+        for v in self.variants:
+            if v.name == name:
+                return v
+        raise KeyError(name)
+
+    def to_json(self) -> dict:
+        return {"program": self.program.file,
+                "radius": self.reference.radius if self.reference is not None else None,
+                "units": self.program.units,
+                "limits": self.limits.to_json() if self.limits is not None else None,
+                "reference": REFERENCE,
+                "variants": [v.to_json() for v in self.variants]}
+
+
+def _duration(path: ToolPath, limits: AxisLimits | None):
+    if limits is None:
+        return None, None
+    from ccopt.feed import plan_feed
+    try:
+        return plan_feed(path, limits).duration, None
+    except CcoptError as exc:
+        return None, f"feed: {exc}"
+
+
+def measure(name: str, path: ToolPath, problem: BlendProblem, solve_time: float,
+            info: dict | None = None, certificate=None) -> VariantResult:
+    """Certify, time and measure one variant's tool path."""
+    cert = certificate if certificate is not None else problem.certify(path)
+    fig = path_figures(path, lead_joins(path))
+    dur, feed_msg = _duration(path, problem.limits)
+    dev, dev_bound = max_deviation(path, problem.reference)
+    gouge = cert.check("gouge")
+    fig.update(duration=dur, min_clearance=cert.min_clearance, certified=bool(cert.ok),
+               clearance_ok=bool(gouge.ok), violations=len(cert.violations),
+               max_deviation=dev, max_deviation_bound=dev_bound, solve_time=solve_time)
+    return VariantResult(name, "ok", feed_msg, path, cert, fig, dict(info or {}))
+
+
+def compare(program: Program, variants=None, *, limits: AxisLimits | None = None,
+            delta: float | None = None, radius: float | None = None, side=None,
+            options: dict | None = None) -> Comparison:
+    """Compare lead-in/lead-out/corner variants of ``program``.
+
+    Parameters
+    ----------
+    variants: names (default: every available one, :func:`available`).
+    limits: machine limits for the TOPPRA cycle time (``None``: no durations).
+    delta: the smoother's tolerance band (default 1 % of the cutter radius).
+    radius, side: compensation overrides, as for :func:`ccopt.compensate`.
+    options: blend options (e.g. ``lead_radius`` for the geometric leads).
+    """
+    names = list(variants) if variants else available()
+    known = set(available())
+    t0 = time.perf_counter()
+    reference = None
+    ref_error = None
+    try:
+        from ccopt.compensate import compensate
+        reference = compensate(program, REFERENCE, radius=radius, side=side)
+    except CcoptError as exc:
+        ref_error = str(exc)
+    ref_time = time.perf_counter() - t0
+    problem = None
+    if reference is not None:
+        problem = BlendProblem(program, reference, limits, delta, dict(options or {}), radius,
+                               side)
+    rows: list[VariantResult] = []
+    ref_duration = None
+    for name in names:
+        if name not in known:
+            rows.append(VariantResult(name, "failed", f"unknown variant {name!r}; known: "
+                                      f"{', '.join(sorted(known))}"))
+            continue
+        if problem is None:
+            status = "refused" if name == REFERENCE else "failed"
+            rows.append(VariantResult(name, status, ref_error if name == REFERENCE else
+                                      f"no reference path: {ref_error}"))
+            continue
+        if name == REFERENCE:
+            row = measure(name, reference, problem, ref_time)
+        else:
+            row = _run(name, problem)
+        rows.append(row)
+        if name == REFERENCE:
+            ref_duration = row.figures.get("duration")
+    if ref_duration is None and problem is not None and limits is not None:
+        ref_duration, _ = _duration(reference, limits)
+    for row in rows:
+        d = row.figures.get("duration")
+        if d is not None and ref_duration:
+            row.figures["duration_ratio"] = d / ref_duration
+    return Comparison(rows, reference, limits, program)
+
+
+def _run(name: str, problem: BlendProblem) -> VariantResult:
+    t0 = time.perf_counter()
+    try:
+        blend = load(name)
+        out = blend(problem)
+    except BlendRejected as exc:
+        return VariantResult(name, "rejected", str(exc),
+                             figures={"solve_time": time.perf_counter() - t0})
+    except CcoptError as exc:
+        return VariantResult(name, "refused", str(exc),
+                             figures={"solve_time": time.perf_counter() - t0})
+    except Exception as exc:  # a plug-in's bug must not hide the other variants
+        return VariantResult(name, "failed", f"{type(exc).__name__}: {exc}",
+                             figures={"solve_time": time.perf_counter() - t0})
+    solve = time.perf_counter() - t0
+    info: dict = {}
+    cert = None
+    if isinstance(out, BlendOutcome):
+        info = dict(out.info)
+        cert = info.pop("certificate", None)
+        out = out.toolpath
+    if not isinstance(out, ToolPath):
+        return VariantResult(name, "failed", f"blend returned {type(out).__name__}, "
+                             "not a ToolPath or BlendOutcome", figures={"solve_time": solve})
+    return measure(name, out, problem, solve, info, cert)

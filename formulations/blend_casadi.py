@@ -1,0 +1,209 @@
+"""``opt-casadi``: a G2 quintic Bezier lead-in/lead-out solved with IPOPT through CasADi.
+
+The model (:func:`lead_model`) and the solve (:func:`solve_lead_model`) are
+separate, so the same NLP can go to another CasADi solver (``sqpmethod``,
+``bonmin`` ...). The numbers come from :mod:`formulations.lead_setup`:
+
+    minimise   sum_i 2 ds_i / (v_i + v_i+1) + (F - v_end)^2 / (2 a F)
+               + (L_host - sigma)/F + mu * integral |r'''(t)|^2 dt
+    over       x = [P1, P2, a, e, sigma]        (P0 = A; P3, P4, P5: G2 at the join)
+               and b_i = v_i^2 at m_time cuts of t (the speed along the blend)
+    subject to b_0 = 0 (the approach point is a stop), b_i <= F^2,
+               |q'_k u_i + q''_k b_i| <= a_k for each axis k at both ends of every
+               piece, u_i = (b_i+1 - b_i) / (2 ds_i) (TOPP's discrete model),
+               own-element clearance (hull certificate for line hosts,
+               sampled circle distance for arc hosts),
+               |p_i - q_j|^2 >= (r_j + m)^2 for blend samples p_i, contour samples q_j,
+               |r'(t_i)| >= v_min (a regular curve),
+
+so the path and its speed are optimised together (a small time-optimal
+parametrisation inside the NLP, with the machine's own axis limits; TOPPRA
+on the exact path gives the reported cycle time). The pairs ``(i, j)`` start as those within reach
+of the first guess; after a solve every pair is checked and the violated ones
+added (at most :data:`MAX_ROUNDS` rounds).
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from ccopt.compare.blend import (
+    BlendProblem, bernstein, derivative_matrix, end_acceleration, jerk_gram,
+)
+from formulations.lead_setup import DEGREE, LeadSetup, run_leads
+
+#: Rounds of "solve, find violated clearance pairs, add them".
+MAX_ROUNDS = 4
+
+M_TIME = int(__import__("os").environ.get("MT", 41))
+M_CLEAR = 61
+
+
+def _pairs(setup: LeadSetup, P: np.ndarray, t: np.ndarray, reach: float):
+    pts = bernstein(t, setup.degree) @ P
+    d = np.hypot(pts[:, None, 0] - setup.q[None, :, 0], pts[:, None, 1] - setup.q[None, :, 1])
+    I, J = np.nonzero(d <= setup.q_clear[None, :] + setup.margin + reach)
+    return set(zip(I.tolist(), J.tolist()))
+
+
+def lead_model(setup: LeadSetup, pairs, m_time: int = M_TIME, m_clear: int = M_CLEAR) -> dict:
+    """The NLP of one lead as a CasADi dict: ``nlp`` (``x``, ``f``, ``g``),
+    bounds ``lbx, ubx, lbg, ubg``, first guess ``x0``."""
+    import casadi as ca
+
+    n = setup.degree
+    x = ca.SX.sym("x", setup.nx)
+    free = [x[2 * i: 2 * i + 2] for i in range(setup.n_free)]
+    a, e, sg = x[-3], x[-2], x[-1]
+    if setup.host_kind == "line":
+        J = ca.DM(setup.H0) + sg * ca.DM(setup.t0)
+        t = ca.DM(setup.t0)
+        kappa = 0.0
+    else:
+        phi = setup.theta0 + setup.sweep_sign * sg / setup.rho
+        J = ca.DM(setup.center) + setup.rho * ca.vertcat(ca.cos(phi), ca.sin(phi))
+        t = setup.sweep_sign * ca.vertcat(-ca.sin(phi), ca.cos(phi))
+        kappa = setup.sweep_sign / setup.rho
+    nl = ca.vertcat(-t[1], t[0])
+    c = n * kappa * a * a / (n - 1)
+    Pm2 = J + (e - 2.0 * a) * t + c * nl
+    Pm1 = J - a * t
+    P = ca.horzcat(ca.DM(setup.A), *free, Pm2, Pm1, J).T          # (n + 1) x 2
+
+    # speed profile: b_i = v_i^2 at m_time cuts of t (TOPP inside the NLP)
+    b = ca.SX.sym("b", m_time)
+    tt = np.linspace(0.0, 1.0, m_time)
+    pt = ca.mtimes(ca.DM(bernstein(tt, n)), P)
+    d1 = ca.mtimes(ca.DM(bernstein(tt, n - 1) @ derivative_matrix(n, 1)), P)
+    d2 = ca.mtimes(ca.DM(bernstein(tt, n - 2) @ derivative_matrix(n, 2)), P)
+    sp2 = d1[:, 0] ** 2 + d1[:, 1] ** 2
+    sp = ca.sqrt(sp2 + 1e-12 * setup.L0 ** 2)
+    Tx, Ty = d1[:, 0] / sp, d1[:, 1] / sp                  # q' (unit tangent)
+    dn = d2[:, 0] * Tx + d2[:, 1] * Ty
+    Kx = (d2[:, 0] - dn * Tx) / sp2                        # q'' = kappa * normal
+    Ky = (d2[:, 1] - dn * Ty) / sp2
+    dp = pt[1:, :] - pt[:-1, :]
+    ds = ca.sqrt(dp[:, 0] ** 2 + dp[:, 1] ** 2 + 1e-14 * setup.L0 ** 2)
+    u = (b[1:] - b[:-1]) / (2.0 * ds)                      # s'' on each piece
+    eb = 1e-10 * setup.feed ** 2
+    v = ca.sqrt(b + eb)
+    a_end = end_acceleration(setup.t0, setup.acc) \
+        if setup.host_kind == "line" else float(np.min(setup.acc))
+    T = ca.sum1(2.0 * ds / (v[:-1] + v[1:]))
+    T += (setup.feed - v[-1]) ** 2 / (2.0 * a_end * setup.feed)
+    G = ca.DM(jerk_gram(n))
+    jerk = ca.dot(P[:, 0], ca.mtimes(G, P[:, 0])) + ca.dot(P[:, 1], ca.mtimes(G, P[:, 1]))
+    obj = T + (setup.lg.host_length - sg) / setup.feed + setup.jerk_weight * jerk
+
+    g, lbg, ubg = [], [], []
+    # own element
+    if setup.host_kind == "line":
+        nf = ca.DM(setup.n_free_dir)
+        for Pk in (*free, Pm2):
+            g.append(ca.dot(nf, Pk - ca.DM(setup.H0)))
+            lbg.append(0.0)
+            ubg.append(ca.inf)
+    tc = np.linspace(0.0, 1.0, m_clear)
+    pts = ca.mtimes(ca.DM(bernstein(tc, n)), P)
+    if setup.host_kind == "arc":
+        dc = (pts[:-1, 0] - setup.center[0]) ** 2 + (pts[:-1, 1] - setup.center[1]) ** 2
+        sgn = 1.0 if setup.own_outside else -1.0
+        g.append(sgn * (dc - setup.rho ** 2))
+        lbg += [0.0] * (m_clear - 1)
+        ubg += [ca.inf] * (m_clear - 1)
+    # other elements, sampled
+    if pairs:
+        I = [i for i, _ in sorted(pairs)]
+        Jq = [j for _, j in sorted(pairs)]
+        qx = ca.DM(setup.q[Jq, 0])
+        qy = ca.DM(setup.q[Jq, 1])
+        dd = (pts[I, 0] - qx) ** 2 + (pts[I, 1] - qy) ** 2
+        need = (setup.q_clear[Jq] + setup.margin) ** 2
+        g.append(dd - ca.DM(need))
+        lbg += [0.0] * len(I)
+        ubg += [ca.inf] * len(I)
+    # regular curve
+    vmin = 0.02 * setup.L0
+    g.append(sp2[:] - vmin ** 2)
+    lbg += [0.0] * m_time
+    ubg += [ca.inf] * m_time
+    # axis accelerations q' s'' + q'' s'^2 within the limits, at both ends of every piece
+    ax, ay = float(setup.acc[0]), float(setup.acc[1])
+    for lo_i, hi_i in ((slice(0, m_time - 1), None), (slice(1, m_time), None)):
+        g.append(Tx[lo_i] * u + Kx[lo_i] * b[lo_i])
+        g.append(Ty[lo_i] * u + Ky[lo_i] * b[lo_i])
+        lbg += [-ax] * (m_time - 1) + [-ay] * (m_time - 1)
+        ubg += [ax] * (m_time - 1) + [ay] * (m_time - 1)
+    lo, hi = setup.bounds()
+    blo = np.zeros(m_time)
+    bhi = np.full(m_time, setup.feed ** 2)
+    bhi[0] = 0.0                       # the approach point is a stop
+    x0 = setup.initial()
+    return {"nlp": {"x": ca.vertcat(x, b), "f": obj, "g": ca.vertcat(*g)},
+            "lbx": np.r_[lo, blo], "ubx": np.r_[hi, bhi],
+            "lbg": np.asarray(lbg, float), "ubg": np.asarray(ubg, float),
+            "x0": np.r_[x0, speed_squares(setup, x0, m_time)], "m_time": m_time}
+
+
+def speed_squares(setup: LeadSetup, x, m: int) -> np.ndarray:
+    """``v^2`` at ``m`` cuts of the blend ``x`` by the forward/backward passes (a first guess)."""
+    from ccopt.compare.blend import curve_samples
+    P = setup.controls(x)
+    pts, _, k = curve_samples(P, np.linspace(0.0, 1.0, m))
+    ds = np.hypot(*np.diff(pts, axis=0).T)
+    a = float(np.min(setup.acc))
+    b = np.minimum(setup.feed ** 2, a / np.maximum(np.abs(k), 1e-300))
+    b[0] = 0.0
+    for i in range(m - 1):
+        b[i + 1] = min(b[i + 1], b[i] + 2.0 * a * ds[i])
+    for i in range(m - 2, -1, -1):
+        b[i] = min(b[i], b[i + 1] + 2.0 * a * ds[i])
+    return b
+
+
+def solve_lead_model(model: dict, solver: str = "ipopt", options: dict | None = None, x0=None):
+    """Solve a :func:`lead_model` with a CasADi NLP solver: ``(x, stats)``."""
+    import casadi as ca
+
+    opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
+            "ipopt.tol": 1e-9, "ipopt.constr_viol_tol": 1e-9, "ipopt.max_iter": 1000} \
+        if solver == "ipopt" else {}
+    opts.update(options or {})
+    S = ca.nlpsol("lead", solver, model["nlp"], opts)
+    res = S(x0=model["x0"] if x0 is None else x0, lbx=model["lbx"], ubx=model["ubx"],
+            lbg=model["lbg"], ubg=model["ubg"])
+    st = S.stats()
+    return np.asarray(res["x"]).ravel(), {"solver": solver, "status": st.get("return_status"),
+                                          "success": bool(st.get("success")),
+                                          "iterations": int(st.get("iter_count", -1)),
+                                          "objective": float(res["f"])}
+
+
+def solve_lead(setup: LeadSetup, solver: str = "ipopt"):
+    """Solve one lead, adding violated clearance pairs until none is left."""
+    t0 = time.perf_counter()
+    tc = np.linspace(0.0, 1.0, M_CLEAR)
+    x = setup.initial()
+    pairs = _pairs(setup, setup.controls(x), tc[:-1], 0.5 * setup.L0)
+    stats = {}
+    rounds = 0
+    X = None
+    for rounds in range(1, MAX_ROUNDS + 1):
+        model = lead_model(setup, pairs)
+        X, stats = solve_lead_model(model, solver, x0=X)
+        if not stats["success"]:
+            raise RuntimeError(f"IPOPT: {stats['status']}")
+        x = X[:setup.nx]
+        new = _pairs(setup, setup.controls(x), tc[:-1], 0.0) - pairs
+        if not new:
+            break
+        pairs |= new
+    stats.update(rounds=rounds, pairs=len(pairs), solve_time=time.perf_counter() - t0)
+    return x, stats
+
+
+def opt_casadi(problem: BlendProblem):
+    """Entry point ``opt-casadi`` (group ``ccopt.blends``)."""
+    return run_leads(problem, solve_lead, "opt-casadi")

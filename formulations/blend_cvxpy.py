@@ -1,0 +1,287 @@
+"""``opt-cvxpy``: the G2 lead blend as a sequence of convex problems, solved with Clarabel.
+
+Same curve as ``opt-casadi`` (:mod:`formulations.lead_setup`: a Bezier from
+the approach point ``A`` matching the host's position, tangent and curvature
+at the join, decision vector ``x = [P1 .. P(n-3), a, e, sigma]``), but every
+subproblem is convex. At iterate ``x_k`` (:class:`ConvexLeadModel`, the model):
+
+    minimise   len(x)/len0 + lam * E2(x)/E2_0 + mu * E3(x)/E3_0 + M * sum(slack)
+    subject to u_ij . (p_i(x) - q_j) >= r_j + m - slack_ij   (clearance, safe half-planes)
+               own-element clearance (line host: n . (P_k - H0) >= 0, exact;
+                 arc host: |p_i - c| <= rho as a second-order cone when the tool is
+                 inside, the tangent half-plane at the iterate when outside),
+               ||p_i(x) - w_i|| <= W                            (tolerance band, SOC)
+               ubar_i . r'(t_i; x) >= v_min                   (regular curve)
+               ||P_k(x) - P_k(x_k)|| <= Delta, |a - a_k|, |e - e_k|, |sigma - sigma_k| <= Delta
+
+where ``p_i(x)`` are points of the curve at ``m`` samples of ``t``,
+``len`` the length of the polyline through them (a sum of norms), ``E2 =
+integral |r''|^2 dt`` and ``E3 = integral |r'''|^2 dt`` (convex quadratics),
+``u_ij`` the unit vector from contour sample ``q_j`` to ``p_i(x_k)`` (the
+half-plane ``u . (p - q) >= r`` lies inside ``|p - q| >= r``, so every
+iterate keeps its clearance), ``w_i`` the point of the reference lead
+nearest ``p_i(x_k)`` (``|p - w_i| <= W`` implies distance to the reference
+``<= W``) and ``ubar_i`` the unit tangent at the iterate (``|r'| >= ubar . r'``).
+For a line host the control points are affine in ``x``; for an arc host
+they are linearised at ``x_k`` (the curve itself is always built exactly, so
+G2 at the join holds whatever the iterate).
+
+:func:`scp` iterates to a fixed point for one ``lam``; :func:`solve_lead`
+tries a few ``lam`` (how much curvature costs against length) and keeps the
+curve with the shortest traversal time
+(:func:`ccopt.compare.blend.speed_profile_time`, the same time model as the
+CasADi NLP). :func:`solve_subproblem` is the solver call: the same model
+goes to Clarabel (default), ECOS or SCS.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from ccopt.compare.blend import BlendProblem, bernstein, derivative_matrix
+from formulations.lead_setup import LeadSetup, run_leads
+
+#: Curvature weights tried (relative to length).
+LAMBDAS = (0.03, 0.3, 3.0)
+#: Jerk weight (relative).
+MU = 1e-3
+#: Slack penalty per unit of violated clearance (relative to the length term).
+SLACK_PENALTY = 1e4
+MAX_ITER = 25
+M_SAMPLES = 31
+#: Contour samples per curve sample linearised in each subproblem.
+K_NEAREST = 12
+
+
+def _gram(m: int) -> np.ndarray:
+    """Gram matrix of the degree-``m`` Bernstein basis on [0, 1]."""
+    return np.array([[math.comb(m, i) * math.comb(m, j) / (math.comb(2 * m, i + j) * (2 * m + 1))
+                      for j in range(m + 1)] for i in range(m + 1)])
+
+
+def _sqrt_factor(G: np.ndarray) -> np.ndarray:
+    w, V = np.linalg.eigh(0.5 * (G + G.T))
+    return (V * np.sqrt(np.clip(w, 0.0, None))).T
+
+
+def control_jacobian(setup: LeadSetup, x: np.ndarray, h: float | None = None):
+    """``(P(x), dP/dx)`` with ``dP/dx`` of shape ``((n+1)*2, nx)`` (central differences;
+    exact for line hosts, where ``P`` is affine in ``x``)."""
+    P0 = setup.controls(x)
+    h = h or 1e-6 * setup.L0
+    Jc = np.zeros((P0.size, x.size))
+    for k in range(x.size):
+        d = np.zeros_like(x)
+        d[k] = h
+        Jc[:, k] = (setup.controls(x + d) - setup.controls(x - d)).ravel() / (2 * h)
+    return P0, Jc
+
+
+def _reference_points(setup: LeadSetup, problem: BlendProblem) -> np.ndarray:
+    """Dense points of the reference lead (PMAC's lead run and host), for the band."""
+    ref = problem.reference
+    ld = setup.lead
+    idx = range(ld.first, ld.host + 1) if ld.kind == "in" else range(ld.host, ld.last + 1)
+    pts = []
+    for i in idx:
+        g = ref.segments[i].geom
+        n = max(2, int(math.ceil(g.length / (0.02 * setup.r))) + 1)
+        pts.append(np.asarray(g.point(np.linspace(0.0, g.length, n))).reshape(-1, 2))
+    return np.vstack(pts)
+
+
+class ConvexLeadModel:
+    """The convex model of one lead for one curvature weight ``lam`` (see the
+    module docstring), compiled once with CVXPY parameters (DPP): :meth:`update`
+    sets the linearisation at an iterate, :attr:`problem` is what a solver gets.
+
+    Clearance rows: for every curve sample, the :data:`K_NEAREST` contour
+    samples nearest it at the iterate (one slack per curve sample); a step that
+    comes closer than allowed to any other contour sample is refused by
+    :func:`scp`, which then shrinks the trust region.
+    """
+
+    def __init__(self, setup: LeadSetup, lam: float, ref_pts: np.ndarray, band: float,
+                 scales: dict):
+        import cvxpy as cp
+
+        self.setup = setup
+        self.ref_pts = ref_pts
+        n = setup.degree
+        m = M_SAMPLES
+        nx = setup.nx
+        self.t = np.linspace(0.0, 1.0, m)
+        self.B = bernstein(self.t, n)
+        self.D1 = bernstein(self.t, n - 1) @ derivative_matrix(n, 1)
+        K = min(K_NEAREST, len(setup.q))
+        self.K = K
+        x = cp.Variable(nx)
+        self.x = x
+        P = lambda name, shape: cp.Parameter(shape, name=name)  # noqa: E731
+        self.Jx, self.Jy = P("Jx", (n + 1, nx)), P("Jy", (n + 1, nx))
+        self.cx, self.cy = P("cx", n + 1), P("cy", n + 1)
+        self.xk = P("xk", nx)
+        self.delta = cp.Parameter(nonneg=True, name="delta")
+        Px = self.Jx @ x + self.cx
+        Py = self.Jy @ x + self.cy
+        px, py = self.B @ Px, self.B @ Py
+        Dm = np.diff(np.eye(m), axis=0)
+        obj = cp.sum(cp.norm(cp.vstack([Dm @ px, Dm @ py]), 2, axis=0)) / scales["len"]
+        R2 = _sqrt_factor(_gram(n - 2)) @ derivative_matrix(n, 2)
+        R3 = _sqrt_factor(_gram(n - 3)) @ derivative_matrix(n, 3)
+        obj += lam * (cp.sum_squares(R2 @ Px) + cp.sum_squares(R2 @ Py)) / scales["e2"]
+        obj += MU * (cp.sum_squares(R3 @ Px) + cp.sum_squares(R3 @ Py)) / scales["e3"]
+        cons = []
+        self.slack = None
+        if K:
+            rows = (m - 1) * K
+            self.Ac, self.bc = P("Ac", (rows, nx)), P("bc", rows)
+            self.slack = cp.Variable(m - 1, nonneg=True)
+            S = np.kron(np.eye(m - 1), np.ones((K, 1)))
+            cons.append(self.Ac @ x >= self.bc - S @ self.slack)
+            obj += SLACK_PENALTY * cp.sum(self.slack) / scales["len"]
+        if setup.host_kind == "line":
+            nf = setup.n_free_dir
+            for j in range(1, n - 1):
+                cons.append(nf[0] * Px[j] + nf[1] * Py[j] >= float(nf @ setup.H0))
+        elif setup.own_outside:
+            self.Ao, self.bo = P("Ao", (m - 1, nx)), P("bo", m - 1)
+            cons.append(self.Ao @ x >= self.bo)
+        else:
+            c = setup.center
+            cons.append(cp.norm(cp.vstack([px - c[0], py - c[1]]), 2, axis=0) <= setup.rho)
+        self.w0, self.w1 = P("w0", m), P("w1", m)
+        cons.append(cp.norm(cp.vstack([px - self.w0, py - self.w1]), 2, axis=0) <= band)
+        self.Ar, self.br = P("Ar", (m, nx)), P("br", m)
+        cons.append(self.Ar @ x >= self.br)
+        for j in range(setup.n_free):
+            cons.append(cp.norm(x[2 * j:2 * j + 2] - self.xk[2 * j:2 * j + 2], 2) <= self.delta)
+        cons.append(cp.abs(x[-3:] - self.xk[-3:]) <= self.delta)
+        lo, hi = setup.bounds()
+        cons += [x >= lo, x <= hi]
+        self.problem = cp.Problem(cp.Minimize(obj), cons)
+
+    def update(self, xk: np.ndarray, delta: float) -> None:
+        """Linearise at ``xk`` with trust radius ``delta``."""
+        su = self.setup
+        Pk, Jc = control_jacobian(su, xk)
+        Jx, Jy = Jc[0::2], Jc[1::2]
+        self.Jx.value, self.Jy.value = Jx, Jy
+        self.cx.value, self.cy.value = Pk[:, 0] - Jx @ xk, Pk[:, 1] - Jy @ xk
+        self.xk.value = xk
+        self.delta.value = delta
+        B = self.B
+        pk = B @ Pk
+        BJx, BJy = B @ Jx, B @ Jy
+        if self.K:
+            d = np.hypot(pk[:-1, None, 0] - su.q[None, :, 0], pk[:-1, None, 1] - su.q[None, :, 1])
+            J = np.argpartition(d - su.q_clear[None, :], self.K - 1, axis=1)[:, :self.K]
+            I = np.repeat(np.arange(len(pk) - 1), self.K)
+            J = J.ravel()
+            u = np.c_[pk[I, 0] - su.q[J, 0], pk[I, 1] - su.q[J, 1]]
+            u /= np.maximum(np.hypot(u[:, 0], u[:, 1]), 1e-300)[:, None]
+            A = u[:, 0:1] * BJx[I] + u[:, 1:2] * BJy[I]
+            # u . p(x) = u . (pk + BJ (x - xk)) >= u . q + r + m
+            base = u[:, 0] * pk[I, 0] + u[:, 1] * pk[I, 1] - A @ xk
+            self.Ac.value = A
+            self.bc.value = u[:, 0] * su.q[J, 0] + u[:, 1] * su.q[J, 1] + su.q_clear[J] \
+                + su.margin - base
+        if su.host_kind == "arc" and su.own_outside:
+            c = su.center
+            u = pk[:-1] - c
+            u /= np.maximum(np.hypot(u[:, 0], u[:, 1]), 1e-300)[:, None]
+            A = u[:, 0:1] * BJx[:-1] + u[:, 1:2] * BJy[:-1]
+            self.Ao.value = A
+            self.bo.value = su.rho + u @ c - (np.einsum("ij,ij->i", u, pk[:-1]) - A @ xk)
+        dref = np.hypot(pk[:, None, 0] - self.ref_pts[None, :, 0],
+                        pk[:, None, 1] - self.ref_pts[None, :, 1])
+        w = self.ref_pts[np.argmin(dref, axis=1)]
+        self.w0.value, self.w1.value = w[:, 0], w[:, 1]
+        d1k = self.D1 @ Pk
+        ub = d1k / np.maximum(np.hypot(d1k[:, 0], d1k[:, 1]), 1e-300)[:, None]
+        A = ub[:, 0:1] * (self.D1 @ Jx) + ub[:, 1:2] * (self.D1 @ Jy)
+        self.Ar.value = A
+        self.br.value = 0.02 * su.L0 - (np.einsum("ij,ij->i", ub, d1k) - A @ xk)
+
+    def slack_max(self) -> float:
+        return float(np.max(self.slack.value)) if self.slack is not None else 0.0
+
+
+def solve_subproblem(problem, solver: str = "CLARABEL", **options):
+    """The solver call, kept apart from the model: ``problem.solve`` with ``solver``."""
+    problem.solve(solver=solver, **options)
+    return problem.status
+
+
+def scp(setup: LeadSetup, problem: BlendProblem, lam: float, solver: str = "CLARABEL"):
+    """Iterate the convex model from the first guess to a fixed point: ``(x, info)``."""
+    xk = setup.initial()
+    ref_pts = _reference_points(setup, problem)
+    Pk = setup.controls(xk)
+    dref = np.hypot(*(Pk[:, None, :] - ref_pts[None]).transpose(2, 0, 1))
+    band = float(problem.options.get("band_width", 2.0 * setup.r)) + float(
+        np.max(np.min(dref, axis=1)))
+    n = setup.degree
+    scales = {"len": setup.L0,
+              "e2": max(_energy(Pk, n, 2), 1e-12), "e3": max(_energy(Pk, n, 3), 1e-12)}
+    model = ConvexLeadModel(setup, lam, ref_pts, band, scales)
+    delta = 0.1 * setup.L0
+    status, it, slack_max = None, 0, math.inf
+    for it in range(1, MAX_ITER + 1):
+        model.update(xk, delta)
+        status = solve_subproblem(model.problem, solver)
+        if model.x.value is None or status not in ("optimal", "optimal_inaccurate"):
+            delta *= 0.5
+            if delta < 1e-9 * setup.L0:
+                break
+            continue
+        xn = np.asarray(model.x.value, float)
+        slack_max = model.slack_max()
+        step = float(np.max(np.abs(xn - xk)))
+        # a contour sample outside the K nearest may have come too close: refuse the step
+        if slack_max <= 1e-9 * setup.L0 and \
+                setup.clearance_violation(xn, m=M_SAMPLES) > 1e-9 * setup.L0:
+            delta *= 0.5
+            continue
+        xk = xn
+        if step <= 1e-7 * setup.L0 and slack_max <= 1e-9 * setup.L0:
+            break
+    ok = slack_max <= 1e-7 * setup.L0 and \
+        setup.clearance_violation(xk, m=M_SAMPLES) <= 1e-7 * setup.L0
+    return xk, {"status": status, "iterations": it, "feasible": bool(ok), "lambda": lam}
+
+
+def _energy(P, n, order):
+    D = derivative_matrix(n, order)
+    G = _gram(n - order)
+    Q = D @ P
+    return float(np.sum(Q * (G @ Q)))
+
+
+def solve_lead(setup: LeadSetup, problem: BlendProblem | None = None, solver: str = "CLARABEL"):
+    """Run :func:`scp` for each weight in :data:`LAMBDAS`; keep the fastest feasible curve."""
+    t0 = time.perf_counter()
+    best = None
+    tried = []
+    for lam in LAMBDAS:
+        x, info = scp(setup, problem, lam, solver)
+        if not info["feasible"]:
+            tried.append((lam, None))
+            continue
+        T = setup.objective(x)
+        tried.append((lam, T))
+        if best is None or T < best[0]:
+            best = (T, x, info)
+    if best is None:
+        raise RuntimeError("no feasible convex iterate for any curvature weight")
+    _, x, info = best
+    info = dict(info, solver=solver, tried=[[lam, T] for lam, T in tried],
+                solve_time=time.perf_counter() - t0)
+    return x, info
+
+
+def opt_cvxpy(problem: BlendProblem):
+    """Entry point ``opt-cvxpy`` (group ``ccopt.blends``)."""
+    return run_leads(problem, lambda setup: solve_lead(setup, problem), "opt-cvxpy")

@@ -1,0 +1,341 @@
+"""What the CasADi and CVXPY lead blends share: the problem in numbers.
+
+A lead (see :mod:`ccopt.compare.leads`; a lead-out is handed over reversed)
+becomes a Bezier curve ``P[0..n]`` (degree ``n``, :data:`DEGREE` by default: a
+quintic) from the approach point ``A`` to the host tool segment at arc length
+``sigma`` (``J``), matching the host's position, tangent and curvature there
+(:func:`ccopt.compare.blend.g2_end`). Decision vector
+``x = [P1, ..., P(n-3), a, e, sigma]`` (points flattened); ``P0 = A``, and
+``P(n-2), P(n-1), Pn`` follow from ``(a, e, sigma)``.
+
+Where the blend joins: by default ``sigma = 0``, PMAC's first compensated
+point ``J0``. A closed contour starts and ends there (lead-in and lead-out
+meet), and joining further along would leave the stretch between ``J0`` and
+``J`` uncut; ``join="free"`` lets ``sigma`` range over the host (for open
+contours where that is acceptable).
+
+Clearance from the contour (every element the verifier checks):
+
+- the host's own element: the whole blend stays on the tool side of it. For
+  a line host this is linear in the control points and certified for every
+  ``t`` by the convex hull property: ``n . (P_k - H0) >= 0`` for all ``k``
+  (``n`` the unit normal to the free side, ``H0`` the host's start); for an
+  arc host ``|p - c| >= rho`` (tool outside) or ``<= rho`` (inside) at every
+  sample;
+- every other element near the blend: ``|p_i - q_j| >= r + m`` between blend
+  samples ``p_i`` and contour samples ``q_j`` (every ``h``), the margin ``m``
+  covering the contour sampling and the gaps between blend samples. Elements
+  lying wholly behind the host's own boundary by at least ``r`` are skipped
+  (the first constraint already keeps the blend ``r`` from them).
+
+The verifier has the last word (:meth:`BlendProblem.accept`).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ccopt.compare.blend import (
+    BlendProblem, BlendRejected, bernstein, contour_samples, g2_end, jerk_gram,
+    speed_profile_time,
+)
+from ccopt.compare.leads import Lead, LeadGeometry
+from ccopt.geometry import Arc, Line
+
+DEGREE = 5
+
+#: Weight of the jerk term, relative: ``mu = W_JERK * T0 / L0^2`` (``T0 = L0 / F``).
+W_JERK = 1e-5
+
+#: Contour samples every ``H_FRACTION * r``.
+H_FRACTION = 0.05
+
+#: Contour elements farther than this many cutter radii from every point of the
+#: first guess's control polygon are not constrained (re-checked after a solve).
+REACH = 4.0
+
+
+@dataclass
+class LeadSetup:
+    """One lead as numbers for a model (see the module docstring)."""
+
+    lead: Lead
+    lg: LeadGeometry
+    A: np.ndarray
+    host_kind: str                  # "line" | "arc"
+    H0: np.ndarray
+    t0: np.ndarray
+    n_free_dir: np.ndarray          # unit normal to the free side at H0
+    center: np.ndarray | None       # arc host
+    rho: float                      # arc host tool radius
+    sweep_sign: float               # arc host
+    own_outside: bool               # arc host: tool outside its element circle
+    theta0: float
+    sigma_lo: float
+    sigma_hi: float
+    r: float
+    feed: float
+    acc: np.ndarray                 # in-plane axis acceleration limits (a_u, a_v)
+    L0: float
+    q: np.ndarray                   # contour samples kept (M, 2)
+    q_clear: np.ndarray             # their clearance
+    margin: float
+    w_jerk: float = 1e-5
+    degree: int = DEGREE
+    options: dict = field(default_factory=dict)
+
+    @property
+    def n_free(self) -> int:
+        """Free control points ``P1 .. P(n-3)``."""
+        return self.degree - 3
+
+    @property
+    def nx(self) -> int:
+        return 2 * self.n_free + 3
+
+    # -- host frame --------------------------------------------------------------------
+    def host_frame(self, sigma: float):
+        """``(J, t, kappa)`` on the host at arc length ``sigma`` (numpy)."""
+        if self.host_kind == "line":
+            return self.H0 + sigma * self.t0, self.t0.copy(), 0.0
+        phi = self.theta0 + self.sweep_sign * sigma / self.rho
+        J = self.center + self.rho * np.array([math.cos(phi), math.sin(phi)])
+        t = self.sweep_sign * np.array([-math.sin(phi), math.cos(phi)])
+        return J, t, self.sweep_sign / self.rho
+
+    def controls(self, x) -> np.ndarray:
+        """Control points ``(6, 2)`` of decision vector ``x``."""
+        x = np.asarray(x, float)
+        J, t, k = self.host_frame(x[-1])
+        free = x[:2 * self.n_free].reshape(-1, 2)
+        return np.vstack([self.A, free, g2_end(J, t, k, x[-3], x[-2], self.degree)])
+
+    @property
+    def T0(self) -> float:
+        return self.L0 / self.feed
+
+    def objective(self, x) -> float:
+        """Time to run the blend from rest and go on at the feed (speed profile,
+        :func:`~ccopt.compare.blend.speed_profile_time`), plus the host time it
+        skips, plus the jerk term: what both models minimise."""
+        P = self.controls(x)
+        host_left = (self.lg.host_length - x[-1]) / self.feed
+        return self.traversal_time(x) + host_left + self.jerk_weight * float(
+            np.sum(P * (jerk_gram(self.degree) @ P)))
+
+    def traversal_time(self, x) -> float:
+        return speed_profile_time(self.controls(x), self.feed, self.acc)
+
+    @property
+    def jerk_weight(self) -> float:
+        return self.w_jerk * self.T0 / self.L0 ** 2
+
+    # -- first guess -----------------------------------------------------------------
+    def initial(self) -> np.ndarray:
+        """A curve along the reference: from ``A`` towards ``J0`` then onto the host."""
+        sigma = 0.5 * (self.sigma_lo + self.sigma_hi)
+        J, t, k = self.host_frame(sigma)
+        d = float(np.linalg.norm(J - self.A))
+        a = max(0.2 * d, 1e-3 * self.L0)
+        corner = self.H0
+        m = self.n_free
+        pts = [self.A + (0.3 + 0.3 * i / max(m - 1, 1)) * (corner - self.A)
+               + (0.2 * d * i / max(m - 1, 1)) * self.n_free_dir for i in range(m)]
+        return np.r_[np.ravel(pts), a, 0.0, sigma]
+
+    def bounds(self):
+        """``(lower, upper)`` of ``x``."""
+        big = 1e3 * self.L0
+        m = self.n_free
+        lo = np.r_[np.tile(self.A - big, m), 1e-3 * self.L0, -self.L0, self.sigma_lo]
+        hi = np.r_[np.tile(self.A + big, m), 2.0 * self.L0, self.L0, self.sigma_hi]
+        return lo, hi
+
+    # -- checks ----------------------------------------------------------------------
+    def sample_t(self, m: int) -> np.ndarray:
+        return np.linspace(0.0, 1.0, m)
+
+    def clearance_violation(self, x, m: int = 401) -> float:
+        """Largest ``r + margin - distance`` over blend samples and kept contour
+        samples (<= 0 when the sampled constraints hold), the join excluded."""
+        if not len(self.q):
+            return -math.inf
+        P = self.controls(x)
+        pts = bernstein(self.sample_t(m)[:-1], self.degree) @ P
+        d = np.hypot(pts[:, None, 0] - self.q[None, :, 0], pts[:, None, 1] - self.q[None, :, 1])
+        return float(np.max(self.q_clear[None, :] + self.margin - d))
+
+
+def _own_element(problem: BlendProblem, host_block) -> int:
+    c = problem.contour
+    for j, b in enumerate(c.blocks):
+        if b is host_block:
+            return j
+    return -1
+
+
+def _behind(g, setup_kind, H0, n_free, center, rho, own_outside, r, tol) -> bool:
+    """Is the element ``g`` wholly at least ``r`` behind the host's own boundary?"""
+    s = np.linspace(0.0, float(g.length), 65)
+    pts = np.asarray(g.point(s)).reshape(-1, 2)
+    if setup_kind == "line":
+        return bool(np.all((pts - H0) @ n_free <= -r + tol))
+    d = np.hypot(*(pts - center).T)
+    if own_outside:
+        return bool(np.all(d <= rho - r + tol))
+    return bool(np.all(d >= rho + r - tol))
+
+
+def lead_setup(problem: BlendProblem, lead: Lead, *, join: str = "start",
+               margin_scale: float = 1.0, w_jerk: float = 1e-5,
+               degree: int = DEGREE) -> LeadSetup:
+    """Numbers for one lead of ``problem.reference`` (see the module docstring)."""
+    ref = problem.reference
+    lg = lead.geometry(ref)
+    host = lg.host
+    r = problem.cutter_radius
+    if r <= 0:
+        raise BlendRejected("no cutter radius: nothing to blend")
+    A = np.asarray(lg.approach, float)
+    H0 = np.asarray(host.start, float)
+    t0 = np.asarray(host.start_tangent, float)
+    n_free = lg.side * np.array([-t0[1], t0[0]])
+    center, rho, sgn, outside, th0 = None, 0.0, 1.0, True, 0.0
+    if isinstance(host, Line):
+        kind = "line"
+    elif isinstance(host, Arc):
+        kind = "arc"
+        center = np.asarray(host.center, float)
+        rho = float(host.radius)
+        sgn = math.copysign(1.0, host.sweep)
+        th0 = float(host.theta0)
+        # the tool is outside its element circle when the free side points away from the centre
+        outside = float(n_free @ (H0 - center)) > 0.0
+    else:
+        raise BlendRejected(f"lead-{lg.kind}: host segment is a {type(host).__name__}; "
+                            "only line and arc hosts are supported")
+    L_host = float(host.length)
+    if join == "free":
+        lo, hi = min(0.5 * r, 0.25 * L_host), 0.9 * L_host
+    elif join == "start":
+        lo = hi = 0.0
+    else:
+        raise ValueError(f"join must be 'start' or 'free', not {join!r}")
+    # the approach point must be on the free side of the host's own boundary
+    if kind == "line":
+        ok = float((A - H0) @ n_free) >= -1e-9
+    else:
+        d = float(np.linalg.norm(A - center))
+        ok = d >= rho - 1e-9 if outside else d <= rho + 1e-9
+    if not ok:
+        raise BlendRejected(f"lead-{lg.kind}: the approach point is behind the host's own "
+                            "element boundary")
+    acc = problem.acc()
+    feed = float(lg.feed) if lg.feed else (float(max(problem.limits.v[:2]))
+                                          if problem.limits is not None else 1.0)
+    h = H_FRACTION * r
+    cs = contour_samples(problem.contour, h)
+    own = _own_element(problem, ref.segments[lead.host].block)
+    L0 = float(np.linalg.norm(H0 - A)) + hi + r
+    tol = 1e-9 * max(1.0, L0)
+    keep = np.ones(len(cs.points), bool)
+    # reach: within REACH*r + L0 of the approach corridor
+    corridor = np.vstack([A, H0, H0 + hi * t0])
+    dmin = np.min(np.hypot(cs.points[:, None, 0] - corridor[None, :, 0],
+                           cs.points[:, None, 1] - corridor[None, :, 1]), axis=1)
+    keep &= dmin <= REACH * r + float(np.linalg.norm(H0 - A))
+    for j in range(len(problem.contour)):
+        sel = cs.element == j
+        if j == own:
+            keep[sel] = False
+            continue
+        g = problem.contour.elements.geom(j)
+        if _behind(g, kind, H0, n_free, center, rho, outside, float(problem.contour.clearance[j]),
+                   tol):
+            keep[sel] = False
+    # margin: contour sampling, plus the gap between blend samples (set by the models)
+    margin = margin_scale * (cs.margin + 1e-3 * r)
+    return LeadSetup(lead, lg, A, kind, H0, t0, n_free, center, rho, sgn, outside, th0, lo, hi,
+                     r, feed, acc, L0, cs.points[keep], cs.clearance[keep], margin, w_jerk,
+                     int(degree))
+
+
+def blend_geometry(setup: LeadSetup, x) -> "BezierCurve":
+    from ccopt.geometry import BezierCurve
+    return BezierCurve(setup.controls(x))
+
+
+# --------------------------------------------------------------------------- the shared driver
+
+
+#: Margin multipliers tried in turn when the verifier rejects a blend.
+ATTEMPTS = (1.0, 4.0, 16.0)
+
+
+def run_leads(problem: BlendProblem, solve_lead, name: str) -> "BlendOutcome":
+    """Replace every lead of the reference with ``solve_lead(setup) -> (x, info)``.
+
+    Each blend is spliced in and certified (:meth:`BlendProblem.accept`); when
+    the verifier rejects it the lead is solved again with a larger clearance
+    margin (:data:`ATTEMPTS`), and when every attempt fails PMAC's lead stays
+    and the reason is reported in ``info["leads"]``. No lead replaced at all
+    is a :class:`BlendRejected`.
+    """
+    from ccopt.compare.blend import BlendOutcome
+    from ccopt.compare.leads import splice
+
+    opts = dict(problem.options)
+    join = str(opts.get("join", "start"))
+    w_jerk = float(opts.get("w_jerk", W_JERK))
+    degree = int(opts.get("degree", DEGREE))
+    if degree < 5:
+        raise BlendRejected(f"degree must be at least 5 for a G2 blend with a free start, "
+                            f"got {degree}")
+    path = problem.reference
+    leads = problem.leads()
+    if not leads:
+        raise BlendRejected("the reference path has no lead-in or lead-out to replace")
+    report = []
+    path_cert = None
+    for ld in reversed(leads):
+        entry = {"lead": ld.kind, "segment": ld.host}
+        last_err = None
+        for scale in ATTEMPTS:
+            try:
+                setup = lead_setup(problem, ld, join=join, margin_scale=scale, w_jerk=w_jerk,
+                                   degree=degree)
+                x, info = solve_lead(setup)
+                geom = blend_geometry(setup, x)
+            except BlendRejected as exc:
+                last_err = str(exc)
+                break
+            except (ValueError, RuntimeError) as exc:
+                last_err = f"{type(exc).__name__}: {exc}"
+                continue
+            cand = splice(path, ld, [geom], float(x[-1]), style=name)
+            mine = [i for i, s in enumerate(cand.segments)
+                    if s.geom is geom or (i > 0 and cand.segments[i - 1].geom is geom)
+                    or (i + 1 < len(cand.segments) and cand.segments[i + 1].geom is geom)]
+            try:
+                cert = problem.accept(cand, mine)
+            except BlendRejected as exc:
+                last_err = str(exc)
+                continue
+            path, path_cert = cand, cert
+            entry.update({f"solver_{k}": v for k, v in info.items()})
+            entry.update(status="ok", margin_scale=scale, sigma=float(x[-1]),
+                         proxy_time=float(setup.objective(x)),
+                         control_points=[list(p) for p in geom.control_points])
+            last_err = None
+            break
+        if last_err is not None:
+            entry.update(status="kept PMAC lead", reason=last_err)
+        report.append(entry)
+    if all(e["status"] != "ok" for e in report):
+        raise BlendRejected("; ".join(f"lead-{e['lead']}: {e.get('reason')}" for e in report))
+    info = {"leads": report[::-1]}
+    if path_cert is not None:
+        info["certificate"] = path_cert
+    return BlendOutcome(path, info)
