@@ -44,6 +44,9 @@ from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
 #: Pieces per pair are never more than this (the bound is then reported with its gap).
 MAX_PIECES = 1 << 18
 
+#: Chords per curve in a certified farthest distance (contact), at most.
+MAX_CHORDS = 1 << 15
+
 
 # --------------------------------------------------------------------------- parameterisations
 
@@ -322,7 +325,7 @@ def _poly_dist(q, e0, e1, chunk=1 << 22):
     return out
 
 
-def max_distance(t, e, tol: float, max_rounds: int = 12, n0: int = 16) -> Bound:
+def max_distance(t, e, tol: float, max_rounds: int = 16, n0: int = 16) -> Bound:
     """Certified bounds of ``max_{q in t} dist(q, e)`` (contact), ``t`` or ``e`` curved.
 
     ``t`` is cut into ``n`` chords and ``e`` (when curved) into ``n`` chords,
@@ -346,7 +349,9 @@ def max_distance(t, e, tol: float, max_rounds: int = 12, n0: int = 16) -> Bound:
         c0, c1, dt, _ = _chords(pt, n)
         ends = np.r_[c0, c1[-1:]]
         if e_exact:
-            chords = SegmentArray.from_segments([Line(tuple(a), tuple(b)) for a, b in zip(c0, c1)])
+            nan = np.full(n, np.nan)
+            chords = SegmentArray(np.zeros(n, np.int8), c0, c1, np.full((n, 2), np.nan), nan, nan,
+                                  nan, nan)
             earr = SegmentArray.from_segments([e])
             dmax, _, _ = exact_max(chords, np.arange(n), earr, np.zeros(n, np.intp))
             ub_n = float((dmax + dt).max())
@@ -373,7 +378,7 @@ def max_distance(t, e, tol: float, max_rounds: int = 12, n0: int = 16) -> Bound:
             lb = float(dq[k])
             witness = (float(ends[k, 0]), float(ends[k, 1]))
         ubv = min(ubv, ub_n)
-        if ubv - lb <= tol or n >= 4096:
+        if ubv - lb <= tol or n >= MAX_CHORDS:
             break
         n *= 2
     return Bound(lb, ubv, witness, None, bool(ubv - lb <= tol), n)
