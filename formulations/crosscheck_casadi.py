@@ -29,11 +29,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import casadi as ca
 import numpy as np
 
 from ccopt.geometry import Arc, Line, Spiral
+from ccopt.verify.clearance import _contains
 
 #: Parameters per curve: kind (1 line, 0 polar), p0x, p0y, p1x, p1y, cx, cy, rho0, rho1, th0, sweep.
 NPAR = 11
@@ -43,6 +45,9 @@ SLACK = 1e-9
 
 #: How many of the verifier's nearest pairs are searched.
 PAIRS = 200
+
+#: Pairs per NLP (one model, built once and reused; a separable sum).
+BLOCK = 16
 
 IPOPT_OPTIONS = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
                  "ipopt.tol": 1e-14, "ipopt.max_iter": 200}
@@ -107,10 +112,14 @@ def solve(search: Search, params: np.ndarray, x0: np.ndarray, lbx=None, ubx=None
 
 def _eval(p: np.ndarray, u: np.ndarray) -> np.ndarray:
     """Numeric :func:`_point` for rows of parameters ``p`` at ``u``."""
-    line = np.c_[p[:, 1] + u * (p[:, 3] - p[:, 1]), p[:, 2] + u * (p[:, 4] - p[:, 2])]
+    line = np.empty((u.size, 2))
+    line[:, 0] = p[:, 1] + u * (p[:, 3] - p[:, 1])
+    line[:, 1] = p[:, 2] + u * (p[:, 4] - p[:, 2])
     rho = p[:, 7] + u * (p[:, 8] - p[:, 7])
     th = p[:, 9] + u * p[:, 10]
-    polar = np.c_[p[:, 5] + rho * np.cos(th), p[:, 6] + rho * np.sin(th)]
+    polar = np.empty((u.size, 2))
+    polar[:, 0] = p[:, 5] + rho * np.cos(th)
+    polar[:, 1] = p[:, 6] + rho * np.sin(th)
     return np.where(p[:, :1] > 0.5, line, polar)
 
 
@@ -131,40 +140,33 @@ def _param_of_point(g, w) -> float:
 def allowed_intervals(tool_geom, regions, samples: int = 2049) -> list[tuple[float, float]]:
     """Parameter intervals of ``tool_geom`` outside the exempt ``regions``
     (``ccopt.verify.clearance`` form: convex regions ``[(n, c), ...]``,
-    ``n . q <= c``): membership on a dense grid, boundaries refined by bisection."""
+    ``n . q <= c``, closed, with the verifier's rounding allowance): membership
+    on a dense grid, every boundary refined by bisection (all at once)."""
     if not regions:
         return [(0.0, 1.0)]
     p = curve_params(tool_geom)[None, :]
 
     def inside(u):
-        q = _eval(np.repeat(p, np.size(u), axis=0), np.atleast_1d(u))
-        out = np.zeros(q.shape[0], bool)
-        for reg in regions:
-            ins = np.ones(q.shape[0], bool)
-            for n, c in reg:
-                ins &= q @ n - c <= 0.0
-            out |= ins
-        return out
+        u = np.atleast_1d(np.asarray(u, float))
+        return _contains(regions, _eval(np.repeat(p, u.size, axis=0), u))
 
     u = np.linspace(0.0, 1.0, samples)
     ins = inside(u)
-    edges = []
-    for k in np.flatnonzero(ins[1:] != ins[:-1]):
-        lo, hi = u[k], u[k + 1]
-        a = ins[k]
-        for _ in range(60):
-            mid = 0.5 * (lo + hi)
-            if inside(mid)[0] == a:
-                lo = mid
-            else:
-                hi = mid
-        edges.append(0.5 * (lo + hi))
-    cuts = [0.0] + edges + [1.0]
-    out = []
-    for a, b in zip(cuts, cuts[1:]):
-        if b > a and not inside(0.5 * (a + b))[0]:
-            out.append((a, b))
-    return out
+    k = np.flatnonzero(ins[1:] != ins[:-1])
+    lo, hi, a = u[k], u[k + 1], ins[k]
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        same = inside(mid) == a
+        lo = np.where(same, mid, lo)
+        hi = np.where(same, hi, mid)
+    cuts = np.r_[0.0, 0.5 * (lo + hi), 1.0]
+    keep = (cuts[1:] > cuts[:-1]) & ~inside(0.5 * (cuts[:-1] + cuts[1:]))
+    return [(float(x), float(y)) for x, y in zip(cuts[:-1][keep], cuts[1:][keep])]
+
+
+@lru_cache(maxsize=4)
+def _block_model(n: int) -> Search:
+    return gouge_search_model(n)
 
 
 def search_pairs(tool_geoms, elem_geoms, intervals, starts) -> np.ndarray:
@@ -172,23 +174,26 @@ def search_pairs(tool_geoms, elem_geoms, intervals, starts) -> np.ndarray:
 
     ``tool_geoms``, ``elem_geoms``: primitives (one pair per row); ``intervals``:
     ``(lo, hi)`` bounds of the tool parameter per row; ``starts``: list of
-    ``(n, 2)`` starting ``(u, v)`` (clipped into the bounds).
+    ``(n, 2)`` starting ``(u, v)`` (clipped into the bounds). Pairs are solved
+    in blocks of :data:`BLOCK` (one cached NLP; the last block padded).
     """
     n = len(tool_geoms)
     pt = np.array([curve_params(g) for g in tool_geoms])
     pe = np.array([curve_params(g) for g in elem_geoms])
-    params = np.c_[pt, pe].reshape(-1)
     lo = np.c_[np.asarray(intervals)[:, 0], np.zeros(n)]
     hi = np.c_[np.asarray(intervals)[:, 1], np.ones(n)]
-    search = gouge_search_model(n)
     best = np.full(n, np.inf)
-    for x0 in starts:
-        x0 = np.clip(np.asarray(x0, float), lo, hi)
-        uv = solve(search, params, x0.reshape(-1), lo.reshape(-1), hi.reshape(-1))
-        # IPOPT relaxes bounds slightly (bound_relax_factor): evaluate inside them
-        uv = np.clip(uv, lo, hi)
-        d = np.hypot(*(_eval(pt, uv[:, 0]) - _eval(pe, uv[:, 1])).T)
-        best = np.minimum(best, d)
+    search = _block_model(BLOCK)
+    for b0 in range(0, n, BLOCK):
+        idx = np.minimum(np.arange(b0, b0 + BLOCK), n - 1)      # pad with the last pair
+        params = np.c_[pt[idx], pe[idx]].reshape(-1)
+        for x0 in starts:
+            x = np.clip(np.asarray(x0, float)[idx], lo[idx], hi[idx])
+            uv = solve(search, params, x.reshape(-1), lo[idx].reshape(-1), hi[idx].reshape(-1))
+            # IPOPT relaxes bounds slightly (bound_relax_factor): evaluate inside them
+            uv = np.clip(uv, lo[idx], hi[idx])
+            d = np.hypot(*(_eval(pt[idx], uv[:, 0]) - _eval(pe[idx], uv[:, 1])).T)
+            np.minimum.at(best, idx, d)
     return best
 
 

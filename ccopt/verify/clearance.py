@@ -120,14 +120,22 @@ def exempt_regions(contour: Contour, j: int):
                        bool(contour.open_end[j]))
 
 
+#: Points within this (relative to the coordinates) of an exempt region's
+#: boundary count as on it: a tool segment laid along the boundary (a lead-in
+#: on the normal at the contour's end) must not flicker in and out by rounding.
+BOUNDARY_REL = 1e-12
+
+
 def _contains(regions, q: np.ndarray, margin=0.0) -> np.ndarray:
+    """Points ``q`` inside one of the closed ``regions`` by at least ``margin``."""
     q = np.atleast_2d(q)
     margin = np.broadcast_to(np.asarray(margin, float), (q.shape[0],))
+    slack = BOUNDARY_REL * (1.0 + np.abs(q).max(axis=1))
     out = np.zeros(q.shape[0], bool)
     for reg in regions:
         ins = np.ones(q.shape[0], bool)
         for n, c in reg:
-            ins &= q @ n - c <= -margin
+            ins &= q @ n - c <= slack - margin
         out |= ins
     return out
 
