@@ -31,10 +31,12 @@ def _cells(box: np.ndarray, origin: np.ndarray, h: float):
 
 
 def _expand(lo: np.ndarray, hi: np.ndarray, ids: np.ndarray, ncol: np.int64):
-    """``(cell key, id)`` for every cell of every box (``ids`` are the rows)."""
+    """``(cell key, id, cell x, cell y)`` for every cell of every box (``ids`` are the rows)."""
     nx = hi[:, 0] - lo[:, 0] + 1
     ny = hi[:, 1] - lo[:, 1] + 1
     cnt = nx * ny
+    if (cnt == 1).all():                           # the common case: one cell each
+        return lo[:, 1] * ncol + lo[:, 0], ids, lo[:, 0], lo[:, 1]
     total = int(cnt.sum())
     rep = np.repeat(np.arange(ids.size), cnt)
     start = np.cumsum(cnt) - cnt
@@ -42,7 +44,7 @@ def _expand(lo: np.ndarray, hi: np.ndarray, ids: np.ndarray, ncol: np.int64):
     nxr = nx[rep]
     cx = lo[rep, 0] + local % nxr
     cy = lo[rep, 1] + local // nxr
-    return cy * ncol + cx, ids[rep]
+    return cy * ncol + cx, ids[rep], cx, cy
 
 
 def _overlap(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -82,34 +84,31 @@ def candidate_pairs(tool_box: np.ndarray, elem_box: np.ndarray, reach: np.ndarra
     ti = np.flatnonzero(~big_t)
     ei = np.flatnonzero(~big_e)
     if ti.size and ei.size:
-        ek, eid = _expand(lo_e[ei], hi_e[ei], ei, ncol)
+        ek, eid, _, _ = _expand(lo_e[ei], hi_e[ei], ei, ncol)
         order = np.argsort(ek, kind="stable")
         ek, eid = ek[order], eid[order]
-        tk, tid = _expand(lo_t[ti], hi_t[ti], ti, ncol)
+        tk, tid, tcx, tcy = _expand(lo_t[ti], hi_t[ti], ti, ncol)
         first = np.searchsorted(ek, tk, side="left")
         last = np.searchsorted(ek, tk, side="right")
         cnt = last - first
         keep = cnt > 0
-        tk, tid, first, cnt = tk[keep], tid[keep], first[keep], cnt[keep]
+        tid, tcx, tcy, first, cnt = tid[keep], tcx[keep], tcy[keep], first[keep], cnt[keep]
         csum = np.cumsum(cnt)
-        # process in chunks of ~CHUNK pairs
         pos = 0
-        while pos < tk.size:
+        while pos < tid.size:                       # chunks of ~CHUNK candidate pairs
             base = csum[pos - 1] if pos else 0
-            stop = int(np.searchsorted(csum, base + CHUNK, side="right"))
-            stop = max(stop, pos + 1)
+            stop = max(int(np.searchsorted(csum, base + CHUNK, side="right")), pos + 1)
             c = cnt[pos:stop]
             rep = np.repeat(np.arange(pos, stop), c)
             off = np.arange(int(c.sum())) - np.repeat(np.cumsum(c) - c, c)
             pt = tid[rep]
             pe = eid[first[rep] + off]
-            key = tk[rep]
-            tb, gb = tool_box[pt], grown[pe]
-            ok = _overlap(tb, gb)
-            # report each pair once: in the cell of the overlap's lower-left corner
-            cx = np.floor((np.maximum(tb[:, 0], gb[:, 0]) - origin[0]) / h).astype(np.int64)
-            cy = np.floor((np.maximum(tb[:, 1], gb[:, 1]) - origin[1]) / h).astype(np.int64)
-            ok &= (cy * ncol + cx) == key
+            # Report each pair once, in the cell of the lower-left corner of the
+            # two boxes' overlap: cell (max of the lower cells), floor being monotone.
+            ok = (np.maximum(lo_t[pt, 0], lo_e[pe, 0]) == tcx[rep])
+            ok &= (np.maximum(lo_t[pt, 1], lo_e[pe, 1]) == tcy[rep])
+            pt, pe = pt[ok], pe[ok]
+            ok = _overlap(tool_box[pt], grown[pe])
             out_t.append(pt[ok])
             out_e.append(pe[ok])
             pos = stop

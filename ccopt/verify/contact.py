@@ -100,16 +100,15 @@ def _arc_arc_concentric(T, ti, E, ej):
     cT, cE = T.center[ti], E.center[ej]
     scale = np.maximum(1.0, np.maximum(T.radius[ti], E.radius[ej]))
     conc = np.hypot(*(cT - cE).T) <= 1e-12 * scale
-    # angular overlap: an end of one inside the other's sweep
-    aT0 = np.arctan2(T.p0[ti, 1] - cE[:, 1], T.p0[ti, 0] - cE[:, 0])
-    aT1 = np.arctan2(T.p1[ti, 1] - cE[:, 1], T.p1[ti, 0] - cE[:, 0])
-    aE0 = np.arctan2(E.p0[ej, 1] - cT[:, 1], E.p0[ej, 0] - cT[:, 0])
-    inside_T0 = angle_in_sweep(aT0, E.theta0[ej], E.sweep[ej])
-    inside_T1 = angle_in_sweep(aT1, E.theta0[ej], E.sweep[ej])
-    inside_E0 = angle_in_sweep(aE0, T.theta0[ti], T.sweep[ti])
-    along = inside_T0 | inside_T1 | inside_E0
+    # angular overlap (same centre, so polar angles compare directly): the middle
+    # or an end of one arc inside the other's sweep; the middles make it robust
+    # to the rounding of arcs that share their end angles
+    thT, swT, thE, swE = T.theta0[ti], T.sweep[ti], E.theta0[ej], E.sweep[ej]
+    midT = thT + 0.5 * swT
+    along = (angle_in_sweep(midT, thE, swE) | angle_in_sweep(thE + 0.5 * swE, thT, swT)
+             | angle_in_sweep(thT, thE, swE) | angle_in_sweep(thT + swT, thE, swE))
     dmax = np.abs(T.radius[ti] - E.radius[ej])
-    q = np.where(inside_T0[:, None], T.p0[ti], T.p1[ti])
+    q = cT + T.radius[ti][:, None] * np.c_[np.cos(midT), np.sin(midT)]
     return dmax, q, conc, along
 
 

@@ -20,14 +20,12 @@ from ccopt.verify.segments import Packed, end_tangents
 LISTED_BREAKS = 50
 
 
-def check_continuity(tool: Packed, toolpath, eps: float, lengths, info):
-    segs = toolpath.segments
-    n = len(segs)
+def check_continuity(tool: Packed, w0: np.ndarray, w1: np.ndarray, eps: float, lengths, info):
+    """``w0``, ``w1``: out-of-plane coordinate at each segment's start and end."""
     A = tool.arr
+    n = len(A)
     viol = []
     if n >= 2:
-        w0 = np.fromiter((s.w0 for s in segs), float, n)
-        w1 = np.fromiter((s.w1 for s in segs), float, n)
         d = A.p0[1:] - A.p1[:-1]
         jump = np.sqrt(d[:, 0] ** 2 + d[:, 1] ** 2 + (w0[1:] - w1[:-1]) ** 2)
         worst = float(jump.max())

@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from itertools import chain, repeat
+from operator import attrgetter
 
 import numpy as np
 
@@ -29,6 +31,10 @@ STATUS_LEAD_IN = "lead-in"          # on for the move, off before it
 STATUS_STEADY = "steady"            # on before and during, same side and radius
 STATUS_RADIUS_CHANGE = "radius-change"  # on before and during, new radius introduced over it
 STATUS_SIDE_CHANGE = "side-change"  # on before and during, new side introduced over it
+STATUS_NAMES = (STATUS_OFF, STATUS_LEAD_IN, STATUS_STEADY, STATUS_RADIUS_CHANGE, STATUS_SIDE_CHANGE)
+_ARCS = frozenset((Motion.ARC_CW, Motion.ARC_CCW))
+_MOTION, _START, _END, _MODAL = (attrgetter(a) for a in ("motion", "start", "end", "modal"))
+_SIDE, _RADIUS = attrgetter("side"), attrgetter("radius")
 
 
 @dataclass(frozen=True, eq=False)
@@ -47,8 +53,9 @@ class Contour:
     open_start, open_end: the contour stops at that end (see
         :data:`ccopt.verify.decisions.OPEN_END_EXEMPTION`).
     plane: plane of compensation.
-    move_of: ``id(block) -> (status, k, r, element index or -1)`` for every
-        in-plane move of the program.
+    moves: every in-plane move of the program, in order; per move:
+        ``move_status`` (a ``STATUS_*``), ``move_k``, ``move_r`` (side and radius
+        in force), ``move_element`` (its contour element, or -1).
     notes: what the verifier assumed (e.g. a radius taken from the tool path).
     """
 
@@ -61,7 +68,11 @@ class Contour:
     open_start: np.ndarray
     open_end: np.ndarray
     plane: str
-    move_of: dict = field(repr=False)
+    moves: tuple[Block, ...] = field(repr=False)
+    move_status: np.ndarray = field(repr=False)
+    move_k: np.ndarray = field(repr=False)
+    move_r: np.ndarray = field(repr=False)
+    move_element: np.ndarray = field(repr=False)
     notes: tuple[str, ...] = ()
 
     def __len__(self) -> int:
@@ -71,24 +82,35 @@ class Contour:
         b = self.blocks[int(j)]
         return b.source.line if b is not None else None
 
+    def move_indices(self, blocks) -> np.ndarray:
+        """Index into :attr:`moves` of each block (-1 when it is not an in-plane
+        move of the program, or ``None``). Blocks are matched by identity, and
+        by value for a tool path whose blocks are equal copies."""
+        by_id = self.__dict__.get("_by_id")
+        if by_id is None:
+            by_id = {id(b): q for q, b in enumerate(self.moves)}
+            object.__setattr__(self, "_by_id", by_id)
+        blocks = list(blocks)
+        out = np.fromiter(map(by_id.get, map(id, blocks), repeat(-1)), np.intp, len(blocks))
+        miss = [q for q in np.flatnonzero(out < 0) if blocks[q] is not None]
+        if miss:
+            by_val = self.__dict__.get("_by_value")
+            if by_val is None:
+                by_val = {}
+                for q, b in enumerate(self.moves):
+                    by_val.setdefault(b, q)
+                object.__setattr__(self, "_by_value", by_val)
+            for q in miss:
+                out[q] = by_val.get(blocks[q], -1)
+        return out
+
     def lookup(self, block: Block | None):
         """``(status, k, r, element index or -1)`` of a tool segment's block, or ``None``."""
-        if block is None:
+        q = int(self.move_indices([block])[0])
+        if q < 0:
             return None
-        hit = self.move_of.get(id(block))
-        if hit is None:
-            # A tool path whose blocks are equal copies (e.g. a program read twice).
-            hit = self._by_value().get(block)
-        return hit
-
-    def _by_value(self) -> dict:
-        cache = self.__dict__.get("_value_cache")
-        if cache is None:
-            cache = {}
-            for key, val in self.move_of.items():
-                cache[self._blocks_by_id[key]] = val
-            object.__setattr__(self, "_value_cache", cache)
-        return cache
+        return (STATUS_NAMES[self.move_status[q]], int(self.move_k[q]), float(self.move_r[q]),
+                int(self.move_element[q]))
 
 
 def effective_side_radius(block: Block, radius: float | None, side: int | None) -> tuple[int, float]:
@@ -107,14 +129,10 @@ def effective_side_radius(block: Block, radius: float | None, side: int | None) 
     return int(k), float(r)
 
 
-def _uniform_program_radius(moves, k) -> float | None:
-    radii = {b.modal.radius for b, kk in zip(moves, k) if kk != 0}
-    return radii.pop() if len(radii) == 1 and None not in radii else None
-
-
-def element_geometry(blocks: list[Block], plane: str, st=None, en=None) -> Packed:
+def element_geometry(blocks: list[Block], plane: str, st=None, en=None, ce=None, is_arc=None,
+                     ccw=None, turns=None) -> Packed:
     """Programmed geometry of ``blocks`` as :func:`block_geometry` makes it, packed
-    (``st``, ``en``: their in-plane start and end points, if already known)."""
+    (in-plane start, end, centre, arc flags and turns may be passed if known)."""
     n = len(blocks)
     if n == 0:
         return pack([])
@@ -122,12 +140,12 @@ def element_geometry(blocks: list[Block], plane: str, st=None, en=None) -> Packe
     if st is None:
         st = np.array([b.start for b in blocks], float).reshape(n, 3)[:, [i, j]]
         en = np.array([b.end for b in blocks], float).reshape(n, 3)[:, [i, j]]
-    nan3 = (math.nan, math.nan, math.nan)
-    ce = np.array([b.center if b.center is not None else nan3 for b in blocks],
-                  float).reshape(n, 3)[:, [i, j]]
-    is_arc = np.array([b.motion.is_arc for b in blocks], bool)
-    ccw = np.array([b.motion is Motion.ARC_CCW for b in blocks], bool)
-    turns = np.array([b.turns for b in blocks], float)
+        nan3 = (math.nan, math.nan, math.nan)
+        ce = np.array([b.center if b.center is not None else nan3 for b in blocks],
+                      float).reshape(n, 3)[:, [i, j]]
+        is_arc = np.array([b.motion.is_arc for b in blocks], bool)
+        ccw = np.array([b.motion is Motion.ARC_CCW for b in blocks], bool)
+        turns = np.array([b.turns for b in blocks], float)
     R0 = np.hypot(*(st - ce).T)
     R1 = np.hypot(*(en - ce).T)
     spiral = is_arc & (np.abs(R1 - R0) > 1e-9 * np.maximum(1.0, R0))
@@ -183,23 +201,35 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
     tool path says it was made with
     (:data:`~ccopt.verify.decisions.RADIUS_FROM_TOOLPATH_WHEN_UNIFORM`).
     """
-    allmoves = [b for b in program.blocks if b.motion.is_move]
+    # Array form of everything read from the blocks (C-level map/attrgetter
+    # passes: this runs once per verification over up to millions of blocks).
+    dwell = Motion.DWELL
+    allmoves = [b for b in program.blocks if b.motion is not dwell]
     plane = allmoves[0].modal.plane if allmoves else (program.blocks[0].modal.plane
                                                       if program.blocks else "XY")
     i0, j0, _ = PLANE_AXES[plane]
     m = len(allmoves)
-    st_all = np.array([b.start for b in allmoves], float).reshape(m, 3)[:, [i0, j0]]
-    en_all = np.array([b.end for b in allmoves], float).reshape(m, 3)[:, [i0, j0]]
-    arc_all = np.fromiter((b.motion.is_arc for b in allmoves), bool, m)
+    motions = list(map(_MOTION, allmoves))
+    arc_all = np.fromiter(map(_ARCS.__contains__, motions), bool, m)
+    st_all = np.fromiter(chain.from_iterable(map(_START, allmoves)), float, 3 * m
+                         ).reshape(m, 3)[:, [i0, j0]]
+    en_all = np.fromiter(chain.from_iterable(map(_END, allmoves)), float, 3 * m
+                         ).reshape(m, 3)[:, [i0, j0]]
     # Block.in_plane, for all moves at once
     inp = arc_all | (np.hypot(*(en_all - st_all).T) > 0.0)
-    moves = [b for b, ok in zip(allmoves, inp) if ok]
-    st_mv, en_mv = st_all[inp], en_all[inp]
+    sel_mv = np.flatnonzero(inp)
+    moves = allmoves if inp.all() else [allmoves[q] for q in sel_mv]
+    st_mv, en_mv, arc_mv = st_all[inp], en_all[inp], arc_all[inp]
+    n = len(moves)
+    modals = list(map(_MODAL, moves))
+    raw_k = np.fromiter(map(_SIDE, modals), int, n)
+    rad = list(map(_RADIUS, modals))
     notes: list[str] = []
-    raw_k = [b.modal.side for b in moves]
+    on_blocks = raw_k != 0
+    on_radii = set(np.asarray(rad, dtype=object)[on_blocks].tolist()) if n else set()
     if radius is None and toolpath_radius is not None and toolpath_radius > 0.0:
-        r_prog = _uniform_program_radius(moves, raw_k)
-        if r_prog is None and any(b.modal.radius is None for b, kk in zip(moves, raw_k) if kk):
+        r_prog = next(iter(on_radii)) if len(on_radii) == 1 and None not in on_radii else None
+        if None in on_radii:
             radius = float(toolpath_radius)
             notes.append(f"the program sets no cutter radius: verified with the tool path's "
                          f"{toolpath_radius:g}")
@@ -208,14 +238,16 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
             notes.append(f"the program's radius {r_prog:g} differs from the tool path's "
                          f"{toolpath_radius:g}: verified with {toolpath_radius:g} "
                          "(a compensate(radius=...) override)")
-    n = len(moves)
-    k = np.fromiter((b.modal.side for b in moves), int, n)
-    rad = [b.modal.radius for b in moves]
-    if radius is None and any(rr is None for rr, kk in zip(rad, k) if kk):
-        q = next(q for q in range(n) if k[q] and rad[q] is None)
+    k = raw_k.copy()
+    if radius is None and None in on_radii:
+        q = next(q for q in range(n) if on_blocks[q] and rad[q] is None)
         effective_side_radius(moves[q], None, None)      # raises, located
-    r = np.array([0.0 if rr is None else rr for rr in rad], float) if radius is None \
-        else np.full(n, float(radius))
+    if radius is not None:
+        r = np.full(n, float(radius))
+    elif None in rad:
+        r = np.array([0.0 if rr is None else rr for rr in rad], float)
+    else:
+        r = np.array(rad, float)
     if side is not None:
         k = np.where(k != 0, int(side), 0)
     r = np.where(k != 0, r, 0.0)
@@ -226,22 +258,31 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
     radius_change = on & ~side_change & (r != prev_r)
     steady = on & ~side_change & ~radius_change
     in_contour = steady | radius_change
-    status = np.full(n, STATUS_OFF, dtype=object)
-    status[(k != 0) & (prev_k == 0)] = STATUS_LEAD_IN
-    status[steady] = STATUS_STEADY
-    status[radius_change] = STATUS_RADIUS_CHANGE
-    status[side_change] = STATUS_SIDE_CHANGE
-    idx = np.cumsum(in_contour) - 1
-    elem_idx = np.where(in_contour, idx, -1).tolist()
-    move_of = {id(b): v for b, v in zip(moves, zip(status.tolist(), k.tolist(), r.tolist(),
-                                                     elem_idx))}
+    status = np.zeros(n, np.int8)
+    status[(k != 0) & (prev_k == 0)] = STATUS_NAMES.index(STATUS_LEAD_IN)
+    status[steady] = STATUS_NAMES.index(STATUS_STEADY)
+    status[radius_change] = STATUS_NAMES.index(STATUS_RADIUS_CHANGE)
+    status[side_change] = STATUS_NAMES.index(STATUS_SIDE_CHANGE)
+    elem_idx = np.where(in_contour, np.cumsum(in_contour) - 1, -1)
     sel = np.flatnonzero(in_contour)
     prev_in = np.r_[False, in_contour[:-1]] if n else in_contour
     next_in = np.r_[in_contour[1:], False] if n else in_contour
-    cblocks = tuple(moves[q] for q in sel)
-    elements = element_geometry(list(cblocks), plane, st_mv[sel], en_mv[sel])
+    cblocks = tuple(moves[q] for q in sel) if sel.size < n else tuple(moves)
+    nc = len(cblocks)
+    cmot = [motions[q] for q in sel_mv[sel]]
+    ccw = np.fromiter(map(Motion.ARC_CCW.__eq__, cmot), bool, nc)
+    carc = arc_mv[sel]
+    ce = np.full((nc, 2), np.nan)
+    arcs_q = np.flatnonzero(carc)
+    if arcs_q.size:
+        cc = np.array([cblocks[q].center for q in arcs_q], float).reshape(-1, 3)
+        ce[arcs_q] = cc[:, [i0, j0]]
+    turns = np.zeros(nc)
+    for q in arcs_q:
+        turns[q] = cblocks[q].turns
+    elements = element_geometry(list(cblocks), plane, st_mv[sel], en_mv[sel], ce, carc, ccw,
+                                turns)
     clearance = np.where(radius_change[sel], np.minimum(r[sel], prev_r[sel]), r[sel])
-    c = Contour(cblocks, elements, k[sel], r[sel], clearance, steady[sel],
-                ~prev_in[sel], ~next_in[sel], plane, move_of, tuple(notes))
-    object.__setattr__(c, "_blocks_by_id", {id(b): b for b in moves})
-    return c
+    return Contour(cblocks, elements, k[sel], r[sel], clearance, steady[sel],
+                   ~prev_in[sel], ~next_in[sel], plane, tuple(moves), status, k, r, elem_idx,
+                   tuple(notes))

@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
+from operator import attrgetter
 
 import numpy as np
 
@@ -13,7 +14,7 @@ from ccopt.verify.certificate import CERTIFIED, EXACT, Certificate, Check, Viola
 from ccopt.verify.clearance import PairDistances, pair_distances
 from ccopt.verify.contact import check_contact
 from ccopt.verify.continuity import check_continuity
-from ccopt.verify.contour import STATUS_STEADY, Contour, contour_of
+from ccopt.verify.contour import STATUS_NAMES, STATUS_STEADY, Contour, contour_of
 from ccopt.verify.limits import check_limits
 from ccopt.verify.segments import Packed, lengths, pack
 from ccopt.verify.side import check_side
@@ -22,6 +23,7 @@ SIDES = {"left": 1, "right": -1, 1: 1, -1: -1, None: None}
 
 
 ROLE_CODES = {r: q for q, r in enumerate(Role)}
+_LINE = attrgetter("source.line")
 
 
 @dataclass(frozen=True, eq=False)
@@ -37,27 +39,24 @@ class SegmentTable:
     r: np.ndarray
 
     @classmethod
-    def build(cls, toolpath: ToolPath, contour: Contour) -> "SegmentTable":
-        segs = toolpath.segments
-        n = len(segs)
-        role = np.empty(n, np.int8)
-        line = np.full(n, -1, np.int64)
-        elem = np.full(n, -1, np.intp)
-        steady = np.zeros(n, bool)
-        r = np.zeros(n)
-        lookup = contour.lookup
+    def build(cls, roles, blocks, contour: Contour) -> "SegmentTable":
+        """From the tool segments' roles and blocks."""
+        n = len(roles)
         codes = ROLE_CODES
-        for i, s in enumerate(segs):
-            role[i] = codes[s.role]
-            b = s.block
-            if b is None:
-                continue
-            line[i] = b.source.line
-            hit = lookup(b)
-            if hit is not None:
-                elem[i] = hit[3]
-                steady[i] = hit[0] == STATUS_STEADY
-                r[i] = hit[2]
+        role = np.fromiter(map(codes.__getitem__, roles), np.int8, n)
+        try:
+            line = np.fromiter(map(_LINE, blocks), np.int64, n)
+        except AttributeError:                       # a segment without a block
+            line = np.fromiter((-1 if b is None else b.source.line for b in blocks), np.int64, n)
+        q = contour.move_indices(blocks)
+        hit = q >= 0
+        qq = np.where(hit, q, 0)
+        if len(contour.moves):
+            elem = np.where(hit, contour.move_element[qq], -1)
+            steady = hit & (contour.move_status[qq] == STATUS_NAMES.index(STATUS_STEADY))
+            r = np.where(hit, contour.move_r[qq], 0.0)
+        else:
+            elem, steady, r = np.full(n, -1, np.intp), np.zeros(n, bool), np.zeros(n)
         return cls(role, line, elem, steady, r)
 
     def is_role(self, role: Role) -> np.ndarray:
@@ -151,10 +150,12 @@ def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = V
     contour = contour_of(program, radius=radius, side=SIDES[side],
                          toolpath_radius=toolpath.radius if radius is None else None)
     segs = toolpath.segments
-    tool = pack([s.geom for s in segs])
+    # one pass over the segments for everything read from them
+    rows = [(s.geom, s.role, s.block, s.w0, s.w1) for s in segs]
+    geoms, roles, blocks, w0, w1 = zip(*rows) if rows else ((),) * 5
+    tool = pack(geoms)
     seg_len = lengths(tool)
-
-    table = SegmentTable.build(toolpath, contour)
+    table = SegmentTable.build(roles, blocks, contour)
 
     def info(i: int):
         s = segs[i]
@@ -165,7 +166,7 @@ def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = V
     results = [check_gouge(pairs, contour, eps, info),
                check_contact(tool, toolpath, contour, eps, seg_len, info, table),
                check_side(tool, contour, eps, seg_len, info, table),
-               check_continuity(tool, toolpath, eps, seg_len, info),
+               check_continuity(tool, np.asarray(w0, float), np.asarray(w1, float), eps, seg_len, info),
                check_limits(profile)]
     checks = tuple(c for c, _ in results)
     violations = tuple(v for _, vs in results for v in vs)

@@ -17,6 +17,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from itertools import chain
+from operator import attrgetter
 
 import numpy as np
 
@@ -25,6 +27,9 @@ from ccopt.geometry.angles import angle_in_sweep
 
 #: Row kind of a parametric curve (no closed form; certified bounds only).
 KIND_CURVE = 3
+
+_P0, _P1, _CENTER = attrgetter("p0"), attrgetter("p1"), attrgetter("center")
+_RADIUS, _THETA0, _SWEEP = attrgetter("radius"), attrgetter("theta0"), attrgetter("sweep")
 
 
 @dataclass(frozen=True, eq=False)
@@ -83,19 +88,12 @@ def pack(geoms) -> Packed:
     geoms = list(geoms)
     n = len(geoms)
     kind = np.empty(n, dtype=np.int8)
-    lines_i, lines_pts = [], []
-    arcs_i, arcs_par = [], []
+    types = list(map(type, geoms))
+    lines_i = [i for i, t in enumerate(types) if t is Line]
+    arcs_i = [i for i, t in enumerate(types) if t is Arc]
     curved: dict[int, object] = {}
-    for i, g in enumerate(geoms):
-        t = type(g)
-        if t is Line:
-            lines_i.append(i)
-            lines_pts.append(g.p0 + g.p1)
-        elif t is Arc:
-            arcs_i.append(i)
-            arcs_par.append((g.center[0], g.center[1], g.radius, g.theta0, g.sweep))
-        else:
-            curved[i] = g
+    if len(lines_i) + len(arcs_i) < n:
+        curved = {i: g for i, (g, t) in enumerate(zip(geoms, types)) if t is not Line and t is not Arc}
     p0 = np.full((n, 2), np.nan)
     p1 = np.full((n, 2), np.nan)
     center = np.full((n, 2), np.nan)
@@ -106,7 +104,11 @@ def pack(geoms) -> Packed:
     bbox = np.empty((n, 4))
     if lines_i:
         li = np.asarray(lines_i)
-        pts = np.asarray(lines_pts, float).reshape(-1, 4)
+        lines = [geoms[i] for i in lines_i]
+        m = len(lines)
+        pts = np.empty((m, 4))
+        pts[:, :2] = np.fromiter(chain.from_iterable(map(_P0, lines)), float, 2 * m).reshape(m, 2)
+        pts[:, 2:] = np.fromiter(chain.from_iterable(map(_P1, lines)), float, 2 * m).reshape(m, 2)
         kind[li] = KIND_LINE
         p0[li] = pts[:, :2]
         p1[li] = pts[:, 2:]
@@ -116,8 +118,12 @@ def pack(geoms) -> Packed:
         bbox[li, 3] = np.maximum(pts[:, 1], pts[:, 3])
     if arcs_i:
         ai = np.asarray(arcs_i)
-        par = np.asarray(arcs_par, float).reshape(-1, 5)
-        c, R, th0, sw = par[:, :2], par[:, 2], par[:, 3], par[:, 4]
+        arcs = [geoms[i] for i in arcs_i]
+        m = len(arcs)
+        c = np.fromiter(chain.from_iterable(map(_CENTER, arcs)), float, 2 * m).reshape(m, 2)
+        R = np.fromiter(map(_RADIUS, arcs), float, m)
+        th0 = np.fromiter(map(_THETA0, arcs), float, m)
+        sw = np.fromiter(map(_SWEEP, arcs), float, m)
         th1 = th0 + sw
         # Same formula as Arc.start / Arc.end, so end points agree bit for bit.
         a0 = np.c_[c[:, 0] + R * np.cos(th0), c[:, 1] + R * np.sin(th0)]
