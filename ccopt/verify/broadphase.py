@@ -10,8 +10,8 @@ repeated. Everything is array arithmetic (sort and search, no Python loop
 over elements); boxes covering more than :data:`MAX_CELLS` cells (a few very
 long elements) are tested against every box of the other side directly.
 
-The cell size is the median box size (at least the largest reach), so a
-typical box covers up to four cells.
+The cell size is twice the median box size (at least the largest reach), so
+a typical box covers one to four cells (measured fastest on long paths).
 """
 from __future__ import annotations
 
@@ -19,6 +19,9 @@ import numpy as np
 
 #: A box covering more cells than this is paired by a direct overlap test.
 MAX_CELLS = 64
+
+#: Cell size as a multiple of the median box size.
+CELL_FACTOR = 2.0
 
 #: Pairs are produced in chunks of about this many to bound memory.
 CHUNK = 1 << 21
@@ -66,7 +69,7 @@ def candidate_pairs(tool_box: np.ndarray, elem_box: np.ndarray, reach: np.ndarra
     grown = elem_box + np.c_[-reach, -reach, reach, reach]
     allbox = np.r_[tool_box, grown]
     ext = np.maximum(allbox[:, 2] - allbox[:, 0], allbox[:, 3] - allbox[:, 1])
-    h = float(max(np.median(ext), float(reach.max(initial=0.0)), 1e-12))
+    h = float(max(CELL_FACTOR * np.median(ext), float(reach.max(initial=0.0)), 1e-12))
     origin = allbox[:, :2].min(axis=0)
     span = (allbox[:, 2:].max(axis=0) - origin) / h
     ncol = np.int64(np.floor(span[0])) + 2

@@ -35,6 +35,7 @@ STATUS_NAMES = (STATUS_OFF, STATUS_LEAD_IN, STATUS_STEADY, STATUS_RADIUS_CHANGE,
 _ARCS = frozenset((Motion.ARC_CW, Motion.ARC_CCW))
 _MOTION, _START, _END, _MODAL = (attrgetter(a) for a in ("motion", "start", "end", "modal"))
 _SIDE, _RADIUS = attrgetter("side"), attrgetter("radius")
+_CENTER, _TURNS = attrgetter("center"), attrgetter("turns")
 
 
 @dataclass(frozen=True, eq=False)
@@ -273,13 +274,14 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
     ccw = np.fromiter(map(Motion.ARC_CCW.__eq__, cmot), bool, nc)
     carc = arc_mv[sel]
     ce = np.full((nc, 2), np.nan)
+    turns = np.zeros(nc)
     arcs_q = np.flatnonzero(carc)
     if arcs_q.size:
-        cc = np.array([cblocks[q].center for q in arcs_q], float).reshape(-1, 3)
+        ab = [cblocks[q] for q in arcs_q]
+        na = len(ab)
+        cc = np.fromiter(chain.from_iterable(map(_CENTER, ab)), float, 3 * na).reshape(na, 3)
         ce[arcs_q] = cc[:, [i0, j0]]
-    turns = np.zeros(nc)
-    for q in arcs_q:
-        turns[q] = cblocks[q].turns
+        turns[arcs_q] = np.fromiter(map(_TURNS, ab), float, na)
     elements = element_geometry(list(cblocks), plane, st_mv[sel], en_mv[sel], ce, carc, ccw,
                                 turns)
     clearance = np.where(radius_change[sel], np.minimum(r[sel], prev_r[sel]), r[sel])
