@@ -11,16 +11,17 @@ separate, so the same NLP can go to another CasADi solver (``sqpmethod``,
     subject to b_0 = 0 (the approach point is a stop), b_i <= F^2,
                |q'_k u_i + q''_k b_i| <= a_k for each axis k at both ends of every
                piece, u_i = (b_i+1 - b_i) / (2 ds_i) (TOPP's discrete model),
-               own-element clearance (hull certificate for line hosts,
-               sampled circle distance for arc hosts),
-               |p_i - q_j|^2 >= (r_j + m)^2 for blend samples p_i, contour samples q_j,
+               clearance from every element within reach at m_clear samples,
+                 by the case of each (formulations.clearance): n . p >= n . A + r
+                 alongside a line, |p - c|^2 <= (R - r)^2 or >= (R + r)^2 alongside
+                 an arc, |p - E|^2 >= r^2 beyond an end E,
                |r'(t_i)| >= v_min (a regular curve),
 
 so the path and its speed are optimised together (a small time-optimal
 parametrisation inside the NLP, with the machine's own axis limits; TOPPRA
-on the exact path gives the reported cycle time). The pairs ``(i, j)`` start as those within reach
-of the first guess; after a solve every pair is checked and the violated ones
-added (at most :data:`MAX_ROUNDS` rounds).
+on the exact path gives the reported cycle time). The clearance cases are
+taken at the first guess and re-taken at each solution until they no longer
+change (at most :data:`MAX_ROUNDS` rounds).
 """
 from __future__ import annotations
 
@@ -32,23 +33,24 @@ import numpy as np
 from ccopt.compare.blend import (
     BlendProblem, bernstein, derivative_matrix, end_acceleration, jerk_gram,
 )
-from formulations.lead_setup import DEGREE, LeadSetup, run_leads
+from formulations.clearance import CONCAVE, CONVEX, END, LINE, classify
+from formulations.lead_setup import LeadSetup, run_leads
 
-#: Rounds of "solve, find violated clearance pairs, add them".
+#: Rounds of "solve, re-classify the clearance cases at the solution".
 MAX_ROUNDS = 4
 
 M_TIME = int(__import__("os").environ.get("MT", 41))
 M_CLEAR = 61
 
 
-def _pairs(setup: LeadSetup, P: np.ndarray, t: np.ndarray, reach: float):
-    pts = bernstein(t, setup.degree) @ P
-    d = np.hypot(pts[:, None, 0] - setup.q[None, :, 0], pts[:, None, 1] - setup.q[None, :, 1])
-    I, J = np.nonzero(d <= setup.q_clear[None, :] + setup.margin + reach)
-    return set(zip(I.tolist(), J.tolist()))
+def classes_at(setup: LeadSetup, x, m_clear: int):
+    """Clearance cases (:func:`formulations.clearance.classify`) of every element at the
+    curve samples of ``x`` (ends excluded)."""
+    pts = bernstein(np.linspace(0.0, 1.0, m_clear)[1:-1], setup.degree) @ setup.controls(x)
+    return [classify(el, pts) for el in setup.elements]
 
 
-def lead_model(setup: LeadSetup, pairs, m_time: int = M_TIME, m_clear: int = M_CLEAR) -> dict:
+def lead_model(setup: LeadSetup, classes, m_time: int = M_TIME, m_clear: int = M_CLEAR) -> dict:
     """The NLP of one lead as a CasADi dict: ``nlp`` (``x``, ``f``, ``g``),
     bounds ``lbx, ubx, lbg, ubg``, first guess ``x0``."""
     import casadi as ca
@@ -98,32 +100,25 @@ def lead_model(setup: LeadSetup, pairs, m_time: int = M_TIME, m_clear: int = M_C
     obj = T + (setup.lg.host_length - sg) / setup.feed + setup.jerk_weight * jerk
 
     g, lbg, ubg = [], [], []
-    # own element
-    if setup.host_kind == "line":
-        nf = ca.DM(setup.n_free_dir)
-        for Pk in (*free, Pm2):
-            g.append(ca.dot(nf, Pk - ca.DM(setup.H0)))
-            lbg.append(0.0)
-            ubg.append(ca.inf)
     tc = np.linspace(0.0, 1.0, m_clear)
     pts = ca.mtimes(ca.DM(bernstein(tc, n)), P)
-    if setup.host_kind == "arc":
-        dc = (pts[:-1, 0] - setup.center[0]) ** 2 + (pts[:-1, 1] - setup.center[1]) ** 2
-        sgn = 1.0 if setup.own_outside else -1.0
-        g.append(sgn * (dc - setup.rho ** 2))
-        lbg += [0.0] * (m_clear - 1)
-        ubg += [ca.inf] * (m_clear - 1)
-    # other elements, sampled
-    if pairs:
-        I = [i for i, _ in sorted(pairs)]
-        Jq = [j for _, j in sorted(pairs)]
-        qx = ca.DM(setup.q[Jq, 0])
-        qy = ca.DM(setup.q[Jq, 1])
-        dd = (pts[I, 0] - qx) ** 2 + (pts[I, 1] - qy) ** 2
-        need = (setup.q_clear[Jq] + setup.margin) ** 2
-        g.append(dd - ca.DM(need))
-        lbg += [0.0] * len(I)
-        ubg += [ca.inf] * len(I)
+    # every element within reach, by the case of each sample (ends excluded)
+    inner = pts[1:-1, :]
+    for kind, vec, scal in classes:
+        for k in (LINE, CONCAVE, CONVEX, END):
+            idx = [int(i) for i in np.flatnonzero(kind == k)]
+            if not idx:
+                continue
+            px, py = inner[idx, 0], inner[idx, 1]
+            vx, vy, sc = ca.DM(vec[idx, 0]), ca.DM(vec[idx, 1]), ca.DM(scal[idx])
+            if k == LINE:
+                g.append(vx * px + vy * py - sc)
+            elif k == CONCAVE:
+                g.append(sc ** 2 - (px - vx) ** 2 - (py - vy) ** 2)
+            else:
+                g.append((px - vx) ** 2 + (py - vy) ** 2 - sc ** 2)
+            lbg += [0.0] * len(idx)
+            ubg += [ca.inf] * len(idx)
     # regular curve
     vmin = 0.02 * setup.L0
     g.append(sp2[:] - vmin ** 2)
@@ -182,25 +177,24 @@ def solve_lead_model(model: dict, solver: str = "ipopt", options: dict | None = 
 
 
 def solve_lead(setup: LeadSetup, solver: str = "ipopt"):
-    """Solve one lead, adding violated clearance pairs until none is left."""
+    """Solve one lead; re-classify the clearance cases at the solution and solve
+    again until they no longer change (at most :data:`MAX_ROUNDS` rounds)."""
     t0 = time.perf_counter()
-    tc = np.linspace(0.0, 1.0, M_CLEAR)
+    m_clear = M_CLEAR * setup.refine
     x = setup.initial()
-    pairs = _pairs(setup, setup.controls(x), tc[:-1], 0.5 * setup.L0)
-    stats = {}
-    rounds = 0
-    X = None
+    classes = classes_at(setup, x, m_clear)
+    X, stats, rounds = None, {}, 0
     for rounds in range(1, MAX_ROUNDS + 1):
-        model = lead_model(setup, pairs)
+        model = lead_model(setup, classes, m_clear=m_clear)
         X, stats = solve_lead_model(model, solver, x0=X)
         if not stats["success"]:
             raise RuntimeError(f"IPOPT: {stats['status']}")
         x = X[:setup.nx]
-        new = _pairs(setup, setup.controls(x), tc[:-1], 0.0) - pairs
-        if not new:
+        new = classes_at(setup, x, m_clear)
+        if all(np.array_equal(a[0], b[0]) for a, b in zip(new, classes)):
             break
-        pairs |= new
-    stats.update(rounds=rounds, pairs=len(pairs), solve_time=time.perf_counter() - t0)
+        classes = new
+    stats.update(rounds=rounds, solve_time=time.perf_counter() - t0)
     return x, stats
 
 

@@ -6,10 +6,10 @@ at the join, decision vector ``x = [P1 .. P(n-3), a, e, sigma]``), but every
 subproblem is convex. At iterate ``x_k`` (:class:`ConvexLeadModel`, the model):
 
     minimise   len(x)/len0 + lam * E2(x)/E2_0 + mu * E3(x)/E3_0 + M * sum(slack)
-    subject to u_ij . (p_i(x) - q_j) >= r_j + m - slack_ij   (clearance, safe half-planes)
-               own-element clearance (line host: n . (P_k - H0) >= 0, exact;
-                 arc host: |p_i - c| <= rho as a second-order cone when the tool is
-                 inside, the tangent half-plane at the iterate when outside),
+    subject to G_ie . p_i(x) >= h_ie - slack_i   (clearance from element e, the row of
+                 the case of sample i at x_k: exact alongside a line, the tangent
+                 half-plane alongside a convex arc or beyond an end: safe),
+               |p_i(x) - c_e| <= R_e - r + slack_i   (alongside a concave arc: a cone),
                ||p_i(x) - w_i|| <= W                            (tolerance band, SOC)
                ubar_i . r'(t_i; x) >= v_min                   (regular curve)
                ||P_k(x) - P_k(x_k)|| <= Delta, |a - a_k|, |e - e_k|, |sigma - sigma_k| <= Delta
@@ -17,9 +17,9 @@ subproblem is convex. At iterate ``x_k`` (:class:`ConvexLeadModel`, the model):
 where ``p_i(x)`` are points of the curve at ``m`` samples of ``t``,
 ``len`` the length of the polyline through them (a sum of norms), ``E2 =
 integral |r''|^2 dt`` and ``E3 = integral |r'''|^2 dt`` (convex quadratics),
-``u_ij`` the unit vector from contour sample ``q_j`` to ``p_i(x_k)`` (the
-half-plane ``u . (p - q) >= r`` lies inside ``|p - q| >= r``, so every
-iterate keeps its clearance), ``w_i`` the point of the reference lead
+the clearance rows those of :mod:`formulations.clearance` (every half-plane
+lies inside the true feasible set, so an iterate with zero slack keeps its
+clearance at the samples), ``w_i`` the point of the reference lead
 nearest ``p_i(x_k)`` (``|p - w_i| <= W`` implies distance to the reference
 ``<= W``) and ``ubar_i`` the unit tangent at the iterate (``|r'| >= ubar . r'``).
 For a line host the control points are affine in ``x``; for an arc host
@@ -41,6 +41,7 @@ import time
 import numpy as np
 
 from ccopt.compare.blend import BlendProblem, bernstein, derivative_matrix
+from formulations.clearance import linear_rows
 from formulations.lead_setup import LeadSetup, run_leads
 
 #: Curvature weights tried (relative to length).
@@ -49,10 +50,11 @@ LAMBDAS = (0.03, 0.3, 3.0)
 MU = 1e-3
 #: Slack penalty per unit of violated clearance (relative to the length term).
 SLACK_PENALTY = 1e4
-MAX_ITER = 25
+MAX_ITER = 12
 M_SAMPLES = 31
-#: Contour samples per curve sample linearised in each subproblem.
-K_NEAREST = 12
+#: Concave arcs (cones) per subproblem; a void row or cone never binds (VOID).
+C_MAX = 3
+VOID = 1e3
 
 
 def _gram(m: int) -> np.ndarray:
@@ -97,10 +99,11 @@ class ConvexLeadModel:
     module docstring), compiled once with CVXPY parameters (DPP): :meth:`update`
     sets the linearisation at an iterate, :attr:`problem` is what a solver gets.
 
-    Clearance rows: for every curve sample, the :data:`K_NEAREST` contour
-    samples nearest it at the iterate (one slack per curve sample); a step that
-    comes closer than allowed to any other contour sample is refused by
-    :func:`scp`, which then shrinks the trust region.
+    Clearance rows: for every element within reach and every inner curve
+    sample, the row of its case at the iterate (:func:`formulations.clearance.linear_rows`;
+    concave arcs as cones), with one slack per curve sample; a step over which
+    the exact clearance fails is refused by :func:`scp`, which then shrinks the
+    trust region.
     """
 
     def __init__(self, setup: LeadSetup, lam: float, ref_pts: np.ndarray, band: float,
@@ -115,8 +118,8 @@ class ConvexLeadModel:
         self.t = np.linspace(0.0, 1.0, m)
         self.B = bernstein(self.t, n)
         self.D1 = bernstein(self.t, n - 1) @ derivative_matrix(n, 1)
-        K = min(K_NEAREST, len(setup.q))
-        self.K = K
+        E = len(setup.elements)
+        self.E = E
         x = cp.Variable(nx)
         self.x = x
         P = lambda name, shape: cp.Parameter(shape, name=name)  # noqa: E731
@@ -135,23 +138,21 @@ class ConvexLeadModel:
         obj += MU * (cp.sum_squares(R3 @ Px) + cp.sum_squares(R3 @ Py)) / scales["e3"]
         cons = []
         self.slack = None
-        if K:
-            rows = (m - 1) * K
+        inner = slice(1, m - 1)
+        if E:
+            # one row per (element, inner sample); one slack per inner sample
+            rows = (m - 2) * E
             self.Ac, self.bc = P("Ac", (rows, nx)), P("bc", rows)
-            self.slack = cp.Variable(m - 1, nonneg=True)
-            S = np.kron(np.eye(m - 1), np.ones((K, 1)))
+            self.slack = cp.Variable(m - 2, nonneg=True)
+            S = np.kron(np.ones((E, 1)), np.eye(m - 2))
             cons.append(self.Ac @ x >= self.bc - S @ self.slack)
             obj += SLACK_PENALTY * cp.sum(self.slack) / scales["len"]
-        if setup.host_kind == "line":
-            nf = setup.n_free_dir
-            for j in range(1, n - 1):
-                cons.append(nf[0] * Px[j] + nf[1] * Py[j] >= float(nf @ setup.H0))
-        elif setup.own_outside:
-            self.Ao, self.bo = P("Ao", (m - 1, nx)), P("bo", m - 1)
-            cons.append(self.Ao @ x >= self.bo)
-        else:
-            c = setup.center
-            cons.append(cp.norm(cp.vstack([px - c[0], py - c[1]]), 2, axis=0) <= setup.rho)
+            # concave arcs: cones |p - c| <= R - r (+ slack), void where not alongside
+            self.cc = [P(f"cc{i}", 2) for i in range(C_MAX)]
+            self.crho = [P(f"crho{i}", m - 2) for i in range(C_MAX)]
+            for c, rho in zip(self.cc, self.crho):
+                cons.append(cp.norm(cp.vstack([px[inner] - c[0], py[inner] - c[1]]), 2, axis=0)
+                            <= rho + self.slack)
         self.w0, self.w1 = P("w0", m), P("w1", m)
         cons.append(cp.norm(cp.vstack([px - self.w0, py - self.w1]), 2, axis=0) <= band)
         self.Ar, self.br = P("Ar", (m, nx)), P("br", m)
@@ -175,26 +176,28 @@ class ConvexLeadModel:
         B = self.B
         pk = B @ Pk
         BJx, BJy = B @ Jx, B @ Jy
-        if self.K:
-            d = np.hypot(pk[:-1, None, 0] - su.q[None, :, 0], pk[:-1, None, 1] - su.q[None, :, 1])
-            J = np.argpartition(d - su.q_clear[None, :], self.K - 1, axis=1)[:, :self.K]
-            I = np.repeat(np.arange(len(pk) - 1), self.K)
-            J = J.ravel()
-            u = np.c_[pk[I, 0] - su.q[J, 0], pk[I, 1] - su.q[J, 1]]
-            u /= np.maximum(np.hypot(u[:, 0], u[:, 1]), 1e-300)[:, None]
-            A = u[:, 0:1] * BJx[I] + u[:, 1:2] * BJy[I]
-            # u . p(x) = u . (pk + BJ (x - xk)) >= u . q + r + m
-            base = u[:, 0] * pk[I, 0] + u[:, 1] * pk[I, 1] - A @ xk
-            self.Ac.value = A
-            self.bc.value = u[:, 0] * su.q[J, 0] + u[:, 1] * su.q[J, 1] + su.q_clear[J] \
-                + su.margin - base
-        if su.host_kind == "arc" and su.own_outside:
-            c = su.center
-            u = pk[:-1] - c
-            u /= np.maximum(np.hypot(u[:, 0], u[:, 1]), 1e-300)[:, None]
-            A = u[:, 0:1] * BJx[:-1] + u[:, 1:2] * BJy[:-1]
-            self.Ao.value = A
-            self.bo.value = su.rho + u @ c - (np.einsum("ij,ij->i", u, pk[:-1]) - A @ xk)
+        if self.E:
+            m = len(pk)
+            inner = slice(1, m - 1)
+            A_all, b_all, conc = [], [], []
+            for el in su.elements:
+                G, h, soc, vec, scal = linear_rows(el, pk[inner])
+                # G . p(x) = G . (pk + BJ (x - xk)) >= h
+                A = G[:, 0:1] * BJx[inner] + G[:, 1:2] * BJy[inner]
+                b = h - (np.einsum("ij,ij->i", G, pk[inner]) - A @ xk)
+                live = np.isfinite(h)
+                A_all.append(np.where(live[:, None], A, 0.0))
+                b_all.append(np.where(live, b, -VOID))
+                if soc.any() and len(conc) < C_MAX:
+                    c = vec[soc][0]
+                    conc.append((c, np.where(soc, scal, VOID + float(np.max(
+                        np.hypot(*(pk[inner] - c).T))))))
+            self.Ac.value = np.vstack(A_all)
+            self.bc.value = np.concatenate(b_all)
+            for i in range(C_MAX):
+                c, rad = conc[i] if i < len(conc) else (np.zeros(2), np.full(m - 2, VOID + float(
+                    np.max(np.hypot(*pk[inner].T)))))
+                self.cc[i].value, self.crho[i].value = c, rad
         dref = np.hypot(pk[:, None, 0] - self.ref_pts[None, :, 0],
                         pk[:, None, 1] - self.ref_pts[None, :, 1])
         w = self.ref_pts[np.argmin(dref, axis=1)]
@@ -240,13 +243,13 @@ def scp(setup: LeadSetup, problem: BlendProblem, lam: float, solver: str = "CLAR
         xn = np.asarray(model.x.value, float)
         slack_max = model.slack_max()
         step = float(np.max(np.abs(xn - xk)))
-        # a contour sample outside the K nearest may have come too close: refuse the step
+        # the linearised rows are safe, but cases may change over a step: check exactly
         if slack_max <= 1e-9 * setup.L0 and \
                 setup.clearance_violation(xn, m=M_SAMPLES) > 1e-9 * setup.L0:
             delta *= 0.5
             continue
         xk = xn
-        if step <= 1e-7 * setup.L0 and slack_max <= 1e-9 * setup.L0:
+        if step <= 1e-5 * setup.L0 and slack_max <= 1e-9 * setup.L0:
             break
     ok = slack_max <= 1e-7 * setup.L0 and \
         setup.clearance_violation(xk, m=M_SAMPLES) <= 1e-7 * setup.L0

@@ -14,19 +14,11 @@ meet), and joining further along would leave the stretch between ``J0`` and
 ``J`` uncut; ``join="free"`` lets ``sigma`` range over the host (for open
 contours where that is acceptable).
 
-Clearance from the contour (every element the verifier checks):
-
-- the host's own element: the whole blend stays on the tool side of it. For
-  a line host this is linear in the control points and certified for every
-  ``t`` by the convex hull property: ``n . (P_k - H0) >= 0`` for all ``k``
-  (``n`` the unit normal to the free side, ``H0`` the host's start); for an
-  arc host ``|p - c| >= rho`` (tool outside) or ``<= rho`` (inside) at every
-  sample;
-- every other element near the blend: ``|p_i - q_j| >= r + m`` between blend
-  samples ``p_i`` and contour samples ``q_j`` (every ``h``), the margin ``m``
-  covering the contour sampling and the gaps between blend samples. Elements
-  lying wholly behind the host's own boundary by at least ``r`` are skipped
-  (the first constraint already keeps the blend ``r`` from them).
+Clearance from the contour: every element the verifier checks that comes
+within reach of the lead, exactly, by where the foot of each curve sample lies
+on it (:mod:`formulations.clearance`: the supporting line, the circle of an
+arc, or an end point), re-classified at every iterate. The curve's two ends
+are PMAC's own points and are not constrained.
 
 The verifier has the last word (:meth:`BlendProblem.accept`).
 """
@@ -38,23 +30,21 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ccopt.compare.blend import (
-    BlendProblem, BlendRejected, bernstein, contour_samples, g2_end, jerk_gram,
-    speed_profile_time,
+    BlendProblem, BlendRejected, bernstein, g2_end, jerk_gram, speed_profile_time,
 )
 from ccopt.compare.leads import Lead, LeadGeometry
 from ccopt.geometry import Arc, Line
+from formulations.clearance import contour_elements, element_distance, near
 
 DEGREE = 5
 
 #: Weight of the jerk term, relative: ``mu = W_JERK * T0 / L0^2`` (``T0 = L0 / F``).
 W_JERK = 1e-5
 
-#: Contour samples every ``H_FRACTION * r``.
-H_FRACTION = 0.05
-
-#: Contour elements farther than this many cutter radii from every point of the
-#: first guess's control polygon are not constrained (re-checked after a solve).
-REACH = 4.0
+#: Contour elements farther than this many cutter radii (plus half the approach)
+#: from the reference lead are not constrained; at most E_MAX nearest are.
+REACH = 2.0
+E_MAX = 8
 
 
 @dataclass
@@ -79,11 +69,10 @@ class LeadSetup:
     feed: float
     acc: np.ndarray                 # in-plane axis acceleration limits (a_u, a_v)
     L0: float
-    q: np.ndarray                   # contour samples kept (M, 2)
-    q_clear: np.ndarray             # their clearance
-    margin: float
-    w_jerk: float = 1e-5
+    elements: list                  # contour elements within reach (formulations.clearance)
+    w_jerk: float = W_JERK
     degree: int = DEGREE
+    refine: int = 1                 # clearance samples are multiplied by this
     options: dict = field(default_factory=dict)
 
     @property
@@ -158,39 +147,17 @@ class LeadSetup:
         return np.linspace(0.0, 1.0, m)
 
     def clearance_violation(self, x, m: int = 401) -> float:
-        """Largest ``r + margin - distance`` over blend samples and kept contour
-        samples (<= 0 when the sampled constraints hold), the join excluded."""
-        if not len(self.q):
+        """Largest ``clearance - distance`` over curve samples (ends excluded) and
+        the elements within reach (<= 0 when the curve keeps its clearance there)."""
+        if not self.elements:
             return -math.inf
-        P = self.controls(x)
-        pts = bernstein(self.sample_t(m)[:-1], self.degree) @ P
-        d = np.hypot(pts[:, None, 0] - self.q[None, :, 0], pts[:, None, 1] - self.q[None, :, 1])
-        return float(np.max(self.q_clear[None, :] + self.margin - d))
-
-
-def _own_element(problem: BlendProblem, host_block) -> int:
-    c = problem.contour
-    for j, b in enumerate(c.blocks):
-        if b is host_block:
-            return j
-    return -1
-
-
-def _behind(g, setup_kind, H0, n_free, center, rho, own_outside, r, tol) -> bool:
-    """Is the element ``g`` wholly at least ``r`` behind the host's own boundary?"""
-    s = np.linspace(0.0, float(g.length), 65)
-    pts = np.asarray(g.point(s)).reshape(-1, 2)
-    if setup_kind == "line":
-        return bool(np.all((pts - H0) @ n_free <= -r + tol))
-    d = np.hypot(*(pts - center).T)
-    if own_outside:
-        return bool(np.all(d <= rho - r + tol))
-    return bool(np.all(d >= rho + r - tol))
+        pts = bernstein(self.sample_t(m)[1:-1], self.degree) @ self.controls(x)
+        return max(float(np.max(el.clearance - element_distance(el, pts)))
+                   for el in self.elements)
 
 
 def lead_setup(problem: BlendProblem, lead: Lead, *, join: str = "start",
-               margin_scale: float = 1.0, w_jerk: float = 1e-5,
-               degree: int = DEGREE) -> LeadSetup:
+               refine: int = 1, w_jerk: float = W_JERK, degree: int = DEGREE) -> LeadSetup:
     """Numbers for one lead of ``problem.reference`` (see the module docstring)."""
     ref = problem.reference
     lg = lead.geometry(ref)
@@ -223,43 +190,15 @@ def lead_setup(problem: BlendProblem, lead: Lead, *, join: str = "start",
         lo = hi = 0.0
     else:
         raise ValueError(f"join must be 'start' or 'free', not {join!r}")
-    # the approach point must be on the free side of the host's own boundary
-    if kind == "line":
-        ok = float((A - H0) @ n_free) >= -1e-9
-    else:
-        d = float(np.linalg.norm(A - center))
-        ok = d >= rho - 1e-9 if outside else d <= rho + 1e-9
-    if not ok:
-        raise BlendRejected(f"lead-{lg.kind}: the approach point is behind the host's own "
-                            "element boundary")
     acc = problem.acc()
     feed = float(lg.feed) if lg.feed else (float(max(problem.limits.v[:2]))
                                           if problem.limits is not None else 1.0)
-    h = H_FRACTION * r
-    cs = contour_samples(problem.contour, h)
-    own = _own_element(problem, ref.segments[lead.host].block)
     L0 = float(np.linalg.norm(H0 - A)) + hi + r
-    tol = 1e-9 * max(1.0, L0)
-    keep = np.ones(len(cs.points), bool)
-    # reach: within REACH*r + L0 of the approach corridor
-    corridor = np.vstack([A, H0, H0 + hi * t0])
-    dmin = np.min(np.hypot(cs.points[:, None, 0] - corridor[None, :, 0],
-                           cs.points[:, None, 1] - corridor[None, :, 1]), axis=1)
-    keep &= dmin <= REACH * r + float(np.linalg.norm(H0 - A))
-    for j in range(len(problem.contour)):
-        sel = cs.element == j
-        if j == own:
-            keep[sel] = False
-            continue
-        g = problem.contour.elements.geom(j)
-        if _behind(g, kind, H0, n_free, center, rho, outside, float(problem.contour.clearance[j]),
-                   tol):
-            keep[sel] = False
-    # margin: contour sampling, plus the gap between blend samples (set by the models)
-    margin = margin_scale * (cs.margin + 1e-3 * r)
+    corridor = np.vstack([A, H0, H0 + hi * t0]) if hi > 0 else np.vstack([A, H0])
+    elements = near(contour_elements(problem.contour), corridor,
+                    REACH * r + 0.5 * float(np.linalg.norm(H0 - A)), limit=E_MAX)
     return LeadSetup(lead, lg, A, kind, H0, t0, n_free, center, rho, sgn, outside, th0, lo, hi,
-                     r, feed, acc, L0, cs.points[keep], cs.clearance[keep], margin, w_jerk,
-                     int(degree))
+                     r, feed, acc, L0, elements, w_jerk, int(degree), int(refine))
 
 
 def blend_geometry(setup: LeadSetup, x) -> "BezierCurve":
@@ -270,16 +209,17 @@ def blend_geometry(setup: LeadSetup, x) -> "BezierCurve":
 # --------------------------------------------------------------------------- the shared driver
 
 
-#: Margin multipliers tried in turn when the verifier rejects a blend.
-ATTEMPTS = (1.0, 4.0, 16.0)
+#: Clearance sample multipliers tried in turn when the verifier rejects a blend
+#: (between samples a curve may come closer than at them; denser samples, less).
+ATTEMPTS = (1, 3, 9)
 
 
 def run_leads(problem: BlendProblem, solve_lead, name: str) -> "BlendOutcome":
     """Replace every lead of the reference with ``solve_lead(setup) -> (x, info)``.
 
     Each blend is spliced in and certified (:meth:`BlendProblem.accept`); when
-    the verifier rejects it the lead is solved again with a larger clearance
-    margin (:data:`ATTEMPTS`), and when every attempt fails PMAC's lead stays
+    the verifier rejects it the lead is solved again with denser clearance
+    samples (:data:`ATTEMPTS`), and when every attempt fails PMAC's lead stays
     and the reason is reported in ``info["leads"]``. No lead replaced at all
     is a :class:`BlendRejected`.
     """
@@ -304,7 +244,7 @@ def run_leads(problem: BlendProblem, solve_lead, name: str) -> "BlendOutcome":
         last_err = None
         for scale in ATTEMPTS:
             try:
-                setup = lead_setup(problem, ld, join=join, margin_scale=scale, w_jerk=w_jerk,
+                setup = lead_setup(problem, ld, join=join, refine=scale, w_jerk=w_jerk,
                                    degree=degree)
                 x, info = solve_lead(setup)
                 geom = blend_geometry(setup, x)
@@ -325,7 +265,7 @@ def run_leads(problem: BlendProblem, solve_lead, name: str) -> "BlendOutcome":
                 continue
             path, path_cert = cand, cert
             entry.update({f"solver_{k}": v for k, v in info.items()})
-            entry.update(status="ok", margin_scale=scale, sigma=float(x[-1]),
+            entry.update(status="ok", refine=scale, sigma=float(x[-1]),
                          proxy_time=float(setup.objective(x)),
                          control_points=[list(p) for p in geom.control_points])
             last_err = None

@@ -54,8 +54,11 @@ from ccopt.compare.blend import (
     BlendOutcome, BlendProblem, BlendRejected, bernstein, derivative_matrix, g2_end, g2_start,
 )
 from ccopt.compare.figures import joins as path_joins, max_deviation
-from ccopt.geometry import Arc, BezierCurve, Line
+from ccopt.geometry import BezierCurve
 from ccopt.toolpath import PathSegment, Role, ToolPath
+from formulations.clearance import (
+    Element, contour_elements, element_distance, linear_rows, near,
+)
 
 DEGREE = 7
 #: Samples of the blend constrained in each model.
@@ -180,102 +183,11 @@ def _initial(fr: BlendFrame) -> np.ndarray:
 # --------------------------------------------------------------------------- elements
 
 
-@dataclass
-class Element:
-    kind: str            # "line" | "arc" | "other"
-    clearance: float
-    geom: object
-
-
 def near_elements(problem: BlendProblem, V, reach: float) -> list[Element]:
     """Contour elements within ``clearance + reach`` of ``V`` (nearest first, at most
     :data:`E_MAX`)."""
-    c = problem.contour
-    out = []
-    for j in range(len(c)):
-        g = c.elements.geom(j)
-        clr = float(c.clearance[j])
-        d = _point_distance(g, V)
-        if d <= clr + reach:
-            kind = "line" if isinstance(g, Line) else "arc" if isinstance(g, Arc) else "other"
-            out.append((d - clr, Element(kind, clr, g)))
-    out.sort(key=lambda e: e[0])
-    return [e for _, e in out[:E_MAX]]
-
-
-def _point_distance(g, p) -> float:
-    from ccopt.geometry import distance
-    if isinstance(g, (Line, Arc)):
-        return distance(tuple(map(float, p)), g)[0]
-    s = np.linspace(0.0, g.length, 257)
-    return float(np.min(np.hypot(*(np.asarray(g.point(s)) - p).T)))
-
-
-def element_distance(el: Element, pts: np.ndarray) -> np.ndarray:
-    """Exact distance from points to an element (dense polyline for other kinds)."""
-    from ccopt.geometry import point_arc, point_segment
-    g = el.geom
-    if el.kind == "line":
-        return point_segment(pts, g.p0, g.p1)[0]
-    if el.kind == "arc":
-        return point_arc(pts, g.center, g.radius, g.theta0, g.sweep)[0]
-    s = np.linspace(0.0, g.length, 2049)
-    q = np.asarray(g.point(s))
-    d = np.full(len(pts), np.inf)
-    for a, b in zip(q[:-1], q[1:]):
-        d = np.minimum(d, point_segment(pts, a, b)[0])
-    return d
-
-
-def _rows(el: Element, p: np.ndarray):
-    """Linear clearance rows ``(G, h)`` with ``G . p >= h`` for points ``p`` (world), and the
-    mask of points that get the concave-arc SOC row instead (then the row is void)."""
-    n = len(p)
-    G = np.zeros((n, 2))
-    h = np.full(n, -1e9)
-    soc = np.zeros(n, bool)
-    r = el.clearance
-    g = el.geom
-    if el.kind == "line":
-        A, B = np.asarray(g.p0), np.asarray(g.p1)
-        d = B - A
-        L2 = float(d @ d)
-        t = ((p - A) @ d) / L2 if L2 > 0 else np.zeros(n)
-        inside = (t > 0.0) & (t < 1.0)
-        nl = np.array([-d[1], d[0]]) / math.sqrt(L2) if L2 > 0 else np.zeros(2)
-        sgn = np.sign((p - A) @ nl)
-        sgn[sgn == 0] = 1.0
-        G[inside] = sgn[inside, None] * nl
-        h[inside] = (G[inside] @ A) + r
-        ends = ~inside
-        E = np.where((t <= 0.0)[:, None], A, B)
-    elif el.kind == "arc":
-        c = np.asarray(g.center)
-        v = p - c
-        rho = np.hypot(v[:, 0], v[:, 1])
-        from ccopt.geometry import angle_in_sweep
-        inside = angle_in_sweep(np.arctan2(v[:, 1], v[:, 0]), g.theta0, g.sweep)
-        concave = inside & (rho < g.radius)
-        convex = inside & ~concave
-        soc = concave
-        u = v / np.maximum(rho, 1e-300)[:, None]
-        G[convex] = u[convex]
-        h[convex] = u[convex] @ c + g.radius + r
-        ends = ~inside
-        e0, e1 = np.asarray(g.start), np.asarray(g.end)
-        E = np.where((np.hypot(*(p - e0).T) <= np.hypot(*(p - e1).T))[:, None], e0, e1)
-    else:
-        s = np.linspace(0.0, g.length, 2049)
-        q = np.asarray(g.point(s))
-        k = np.argmin(np.hypot(p[:, None, 0] - q[None, :, 0], p[:, None, 1] - q[None, :, 1]), 1)
-        E = q[k]
-        ends = np.ones(n, bool)
-    if ends.any():
-        u = p[ends] - E[ends]
-        u /= np.maximum(np.hypot(u[:, 0], u[:, 1]), 1e-300)[:, None]
-        G[ends] = u
-        h[ends] = np.einsum("ij,ij->i", u, E[ends]) + r
-    return G, h, soc
+    return near(contour_elements(problem.contour), np.asarray(V, float)[None, :], reach,
+                limit=E_MAX)
 
 
 # --------------------------------------------------------------------------- the model
@@ -362,9 +274,10 @@ class CornerModel:
         conc = []
         inner = slice(1, m - 1)
         for e, el in enumerate(elements[:E_MAX]):
-            g2, h2, soc = _rows(el, world[inner])
+            g2, h2, soc, vec, scal = linear_rows(el, world[inner])
             # world rows g . p >= h  ->  scaled: g . (V + S p~) >= h
-            live = h2 > -1e8
+            live = np.isfinite(h2)
+            h2 = np.where(live, h2, 0.0)
             rows = slice(e * (m - 2), (e + 1) * (m - 2))
             Gs = g2[:, 0:1] * BMx[inner] + g2[:, 1:2] * BMy[inner]
             base = g2[:, 0] * (pk[inner, 0] - BMx[inner] @ xk) + g2[:, 1] * (pk[inner, 1]
@@ -373,9 +286,9 @@ class CornerModel:
             G[rows] = np.where(live[:, None], Gs, 0.0)
             hh[rows] = np.where(live, hs, -10.0)
             if soc.any() and len(conc) < C_MAX:
-                g = el.geom
-                rad = np.where(soc, (g.radius - el.clearance) / S, 10.0 + np.hypot(*((np.asarray(g.center) - V) / S)))
-                conc.append(((np.asarray(g.center) - V) / S, rad))
+                c = (vec[soc][0] - V) / S
+                rad = np.where(soc, scal / S, 10.0 + float(np.max(np.hypot(*(pk[inner] - c).T))))
+                conc.append((c, rad))
         self.G.value, self.h.value = G, hh
         for i in range(C_MAX):
             c, rad = conc[i] if i < len(conc) else (np.zeros(2), np.full(m - 2, 10.0))

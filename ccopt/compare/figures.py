@@ -167,9 +167,26 @@ def _samples(geoms, h: float) -> np.ndarray:
     return np.vstack(pts) if pts else np.zeros((0, 2))
 
 
+def _curve_params(g, n: int) -> np.ndarray:
+    return np.linspace(0.0, 1.0 if getattr(g, "control_points", None) is not None else g.length, n)
+
+
+def _eval(g, u: np.ndarray) -> np.ndarray:
+    cps = getattr(g, "control_points", None)
+    if cps is not None:
+        P = np.asarray(cps, float)
+        deg = len(P) - 1
+        t = u[:, None]
+        k = np.arange(deg + 1)[None, :]
+        binom = np.array([math.comb(deg, i) for i in range(deg + 1)], float)[None, :]
+        return (binom * t ** k * (1.0 - t) ** (deg - k)) @ P
+    return np.asarray(g.point(u)).reshape(-1, 2)
+
+
 def _exact_distance(p: np.ndarray, geoms, h: float, reach: float) -> float:
     """Distance from one point to the primitives within ``reach`` of it by their
-    bounding boxes (lines and arcs exactly, other curves as chords every ``h/8``)."""
+    bounding boxes: lines and arcs exactly, other curves by a fine local search
+    around their nearest sample (chords 1/400 of a sample step)."""
     d = math.inf
     for g in geoms:
         x0, y0, x1, y1 = g.bbox()
@@ -180,10 +197,22 @@ def _exact_distance(p: np.ndarray, geoms, h: float, reach: float) -> float:
         elif isinstance(g, Arc):
             d = min(d, float(point_arc(p[None], g.center, g.radius, g.theta0, g.sweep)[0][0]))
         else:
-            q = _points(g, max(2, 4 * int(math.ceil(8 * g.length / h)) + 1))
+            n = max(2, 4 * int(math.ceil(g.length / h)) + 1)
+            u = _curve_params(g, n)
+            q = _eval(g, u)
+            k = int(np.argmin(np.hypot(*(q - p).T)))
+            lo, hi = u[max(k - 1, 0)], u[min(k + 1, n - 1)]
+            q = _eval(g, np.linspace(lo, hi, 801))
             d = min(d, float(np.min(point_segment(np.repeat(p[None], len(q) - 1, 0),
                                                   q[:-1], q[1:])[0])))
     return d
+
+
+def _box_gap(a, b) -> float:
+    """Distance between two boxes ``(xmin, ymin, xmax, ymax)`` (0 when they overlap)."""
+    dx = max(a[0] - b[2], b[0] - a[2], 0.0)
+    dy = max(a[1] - b[3], b[1] - a[3], 0.0)
+    return math.hypot(dx, dy)
 
 
 def _one_side(src: ToolPath, dst: ToolPath, h: float):
@@ -196,9 +225,16 @@ def _one_side(src: ToolPath, dst: ToolPath, h: float):
                  and not any(_same(s.geom, g) for g in dst_geoms)]
     if not src_geoms or not dst_geoms:
         return 0.0, 0.0
-    tree = cKDTree(_samples(dst_geoms, h))
+    coarse_h = max(50.0 * h, 1e-9)
+    coarse = cKDTree(_samples(dst_geoms, coarse_h))
+    dst_boxes = [g.bbox() for g in dst_geoms]
     bound, cand = 0.0, []
     for g in src_geoms:
+        # which dst primitives can hold the nearest point: those within the coarse bound
+        box = g.bbox()
+        reach = float(np.max(coarse.query(_samples([g], coarse_h))[0])) + coarse_h
+        local = [d for d, b in zip(dst_geoms, dst_boxes) if _box_gap(box, b) <= reach]
+        tree = cKDTree(_samples(local, h))
         pts = _samples([g], h)
         d, _ = tree.query(pts)
         # a sample of dst is a point of dst, so d bounds the distance from above; between
@@ -214,9 +250,9 @@ def _one_side(src: ToolPath, dst: ToolPath, h: float):
             ds = c
         bound = max(bound, float(np.max(0.5 * (d[:-1] + d[1:] + ds))))
         top = np.argsort(d)[-5:]
-        cand += [(float(d[i]), pts[i]) for i in top]
+        cand += [(float(d[i]), pts[i], local) for i in top]
     cand.sort(key=lambda c: c[0])
-    est = max(min(_exact_distance(p, dst_geoms, h, dd + h), dd) for dd, p in cand[-20:])
+    est = max(min(_exact_distance(p, local, h, dd + h), dd) for dd, p, local in cand[-20:])
     return est, bound
 
 

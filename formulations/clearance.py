@@ -1,0 +1,160 @@
+"""Clearance from the contour, element by element, for the blend models.
+
+For a point ``p`` and a contour element with required clearance ``r``, the
+distance to the element is exactly one of (by where the foot of ``p`` lies):
+
+- ``LINE``: a line element with the foot inside it: ``n . (p - A) >= r``
+  (``n`` the unit normal towards ``p``; linear);
+- ``CONCAVE``: an arc element, foot inside its sweep, ``p`` inside its circle:
+  ``|p - c| <= R - r`` (a second-order cone);
+- ``CONVEX``: the same, ``p`` outside the circle: ``|p - c| >= R + r``;
+- ``END``: the foot beyond an end ``E``: ``|p - E| >= r``.
+
+:func:`classify` says which, at a given set of points (the models re-classify
+at every iterate; on the boundary between two cases both give the same
+distance, so switching is continuous). :func:`linear_rows` turns them into
+rows ``G . p >= h`` for convex models: ``LINE`` is exact, ``CONVEX`` and
+``END`` become the tangent half-plane at the iterate (it lies inside the
+feasible set, so it is safe), ``CONCAVE`` is kept as a cone.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ccopt.geometry import Arc, Line, angle_in_sweep, distance, point_arc, point_segment
+
+LINE, CONCAVE, CONVEX, END = 0, 1, 2, 3
+
+
+@dataclass(frozen=True)
+class Element:
+    """A contour element: ``kind`` (``"line" | "arc" | "other"``), clearance, primitive."""
+
+    kind: str
+    clearance: float
+    geom: object
+
+
+def contour_elements(contour) -> list[Element]:
+    out = []
+    for j in range(len(contour)):
+        g = contour.elements.geom(j)
+        kind = "line" if isinstance(g, Line) else "arc" if isinstance(g, Arc) else "other"
+        out.append(Element(kind, float(contour.clearance[j]), g))
+    return out
+
+
+def point_distance(el: Element, p) -> float:
+    g = el.geom
+    if el.kind in ("line", "arc"):
+        return distance(tuple(map(float, p)), g)[0]
+    s = np.linspace(0.0, g.length, 257)
+    return float(np.min(np.hypot(*(np.asarray(g.point(s)) - np.asarray(p, float)).T)))
+
+
+def near(elements: list[Element], polyline: np.ndarray, reach: float,
+         limit: int | None = None) -> list[Element]:
+    """Elements within ``clearance + reach`` of a polyline (nearest first)."""
+    found = []
+    P = np.asarray(polyline, float)
+    for el in elements:
+        pts = _dense(el, 65)
+        if len(P) == 1:
+            d = float(np.min(np.hypot(*(pts - P[0]).T)))
+        else:
+            d = min(float(np.min(point_segment(pts, a, b)[0])) for a, b in zip(P[:-1], P[1:]))
+        d = min(d, min(point_distance(el, q) for q in P))
+        if d <= el.clearance + reach:
+            found.append((d - el.clearance, el))
+    found.sort(key=lambda e: e[0])
+    out = [el for _, el in found]
+    return out[:limit] if limit else out
+
+
+def _dense(el: Element, n: int) -> np.ndarray:
+    g = el.geom
+    return np.asarray(g.point(np.linspace(0.0, g.length, n))).reshape(-1, 2)
+
+
+def element_distance(el: Element, pts: np.ndarray) -> np.ndarray:
+    """Exact distance from points to an element (other kinds: a fine polyline)."""
+    g = el.geom
+    if el.kind == "line":
+        return point_segment(pts, g.p0, g.p1)[0]
+    if el.kind == "arc":
+        return point_arc(pts, g.center, g.radius, g.theta0, g.sweep)[0]
+    q = _dense(el, 2049)
+    d = np.full(len(pts), np.inf)
+    for a, b in zip(q[:-1], q[1:]):
+        d = np.minimum(d, point_segment(pts, a, b)[0])
+    return d
+
+
+def classify(el: Element, p: np.ndarray):
+    """``(kind, vec, scal)`` per point (see the module docstring): for ``LINE`` the
+    unit normal and ``n . A + r``; for ``CONCAVE``/``CONVEX`` the centre and
+    ``R -/+ r``; for ``END`` the end point and ``r``."""
+    p = np.asarray(p, float)
+    n = len(p)
+    kind = np.full(n, END)
+    vec = np.zeros((n, 2))
+    scal = np.full(n, el.clearance)
+    r = el.clearance
+    g = el.geom
+    if el.kind == "line":
+        A, B = np.asarray(g.p0, float), np.asarray(g.p1, float)
+        d = B - A
+        L2 = float(d @ d)
+        if L2 == 0.0:
+            vec[:] = A
+            return kind, vec, scal
+        t = ((p - A) @ d) / L2
+        nl = np.array([-d[1], d[0]]) / math.sqrt(L2)
+        sgn = np.where((p - A) @ nl >= 0.0, 1.0, -1.0)
+        inside = (t > 0.0) & (t < 1.0)
+        kind[inside] = LINE
+        vec[inside] = sgn[inside, None] * nl
+        scal[inside] = vec[inside] @ A + r
+        vec[~inside] = np.where((t[~inside] <= 0.0)[:, None], A, B)
+        return kind, vec, scal
+    if el.kind == "arc":
+        c = np.asarray(g.center, float)
+        v = p - c
+        rho = np.hypot(v[:, 0], v[:, 1])
+        inside = angle_in_sweep(np.arctan2(v[:, 1], v[:, 0]), g.theta0, g.sweep) & (rho > 0)
+        conc = inside & (rho < g.radius)
+        conv = inside & ~conc
+        kind[conc], kind[conv] = CONCAVE, CONVEX
+        vec[inside] = c
+        scal[conc] = g.radius - r
+        scal[conv] = g.radius + r
+        e0, e1 = np.asarray(g.start, float), np.asarray(g.end, float)
+        near0 = np.hypot(*(p - e0).T) <= np.hypot(*(p - e1).T)
+        vec[~inside] = np.where(near0[~inside, None], e0, e1)
+        return kind, vec, scal
+    q = _dense(el, 2049)
+    k = np.argmin(np.hypot(p[:, None, 0] - q[None, :, 0], p[:, None, 1] - q[None, :, 1]), axis=1)
+    vec[:] = q[k]
+    return kind, vec, scal
+
+
+def linear_rows(el: Element, p: np.ndarray):
+    """Rows ``G . p >= h`` at points ``p`` (``(n, 2)``, ``(n,)``) and the mask of
+    points left to a concave cone (their row is void: ``G = 0, h = -inf``)."""
+    kind, vec, scal = classify(el, p)
+    n = len(p)
+    G = np.zeros((n, 2))
+    h = np.full(n, -np.inf)
+    m = kind == LINE
+    G[m], h[m] = vec[m], scal[m]
+    for k in (CONVEX, END):
+        m = kind == k
+        if m.any():
+            u = p[m] - vec[m]
+            u /= np.maximum(np.hypot(u[:, 0], u[:, 1]), 1e-300)[:, None]
+            G[m] = u
+            h[m] = np.einsum("ij,ij->i", u, vec[m]) + scal[m]
+    return G, h, kind == CONCAVE, vec, scal
