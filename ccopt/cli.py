@@ -413,6 +413,9 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
     program_args(p)
     style_args(p)
     commands["run"] = cmd_run
+
+    from ccopt.compare.cli import add_commands as add_compare_commands
+    add_compare_commands(sub, commands, program_args, _axis_values, _nonneg_float, _positive_float)
     return parser, commands
 
 
