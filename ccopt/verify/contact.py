@@ -23,7 +23,9 @@ stops short of the corner point; a shallow outside corner, where the offsets
 are extended past the normal at ``P``) the tool is not alongside the
 element, so nothing needs excepting by name. The figure is the largest
 excess ``distance - r`` (the "contact gap"); moving a segment away from its
-element by ``g`` makes it ``g``.
+element by ``g`` makes it ``g``. A steady element with no compensated tool
+segment at all (the path never runs along it) is not reached: a violation
+with infinite depth.
 """
 from __future__ import annotations
 
@@ -181,7 +183,17 @@ def check_contact(tool: Packed, toolpath, contour: Contour, eps: float, lengths,
                               (float(cq[q, 0]), float(cq[q, 1])), (float(cp[q, 0]), float(cp[q, 1])),
                               EXACT, {"corner_point": [float(cp[q, 0]), float(cp[q, 1])],
                                       "radius": float(cr[q])}))
-    allgap = np.r_[gap, cgap]
+    # every steady element must have a compensated tool segment at all: a path
+    # that never runs along an element (e.g. the programmed path itself, or a
+    # path made for another program) does not reach it
+    has = np.zeros(len(contour), bool)
+    own = table.is_role(Role.COMPENSATED) & (table.element >= 0)
+    has[table.element[own]] = True
+    for j in np.flatnonzero(contour.steady & ~has):
+        viol.append(Violation("contact", math.inf, None, None, None, int(j),
+                              contour.element_line(j), None, None, EXACT,
+                              {"reason": "no compensated tool segment runs along this element"}))
+    allgap = np.r_[gap, cgap, np.full(int((contour.steady & ~has).sum()), math.inf)]
     if allgap.size:
         k = int(np.argmax(allgap))
         basis = EXACT if (k >= n or exact[k]) else CERTIFIED

@@ -259,3 +259,24 @@ def test_cli_verify_side_override_fails(capsys):
     main(["verify", "leadin-inside-line", "--side", "right", "--json"])
     data = json.loads(capsys.readouterr().out)
     assert [c for c in data["checks"] if c["name"] == "side"][0]["ok"] is True
+
+
+def test_the_programmed_path_does_not_pass():
+    # The uncompensated programmed path runs on the contour, its moves are not
+    # compensated: no element is reached by a compensated tool segment.
+    case, prog, path = run_case("pocket")
+    cert = verify(ccopt.programmed_path(prog), prog)
+    assert not cert.ok
+    missing = [v for v in cert.violations_of("contact") if v.tool_segment is None]
+    assert len(missing) == len(cert.context.contour) == 15
+    assert all(v.depth == math.inf for v in missing)
+    js = [v for v in cert.to_json()["violations"] if v["kind"] == "contact"]
+    assert js and all(v["depth"] is None for v in js)          # JSON has no infinity
+
+
+def test_empty_program_and_path():
+    from ccopt.program.model import Program
+    from ccopt.toolpath import ToolPath
+    cert = verify(ToolPath(()), Program((), "<empty>", "pmac"))
+    assert cert.ok and cert.min_clearance is None
+    assert [c.figure for c in cert.checks] == [None, None, None, 0.0, None]
