@@ -1,0 +1,89 @@
+"""Independent checks for blends (tests only): the contour from the program's
+blocks, point distances by their own formulas, joins by the primitives' own
+end tangents and curvatures. Nothing here calls ccopt.compare, formulations or
+ccopt.verify, so the figures those report can be checked against it."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ccopt.geometry import Arc, Line
+from ccopt.toolpath import block_geometry
+
+
+def contour(program):
+    """Programmed geometry of every fully compensated in-plane move (compensation
+    on for it and for the in-plane move before it, same side): the part surface."""
+    out, prev = [], None
+    for b in program.blocks:
+        if not b.in_plane:
+            continue
+        if b.modal.side and prev is not None and prev.modal.side == b.modal.side:
+            out.append(block_geometry(b))
+        prev = b
+    return out
+
+
+def dist_point_segment(p, a, b):
+    p, a, b = np.asarray(p, float), np.asarray(a, float), np.asarray(b, float)
+    d = b - a
+    t = np.clip(((p - a) @ d) / max(float(d @ d), 1e-300), 0.0, 1.0)
+    q = a + t[:, None] * d
+    return np.hypot(*(p - q).T)
+
+
+def dist_point_arc(p, arc: Arc):
+    p = np.asarray(p, float)
+    c = np.asarray(arc.center, float)
+    v = p - c
+    ang = np.arctan2(v[:, 1], v[:, 0])
+    # fraction of the sweep reached by the point's polar angle
+    rel = (ang - arc.theta0) * math.copysign(1.0, arc.sweep)
+    rel = np.mod(rel, 2 * math.pi)
+    inside = rel <= abs(arc.sweep) + 1e-15
+    radial = np.abs(np.hypot(v[:, 0], v[:, 1]) - arc.radius)
+    e0, e1 = np.asarray(arc.start), np.asarray(arc.end)
+    ends = np.minimum(np.hypot(*(p - e0).T), np.hypot(*(p - e1).T))
+    return np.where(inside, radial, ends)
+
+
+def dist_to(p, geoms):
+    d = np.full(len(p), np.inf)
+    for g in geoms:
+        if isinstance(g, Line):
+            d = np.minimum(d, dist_point_segment(p, g.p0, g.p1))
+        elif isinstance(g, Arc):
+            d = np.minimum(d, dist_point_arc(p, g))
+        else:
+            q = np.asarray(g.point(np.linspace(0.0, g.length, 4001)))
+            for a, b in zip(q[:-1], q[1:]):
+                d = np.minimum(d, dist_point_segment(p, a, b))
+    return d
+
+
+def bezier_points(curve, n=2001):
+    """Points of a Bezier curve by de Casteljau on its control points."""
+    P = np.asarray(curve.control_points, float)
+    t = np.linspace(0.0, 1.0, n)[:, None, None]
+    pts = np.broadcast_to(P, (n,) + P.shape).copy()
+    for r in range(1, len(P)):
+        pts[:, :len(P) - r] = (1 - t) * pts[:, :len(P) - r] + t * pts[:, 1:len(P) - r + 1]
+    return pts[:, 0]
+
+
+def end_curvature(g, at_end: bool) -> float:
+    if isinstance(g, Line):
+        return 0.0
+    if isinstance(g, Arc):
+        return math.copysign(1.0 / g.radius, g.sweep)
+    return float(g.curvature(g.length if at_end else 0.0))
+
+
+def join_ok(a, b, tol_t=1e-7, tol_k=1e-6):
+    """``(gap, tangent angle, curvature jump)`` between segment geometries ``a`` -> ``b``."""
+    gap = math.dist(a.end, b.start)
+    ta, tb = np.asarray(a.end_tangent), np.asarray(b.start_tangent)
+    ang = math.atan2(abs(ta[0] * tb[1] - ta[1] * tb[0]), float(ta @ tb))
+    jump = abs(end_curvature(a, True) - end_curvature(b, False))
+    return gap, ang, jump

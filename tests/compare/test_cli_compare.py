@@ -1,0 +1,56 @@
+"""``ccopt compare`` and ``ccopt smooth`` on the command line."""
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from ccopt.cli import main
+
+
+def run(capsys, *argv):
+    code = main(list(argv))
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_compare_json_and_plot(capsys, tmp_path):
+    png = tmp_path / "v.png"
+    code, out, err = run(capsys, "compare", "leadin-inside-line", "--variants",
+                         "pmac,tangent-arc", "--variants", "line-arc", "--json", "--plot", str(png))
+    assert code == 0, err
+    doc = json.loads(out)
+    assert [v["name"] for v in doc["variants"]] == ["pmac", "tangent-arc", "line-arc"]
+    for v in doc["variants"]:
+        for k in ("name", "duration", "min_clearance", "max_curvature", "continuity", "certified"):
+            assert k in v
+    # limits from the case
+    assert doc["limits"] == {"v": [50.0, 50.0, 20.0], "a": [500.0, 500.0, 200.0]}
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_compare_text_and_limits_override(capsys):
+    code, out, _ = run(capsys, "compare", "leadin-inside-line", "--variants", "pmac",
+                       "--vmax", "10,10,10", "--amax", "100,100,100")
+    assert code == 0
+    assert "limits v=[10.0, 10.0, 10.0]" in out and out.splitlines()[1].startswith("variant")
+
+
+def test_compare_needs_limits(capsys, tmp_path):
+    prog = tmp_path / "p.nc"
+    prog.write_text("G21 G90 F600\nG41.1 D2\nG1 X10 Y0\nG1 X10 Y10\nG40\nG1 X20 Y10\n")
+    code, _, err = run(capsys, "compare", str(prog), "--variants", "pmac")
+    assert code == 2 and "no axis limits" in err and len(err.strip().splitlines()) == 1
+
+
+def test_smooth_json(capsys):
+    code, out, err = run(capsys, "smooth", "leadin-inside-line", "--json")
+    assert code == 0, err
+    doc = json.loads(out)
+    # default band: 1 % of the cutter radius 2
+    assert doc["delta"] == pytest.approx(0.02)
+    assert doc["certified"] is True and doc["certificate"]["ok"] is True
+    assert doc["max_deviation_bound"] <= doc["delta"]
+    assert doc["path_continuity"] == "G2"
+    assert doc["duration"] < doc["pmac_duration"]
+    assert all(j["status"] == "blended" for j in doc["joins"])
