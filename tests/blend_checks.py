@@ -56,9 +56,15 @@ def dist_to(p, geoms):
         elif isinstance(g, Arc):
             d = np.minimum(d, dist_point_arc(p, g))
         else:
-            q = np.asarray(g.point(np.linspace(0.0, g.length, 4001)))
-            for a, b in zip(q[:-1], q[1:]):
-                d = np.minimum(d, dist_point_segment(p, a, b))
+            q = bezier_points(g, 4001) if hasattr(g, "control_points") else \
+                np.asarray(g.point(np.linspace(0.0, g.length, 4001)))
+            a, b = q[:-1], q[1:]
+            e = b - a
+            for k in range(0, len(p), 256):
+                pk = np.asarray(p[k:k + 256], float)[:, None, :]
+                t = np.clip(((pk - a) * e).sum(-1) / np.maximum((e * e).sum(-1), 1e-300), 0, 1)
+                w = pk - (a + t[..., None] * e)
+                d[k:k + 256] = np.minimum(d[k:k + 256], np.hypot(w[..., 0], w[..., 1]).min(1))
     return d
 
 

@@ -1,0 +1,99 @@
+"""The Bezier helpers and clearance cases the blend models are built on."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings, strategies as st
+
+from ccopt.compare.blend import (
+    bernstein, g2_end, g2_start, jerk_gram, speed_profile_time, subdivision_matrix,
+)
+from ccopt.geometry import Arc, BezierCurve, Line
+from formulations.clearance import CONCAVE, CONVEX, END, LINE, Element, classify, linear_rows
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.floats(-0.5, 0.5), st.floats(0.2, 3.0), st.floats(-1.0, 1.0),
+       st.floats(-0.5, 0.5), st.floats(0.2, 3.0), st.floats(0, 2 * math.pi),
+       st.sampled_from([5, 7]))
+def test_g2_end_conditions(k0, a0, e0, k1, a1, phi, n):
+    t0 = np.array([math.cos(phi), math.sin(phi)])
+    t1 = np.array([math.cos(phi + 1.0), math.sin(phi + 1.0)])
+    start = g2_start((0.0, 0.0), t0, k0, a0, e0, n)
+    end = g2_end((10.0, 3.0), t1, k1, a1, -e0, n)
+    mid = [np.array([3.0 + i, 5.0 - i]) for i in range(n - 5)]
+    P = np.vstack([start, *mid, end])
+    c = BezierCurve(P)
+    assert np.allclose(c.start_tangent, t0, atol=1e-9)
+    assert np.allclose(c.end_tangent, t1, atol=1e-9)
+    assert c.curvature(0.0) == pytest.approx(k0, abs=1e-7)
+    assert c.curvature(c.length) == pytest.approx(k1, abs=1e-7)
+
+
+@pytest.mark.parametrize("n", [3, 5, 7])
+def test_jerk_gram_is_the_integral(n):
+    rng = np.random.default_rng(n)
+    P = rng.normal(size=(n + 1, 2))
+    # r'''(t) from the power basis of each coordinate, integrated by a fine rule
+    t = np.linspace(0.0, 1.0, 20001)
+    B = bernstein(t, n)
+    total = 0.0
+    for c in range(2):
+        poly = np.polynomial.Polynomial.fit(t, B @ P[:, c], n).convert()
+        d3 = poly.deriv(3)(t)
+        total += np.trapezoid(d3 * d3, t)
+    assert float(np.sum(P * (jerk_gram(n) @ P))) == pytest.approx(total, rel=1e-6)
+
+
+def test_subdivision_matches_de_casteljau():
+    P = np.array([[0, 0], [1, 2], [3, 3], [4, 0], [6, 1], [7, 2]], float)
+    c = BezierCurve(P)
+    s = 0.37 * c.length
+    left, right = c.split(s)
+    t = float(c.t_of_s(s)[0])
+    assert np.allclose(subdivision_matrix(5, 0.0, t) @ P, left.control_points, atol=1e-12)
+    assert np.allclose(subdivision_matrix(5, t, 1.0) @ P, right.control_points, atol=1e-12)
+
+
+def test_speed_profile_time_straight():
+    # a straight line of length 10 along X from rest, feed 5, axis acceleration 20:
+    # accelerate to the feed (5/20 s over 0.625, a cut of the 160 pieces), then run at
+    # the feed: L/F + F/(2a); nothing is owed after the curve
+    L, F, a = 10.0, 5.0, 20.0
+    P = np.c_[np.linspace(0.0, L, 6), np.zeros(6)]
+    expected = L / F + F / (2 * a)
+    assert speed_profile_time(P, F, (a, 1000.0), m=161) == pytest.approx(expected, rel=1e-12)
+    # along the diagonal both axes share the work: with a/sqrt2 per axis the path
+    # acceleration is a again
+    Q = P @ np.array([[1, 1], [0, 0]]) / math.sqrt(2)
+    lim = a / math.sqrt(2)
+    assert speed_profile_time(Q, F, (lim, lim), m=161) == pytest.approx(expected, rel=1e-12)
+    # stopping short of the feed at the end costs the time to reach it afterwards
+    Pshort = np.c_[np.linspace(0.0, 0.1, 6), np.zeros(6)]
+    v_end = math.sqrt(2 * a * 0.1)
+    assert speed_profile_time(Pshort, F, (a, a), m=161) == pytest.approx(
+        v_end / a + (F - v_end) ** 2 / (2 * a * F), rel=1e-12)
+
+
+def test_clearance_cases():
+    line = Element("line", 1.0, Line((0.0, 0.0), (10.0, 0.0)))
+    p = np.array([[5.0, 2.0], [-1.0, 3.0], [5.0, -2.0]])
+    kind, vec, scal = classify(line, p)
+    assert list(kind) == [LINE, END, LINE]
+    assert vec[0] == pytest.approx((0.0, 1.0)) and scal[0] == pytest.approx(1.0)
+    assert vec[2] == pytest.approx((0.0, -1.0))
+    assert vec[1] == pytest.approx((0.0, 0.0))
+    G, h, soc, *_ = linear_rows(line, p)
+    # every row holds at its own point with the right slack: distance - clearance
+    assert (G * p).sum(1) - h == pytest.approx([1.0, math.hypot(1, 3) - 1.0, 1.0])
+    arc = Element("arc", 1.0, Arc((0.0, 0.0), 5.0, 0.0, math.pi / 2))
+    q = np.array([[1.0, 1.0], [6.0, 6.0], [-2.0, -2.0]])
+    kind, vec, scal = classify(arc, q)
+    assert list(kind) == [CONCAVE, CONVEX, END]
+    assert scal[0] == pytest.approx(4.0) and scal[1] == pytest.approx(6.0)
+    G, h, soc, *_ = linear_rows(arc, q)
+    assert list(soc) == [True, False, False] and not np.isfinite(h[0])
+    # the half-plane of a convex case lies inside |p - c| >= R + r: tight at the point
+    assert (G[1] @ q[1]) - h[1] == pytest.approx(math.hypot(6, 6) - 6.0)

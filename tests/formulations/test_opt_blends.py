@@ -1,0 +1,80 @@
+"""opt-casadi and opt-cvxpy: certified G2 leads, faster than PMAC's inside lead-in.
+
+Each figure the comparison reports is checked here by independent means
+(:mod:`blend_checks`): the contour from the program's blocks, distances by
+their own formulas at dense samples of every curve, joins by the primitives'
+own tangents and curvatures.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import ccopt
+from ccopt.cases import find_case
+from ccopt.compare import compare
+from ccopt.geometry import BezierCurve
+
+import blend_checks as bc
+
+OPT = ("opt-casadi", "opt-cvxpy")
+CASES = ("pocket", "profile", "leadin-inside-line")
+
+
+@pytest.fixture(scope="module")
+def runs():
+    out = {}
+    for case in CASES:
+        c = find_case(case)
+        prog = ccopt.read_program(c.program)
+        out[case] = (prog, compare(prog, ("pmac",) + OPT,
+                                   limits=ccopt.AxisLimits(c.vmax, c.amax)))
+    return out
+
+
+@pytest.mark.parametrize("case", CASES)
+@pytest.mark.parametrize("name", OPT)
+def test_certified_and_g2(runs, case, name):
+    prog, cmp = runs[case]
+    row = cmp[name]
+    assert row.status == "ok", row.message
+    r = cmp.reference.radius
+    fig = row.figures
+    assert fig["certified"] and fig["min_clearance"] >= r - 1e-6
+    assert fig["continuity"] == "G2"
+    path = row.toolpath
+    curves = [i for i, s in enumerate(path.segments) if isinstance(s.geom, BezierCurve)]
+    assert len(curves) == 2              # a lead-in and a lead-out
+    contour = bc.contour(prog)
+    for i in curves:
+        g = path.segments[i].geom
+        # clearance from the part surface at dense samples (ends are PMAC's own points)
+        pts = bc.bezier_points(g, 4001)[1:-1]
+        assert float(np.min(bc.dist_to(pts, contour))) >= r - 1e-6
+        # G2 where the curve meets the compensated contour (lead-in: its end; lead-out:
+        # its start); the other end is the approach or departure point, a stop
+        role = path.segments[i].role.value
+        if role == "lead-in":
+            gap, ang, jump = bc.join_ok(g, path.segments[i + 1].geom)
+        else:
+            gap, ang, jump = bc.join_ok(path.segments[i - 1].geom, g)
+        assert gap <= 1e-9 and ang <= 1e-7 and jump <= 1e-6
+
+
+@pytest.mark.parametrize("case", ["leadin-inside-line", "pocket"])
+def test_faster_than_pmac_on_inside_lead_in(runs, case):
+    # PMAC's diagonal meets the contour at a corner: the machine stops there
+    _, cmp = runs[case]
+    pmac = cmp["pmac"].figures
+    assert pmac["continuity"] == "G0"
+    for name in OPT:
+        assert cmp[name].figures["duration"] < pmac["duration"], name
+
+
+def test_blends_keep_the_contour(runs):
+    # the leads join where PMAC's contour starts and ends, so the compensated part of
+    # the path is PMAC's, unchanged
+    for case in CASES:
+        _, cmp = runs[case]
+        for name in OPT:
+            assert cmp[name].figures["max_deviation"] == 0.0

@@ -1,0 +1,126 @@
+"""The smoother: G2 within the band, certified, and its cycle time."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import ccopt
+from ccopt.cases import find_case
+from ccopt.compare import BlendProblem
+from ccopt.geometry import BezierCurve
+from ccopt.program import read_text
+from ccopt.toolpath import Role
+from formulations.smoother import smooth
+
+import blend_checks as bc
+
+
+@pytest.fixture(scope="module")
+def pocket():
+    c = find_case("pocket")
+    prog = ccopt.read_program(c.program)
+    ref = ccopt.compensate(prog, "pmac")
+    limits = ccopt.AxisLimits(c.vmax, c.amax)
+    delta = 0.01 * ref.radius
+    path, info = smooth(BlendProblem(prog, ref, limits), delta)
+    return prog, ref, limits, delta, path, info
+
+
+def _feed_paths(path):
+    return [s.geom for s in path.segments
+            if s.role in (Role.LEAD_IN, Role.COMPENSATED, Role.CORNER, Role.LEAD_OUT)
+            and s.length > 0]
+
+
+def test_pocket_certified_no_gouge(pocket):
+    prog, ref, _, _, path, info = pocket
+    assert info["certificate"].ok
+    assert info["joins_blended"] == info["joins_found"] == 18
+    contour = bc.contour(prog)
+    for s in path.segments:
+        if isinstance(s.geom, BezierCurve):
+            pts = bc.bezier_points(s.geom, 2001)[1:-1]
+            assert float(np.min(bc.dist_to(pts, contour))) >= ref.radius - 1e-6
+
+
+def test_pocket_within_the_band(pocket):
+    _, ref, _, delta, path, info = pocket
+    ref_geoms = _feed_paths(ref)
+    new_geoms = _feed_paths(path)
+    for s in path.segments:
+        if isinstance(s.geom, BezierCurve):
+            # the blend is within delta of the reference ...
+            pts = bc.bezier_points(s.geom, 2001)
+            assert float(np.max(bc.dist_to(pts, ref_geoms))) <= delta
+    # ... and every reference point it cut off (the old corner or join) is within delta
+    # of the smoothed path: the material a blend leaves is at most delta
+    for j in info["joins"]:
+        corner = np.asarray(ref.segments[j["segment"]].start)[None, :]
+        assert float(bc.dist_to(corner, new_geoms)[0]) <= delta
+    assert info["max_deviation_bound"] <= delta
+
+
+def test_pocket_g2_everywhere(pocket):
+    _, _, _, _, path, _ = pocket
+    segs = [s for s in path.segments if s.length > 0 and s.role is not Role.RAPID]
+    for a, b in zip(segs[:-1], segs[1:]):
+        if a.role is Role.UNCOMPENSATED or b.role is Role.UNCOMPENSATED:
+            continue                                 # plunge and retract: stops
+        gap, ang, jump = bc.join_ok(a.geom, b.geom)
+        assert gap <= 1e-9 and ang <= 1e-7 and jump <= 1e-6
+
+
+def test_pocket_cycle_time(pocket):
+    prog, ref, limits, _, path, _ = pocket
+    t_ref = ccopt.plan_feed(ref, limits).duration
+    t_smooth = ccopt.plan_feed(path, limits).duration
+    assert t_smooth < t_ref
+    # What no path this close to the reference can beat: every feed move at its feed
+    # with no acceleration limit, the rapid at the axis speeds. The pocket's feed (30 mm/s
+    # here) bounds the time from below at ~94 % of PMAC's, so the issue's 10 % is out of
+    # reach for any smoothing of this program at these limits; the smoother's time lies
+    # between the two.
+    lower = 0.0
+    for s in path.segments:
+        L3 = math.hypot(s.length, s.w1 - s.w0)
+        if s.feed is not None:
+            lower += L3 / s.feed
+        else:
+            b = s.block
+            lower += max(abs(e - a) / v for a, e, v in zip(b.start, b.end, limits.v))
+    assert lower < t_smooth
+    assert lower > 0.9 * t_ref
+
+
+def test_square_pocket_corners():
+    # four sharp inside corners of the tool path, no arcs: each becomes a G2 blend
+    text = """G21 G17 G90 G94
+G0 X10 Y10
+G1 F1200
+G41.1 D4
+G1 X0 Y10
+Y0
+X20
+Y20
+X0
+Y10
+G40
+G1 X10
+M30
+"""
+    prog = read_text(text, "square.nc")
+    ref = ccopt.compensate(prog, "pmac")
+    delta = 0.05
+    path, info = smooth(BlendProblem(prog, ref, ccopt.AxisLimits([100, 100], [1000, 1000])),
+                        delta)
+    assert info["certificate"].ok
+    kinds = sorted(j["kind"] for j in info["joins"])
+    assert kinds == ["tangent-break"] * 6   # four corners, the lead-in and lead-out joins
+    assert all(j["status"] == "blended" for j in info["joins"])
+    for j in info["joins"]:
+        corner = np.asarray(ref.segments[j["segment"]].start)[None, :]
+        d = float(bc.dist_to(corner, _feed_paths(path))[0])
+        # within the band, and using it: the search takes the largest blend that fits
+        assert 0.5 * delta < d <= delta
