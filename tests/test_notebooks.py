@@ -12,7 +12,7 @@ NOTEBOOKS = sorted((Path(__file__).resolve().parents[1] / "notebooks").glob("*.i
 
 def test_notebooks_exist():
     names = {p.name for p in NOTEBOOKS}
-    assert {"01-pmac-reference.ipynb", "02-feed-profiles.ipynb"} <= names
+    assert {"01-pmac-reference.ipynb", "02-feed-profiles.ipynb", "03-blend-comparison.ipynb"} <= names
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=lambda p: p.stem)
