@@ -1,0 +1,99 @@
+"""Benchmark: the optimised blends and the smoother on the pocket case.
+
+Measured in one run, medians of ``--repeat`` runs (the first run of each
+also pays its imports, CasADi's or CVXPY's, and is left out when
+``--repeat`` > 1):
+
+- solve time of ``opt-casadi`` (IPOPT) and ``opt-cvxpy`` (Clarabel) for the
+  pocket's lead-in and lead-out, verification of the result included;
+- solve time of the smoother at ``delta`` = 1 % of the cutter radius (and at
+  the other ``--deltas`` given, as fractions of the radius);
+- TOPPRA cycle time of each under the case's limits, and its ratio to PMAC's;
+- what bounds any path this close to PMAC's from below: every feed move at
+  its programmed feed with no acceleration limit (the rapid at the axis
+  speeds), as a ratio to PMAC's cycle time.
+
+    python bench/blends.py [--case pocket] [--repeat 3] [--deltas 0.01,0.1]
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import statistics
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+import ccopt  # noqa: E402
+from ccopt.cases import find_case  # noqa: E402
+from ccopt.compare import BlendOutcome, BlendProblem, load  # noqa: E402
+
+
+def feed_bound(path, limits) -> float:
+    """Every feed move at its feed, no acceleration limit; rapids at the axis speeds."""
+    t = 0.0
+    for s in path.segments:
+        L3 = math.hypot(s.length, s.w1 - s.w0)
+        if s.feed is not None:
+            t += L3 / s.feed
+        elif s.block is not None:
+            b = s.block
+            t += max(abs(e - a) / v for a, e, v in zip(b.start, b.end, limits.v))
+    return t
+
+
+def timed(fn, repeat: int):
+    times, out = [], None
+    for _ in range(repeat + (1 if repeat > 1 else 0)):
+        t0 = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - t0)
+    if repeat > 1:
+        times = times[1:]
+    return statistics.median(times), out
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--case", default="pocket")
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--deltas", default="0.01,0.1,0.3",
+                    help="smoother bands as fractions of the cutter radius")
+    args = ap.parse_args(argv)
+    case = find_case(args.case)
+    prog = ccopt.read_program(case.program)
+    limits = ccopt.AxisLimits(case.vmax, case.amax)
+    ref = ccopt.compensate(prog, "pmac")
+    t_ref = ccopt.plan_feed(ref, limits).duration
+    r = ref.radius
+    print(f"{case.name}: cutter radius {r:g} {prog.units}, limits v={list(limits.v)} "
+          f"a={list(limits.a)}, {args.repeat} runs (median)")
+    print(f"PMAC cycle time {t_ref:.4f} s; feed-limited bound {feed_bound(ref, limits):.4f} s "
+          f"= {feed_bound(ref, limits) / t_ref:.4f} of PMAC")
+    print(f"{'variant':26s} {'solve_s':>8s} {'cycle_s':>8s} {'vs_pmac':>8s} {'bound':>8s} "
+          f"{'certified':>9s} {'max_dev':>8s}  continuity")
+    rows = [(name, {}) for name in ("opt-casadi", "opt-cvxpy")]
+    rows += [(f"smooth delta={float(f):g}r", {"delta": float(f) * r})
+             for f in args.deltas.split(",")]
+    for label, kw in rows:
+        name = label.split()[0]
+        blend = load(name)
+        problem = BlendProblem(prog, ref, limits, kw.get("delta"))
+        solve, out = timed(lambda: blend(problem), args.repeat)
+        path = out.toolpath if isinstance(out, BlendOutcome) else out
+        cert = out.info.get("certificate") if isinstance(out, BlendOutcome) else None
+        cert = cert or problem.certify(path)
+        t = ccopt.plan_feed(path, limits).duration
+        from ccopt.compare.figures import max_deviation, path_figures
+        from ccopt.compare.leads import lead_joins
+        dev, _ = max_deviation(path, ref)
+        cont = path_figures(path, lead_joins(path))["continuity"]
+        print(f"{label:26s} {solve:8.3f} {t:8.4f} {t / t_ref:8.4f} "
+              f"{feed_bound(path, limits) / t_ref:8.4f} {str(cert.ok):>9s} {dev:8.4f}  {cont}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
