@@ -57,24 +57,10 @@ def _err(block: Block, message: str) -> CompensationError:
 
 
 def effective_side_radius(block: Block, radius: float | None, side: int | None,
-                          style: str) -> tuple[int, float]:
-    """Side and radius in force for ``block``, after the overrides.
-
-    ``side`` (+1 left / -1 right) replaces the programmed side wherever
-    compensation is on; ``radius`` replaces every programmed radius.
-    """
-    k = block.modal.side
-    if k == 0:
-        return 0, 0.0
-    if side is not None:
-        k = side
-    r = radius if radius is not None else block.modal.radius
-    if r is None:
-        raise _err(block, "cutter compensation is on but no cutter radius is set: "
-                          "program CCR{r} (PMAC) or a tool D word (G-code), or pass --radius")
-    if r < 0:
-        raise _err(block, f"cutter radius {r:g} is negative")
-    return k, float(r)
+                          style: str = "pmac") -> tuple[int, float]:
+    """Side and radius in force for ``block`` after the overrides
+    (:meth:`Block.side_radius`; the same for every style)."""
+    return block.side_radius(radius, side)
 
 
 def scan_program(program: Program, radius: float | None = None, side: int | None = None,

@@ -29,6 +29,8 @@ import math
 from dataclasses import dataclass, field, replace
 from typing import Iterator
 
+from ccopt.errors import CompensationError
+
 Vec3 = tuple[float, float, float]
 
 #: In-plane axes (u, v) and normal axis w, as indices into (x, y, z).
@@ -177,6 +179,30 @@ class Block:
         (cu, cv) = self.center_uv
         (u0, v0), (u1, v1) = self.start_uv, self.end_uv
         return abs(math.hypot(u1 - cu, v1 - cv) - math.hypot(u0 - cu, v0 - cv)) > tol
+
+    def side_radius(self, radius: float | None = None, side: int | None = None) -> tuple[int, float]:
+        """Side ``k`` and cutter radius ``r`` in force for this block, after
+        the overrides every style and the verifier apply: ``side`` (+1 left,
+        -1 right) replaces the programmed side wherever compensation is on,
+        ``radius`` replaces every programmed radius. ``(0, 0.0)`` when off.
+
+        Raises :class:`~ccopt.errors.CompensationError` (located) when
+        compensation is on with no radius from either, or a negative one.
+        """
+        k = self.modal.side
+        if k == 0:
+            return 0, 0.0
+        if side is not None:
+            k = side
+        r = radius if radius is not None else self.modal.radius
+        s = self.source
+        if r is None:
+            raise CompensationError(
+                "cutter compensation is on but no cutter radius is set: program CCR{r} (PMAC) "
+                "or a tool D word (G-code), or pass --radius", s.file, s.line, s.col)
+        if r < 0:
+            raise CompensationError(f"cutter radius {r:g} is negative", s.file, s.line, s.col)
+        return int(k), float(r)
 
     def with_modal(self, **changes) -> "Block":
         return replace(self, modal=replace(self.modal, **changes))

@@ -18,7 +18,6 @@ from operator import attrgetter
 
 import numpy as np
 
-from ccopt.errors import ProgramError
 from ccopt.geometry import KIND_ARC, KIND_LINE, KIND_SPIRAL, SegmentArray
 from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
@@ -115,19 +114,9 @@ class Contour:
 
 
 def effective_side_radius(block: Block, radius: float | None, side: int | None) -> tuple[int, float]:
-    """Side and radius in force for ``block`` after ``radius=``/``side=`` overrides
-    (the same rule compensation applies; ``(0, 0.0)`` when off)."""
-    k = block.modal.side
-    if k == 0:
-        return 0, 0.0
-    if side is not None:
-        k = side
-    r = radius if radius is not None else block.modal.radius
-    if r is None:
-        s = block.source
-        raise ProgramError("cutter compensation is on but no cutter radius is set", s.file,
-                           s.line, s.col)
-    return int(k), float(r)
+    """Side and radius in force for ``block`` after ``radius=``/``side=`` overrides:
+    :meth:`Block.side_radius`, the rule compensation applies (``(0, 0.0)`` when off)."""
+    return block.side_radius(radius, side)
 
 
 def element_geometry(blocks: list[Block], plane: str, st=None, en=None, ce=None, is_arc=None,
