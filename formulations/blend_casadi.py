@@ -199,5 +199,7 @@ def solve_lead(setup: LeadSetup, solver: str = "ipopt"):
 
 
 def opt_casadi(problem: BlendProblem):
-    """Entry point ``opt-casadi`` (group ``ccopt.blends``)."""
-    return run_leads(problem, solve_lead, "opt-casadi")
+    """Entry point ``opt-casadi`` (group ``ccopt.blends``). Option ``nlp_solver``:
+    the CasADi NLP plug-in (default ``"ipopt"``)."""
+    solver = str(problem.options.get("nlp_solver", "ipopt"))
+    return run_leads(problem, lambda setup: solve_lead(setup, solver), "opt-casadi")

@@ -214,7 +214,14 @@ class ConvexLeadModel:
 
 def solve_subproblem(problem, solver: str = "CLARABEL", **options):
     """The solver call, kept apart from the model: ``problem.solve`` with ``solver``."""
-    problem.solve(solver=solver, **options)
+    import warnings
+    with warnings.catch_warnings():
+        # "solution may be inaccurate": the exact clearance check after the solve judges it
+        warnings.simplefilter("ignore", UserWarning)
+        try:
+            problem.solve(solver=solver, **options)
+        except Exception:  # a solver failure on a bad linearisation: the caller shrinks
+            return "solver_error"
     return problem.status
 
 
@@ -286,5 +293,7 @@ def solve_lead(setup: LeadSetup, problem: BlendProblem | None = None, solver: st
 
 
 def opt_cvxpy(problem: BlendProblem):
-    """Entry point ``opt-cvxpy`` (group ``ccopt.blends``)."""
-    return run_leads(problem, lambda setup: solve_lead(setup, problem), "opt-cvxpy")
+    """Entry point ``opt-cvxpy`` (group ``ccopt.blends``). Option ``conic_solver``:
+    the CVXPY solver name (default ``"CLARABEL"``)."""
+    solver = str(problem.options.get("conic_solver", "CLARABEL"))
+    return run_leads(problem, lambda setup: solve_lead(setup, problem, solver), "opt-cvxpy")

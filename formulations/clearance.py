@@ -8,14 +8,18 @@ distance to the element is exactly one of (by where the foot of ``p`` lies):
 - ``CONCAVE``: an arc element, foot inside its sweep, ``p`` inside its circle:
   ``|p - c| <= R - r`` (a second-order cone);
 - ``CONVEX``: the same, ``p`` outside the circle: ``|p - c| >= R + r``;
-- ``END``: the foot beyond an end ``E``: ``|p - E| >= r``.
+- ``END``: the foot beyond an end ``E``: ``|p - E| >= r``;
+- ``EXEMPT``: the foot beyond an *open* end, where the contour stops (the
+  verifier's decision ``OPEN_END_EXEMPTION``, :mod:`ccopt.verify.decisions`:
+  such points are not checked against that element): no constraint.
 
 :func:`classify` says which, at a given set of points (the models re-classify
 at every iterate; on the boundary between two cases both give the same
 distance, so switching is continuous). :func:`linear_rows` turns them into
 rows ``G . p >= h`` for convex models: ``LINE`` is exact, ``CONVEX`` and
 ``END`` become the tangent half-plane at the iterate (it lies inside the
-feasible set, so it is safe), ``CONCAVE`` is kept as a cone.
+feasible set, so it is safe), ``CONCAVE`` is kept as a cone, ``EXEMPT`` is
+void.
 """
 from __future__ import annotations
 
@@ -26,16 +30,19 @@ import numpy as np
 
 from ccopt.geometry import Arc, Line, angle_in_sweep, distance, point_arc, point_segment
 
-LINE, CONCAVE, CONVEX, END = 0, 1, 2, 3
+LINE, CONCAVE, CONVEX, END, EXEMPT = 0, 1, 2, 3, 4
 
 
 @dataclass(frozen=True)
 class Element:
-    """A contour element: ``kind`` (``"line" | "arc" | "other"``), clearance, primitive."""
+    """A contour element: ``kind`` (``"line" | "arc" | "other"``), clearance, primitive,
+    and whether the contour stops at its start or end (open ends)."""
 
     kind: str
     clearance: float
     geom: object
+    open_start: bool = False
+    open_end: bool = False
 
 
 def contour_elements(contour) -> list[Element]:
@@ -43,7 +50,8 @@ def contour_elements(contour) -> list[Element]:
     for j in range(len(contour)):
         g = contour.elements.geom(j)
         kind = "line" if isinstance(g, Line) else "arc" if isinstance(g, Arc) else "other"
-        out.append(Element(kind, float(contour.clearance[j]), g))
+        out.append(Element(kind, float(contour.clearance[j]), g,
+                           bool(contour.open_start[j]), bool(contour.open_end[j])))
     return out
 
 
@@ -93,6 +101,14 @@ def element_distance(el: Element, pts: np.ndarray) -> np.ndarray:
     return d
 
 
+def checked_distance(el: Element, pts: np.ndarray) -> np.ndarray:
+    """:func:`element_distance`, with ``inf`` where a point is exempt (beyond an open end)."""
+    d = element_distance(el, pts)
+    if el.open_start or el.open_end:
+        d = np.where(classify(el, pts)[0] == EXEMPT, np.inf, d)
+    return d
+
+
 def classify(el: Element, p: np.ndarray):
     """``(kind, vec, scal)`` per point (see the module docstring): for ``LINE`` the
     unit normal and ``n . A + r``; for ``CONCAVE``/``CONVEX`` the centre and
@@ -119,6 +135,10 @@ def classify(el: Element, p: np.ndarray):
         vec[inside] = sgn[inside, None] * nl
         scal[inside] = vec[inside] @ A + r
         vec[~inside] = np.where((t[~inside] <= 0.0)[:, None], A, B)
+        if el.open_start:
+            kind[t <= 0.0] = EXEMPT
+        if el.open_end:
+            kind[t >= 1.0] = EXEMPT
         return kind, vec, scal
     if el.kind == "arc":
         c = np.asarray(g.center, float)
@@ -134,6 +154,10 @@ def classify(el: Element, p: np.ndarray):
         e0, e1 = np.asarray(g.start, float), np.asarray(g.end, float)
         near0 = np.hypot(*(p - e0).T) <= np.hypot(*(p - e1).T)
         vec[~inside] = np.where(near0[~inside, None], e0, e1)
+        if el.open_start:
+            kind[~inside & near0] = EXEMPT
+        if el.open_end:
+            kind[~inside & ~near0] = EXEMPT
         return kind, vec, scal
     q = _dense(el, 2049)
     k = np.argmin(np.hypot(p[:, None, 0] - q[None, :, 0], p[:, None, 1] - q[None, :, 1]), axis=1)

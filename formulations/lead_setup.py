@@ -34,7 +34,7 @@ from ccopt.compare.blend import (
 )
 from ccopt.compare.leads import Lead, LeadGeometry
 from ccopt.geometry import Arc, Line
-from formulations.clearance import contour_elements, element_distance, near
+from formulations.clearance import checked_distance, contour_elements, near
 
 DEGREE = 5
 
@@ -152,7 +152,7 @@ class LeadSetup:
         if not self.elements:
             return -math.inf
         pts = bernstein(self.sample_t(m)[1:-1], self.degree) @ self.controls(x)
-        return max(float(np.max(el.clearance - element_distance(el, pts)))
+        return max(float(np.max(el.clearance - checked_distance(el, pts)))
                    for el in self.elements)
 
 

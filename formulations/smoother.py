@@ -34,7 +34,10 @@ two free control points):
                                                G2 conditions are linearised in a)
 
 ``delta' = BAND_FRACTION * delta`` leaves room for what happens between samples.
-The model is re-linearised a few times (:data:`SCP_ITERATIONS`), and the blend
+The clearance rows are elastic (a slack per sample, priced at
+:data:`SLACK_PENALTY`), so a first guess on the wrong side can move; the exact
+checks afterwards accept only curves that keep the clearance. The model is
+re-linearised a few times (:data:`SCP_ITERATIONS`), and the blend
 size is searched: the largest ``l`` (halving from what the neighbouring joins
 leave, then bisecting) for which the exact curve passes the exact checks
 (distance to every nearby element at dense samples, deviation both ways). The
@@ -57,7 +60,7 @@ from ccopt.compare.figures import joins as path_joins, max_deviation
 from ccopt.geometry import BezierCurve
 from ccopt.toolpath import PathSegment, Role, ToolPath
 from formulations.clearance import (
-    Element, contour_elements, element_distance, linear_rows, near,
+    Element, checked_distance, contour_elements, linear_rows, near,
 )
 
 DEGREE = 7
@@ -70,7 +73,9 @@ C_MAX = 2
 BAND_FRACTION = 0.85
 #: Curvature-energy weight against the jerk energy.
 LAM = 0.1
-SCP_ITERATIONS = 2
+SCP_ITERATIONS = 4
+#: Price of a unit of clearance slack in the scaled model (the energies are O(1..100)).
+SLACK_PENALTY = 1e6
 #: Share of a segment a blend may take when another blend uses its other end.
 SHARED = 0.45
 ALONE = 0.9
@@ -84,6 +89,8 @@ BISECTIONS = 3
 #: Distance below the clearance the exact acceptance checks forgive (a tenth of
 #: the verifier's tolerance: the verifier judges in the end).
 CHECK_TOL = 1e-7
+#: Shares of the blend size on the incoming and outgoing side, tried in turn.
+SHARES = ((1.0, 1.0), (1.0, 0.0), (0.0, 1.0))
 #: Dense samples for the exact acceptance checks of one blend.
 CHECK_SAMPLES = 801
 
@@ -173,8 +180,8 @@ def _frame(seg_in: PathSegment, seg_out: PathSegment, l_in: float, l_out: float)
 
 
 def _initial(fr: BlendFrame) -> np.ndarray:
-    a0 = np.linalg.norm(fr.V - fr.P0) / (DEGREE / 2.0) / fr.S
-    a1 = np.linalg.norm(fr.P7 - fr.V) / (DEGREE / 2.0) / fr.S
+    a0 = max(np.linalg.norm(fr.V - fr.P0) / (DEGREE / 2.0) / fr.S, 0.05)
+    a1 = max(np.linalg.norm(fr.P7 - fr.V) / (DEGREE / 2.0) / fr.S, 0.05)
     P3 = (fr.P0 + 3.0 * a0 * fr.S * fr.t0 - fr.V) / fr.S
     P4 = (fr.P7 - 3.0 * a1 * fr.S * fr.t1 - fr.V) / fr.S
     return np.r_[a0, 0.0, a1, 0.0, P3, P4]
@@ -231,11 +238,17 @@ class CornerModel:
         inner = slice(1, m - 1)
         rows = (m - 2) * E_MAX
         self.G, self.h = Par((rows, nx)), Par(rows)
-        cons = [self.G @ x >= self.h]
+        # elastic clearance: a linearisation may start infeasible (a corner cut the wrong
+        # way); the slack is paid dearly and must be zero in the end (exact checks)
+        self.slack = cp.Variable(m - 2, nonneg=True)
+        S = np.kron(np.ones((E_MAX, 1)), np.eye(m - 2))
+        cons = [self.G @ x >= self.h - S @ self.slack]
+        obj += SLACK_PENALTY * cp.sum(self.slack)
         self.cc = [Par(2) for _ in range(C_MAX)]
         self.crho = [Par(m - 2) for _ in range(C_MAX)]     # radius per sample (huge = void)
         for c, rho in zip(self.cc, self.crho):
-            cons.append(cp.norm(cp.vstack([px[inner] - c[0], py[inner] - c[1]]), 2, axis=0) <= rho)
+            cons.append(cp.norm(cp.vstack([px[inner] - c[0], py[inner] - c[1]]), 2, axis=0)
+                        <= rho + self.slack)
         self.w0, self.w1 = Par(m), Par(m)
         self.band = Par(nonneg=True)
         cons.append(cp.norm(cp.vstack([px - self.w0, py - self.w1]), 2, axis=0) <= self.band)
@@ -316,8 +329,12 @@ class CornerModel:
 
 def solve_model(model: CornerModel, solver: str = "CLARABEL", **options):
     """The solver call: ``(x or None, status)``."""
+    import warnings
     try:
-        model.problem.solve(solver=solver, **options)
+        with warnings.catch_warnings():
+            # "solution may be inaccurate": the exact checks after the solve judge it
+            warnings.simplefilter("ignore", UserWarning)
+            model.problem.solve(solver=solver, **options)
     except Exception as exc:  # solver failure on a bad linearisation: try smaller
         return None, f"solver error: {exc}"
     st = model.problem.status
@@ -334,7 +351,7 @@ def _exact_ok(curve_pts: np.ndarray, elements, fr: BlendFrame, delta: float, tol
     blend excluded, they are the reference's own points) and deviation both ways."""
     inner = curve_pts[1:-1]
     for el in elements:
-        if np.min(element_distance(el, inner)) < el.clearance - tol:
+        if np.min(checked_distance(el, inner)) < el.clearance - tol:
             return False, "clearance"
     d = np.hypot(curve_pts[:, None, 0] - fr.ref_pts[None, :, 0],
                  curve_pts[:, None, 1] - fr.ref_pts[None, :, 1])
@@ -357,20 +374,23 @@ def solve_join(model: CornerModel, problem: BlendProblem, path: ToolPath, jn: Jo
     elements = near_elements(problem, V, 2.0 * lmax + delta)
     tol = CHECK_TOL
 
-    def attempt(l: float):
-        l_in = min(l, jn.lim_in)
-        l_out = min(l, jn.lim_out)
+    def attempt(l: float, share=(1.0, 1.0)):
+        l_in = min(l, jn.lim_in) * share[0]
+        l_out = min(l, jn.lim_out) * share[1]
         fr = _frame(seg_in, seg_out, l_in, l_out)
         x = _initial(fr)
         trust = 0.5 * max(x[0], x[2])
         sol = None
-        for _ in range(SCP_ITERATIONS):
+        for it in range(SCP_ITERATIONS):
             model.update(fr, x, elements, band_fraction * delta, trust)
             xn, st = solve_model(model, solver)
             if xn is None:
                 break
+            step = float(np.max(np.abs(xn - x)))
             x, sol = xn, xn
-            trust *= 0.5
+            if it >= 1 and float(np.max(model.slack.value)) <= 1e-12 and step <= 1e-6:
+                break
+            trust *= 0.7
         if sol is None:
             return None
         P = fr.controls(sol)
@@ -384,40 +404,49 @@ def solve_join(model: CornerModel, problem: BlendProblem, path: ToolPath, jn: Jo
             return None
         return curve, l_in, l_out
 
-    best, bad = None, None
-    l = min(lmax, size_estimate(jn, delta))
-    for _ in range(SHRINKS):
-        res = attempt(l)
+    def search(share):
+        best, bad = None, None
+        l = min(lmax, size_estimate(jn, delta))
+        for _ in range(SHRINKS):
+            res = attempt(l, share)
+            if res is not None:
+                best = (l, res)
+                break
+            bad = l
+            l *= SHRINK
+        if best is None:
+            return None
+        good = best[0]
+        if bad is None:
+            for _ in range(GROWS):
+                if good >= lmax:
+                    break
+                nxt = min(lmax, good * GROW)
+                res = attempt(nxt, share)
+                if res is None:
+                    bad = nxt
+                    break
+                good, best = nxt, (nxt, res)
+        if bad is not None:
+            for _ in range(BISECTIONS):
+                mid = 0.5 * (good + bad)
+                res = attempt(mid, share)
+                if res is None:
+                    bad = mid
+                else:
+                    good, best = mid, (mid, res)
+        return best[1]
+
+    # symmetric first; then one-sided (a blend that ends exactly at the join point, as
+    # at an open end of the contour, where the other side has no room inside the band)
+    for share in SHARES:
+        res = search(share)
         if res is not None:
-            best = (l, res)
-            break
-        bad = l
-        l *= SHRINK
-    if best is None:
-        jn.status = "no feasible blend"
-        return jn
-    good = best[0]
-    if bad is None:
-        for _ in range(GROWS):
-            if good >= lmax:
-                break
-            nxt = min(lmax, good * GROW)
-            res = attempt(nxt)
-            if res is None:
-                bad = nxt
-                break
-            good, best = nxt, (nxt, res)
-    if bad is not None:
-        for _ in range(BISECTIONS):
-            mid = 0.5 * (good + bad)
-            res = attempt(mid)
-            if res is None:
-                bad = mid
-            else:
-                good, best = mid, (mid, res)
-    _, (curve, l_in, l_out) = best
-    jn.curve, jn.l_in, jn.l_out = curve, l_in, l_out
-    jn.status = "blended"
+            jn.curve, jn.l_in, jn.l_out = res
+            jn.status = "blended"
+            jn.info["share"] = list(share)
+            return jn
+    jn.status = "no feasible blend"
     return jn
 
 
@@ -533,8 +562,9 @@ def _segment_of(path: ToolPath, curve) -> int | None:
 
 
 def smooth_variant(problem: BlendProblem) -> BlendOutcome:
-    """Entry point ``smooth`` (group ``ccopt.blends``): the smoother at ``problem.band``."""
-    path, info = smooth(problem)
+    """Entry point ``smooth`` (group ``ccopt.blends``): the smoother at ``problem.band``.
+    Option ``conic_solver``: the CVXPY solver name (default ``"CLARABEL"``)."""
+    path, info = smooth(problem, solver=str(problem.options.get("conic_solver", "CLARABEL")))
     if info["joins_found"] and not info["joins_blended"]:
         raise BlendRejected("no join could be blended within the band")
     return BlendOutcome(path, info)

@@ -58,7 +58,8 @@ class BlendProblem:
     Attributes
     ----------
     program: the part program.
-    reference: PMAC's compensated path of it (the comparison's reference).
+    reference: PMAC's compensated path of it (the comparison's reference;
+        ``None`` only for controller styles run when PMAC refused the program).
     limits: machine limits (``None`` when none were given; blends that
         optimise time then assume :data:`DEFAULT_ACC` and the programmed feed).
     delta: tolerance band of the smoother (program units); ``None`` means 1 %

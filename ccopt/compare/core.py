@@ -101,7 +101,10 @@ def measure(name: str, path: ToolPath, problem: BlendProblem, solve_time: float,
     cert = certificate if certificate is not None else problem.certify(path)
     fig = path_figures(path, lead_joins(path))
     dur, feed_msg = _duration(path, problem.limits)
-    dev, dev_bound = max_deviation(path, problem.reference)
+    if problem.reference is not None:
+        dev, dev_bound = max_deviation(path, problem.reference)
+    else:  # no reference to measure against (PMAC refused the program)
+        dev = dev_bound = None
     gouge = cert.check("gouge")
     fig.update(duration=dur, min_clearance=cert.min_clearance, certified=bool(cert.ok),
                clearance_ok=bool(gouge.ok), violations=len(cert.violations),
@@ -145,9 +148,15 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
                                       f"{', '.join(sorted(known))}"))
             continue
         if problem is None:
-            status = "refused" if name == REFERENCE else "failed"
-            rows.append(VariantResult(name, status, ref_error if name == REFERENCE else
-                                      f"no reference path: {ref_error}"))
+            if name == REFERENCE:
+                rows.append(VariantResult(name, "refused", ref_error))
+            elif getattr(load(name), "compensates", False):
+                # another controller style needs no reference: it may accept the program
+                alone = BlendProblem(program, None, limits, delta, dict(options or {}), radius,
+                                     side)
+                rows.append(_run(name, alone))
+            else:
+                rows.append(VariantResult(name, "failed", f"no reference path: {ref_error}"))
             continue
         if name == REFERENCE:
             row = measure(name, reference, problem, ref_time)
