@@ -12,6 +12,9 @@ subproblem is convex. At iterate ``x_k`` (:class:`ConvexLeadModel`, the model):
                |p_i(x) - c_e| <= R_e - r + slack_i   (alongside a concave arc: a cone),
                ||p_i(x) - w_i|| <= W                            (tolerance band, SOC)
                ubar_i . r'(t_i; x) >= v_min                   (regular curve)
+               |nbar_i . r''(t_i; x)| <= kappa_cap |r'(t_i; x_k)|^2 + s_i  (curvature cap,
+                 soft, in the iterate's frame: kappa_cap lets the curve run at a share
+                 cap_speed of the feed under the axis acceleration)
                ||P_k(x) - P_k(x_k)|| <= Delta, |a - a_k|, |e - e_k|, |sigma - sigma_k| <= Delta
 
 where ``p_i(x)`` are points of the curve at ``m`` samples of ``t``,
@@ -27,8 +30,8 @@ they are linearised at ``x_k`` (the curve itself is always built exactly, so
 G2 at the join holds whatever the iterate).
 
 :func:`scp` iterates to a fixed point for one ``lam``; :func:`solve_lead`
-tries a few ``lam`` (how much curvature costs against length) and keeps the
-curve with the shortest traversal time
+tries a few ``lam`` (how much curvature costs against length) and curvature
+caps, and keeps the curve with the shortest traversal time
 (:func:`ccopt.compare.blend.speed_profile_time`, the same time model as the
 CasADi NLP). :func:`solve_subproblem` is the solver call: the same model
 goes to Clarabel (default), ECOS or SCS.
@@ -44,14 +47,20 @@ from ccopt.compare.blend import BlendProblem, bernstein, derivative_matrix
 from formulations.clearance import linear_rows
 from formulations.lead_setup import LeadSetup, run_leads
 
-#: Curvature weights tried (relative to length).
-LAMBDAS = (0.03, 0.3, 3.0)
+#: (curvature weight relative to length, curvature cap as a share of the feed) tried.
+CANDIDATES = ((0.03, 0.3), (3.0, 0.6))
+#: Cuts of the time model when choosing among the candidates.
+SELECT_SAMPLES = 801
 #: Jerk weight (relative).
 MU = 1e-3
 #: Slack penalty per unit of violated clearance (relative to the length term).
 SLACK_PENALTY = 1e4
 MAX_ITER = 12
 M_SAMPLES = 31
+#: Curvature cap (soft): the curve should allow a share ``cap_speed`` of the feed under the
+#: smaller axis acceleration, ``kappa <= a / (cap_speed F)^2``; priced per unit of excess
+#: |r''| (t-parametrisation; relative to the length term).
+CURVATURE_PENALTY = 10.0
 #: Concave arcs (cones) per subproblem; a void row or cone never binds (VOID).
 C_MAX = 3
 VOID = 1e3
@@ -107,17 +116,19 @@ class ConvexLeadModel:
     """
 
     def __init__(self, setup: LeadSetup, lam: float, ref_pts: np.ndarray, band: float,
-                 scales: dict):
+                 scales: dict, cap_speed: float = 0.5):
         import cvxpy as cp
 
         self.setup = setup
         self.ref_pts = ref_pts
+        self.cap_speed = cap_speed
         n = setup.degree
         m = M_SAMPLES
         nx = setup.nx
         self.t = np.linspace(0.0, 1.0, m)
         self.B = bernstein(self.t, n)
         self.D1 = bernstein(self.t, n - 1) @ derivative_matrix(n, 1)
+        self.D2 = bernstein(self.t, n - 2) @ derivative_matrix(n, 2)
         E = len(setup.elements)
         self.E = E
         x = cp.Variable(nx)
@@ -157,6 +168,11 @@ class ConvexLeadModel:
         cons.append(cp.norm(cp.vstack([px - self.w0, py - self.w1]), 2, axis=0) <= band)
         self.Ar, self.br = P("Ar", (m, nx)), P("br", m)
         cons.append(self.Ar @ x >= self.br)
+        # curvature cap (soft): |nbar . r''| <= kappa_cap |r'|^2 at the iterate's frame
+        self.Ak, self.bk = P("Ak", (m, nx)), P("bk", m)
+        self.kslack = cp.Variable(m, nonneg=True)
+        cons += [self.Ak @ x <= self.bk + self.kslack, -(self.Ak @ x) <= self.bk + self.kslack]
+        obj += CURVATURE_PENALTY * cp.sum(self.kslack) / scales["len"]
         for j in range(setup.n_free):
             cons.append(cp.norm(x[2 * j:2 * j + 2] - self.xk[2 * j:2 * j + 2], 2) <= self.delta)
         cons.append(cp.abs(x[-3:] - self.xk[-3:]) <= self.delta)
@@ -207,6 +223,14 @@ class ConvexLeadModel:
         A = ub[:, 0:1] * (self.D1 @ Jx) + ub[:, 1:2] * (self.D1 @ Jy)
         self.Ar.value = A
         self.br.value = 0.02 * su.L0 - (np.einsum("ij,ij->i", ub, d1k) - A @ xk)
+        # normal component of r'' over |r'|^2 is the curvature: cap it where the iterate is
+        nb = np.c_[-ub[:, 1], ub[:, 0]]
+        D2 = self.D2
+        Ak = nb[:, 0:1] * (D2 @ Jx) + nb[:, 1:2] * (D2 @ Jy)
+        sp2 = np.einsum("ij,ij->i", d1k, d1k)
+        cap = float(np.min(su.acc)) / (self.cap_speed * su.feed) ** 2
+        self.Ak.value = Ak
+        self.bk.value = cap * sp2 - (np.einsum("ij,ij->i", nb, D2 @ Pk) - Ak @ xk)
 
     def slack_max(self) -> float:
         return float(np.max(self.slack.value)) if self.slack is not None else 0.0
@@ -225,7 +249,8 @@ def solve_subproblem(problem, solver: str = "CLARABEL", **options):
     return problem.status
 
 
-def scp(setup: LeadSetup, problem: BlendProblem, lam: float, solver: str = "CLARABEL"):
+def scp(setup: LeadSetup, problem: BlendProblem, lam: float, solver: str = "CLARABEL",
+        cap_speed: float = 0.5):
     """Iterate the convex model from the first guess to a fixed point: ``(x, info)``."""
     xk = setup.initial()
     ref_pts = _reference_points(setup, problem)
@@ -236,7 +261,7 @@ def scp(setup: LeadSetup, problem: BlendProblem, lam: float, solver: str = "CLAR
     n = setup.degree
     scales = {"len": setup.L0,
               "e2": max(_energy(Pk, n, 2), 1e-12), "e3": max(_energy(Pk, n, 3), 1e-12)}
-    model = ConvexLeadModel(setup, lam, ref_pts, band, scales)
+    model = ConvexLeadModel(setup, lam, ref_pts, band, scales, cap_speed)
     delta = 0.1 * setup.L0
     status, it, slack_max = None, 0, math.inf
     for it in range(1, MAX_ITER + 1):
@@ -260,7 +285,8 @@ def scp(setup: LeadSetup, problem: BlendProblem, lam: float, solver: str = "CLAR
             break
     ok = slack_max <= 1e-7 * setup.L0 and \
         setup.clearance_violation(xk, m=M_SAMPLES) <= 1e-7 * setup.L0
-    return xk, {"status": status, "iterations": it, "feasible": bool(ok), "lambda": lam}
+    return xk, {"status": status, "iterations": it, "feasible": bool(ok), "lambda": lam,
+                "cap_speed": cap_speed}
 
 
 def _energy(P, n, order):
@@ -271,23 +297,25 @@ def _energy(P, n, order):
 
 
 def solve_lead(setup: LeadSetup, problem: BlendProblem | None = None, solver: str = "CLARABEL"):
-    """Run :func:`scp` for each weight in :data:`LAMBDAS`; keep the fastest feasible curve."""
+    """Run :func:`scp` for each ``(lam, cap_speed)`` of :data:`CANDIDATES`; keep the
+    curve with the shortest traversal time (the time model on :data:`SELECT_SAMPLES`
+    cuts, fine enough to see a tight turn)."""
     t0 = time.perf_counter()
     best = None
     tried = []
-    for lam in LAMBDAS:
-        x, info = scp(setup, problem, lam, solver)
+    for lam, cap in CANDIDATES:
+        x, info = scp(setup, problem, lam, solver, cap)
         if not info["feasible"]:
-            tried.append((lam, None))
+            tried.append((lam, cap, None))
             continue
-        T = setup.objective(x)
-        tried.append((lam, T))
+        T = setup.objective(x, m=SELECT_SAMPLES)
+        tried.append((lam, cap, T))
         if best is None or T < best[0]:
             best = (T, x, info)
     if best is None:
         raise RuntimeError("no feasible convex iterate for any curvature weight")
     _, x, info = best
-    info = dict(info, solver=solver, tried=[[lam, T] for lam, T in tried],
+    info = dict(info, solver=solver, tried=[list(t) for t in tried],
                 solve_time=time.perf_counter() - t0)
     return x, info
 

@@ -105,17 +105,17 @@ class LeadSetup:
     def T0(self) -> float:
         return self.L0 / self.feed
 
-    def objective(self, x) -> float:
+    def objective(self, x, m: int = 81) -> float:
         """Time to run the blend from rest and go on at the feed (speed profile,
         :func:`~ccopt.compare.blend.speed_profile_time`), plus the host time it
         skips, plus the jerk term: what both models minimise."""
         P = self.controls(x)
         host_left = (self.lg.host_length - x[-1]) / self.feed
-        return self.traversal_time(x) + host_left + self.jerk_weight * float(
+        return self.traversal_time(x, m) + host_left + self.jerk_weight * float(
             np.sum(P * (jerk_gram(self.degree) @ P)))
 
-    def traversal_time(self, x) -> float:
-        return speed_profile_time(self.controls(x), self.feed, self.acc)
+    def traversal_time(self, x, m: int = 81) -> float:
+        return speed_profile_time(self.controls(x), self.feed, self.acc, m=m)
 
     @property
     def jerk_weight(self) -> float:

@@ -68,7 +68,12 @@ def test_faster_than_pmac_on_inside_lead_in(runs, case):
     pmac = cmp["pmac"].figures
     assert pmac["continuity"] == "G0"
     for name in OPT:
-        assert cmp[name].figures["duration"] < pmac["duration"], name
+        fig = cmp[name].figures
+        assert fig["duration"] < pmac["duration"], name
+        # the profile behind that time keeps the axis limits, sampled every 0.2 ms, to
+        # 0.1 % (constant acceleration between gridpoints on a curve overshoots by
+        # ~1e-5; a tight turn missed by the gridpoints would show as a multiple)
+        assert fig["max_acc_ratio"] <= 1.001, name
 
 
 def test_blends_keep_the_contour(runs):
