@@ -25,7 +25,6 @@ change (at most :data:`MAX_ROUNDS` rounds).
 """
 from __future__ import annotations
 
-import math
 import time
 
 import numpy as np

@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -35,6 +36,10 @@ from ccopt.compare.blend import (
 from ccopt.compare.leads import Lead, LeadGeometry
 from ccopt.geometry import Arc, Line
 from formulations.clearance import checked_distance, contour_elements, near
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ccopt.compare.blend import BlendOutcome
+    from ccopt.geometry import BezierCurve
 
 DEGREE = 5
 

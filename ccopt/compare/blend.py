@@ -97,7 +97,6 @@ class BlendProblem:
         """In-plane axis acceleration limits ``(a_u, a_v)`` used by the time models."""
         if self.limits is None:
             return np.array([DEFAULT_ACC, DEFAULT_ACC])
-        from ccopt.feed.limits import AXIS_NAMES  # noqa: F401 (documentation of the order)
         _, a = self.limits.in_plane(self.reference.plane, 2)
         return np.asarray(a, float)
 

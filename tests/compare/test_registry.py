@@ -8,8 +8,6 @@ from pathlib import Path
 
 import pytest
 
-import ccopt
-from ccopt.cases import find_case
 from ccopt.cli import main
 from ccopt.compare import available
 
