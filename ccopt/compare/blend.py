@@ -12,7 +12,9 @@ segments it made (clearance between samples too), else
 Bezier helpers (numpy, shared by the CasADi and CVXPY models):
 
 - :func:`bernstein` ``(t, n)``: the ``(len(t), n+1)`` basis matrix, so the
-  points of a curve with control points ``P`` are ``bernstein(t, n) @ P``;
+  points of a curve with control points ``P`` are ``bernstein(t, n) @ P``
+  (with :func:`derivative_matrix` and :func:`subdivision_matrix`, defined in
+  :mod:`ccopt.geometry.curve` and re-exported here);
 - :func:`g2_end` / :func:`g2_start`: control points that give a curve of
   degree ``n`` the position, tangent and curvature of a host at one end. At
   the end ``J`` with unit tangent ``t``, left normal ``n`` and curvature
@@ -35,6 +37,10 @@ from typing import Any, Mapping
 import numpy as np
 
 from ccopt.feed.limits import AxisLimits
+# The Bezier basics live in geometry (the exporter needs them too); re-exported here
+# for the formulations that import them from compare.
+from ccopt.geometry.curve import bernstein, derivative_matrix
+from ccopt.geometry.curve import subdivision_matrix as subdivision_matrix
 from ccopt.program.model import Program
 from ccopt.toolpath import ToolPath
 
@@ -180,24 +186,6 @@ def contour_samples(contour, h: float) -> ContourSamples:
 # --------------------------------------------------------------------------- Bezier helpers
 
 
-def bernstein(t, n: int) -> np.ndarray:
-    """Bernstein basis of degree ``n`` at ``t``: ``(len(t), n + 1)``."""
-    t = np.atleast_1d(np.asarray(t, float))[:, None]
-    k = np.arange(n + 1)[None, :]
-    binom = np.array([math.comb(n, i) for i in range(n + 1)], float)[None, :]
-    return binom * t ** k * (1.0 - t) ** (n - k)
-
-
-def derivative_matrix(n: int, order: int = 1) -> np.ndarray:
-    """``D`` with ``control points of d^order r/dt^order = D @ P`` (degree ``n - order``)."""
-    M = np.eye(n + 1)
-    deg = n
-    for _ in range(order):
-        M = deg * (M[1:] - M[:-1])
-        deg -= 1
-    return M
-
-
 def jerk_gram(n: int) -> np.ndarray:
     """``G`` (``(n+1, n+1)``) with ``integral |r'''|^2 dt = trace(P.T G P)``."""
     if n < 3:
@@ -208,20 +196,6 @@ def jerk_gram(n: int) -> np.ndarray:
     B = np.array([[math.comb(m, i) * math.comb(m, j) / (math.comb(2 * m, i + j) * (2 * m + 1))
                    for j in range(m + 1)] for i in range(m + 1)])
     return D.T @ B @ D
-
-
-def subdivision_matrix(n: int, t0: float, t1: float) -> np.ndarray:
-    """``S`` with ``S @ P`` the control points of the piece ``[t0, t1]``."""
-    # blossom: the piece's i-th control point is the blossom at (t0 x (n-i), t1 x i)
-    S = np.zeros((n + 1, n + 1))
-    for i in range(n + 1):
-        args = [t0] * (n - i) + [t1] * i
-        # de Casteljau with different parameters per level (blossoming)
-        coeff = np.eye(n + 1)
-        for u in args:
-            coeff = (1.0 - u) * coeff[:-1] + u * coeff[1:]
-        S[i] = coeff[0]
-    return S
 
 
 def g2_end(J, t, kappa: float, a: float, e: float, n: int) -> np.ndarray:

@@ -17,6 +17,11 @@ same interface, parameterised by **arc length** ``s``:
 The curve must be regular (``|r'(t)| > 0``); the constructor checks it on a
 dense grid and on the derivative's control polygon (a sufficient condition
 is that the hodograph's control points stay in an open half-plane).
+
+Bernstein basics shared with the blend formulations (:mod:`ccopt.compare.blend`
+re-exports them): :func:`bernstein` (basis matrix), :func:`derivative_matrix`
+(control points of a derivative), :func:`subdivision_matrix` (control points
+of a piece ``[t0, t1]``).
 """
 from __future__ import annotations
 
@@ -28,6 +33,41 @@ import numpy as np
 PIECES = 32
 ORDER = 8
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(ORDER)
+
+
+# --------------------------------------------------------------------------- Bernstein basics
+
+
+def bernstein(t, n: int) -> np.ndarray:
+    """Bernstein basis of degree ``n`` at ``t``: ``(len(t), n + 1)``."""
+    t = np.atleast_1d(np.asarray(t, float))[:, None]
+    k = np.arange(n + 1)[None, :]
+    binom = np.array([math.comb(n, i) for i in range(n + 1)], float)[None, :]
+    return binom * t ** k * (1.0 - t) ** (n - k)
+
+
+def derivative_matrix(n: int, order: int = 1) -> np.ndarray:
+    """``D`` with ``control points of d^order r/dt^order = D @ P`` (degree ``n - order``)."""
+    M = np.eye(n + 1)
+    deg = n
+    for _ in range(order):
+        M = deg * (M[1:] - M[:-1])
+        deg -= 1
+    return M
+
+
+def subdivision_matrix(n: int, t0: float, t1: float) -> np.ndarray:
+    """``S`` with ``S @ P`` the control points of the piece ``[t0, t1]``."""
+    # blossom: the piece's i-th control point is the blossom at (t0 x (n-i), t1 x i)
+    S = np.zeros((n + 1, n + 1))
+    for i in range(n + 1):
+        args = [t0] * (n - i) + [t1] * i
+        # de Casteljau with different parameters per level (blossoming)
+        coeff = np.eye(n + 1)
+        for u in args:
+            coeff = (1.0 - u) * coeff[:-1] + u * coeff[1:]
+        S[i] = coeff[0]
+    return S
 
 
 def _bernstein_eval(ctrl: np.ndarray, t: np.ndarray) -> np.ndarray:
