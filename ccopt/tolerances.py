@@ -70,3 +70,27 @@ ACTIVE_RATIO = 0.99
 #: Rounding allowance (relative to the squared speeds involved) when the
 #: lower end of a controllable set comes out above its upper end.
 CROSSING_TOL = 1e-9
+
+# -- LinuxCNC compensation (ccopt.compensate.linuxcnc) ----------------------------
+# LinuxCNC's own constants, kept at LinuxCNC's values so that the ``linuxcnc``
+# style makes the tool path LinuxCNC makes (tests/compensate conformance runs
+# against its crazy-paths test). Source: LinuxCNC ``src/emc/rs274ngc/``.
+
+#: ``TOLERANCE_CONCAVE_CORNER`` (``interp_internal.hh``), radians: a turn toward
+#: or away from the tool side by at most this is "straight on" in
+#: ``convert_straight_comp2``/``convert_arc_comp2``: no corner arc, no
+#: pull-back (decisions.LINUXCNC_SLIGHT_TURN_IS_STRAIGHT_ON).
+LINUXCNC_CONCAVE_CORNER = 0.05
+
+#: ``TOLERANCE_EQUAL`` (``interp_internal.hh``), unitless here: in
+#: ``convert_arc_comp1`` an entry arc whose chord makes a cosine below this with
+#: the arc's normal at its end has no centre (the chord is perpendicular to it).
+LINUXCNC_TOLERANCE_EQUAL = 1e-4
+
+#: ``move_endpoint_and_flush`` (``interp_queue.cc``), radians: a queued arc whose
+#: end is pulled back to an inside corner may sweep at most this much more
+#: than programmed before LinuxCNC reports "Arc move in concave corner cannot
+#: be reached by the tool without gouging". This is the literal ``0.001`` of
+#: the LinuxCNC source this style was derived from; some later LinuxCNC
+#: versions compare against ``.0254`` for mm programs (``.001`` inch) instead.
+LINUXCNC_ARC_GROWTH = 0.001

@@ -21,9 +21,10 @@ move, not yet sent to the machine. When the next block arrives:
   circle through ``S`` and that point whose centre lies on the normal at the
   end; an error when ``|E - S| <= r``.
 * **Outside corner** (the path turns away from the tool side by more than
-  :data:`CONCAVE_TOLERANCE`): the queued move is sent unchanged, then an arc
-  of radius ``r`` about ``P`` from ``c`` to ``P + r*o(t_next)`` (a straight
-  traverse instead for ``G0``), then the next move is queued.
+  :data:`~ccopt.tolerances.LINUXCNC_CONCAVE_CORNER`): the queued move is sent
+  unchanged, then an arc of radius ``r`` about ``P`` from ``c`` to
+  ``P + r*o(t_next)`` (a straight traverse instead for ``G0``), then the next
+  move is queued.
 * **Inside corner** (turning toward the tool side by more than the
   tolerance): the queued move's end point is pulled back to the intersection
   of the two offsets (line-line, line-arc, arc-line, arc-arc, each with
@@ -62,20 +63,19 @@ from ccopt.compensate.scan import effective_side_radius
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.program.model import Block, Motion, Program
-from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL
+from ccopt.tolerances import (
+    LINUXCNC_ARC_GROWTH,
+    LINUXCNC_CONCAVE_CORNER,
+    LINUXCNC_TOLERANCE_EQUAL,
+    SPIRAL_RADIUS_REL_TOL,
+)
 from ccopt.toolpath import PathSegment, Role, ToolPath
 
 TWO_PI = 2.0 * math.pi
 
-#: LinuxCNC ``TOLERANCE_CONCAVE_CORNER`` (radians): a turn toward or away from
-#: the tool side by at most this is "straight on": no corner arc, no pull-back.
-CONCAVE_TOLERANCE = 0.05
-#: LinuxCNC ``TOLERANCE_EQUAL``: below this |cos| the entry arc's centre is
-#: undefined (the chord is perpendicular to the normal at the end).
-COS_EQUAL = 1e-4
-#: ``move_endpoint_and_flush``: a pulled-back arc may sweep at most this much
-#: (radians) more than programmed before it counts as gouging.
-ARC_GROWTH_TOLERANCE = 0.001
+#: The style's "straight on" turn tolerance (radians), exported under its old
+#: name; the value lives in :data:`ccopt.tolerances.LINUXCNC_CONCAVE_CORNER`.
+CONCAVE_TOLERANCE = LINUXCNC_CONCAVE_CORNER
 
 LEFT, RIGHT = 1, -1
 
@@ -244,7 +244,7 @@ class _Interpreter:
             if item.kind == "arc":
                 sweep = find_turn(self.endpoint, item.centre, item.turn, x)
                 if (item.programmed_sweep and self.endpoint_valid
-                        and abs(sweep) > abs(item.programmed_sweep) + ARC_GROWTH_TOLERANCE):
+                        and abs(sweep) > abs(item.programmed_sweep) + LINUXCNC_ARC_GROWTH):
                     raise _err(block, f"arc move of line {item.block.source.line} in a concave "
                                       "corner cannot be reached by the tool without gouging "
                                       "(the pulled-back arc would sweep further than "
@@ -401,7 +401,7 @@ class _Interpreter:
         u = _unit(C - end)
         chord_vec = S - end
         cos_a = float(np.dot(chord_vec, u)) / math.hypot(*chord_vec)
-        if abs(cos_a) < COS_EQUAL:
+        if abs(cos_a) < LINUXCNC_TOLERANCE_EQUAL:
             raise _err(blk, "cutter compensation entry arc is not possible here (its chord is "
                             "perpendicular to the arc's normal at the end): use a smaller cutter "
                             "or a straight entry")
@@ -442,7 +442,7 @@ class _Interpreter:
         beta, t_prev = self._beta(t_new)
         end = p + r * offset_dir(t_new, k)
         mid = op + r * offset_dir(t_new, k)
-        small = CONCAVE_TOLERANCE
+        small = LINUXCNC_CONCAVE_CORNER
         front = self.front_arc()
         concave = beta < -small or beta > math.pi + small or (
             beta > math.pi - small and front is not None and not tool_inside_arc(k, front.turn))
@@ -520,7 +520,7 @@ class _Interpreter:
         beta, t_prev = self._beta(t_new)
         g = _unit(C - p) if inside else _unit(p - C)
         new_end = p + r * g
-        small = CONCAVE_TOLERANCE
+        small = LINUXCNC_CONCAVE_CORNER
         programmed_sweep = find_turn(op, C, turn, p)
         concave = beta < -small or beta > math.pi + small or (
             abs(beta - math.pi) < small and not inside)
@@ -579,4 +579,4 @@ class _Interpreter:
         return Cp + old_rad * np.array([math.cos(ang), math.sin(ang)])
 
 
-__all__ = ["LinuxcncStyle", "find_turn", "CONCAVE_TOLERANCE"]
+__all__ = ["CONCAVE_TOLERANCE", "LinuxcncStyle", "find_turn"]
