@@ -3,25 +3,94 @@
 Every segment boundary is a gridpoint (so curvature breaks and tangent
 breaks sit exactly on one, evaluated one-sidedly by the constraints), and each
 segment gets its own interior points, at least ``min_intervals`` intervals,
-so a short segment is never skipped over. Inside a segment the spacing is the
-finest of
+so a short segment is never skipped over. Inside a segment the gridpoints are
+equally spaced in a measure ``M`` whose density per unit of arc length is the
+largest of
 
-- ``min(braking, S) / density`` where ``S`` is the segment length and
-  ``braking = v^2 / a``, ``v`` the segment's speed cap (feed, or the
-  smallest axis velocity limit for rapids) and ``a`` the largest axis
-  acceleration limit. TOPPRA's profile is piecewise constant-acceleration
-  between gridpoints, so a switch from speeding up to cruising (or braking)
-  that falls inside an interval costs time, of relative order
-  ``ds^2 / (8 braking S)``; with ``density = 16`` the worst seen on single
-  moves (without the baselines' switch points, which remove it on straight
-  moves) is 5e-4 of the duration, on a short move that never cruises;
-- ``max_angle`` radians of tangent turning (constraints are imposed at
-  gridpoints; between two of them an axis component of ``q'`` or ``q''``
-  along an arc can exceed its gridpoint values by about ``max_angle^2 / 8``
-  relative: 3e-4 for the default 0.05);
+1. ``1 / ds``, ``ds = min(braking, S) / density``, where ``S`` is the
+   segment length and ``braking = v^2 / a``, ``v`` the segment's speed cap
+   (feed, or the smallest axis velocity limit for rapids) and ``a`` the
+   largest axis acceleration limit (or ``ds`` given). TOPPRA's profile is
+   piecewise constant-acceleration between gridpoints, so a switch from
+   speeding up to cruising (or braking) that falls inside an interval costs
+   time, of relative order ``ds^2 / (8 braking S)``; with ``density = 16``
+   the worst seen on single moves (without the baselines' switch points,
+   which remove it on straight moves) is 5e-4 of the duration, on a short
+   move that never cruises. This part alone is capped, at ``max_intervals``
+   per segment: it only buys time on long moves;
+2. ``kappa_p / max_angle``: the in-plane turning rate of the tangent
+   (``kappa_p`` the curvature of the segment's plane geometry, the rate at
+   which an arc's ``|sweep|`` accrues);
+3. ``|q'''| / (max_curvature_change * kappa_ref)``: the rate of relative
+   change of the curvature vector ``q''`` (its length and its direction);
+4. ``sqrt(|q''''| / kappa_ref) / max_curvature_bend``: its relative second
+   variation, which a curvature peak has where 3 is about zero (``q'''``
+   vanishes at the top of the peak);
 
-and at most ``max_intervals`` per segment. :func:`refine` adds further
-points (the TOPPRA planner adds the baselines' switch points).
+with ``kappa_ref = max(|q''|, kappa_f)`` and
+``kappa_f = min(|A|_2 / v_top^2, max_angle / ds)``: ``v_top = min(feed,
+|vmax|_2)`` is the largest path speed the limits allow on the segment and
+``|A|_2`` the norm of the axis acceleration limits, so below ``kappa_f`` the
+speed, not the curvature, bounds ``|q''| s'^2``. The segment gets
+``n = max(min_intervals, ceil(M(S)))`` intervals at equal steps of ``M``:
+over every interval (length ``d``) ``d <= ds``, the turning
+``Theta <= max_angle``, ``integral |q'''| / kappa_ref <= max_curvature_change``
+and ``integral sqrt(|q''''| / kappa_ref) <= max_curvature_bend``. Parts 2 to 4
+are never capped: they keep the limits, and grow only with the segment's
+turning, the logarithm of its curvature range and its number of curvature
+peaks. On an arc all three are its
+turning (``|q'''| = kappa^2``, ``|q''''| = kappa^3``), so lines and arcs are
+gridded evenly in closed form; any other segment (spiral, Bezier curve, a
+researcher's curve) is sampled from its exact derivatives
+(:meth:`ExactPath.eval_segments`): ``curve_samples`` equal pieces first, then
+every piece whose part 2, 3 or 4 exceeds ``sample_fraction`` of one interval's
+budget is halved, until none does. A piece's turning is the larger of the
+angle between its end tangents and the trapezoid rule on ``kappa_p``; ``q'''``
+and ``q''''`` are first and second differences of ``q''`` between samples.
+``M`` is taken linear across a piece, so an interval may take up to
+``2 * sample_fraction`` of a budget more than its share (all of a piece's
+turning at one end; of second order where the geometry is smooth on the scale
+of the samples). A feature that changes none of the measures by
+``sample_fraction`` of a budget across one of the first pieces is not seen.
+
+Why (the limits are imposed at gridpoints only): between two gridpoints
+TOPPRA's ``u = s''`` is constant and ``x = s'^2`` linear in ``s``, so an axis
+acceleration ``a_i(s) = q_i' u + q_i'' x``, checked at both ends, exceeds the
+straight line between its end values by at most ``d^2 / 8 max |a_i''|``, with
+``a'' = 5 q''' u + q'''' x``. At a gridpoint the tangential part ``|u|`` of
+the checked acceleration and its normal part ``|q''| x`` are at most
+``|A|_2``, the norm of the axis limits, and ``x kappa_f <= v_top^2 kappa_f <=
+|A|_2``; ``x`` is linear and ``kappa_ref`` changes by at most
+``e^beta`` across the interval, so there ``x kappa_ref <= |A|_2 e^beta`` and
+``d kappa_ref <= alpha e^beta``. Writing ``alpha, beta, gamma`` for the
+budgets of parts 2 to 4, and with the densities about constant across an
+interval (so ``d |q'''| / kappa_ref <= beta`` and ``d^2 |q''''| / kappa_ref
+<= gamma^2`` pointwise), the relative excess of axis ``i`` over its limit
+``A_i`` is at most
+
+    E_a = (R / 8) e^beta (5 alpha beta + gamma^2),    R = |A|_2 / min_i A_i,
+
+of second order in the budgets: 2.8e-3 for the defaults and two equal axes
+(6.4e-3 with each budget raised by the sampling's ``2 * sample_fraction``);
+the terms seldom align, and profiles stay near 1e-4. On lines and arcs it is
+``6 R alpha^2 / 8``, as with the even grid formerly used on every segment
+(which put a few gridpoints in a curve's short tight stretch and let the
+profile exceed the limits up to 20 times over between them). An axis velocity
+``v_i = |q_i'| sqrt(x)`` squared is the product of ``g^2 = q_i'^2`` and the
+linear ``x``: above its larger end value by at most the interpolation defect
+of ``g^2`` times ``x``, plus ``|Delta g^2| |Delta x| / 4`` where the two
+changes nearly cancel (and then at most ``(Delta g / g)^2`` of it), with
+``|Delta g| <= alpha``, ``|g'| <= |q''|``, ``|g''| <= |q'''|``, and
+``g >= G = V_i / v_top - alpha`` wherever ``v_i`` nears its limit ``V_i``:
+
+    E_v = (alpha / G)^2 / 2 + ((alpha e^beta / G)^2 + alpha beta e^beta / G) / 8,
+
+2.1e-3 for the defaults where ``v_top = V_i`` (5.1e-3 with the sampling's
+margin). Segments that move the out-of-plane axis count their turning in the
+plane (``kappa_p``, as arcs do): the 3-D tangent changes by no more than that.
+
+:func:`refine` adds further points (the TOPPRA planner adds the baselines'
+switch points).
 """
 from __future__ import annotations
 
@@ -34,21 +103,35 @@ from ccopt.feed.path import ExactPath
 
 @dataclass(frozen=True)
 class GridOptions:
-    """How densely to grid the path (see the module docstring)."""
+    """How densely to grid the path (see the module docstring).
+
+    ``max_angle`` is in radians; ``max_curvature_change`` and
+    ``max_curvature_bend`` are the budgets of parts 3 and 4 (dimensionless:
+    on an arc, radians of turning too); ``ds`` and ``min_spacing`` are in
+    program units.
+    """
 
     density: float = 16.0
     max_angle: float = 0.05
+    max_curvature_change: float = 0.05
+    max_curvature_bend: float = 0.05
     min_intervals: int = 4
-    max_intervals: int = 2000
+    max_intervals: int = 2000   # caps the braking-based part only
     ds: float | None = None  # a fixed maximum spacing (units) instead of braking / density
     #: add the baselines' switch points (see ccopt.feed.baselines.baseline_knot_positions)
     baseline_knots: bool = True
     #: extra points closer than this to a gridpoint are dropped (units)
     min_spacing: float = 1e-7
+    #: curves other than lines and arcs: equal pieces sampled first, and the share of
+    #: one interval's budget a sampled piece may take
+    curve_samples: int = 32
+    sample_fraction: float = 0.25
 
     def __post_init__(self):
-        if not self.density > 0 or not self.max_angle > 0:
-            raise ValueError("density and max_angle must be > 0")
+        if not min(self.density, self.max_angle, self.max_curvature_change,
+                   self.max_curvature_bend) > 0:
+            raise ValueError("density, max_angle, max_curvature_change and max_curvature_bend "
+                             "must be > 0")
         if self.min_intervals < 2:
             # two stops one interval apart would pin the speed to zero in between
             raise ValueError("min_intervals must be >= 2")
@@ -56,31 +139,149 @@ class GridOptions:
             raise ValueError("max_intervals must be >= min_intervals")
         if self.ds is not None and not self.ds > 0:
             raise ValueError("ds must be > 0")
+        if self.curve_samples < 1 or not 0 < self.sample_fraction <= 1:
+            raise ValueError("curve_samples must be >= 1 and sample_fraction in (0, 1]")
 
 
-def intervals_per_segment(path: ExactPath, v_axis: np.ndarray, a_axis: np.ndarray,
-                          options: GridOptions = GridOptions()) -> np.ndarray:
-    """Number of grid intervals on each segment of ``path``."""
+#: Curves: a piece shorter than this fraction of its segment is not halved again
+#: (about 2^-36 of it: well past any feature a regular curve can hide).
+_MIN_PIECE = 1e-11
+
+
+def _spacing(path: ExactPath, v_axis: np.ndarray, a_axis: np.ndarray,
+             options: GridOptions) -> np.ndarray:
+    """Braking-based spacing ``ds`` of each segment (units), ``max_intervals`` applied."""
     S = path.lengths
     if options.ds is not None:
         ds = np.full(S.size, options.ds)
     else:
         v = np.minimum(path.feeds, float(np.min(v_axis)))
         ds = np.minimum(v * v / float(np.max(a_axis)), S) / options.density
-    n = np.ceil(S / ds)
-    turn = np.array([path.turning(k) for k in range(S.size)])
-    n = np.maximum(n, np.ceil(turn / options.max_angle))
-    n = np.clip(n, options.min_intervals, options.max_intervals)
-    return n.astype(int)
+    return np.maximum(ds, S / options.max_intervals)
+
+
+def _curvature_floor(path: ExactPath, v_axis, a_axis, ds, options: GridOptions) -> np.ndarray:
+    """``kappa_f`` of each segment (1/units): see the module docstring."""
+    v_top = np.minimum(path.feeds, float(np.linalg.norm(v_axis)))
+    return np.minimum(float(np.linalg.norm(a_axis)) / (v_top * v_top), options.max_angle / ds)
+
+
+def _piece_measures(k, s, tan, q2, kappa_f, ratio):
+    """Per pair of consecutive samples (a piece): ``(same, h, turn, change, bend)``.
+
+    ``same``: both samples on one segment (the measures are 0 where not);
+    ``h``: length; ``turn``: in-plane turning (radians), the larger of the angle
+    between the end tangents ``tan`` and the trapezoid rule on
+    ``kappa_p = |q''| / r^2`` over the in-plane length ``r h``; ``change``:
+    ``|Delta q''| / kappa_ref``; ``bend``: ``h sqrt(|q''''| / kappa_ref)``,
+    ``q''''`` from second differences of ``q''`` at the piece's two samples
+    (the larger; the inner one at a segment's ends).
+    """
+    same = k[1:] == k[:-1]
+    h = s[1:] - s[:-1]
+    k0 = k[:-1]
+    chord = np.arctan2(np.abs(tan[:-1, 0] * tan[1:, 1] - tan[:-1, 1] * tan[1:, 0]),
+                       np.einsum("ij,ij->i", tan[:-1], tan[1:]))
+    kap = np.linalg.norm(q2, axis=1)
+    turn = np.where(same, np.maximum(chord, 0.5 * h * (kap[:-1] + kap[1:]) / ratio[k0]), 0.0)
+    kref = np.maximum(np.maximum(kap[:-1], kap[1:]), kappa_f[k0])
+    dq2 = q2[1:] - q2[:-1]
+    change = np.where(same, np.linalg.norm(dq2, axis=1) / kref, 0.0)
+    q3 = dq2 / np.where(same, h, 1.0)[:, None]
+    inner = same[1:] & same[:-1]
+    q4 = np.where(inner, np.linalg.norm(q3[1:] - q3[:-1], axis=1)
+                  / np.where(inner, 0.5 * (h[1:] + h[:-1]), 1.0), 0.0)
+    q4_piece = np.maximum(np.r_[0.0, q4], np.r_[q4, 0.0])
+    bend = np.where(same, h * np.sqrt(q4_piece / kref), 0.0)
+    return same, h, turn, change, bend
+
+
+def _curve_samples(path: ExactPath, ks: np.ndarray, kappa_f: np.ndarray,
+                   options: GridOptions):
+    """Adaptive samples of the segments ``ks`` (see the module docstring).
+
+    Returns ``(k, s, h, turn, change, bend)``: the segment and path position
+    of every sample, in path order, and the measures of
+    :func:`_piece_measures` of every piece.
+    """
+    n0 = options.curve_samples
+    k = np.repeat(ks, n0 + 1)
+    s = path.offsets[k] + path.lengths[k] * np.tile(np.arange(n0 + 1) / n0, ks.size)
+    ratio = path.in_plane_ratio
+    f = options.sample_fraction
+    limits = (f * options.max_angle, f * options.max_curvature_change,
+              f * options.max_curvature_bend)
+    min_piece = _MIN_PIECE * path.lengths
+
+    def evaluate(kk, ss):
+        t = path.eval_segments(kk, ss, 1)[:, :2]
+        return t / np.linalg.norm(t, axis=1, keepdims=True), path.eval_segments(kk, ss, 2)
+
+    tan, q2 = evaluate(k, s)
+    while True:
+        same, h, turn, change, bend = _piece_measures(k, s, tan, q2, kappa_f, ratio)
+        split = same & (h > min_piece[k[:-1]]) & (
+            (turn > limits[0]) | (change > limits[1]) | (bend > limits[2]))
+        if not split.any():
+            return k, s, h, turn, change, bend
+        i = np.flatnonzero(split)
+        k_new = k[i]
+        s_new = 0.5 * (s[i] + s[i + 1])
+        t_new, q2_new = evaluate(k_new, s_new)
+        # each new sample goes right after the left end of its piece
+        order = np.argsort(np.concatenate([np.arange(k.size), i + 0.5]), kind="stable")
+        k = np.concatenate([k, k_new])[order]
+        s = np.concatenate([s, s_new])[order]
+        tan = np.concatenate([tan, t_new])[order]
+        q2 = np.concatenate([q2, q2_new])[order]
+
+
+def _segment_grids(path: ExactPath, v_axis, a_axis, options: GridOptions):
+    """``(n, interior)``: intervals per segment, and ``{k: interior gridpoints}``
+    (``n[k] - 1`` path positions) of the sampled segments, not evenly spaced."""
+    S = path.lengths
+    ds = _spacing(path, v_axis, a_axis, options)
+    step = min(options.max_angle, options.max_curvature_change, options.max_curvature_bend)
+    n = np.maximum(np.ceil(S / ds), np.ceil(path.uniform_turning / step))
+    n = np.maximum(n, options.min_intervals).astype(int)
+    interior: dict[int, np.ndarray] = {}
+    ks = np.flatnonzero(~path.constant_curvature)
+    if ks.size == 0:
+        return n, interior
+    kappa_f = _curvature_floor(path, v_axis, a_axis, ds, options)
+    k, s, h, turn, change, bend = _curve_samples(path, ks, kappa_f, options)
+    dm = np.maximum.reduce([h / ds[k[:-1]], turn / options.max_angle,
+                            change / options.max_curvature_change,
+                            bend / options.max_curvature_bend])
+    dm[k[1:] != k[:-1]] = 0.0
+    m = np.concatenate([[0.0], np.cumsum(dm)])
+    starts = np.flatnonzero(np.r_[True, k[1:] != k[:-1]])
+    for a, b in zip(starts, np.r_[starts[1:], k.size]):
+        kk = int(k[a])
+        mm = m[a:b] - m[a]
+        nk = max(options.min_intervals, int(np.ceil(mm[-1])))
+        n[kk] = nk
+        interior[kk] = np.interp(mm[-1] * np.arange(1, nk) / nk, mm, s[a:b])
+    return n, interior
+
+
+def intervals_per_segment(path: ExactPath, v_axis: np.ndarray, a_axis: np.ndarray,
+                          options: GridOptions = GridOptions()) -> np.ndarray:
+    """Number of grid intervals on each segment of ``path``."""
+    return _segment_grids(path, np.asarray(v_axis, float), np.asarray(a_axis, float),
+                          options)[0]
 
 
 def gridpoints(path: ExactPath, v_axis, a_axis, options: GridOptions = GridOptions()) -> np.ndarray:
     """Strictly increasing gridpoints from 0 to ``path.length``, every boundary included."""
-    n = intervals_per_segment(path, np.asarray(v_axis, float), np.asarray(a_axis, float), options)
+    n, interior = _segment_grids(path, np.asarray(v_axis, float), np.asarray(a_axis, float),
+                                 options)
     k = np.repeat(np.arange(n.size), n)
     first = np.concatenate([[0], np.cumsum(n)[:-1]])
     j = np.arange(k.size) - np.repeat(first, n)
     pts = path.offsets[k] + path.lengths[k] * (j / n[k])
+    for kk, inner in interior.items():
+        pts[first[kk] + 1:first[kk] + n[kk]] = inner
     pts = np.concatenate([pts, path.offsets[-1:]])
     # boundaries exactly (j == 0 gives offsets[k] + 0.0, already exact)
     if np.any(np.diff(pts) <= 0.0):

@@ -226,6 +226,24 @@ class ExactPath(AbstractGeometricPath):
         """``|q''|`` (curvature of the 3-D path, 1/units) at ``s`` on segments ``k``."""
         return np.linalg.norm(self.eval_segments(k, s, 2), axis=1)
 
+    @property
+    def in_plane_ratio(self) -> np.ndarray:
+        """``(K,)`` in-plane length over 3-D length of each segment, ``L / S`` (1 in the plane)."""
+        return self._ratio
+
+    @property
+    def constant_curvature(self) -> np.ndarray:
+        """``(K,)`` True for segments of constant curvature, whose turning is spread
+        evenly along them: lines, arcs, and segments with no in-plane motion."""
+        return (self._kind != _OTHER) | (self._L == 0.0)
+
+    @property
+    def uniform_turning(self) -> np.ndarray:
+        """``(K,)`` in-plane turning (radians) of the constant-curvature segments:
+        ``|sweep|`` for arcs, 0 for lines, and 0 for every other segment (whose
+        turning is not uniform: see :mod:`ccopt.feed.grid`)."""
+        return np.where(self._kind == _ARC, np.abs(self._sweep), 0.0)
+
     def turning(self, k: int) -> float:
         """Total turning of the tangent along segment ``k`` (radians), for grid density."""
         geom = self.segments[k].geom
