@@ -68,7 +68,7 @@ interval (so ``d |q'''| / kappa_ref <= beta`` and ``d^2 |q''''| / kappa_ref
 <= gamma^2`` pointwise), the relative excess of axis ``i`` over its limit
 ``A_i`` is at most
 
-    E_a = (R / 8) e^beta (5 alpha beta + gamma^2),    R = |A|_2 / min_i A_i,
+    E_a = (R_i / 8) e^beta (5 alpha beta + gamma^2),    R_i = |A|_2 / A_i,
 
 of second order in the budgets: 2.8e-3 for the defaults and two equal axes
 (6.4e-3 with each budget raised by the sampling's ``2 * sample_fraction``);
