@@ -150,14 +150,18 @@ _MIN_PIECE = 1e-11
 
 def _spacing(path: ExactPath, v_axis: np.ndarray, a_axis: np.ndarray,
              options: GridOptions) -> np.ndarray:
-    """Braking-based spacing ``ds`` of each segment (units), ``max_intervals`` applied."""
+    """``(ds, n)``: braking-based spacing of each segment (units), at least
+    ``S / max_intervals``, and the number of intervals it asks for (at most
+    ``max_intervals``; counted from the spacing before the cap, which
+    ``S / (S / max_intervals)`` could round above)."""
     S = path.lengths
     if options.ds is not None:
         ds = np.full(S.size, options.ds)
     else:
         v = np.minimum(path.feeds, float(np.min(v_axis)))
         ds = np.minimum(v * v / float(np.max(a_axis)), S) / options.density
-    return np.maximum(ds, S / options.max_intervals)
+    n = np.minimum(np.ceil(S / ds), options.max_intervals)
+    return np.maximum(ds, S / options.max_intervals), n
 
 
 def _curvature_floor(path: ExactPath, v_axis, a_axis, ds, options: GridOptions) -> np.ndarray:
@@ -239,10 +243,9 @@ def _curve_samples(path: ExactPath, ks: np.ndarray, kappa_f: np.ndarray,
 def _segment_grids(path: ExactPath, v_axis, a_axis, options: GridOptions):
     """``(n, interior)``: intervals per segment, and ``{k: interior gridpoints}``
     (``n[k] - 1`` path positions) of the sampled segments, not evenly spaced."""
-    S = path.lengths
-    ds = _spacing(path, v_axis, a_axis, options)
+    ds, n = _spacing(path, v_axis, a_axis, options)
     step = min(options.max_angle, options.max_curvature_change, options.max_curvature_bend)
-    n = np.maximum(np.ceil(S / ds), np.ceil(path.uniform_turning / step))
+    n = np.maximum(n, np.ceil(path.uniform_turning / step))
     n = np.maximum(n, options.min_intervals).astype(int)
     interior: dict[int, np.ndarray] = {}
     ks = np.flatnonzero(~path.constant_curvature)

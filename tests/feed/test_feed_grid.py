@@ -16,6 +16,7 @@ Profiles are sampled every 0.1 ms (10 kHz).
 """
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -121,7 +122,7 @@ def _interval_figures(path: ExactPath, k: int, gp: np.ndarray, n: int = 257):
     lo, hi = path.offsets[k], path.offsets[k + 1]
     pts = gp[(gp >= lo) & (gp <= hi)]
     turn, change, kmin = [], [], []
-    for a, b in zip(pts[:-1], pts[1:]):
+    for a, b in itertools.pairwise(pts):
         s = np.linspace(a, b, n)
         kk = np.full(n, k)
         t = path.eval_segments(kk, s, 1)
