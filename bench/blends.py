@@ -8,9 +8,8 @@ also pays its imports, CasADi's or CVXPY's, and is left out when
   pocket's lead-in and lead-out, verification of the result included;
 - solve time of the smoother at ``delta`` = 1 % of the cutter radius (and at
   the other ``--deltas`` given, as fractions of the radius);
-- TOPPRA cycle time of each under the case's limits (curves planned in pieces,
-  :func:`ccopt.compare.core.planning_path`, as ``ccopt compare`` does), and its
-  ratio to PMAC's;
+- TOPPRA cycle time of each under the case's limits, and its ratio to
+  PMAC's;
 - what bounds any path this close to PMAC's from below: every feed move at
   its programmed feed with no acceleration limit (the rapid at the axis
   speeds), as a ratio to PMAC's cycle time.
@@ -69,7 +68,6 @@ def main(argv=None) -> int:
     limits = ccopt.AxisLimits(case.vmax, case.amax)
     ref = ccopt.compensate(prog, "pmac")
     t_ref = ccopt.plan_feed(ref, limits).duration
-    from ccopt.compare.core import planning_path
     r = ref.radius
     print(f"{case.name}: cutter radius {r:g} {prog.units}, limits v={list(limits.v)} "
           f"a={list(limits.a)}, {args.repeat} runs (median)")
@@ -88,7 +86,7 @@ def main(argv=None) -> int:
         path = out.toolpath if isinstance(out, BlendOutcome) else out
         cert = out.info.get("certificate") if isinstance(out, BlendOutcome) else None
         cert = cert or problem.certify(path)
-        t = ccopt.plan_feed(planning_path(path), limits).duration
+        t = ccopt.plan_feed(path, limits).duration
         from ccopt.compare.figures import max_deviation, path_figures
         from ccopt.compare.leads import lead_joins
         dev, _ = max_deviation(path, ref)

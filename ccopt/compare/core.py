@@ -2,9 +2,9 @@
 
 For each variant: build its tool path (timed: ``solve_time``), certify it
 with :func:`ccopt.verify.verify` against the program's contour, plan its feed
-with TOPPRA under the same limits (blend curves cut where they turn, so the
-gridpoints follow tight turns: :func:`planning_path`; ``max_acc_ratio`` is the
-largest axis acceleration over its limit in the profile sampled every 0.2 ms),
+with TOPPRA under the same limits (``max_acc_ratio`` is the largest axis
+acceleration over its limit in the profile sampled every 0.2 ms; the feed grid
+follows the turning inside blend curves, :mod:`ccopt.feed.grid`),
 and measure it (:mod:`.figures`) against the reference, PMAC's path. A variant that a controller refuses
 (``refused``), that cannot be built or certified (``rejected``) or that fails
 unexpectedly (``failed``) is still listed, with the reason and no figures.
@@ -13,8 +13,6 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass, field
-
-import numpy as np
 
 from ccopt.compare.blend import BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.figures import max_deviation, path_figures
@@ -89,69 +87,13 @@ class Comparison:
                 "variants": [v.to_json() for v in self.variants]}
 
 
-#: Blend curves are planned in pieces turning at most this much (radians) each.
-PLANNING_TURN = 0.05
-
-
-def planning_path(path: ToolPath, max_turn: float = PLANNING_TURN) -> ToolPath:
-    """``path`` with every Bezier curve cut (exactly, by de Casteljau) into pieces that
-    turn by at most ``max_turn`` each, for feed planning only.
-
-    The feed planner spaces its gridpoints evenly along each segment; a curve whose
-    turning is concentrated in a short stretch (a tight turn at a join) would get too
-    few of them there, and TOPPRA's profile would exceed the acceleration limits between
-    gridpoints (which the sampled ``max_acc_ratio`` shows). Cut where the turning
-    accumulates, the gridpoints follow it. The geometry is unchanged.
-    """
-    from dataclasses import replace as _replace
-
-    from ccopt.compare.blend import bernstein, derivative_matrix, subdivision_matrix
-    from ccopt.geometry import BezierCurve
-    segs = []
-    first = []                       # index in segs of the first piece of each segment
-    changed = False
-    for seg in path.segments:
-        first.append(len(segs))
-        cps = getattr(seg.geom, "control_points", None)
-        if cps is None or seg.length <= 0:
-            segs.append(seg)
-            continue
-        P = np.asarray(cps, float)
-        n = len(P) - 1
-        t = np.linspace(0.0, 1.0, 4001)
-        d1 = bernstein(t, n - 1) @ (derivative_matrix(n, 1) @ P)
-        ang = np.unwrap(np.arctan2(d1[:, 1], d1[:, 0]))
-        turn = np.r_[0.0, np.cumsum(np.abs(np.diff(ang)))]
-        k = int(np.ceil(turn[-1] / max_turn))
-        if k <= 1:
-            segs.append(seg)
-            continue
-        cuts = np.interp(np.arange(1, k) * turn[-1] / k, turn, t)
-        knots = np.r_[0.0, cuts, 1.0]
-        L = seg.length
-        acc = 0.0
-        for a, b in zip(knots[:-1], knots[1:]):
-            piece = BezierCurve(subdivision_matrix(n, float(a), float(b)) @ P)
-            w0 = seg.w0 + (seg.w1 - seg.w0) * acc / L
-            acc += piece.length
-            w1 = seg.w0 + (seg.w1 - seg.w0) * min(acc / L, 1.0)
-            segs.append(_replace(seg, geom=piece, w0=w0, w1=w1))
-        changed = True
-    if not changed:
-        return path
-    first.append(len(segs))
-    dwells = tuple((first[d], sec, blk) for d, sec, blk in path.dwells)
-    return ToolPath(tuple(segs), plane=path.plane, style=path.style, radius=path.radius,
-                    dwells=dwells, units=path.units, meta=dict(path.meta))
-
-
 def _duration(path: ToolPath, limits: AxisLimits | None):
     """``(duration, max axis acceleration ratio sampled every 0.2 ms, message)``."""
     if limits is None:
         return None, None, None
     from ccopt.feed import plan_feed
     try:
-        prof = plan_feed(planning_path(path), limits)
+        prof = plan_feed(path, limits)
     except CcoptError as exc:
         return None, None, f"feed: {exc}"
     ratio = float(prof.sample(2e-4).axis_acceleration_ratio.max(initial=0.0))

@@ -74,9 +74,8 @@ def test_pocket_g2_everywhere(pocket):
 
 def test_pocket_cycle_time(pocket):
     prog, ref, limits, _, path, _ = pocket
-    from ccopt.compare.core import planning_path
     t_ref = ccopt.plan_feed(ref, limits).duration
-    prof = ccopt.plan_feed(planning_path(path), limits)
+    prof = ccopt.plan_feed(path, limits)
     t_smooth = prof.duration
     assert t_smooth < t_ref
     assert prof.sample(2e-4).axis_acceleration_ratio.max() <= 1.001
