@@ -55,6 +55,11 @@ VERIFY_CERTIFIED_MAX_ROUNDS = 40
 #: difference is rounding of the written numbers).
 SPIRAL_RADIUS_REL_TOL = 1e-9
 
+#: Export: lines and arcs replacing a blend curve meet the curve's tangent
+#: within this angle (radians) at their ends, so consecutive ones join with a
+#: kink of at most twice it (ccopt.export.arcfit.fit_bezier).
+EXPORT_FIT_ANGLE_TOL = 1e-3
+
 # -- feed planning (ccopt.feed) --------------------------------------------------
 
 #: Tangent turning between two samples of a curved segment for its budget (rad).

@@ -2,10 +2,11 @@
 
 Every program export is **read back** with ccopt's own reader before it is
 kept: the read-back path must lie within the export tolerance of the computed
-one (rounding of the written numbers plus the certified error of arcs fitted
-to spirals), and, when the programmed contour is given, it is verified
-against it. The verdict goes into the file's header comments and into the
-returned :class:`ExportResult`. Writes are atomic (:mod:`.atomic`): a failure
+one (rounding of the written numbers plus the certified error of the arcs
+and lines fitted to spirals and Bezier blend curves, :mod:`.arcfit`), and,
+when the programmed contour is given, it is verified against it. The verdict
+goes into the file's header comments and into the returned
+:class:`ExportResult`. Writes are atomic (:mod:`.atomic`): a failure
 leaves no partial file and never replaces a good one.
 """
 from __future__ import annotations
@@ -17,6 +18,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ccopt.errors import ProgramError
+from ccopt.export.arcfit import DEFAULT_TOL
 from ccopt.export.atomic import write_text_atomic
 from ccopt.export.gcode import write_gcode
 from ccopt.export.pmacprog import write_pmac
@@ -25,9 +27,6 @@ from ccopt.geometry import Arc, Line
 from ccopt.program import read_text
 from ccopt.program.model import Program
 from ccopt.toolpath import PathSegment, Role, ToolPath, programmed_path
-
-#: Default tolerance for arcs fitted to spirals: 0.001 mm, or its inch equivalent.
-DEFAULT_TOL = {"mm": 1e-3, "inch": 1e-3 / 25.4}
 
 FORMATS = {".nc": "gcode", ".ngc": "gcode", ".gcode": "gcode", ".tap": "gcode",
            ".pmc": "pmac", ".pmac": "pmac", ".svg": "svg", ".json": "json"}
@@ -39,8 +38,11 @@ class ExportResult:
 
     roundtrip_error: largest distance between the read-back path and the
         computed one (program units): rounding of written numbers plus the
-        certified fit error of spiral arcs.
-    fit_error: certified bound of the arcs fitted to spirals (0 if none).
+        certified fit error of arcs and lines replacing spirals and curves.
+    fit_error: largest certified bound of the arcs (and lines) fitted to
+        spirals (G-code only: PMAC runs spirals natively) and to Bezier blend
+        curves (both formats); 0 if none.
+    fitted_moves: how many moves replace spirals and blend curves.
     verified: verdict of the verifier on the read-back path (``None`` when no
         program was given to verify against).
     """
@@ -50,6 +52,7 @@ class ExportResult:
     tolerance: float
     roundtrip_error: float = 0.0
     fit_error: float = 0.0
+    fitted_moves: int = 0
     verified: bool | None = None
     certificate: dict | None = None
     notes: list[str] = field(default_factory=list)
@@ -57,7 +60,7 @@ class ExportResult:
     def to_json(self) -> dict:
         return {"file": self.file, "format": self.format, "tolerance": self.tolerance,
                 "roundtrip_error": self.roundtrip_error, "fit_error": self.fit_error,
-                "verified": self.verified, "certificate": self.certificate, "notes": self.notes}
+                "fitted_moves": self.fitted_moves, "verified": self.verified, "certificate": self.certificate, "notes": self.notes}
 
 
 def readback_path(text: str, dialect: str, original: ToolPath, moves: list, file: str) -> ToolPath:
@@ -103,7 +106,7 @@ def displacement(meant, got) -> float:
 def roundtrip_error(back: ToolPath, moves: list) -> float:
     """Largest deviation of the read-back path from the computed one: per move,
     the displacement of the read-back geometry from the geometry the writer
-    meant, plus that geometry's certified bound (the spiral arc fit)."""
+    meant, plus that geometry's certified bound (the arc and line fit)."""
     worst = 0.0
     for seg, (src, meant, bound) in zip(back.segments, moves):
         if src < 0 or meant is None:
@@ -144,17 +147,23 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
         if title:
             header.insert(0, title)
         if fmt == "gcode":
-            text, moves, res.fit_error = write_gcode(path, tol, header)
+            text, moves, _ = write_gcode(path, tol, header)
         else:
-            text, moves = write_pmac(path, header)
+            text, moves = write_pmac(path, header, tol=tol)
+        fitted = [bound for src, geom, bound in moves
+                  if src >= 0 and type(geom) is not type(path.segments[src].geom)]
+        res.fit_error = max(fitted, default=0.0)
+        res.fitted_moves = len(fitted)
         back = readback_path(text, fmt, path, moves, str(out))
         res.roundtrip_error = roundtrip_error(back, moves)
         if res.roundtrip_error > tol:
             raise ProgramError(f"read-back deviates {res.roundtrip_error:.3g} from the computed "
                                f"path, more than the tolerance {tol:g}; nothing written", str(out))
         cert = _verify(back, program)
+        fit = (f"spirals and blend curves as {res.fitted_moves} arcs/lines certified within "
+               f"{res.fit_error:.3g}" if res.fitted_moves else "no spirals or blend curves to fit")
         verdict = [f"read back with ccopt: within {res.roundtrip_error:.3g} {path.units} of the "
-                   f"computed path (tolerance {tol:g}, spiral arc fit {res.fit_error:.3g})"]
+                   f"computed path (tolerance {tol:g}; {fit})"]
         if cert is not None:
             res.verified = bool(cert.ok)
             res.certificate = cert.to_json()
@@ -165,7 +174,7 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
             verdict.append("not verified: no programmed contour given")
         full_header = header + verdict
         text = (write_gcode(path, tol, full_header)[0] if fmt == "gcode"
-                else write_pmac(path, full_header)[0])
+                else write_pmac(path, full_header, tol=tol)[0])
         write_text_atomic(out, text)
     elif fmt == "svg":
         contour = programmed_path(program) if program is not None else None

@@ -11,18 +11,81 @@ function with ``|f''| <= M`` exceeds the larger sampled ``|f|`` by at most
 ``M*h^2/8``, so ``max|f| <= max_i |f(s_i)| + M*h^2/8``. For an Archimedean
 spiral the curvature ``(rho^2 + 2b^2)/(rho^2 + b^2)^1.5`` decreases as ``rho``
 grows, so ``kappa_max`` on a piece is its value at the smaller radius.
+
+Bezier blend curves (:func:`fit_bezier`) use the same bound with a
+certified ``kappa_max`` (:func:`ccopt.geometry.curve.curvature_bound`) and
+more checks, all on control points, so the bound covers the whole piece and
+not only its samples:
+
+* the curve is cut at its inflections first, so every piece turns one way,
+  and an arc is taken only if it turns that way too;
+* the arc's centre ``c`` sees the piece turn monotonically: every Bernstein
+  coefficient of ``(p(t) - c) x p'(t)`` has the arc's sign, so each point of
+  the piece projects radially into the arc's sweep and each point of the arc
+  has a point of the piece on its ray. The radial bound is then a two-sided
+  (Hausdorff) distance between piece and arc;
+* ``|p - c|`` is bounded below by the projection of the control points on
+  the direction from ``c`` to the middle of the piece (convex hull), so the
+  ``1/|p - c|`` term needs no sampled radius;
+* samples are equal steps of ``t``, at most ``max|p'| / BEZIER_SAMPLES``
+  apart in arc length (``max|p'|`` over the hodograph's control points).
+
+A nearly straight piece becomes a line (G1 / LINEAR) on its chord when every
+hodograph control point points along the chord (so points project
+monotonically onto it) and the distance from the chord,
+``min(max_i |(P_i - P_0) x u|, max_i |e_i x u| / 8)`` (``e_i`` the control
+points of ``p''``; the distance vanishes at both ends and its second
+derivative is bounded by ``|p'' x u|``), is within ``tol``.
+
+Pieces join tangent-continuously within ``angle_tol``: the angle between
+each arc's (or line's) end tangents and the curve's at the same points is
+at most ``angle_tol``, so the kink between consecutive pieces is at most
+twice that. The end points of every piece are points of the curve exactly
+(de Casteljau splits), so the chain is continuous up to the rounding of
+``c + R (cos, sin)``.
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 
-from ccopt.geometry import Arc, Spiral
+from ccopt.geometry import Arc, BezierCurve, Line, Spiral
+from ccopt.geometry.curve import (
+    bernstein,
+    cross_bernstein,
+    curvature_bound,
+    de_casteljau_split,
+    hodographs,
+    inflections,
+)
+from ccopt.tolerances import EXPORT_FIT_ANGLE_TOL
 
 #: Samples per piece for the bound (the second-order term shrinks as 1/n^2).
 SAMPLES = 32
+
+#: Samples per Bezier piece: its sample spacing is bounded by the largest
+#: hodograph control point, not known exactly as on a spiral, so more samples
+#: keep the second-order term below the fit error itself.
+BEZIER_SAMPLES = 64
+
+#: Default fit tolerance (program units): 0.001 mm, or its inch equivalent.
+DEFAULT_TOL = {"mm": 1e-3, "inch": 1e-3 / 25.4}
+
+#: Curvature of a piece whose Bernstein coefficients of ``p' x p''`` are at
+#: least this fraction of their largest magnitude on the wrong side counts as
+#: one-signed: the only such pieces end at an inflection, where the cut
+#: parameter is the root to the last bit and the coefficient there is rounding.
+_SIGN_SLACK = 1e-9
+
+
+def fit_tolerance(tol: float, digits: int) -> float:
+    """The fit's share of the export tolerance ``tol`` when numbers are written
+    with ``digits`` decimals: room is left for their rounding (centre and end
+    points move by up to half a unit of the last digit each)."""
+    return max(tol - 4 * 10.0 ** -digits, tol / 2)
 
 
 @dataclass(frozen=True)
@@ -35,18 +98,22 @@ class FittedArc:
 
 def circle_through(p0, p1, p2):
     """Centre and radius of the circle through three points, or ``None`` when
-    they are (nearly) collinear."""
-    ax, ay = p0
-    bx, by = p1
-    cx, cy = p2
-    d = 2.0 * (ax * (by - cy) + bx * (cy - ay) + cx * (ay - by))
-    scale = max(abs(bx - ax), abs(by - ay), abs(cx - ax), abs(cy - ay), 1e-300) ** 2
+    they are (nearly) collinear.
+
+    Computed relative to ``p0``, so a small circle far from the origin keeps
+    its accuracy (the absolute formula cancels squared coordinates): the
+    three points lie on the result within a few ulps of the radius.
+    """
+    bx, by = p1[0] - p0[0], p1[1] - p0[1]
+    cx, cy = p2[0] - p0[0], p2[1] - p0[1]
+    d = 2.0 * (bx * cy - by * cx)
+    scale = max(abs(bx), abs(by), abs(cx), abs(cy), 1e-300) ** 2
     if abs(d) <= 1e-14 * scale:
         return None
-    a2, b2, c2 = ax * ax + ay * ay, bx * bx + by * by, cx * cx + cy * cy
-    ux = (a2 * (by - cy) + b2 * (cy - ay) + c2 * (ay - by)) / d
-    uy = (a2 * (cx - bx) + b2 * (ax - cx) + c2 * (bx - ax)) / d
-    return (ux, uy), math.hypot(ax - ux, ay - uy)
+    b2, c2 = bx * bx + by * by, cx * cx + cy * cy
+    ux = (cy * b2 - by * c2) / d
+    uy = (bx * c2 - cx * b2) / d
+    return (p0[0] + ux, p0[1] + uy), math.hypot(ux, uy)
 
 
 def _kappa_max_spiral(sp: Spiral) -> float:
@@ -111,4 +178,154 @@ def fit_arcs(sp: Spiral, tol: float, max_pieces: int = 1 << 16) -> list[FittedAr
         first, second = piece.split(piece.length / 2)
         stack.append(second)
         stack.append(first)
+    return out
+
+
+# --------------------------------------------------------------------------- Bezier curves
+
+
+@dataclass(frozen=True)
+class FittedPiece:
+    """A line or arc replacing the piece ``[t0, t1]`` (Bezier parameter) of a curve.
+
+    geom: :class:`Line` or :class:`Arc` from the piece's start to its end.
+    bound: certified two-sided distance between piece and ``geom`` (program units).
+    t0, t1: the piece's Bezier parameters on the whole curve.
+    angle: largest angle (radians) between ``geom``'s end tangents and the
+        curve's tangents at the same two points.
+    kappa_bound: the certified curvature bound of the piece that went into
+        an arc's bound (1/units); 0 for a line, whose bound needs none.
+    """
+
+    geom: Line | Arc
+    bound: float
+    t0: float
+    t1: float
+    angle: float
+    kappa_bound: float
+
+
+@lru_cache(maxsize=16)
+def _sample_basis(n: int) -> np.ndarray:
+    return bernstein(np.linspace(0.0, 1.0, BEZIER_SAMPLES + 1), n)
+
+
+def _angle(u, v) -> float:
+    """Angle between two non-zero vectors (radians, in [0, pi])."""
+    return math.atan2(abs(u[0] * v[1] - u[1] * v[0]), u[0] * v[0] + u[1] * v[1])
+
+
+def _line_piece(Q: np.ndarray, D1: np.ndarray, D2: np.ndarray):
+    """``(Line, bound, angle)`` for the chord of the piece ``Q``, or ``None``
+    when the piece does not project monotonically onto its chord."""
+    chord = Q[-1] - Q[0]
+    L = math.hypot(chord[0], chord[1])
+    if L == 0.0:
+        return None
+    u = chord / L
+    if not np.all(D1 @ u > 0.0):
+        return None
+    hull = float(np.max(np.abs((Q[:, 0] - Q[0, 0]) * u[1] - (Q[:, 1] - Q[0, 1]) * u[0])))
+    bend = float(np.max(np.abs(D2[:, 0] * u[1] - D2[:, 1] * u[0]))) / 8.0
+    ang = max(_angle(D1[0], u), _angle(D1[-1], u))
+    return Line(tuple(Q[0]), tuple(Q[-1])), min(hull, bend), ang
+
+
+def _arc_piece(Q: np.ndarray, D1: np.ndarray, D2: np.ndarray, kappa: float):
+    """``(Arc, bound, angle)`` through the start, middle and end of the piece
+    ``Q``, or ``None`` when the checks of the module docstring fail."""
+    n = len(Q) - 1
+    pm = _sample_basis(n)[BEZIER_SAMPLES // 2] @ Q
+    circ = circle_through(tuple(Q[0]), tuple(pm), tuple(Q[-1]))
+    if circ is None or not math.isfinite(kappa):
+        return None
+    c, R = circ
+    c = np.asarray(c)
+    # Orientation of start, middle, end: the way the arc turns.
+    e1, e2 = pm - Q[0], Q[-1] - Q[0]
+    ccw = e1[0] * e2[1] - e1[1] * e2[0] > 0.0
+    sg = 1.0 if ccw else -1.0
+    turn = cross_bernstein(D1, D2) * sg
+    if turn.min() < -_SIGN_SLACK * max(float(np.abs(turn).max()), 1e-300):
+        return None                      # the curve turns the other way somewhere
+    if not np.all(cross_bernstein(Q - c, D1) * sg > 0.0):
+        return None                      # not monotone about c
+    w = pm - c
+    w = w / math.hypot(w[0], w[1])
+    rho_min = float(np.min((Q - c) @ w))
+    if rho_min <= 0.0:
+        return None
+    vmax = float(np.max(np.hypot(D1[:, 0], D1[:, 1])))
+    # Monotone about c, the piece turns through less than its length over
+    # rho_min; below 2 pi that is the arc's sweep, not the sweep plus turns.
+    if vmax >= 2.0 * math.pi * rho_min:
+        return None
+    pts = _sample_basis(n) @ Q
+    f = float(np.max(np.abs(np.hypot(pts[:, 0] - c[0], pts[:, 1] - c[1]) - R)))
+    h = vmax / BEZIER_SAMPLES
+    bound = f + (kappa + 1.0 / rho_min) * h * h / 8.0
+    th0 = math.atan2(Q[0, 1] - c[1], Q[0, 0] - c[0])
+    th1 = math.atan2(Q[-1, 1] - c[1], Q[-1, 0] - c[0])
+    sweep = (th1 - th0) % (2 * math.pi) if ccw else -((th0 - th1) % (2 * math.pi))
+    arc = Arc(tuple(c), R, th0, sweep)
+    ang = max(_angle(D1[0], arc.start_tangent), _angle(D1[-1], arc.end_tangent))
+    return arc, bound, ang
+
+
+def _fit_bezier_piece(Q: np.ndarray, tol: float, angle_tol: float):
+    """``(geom, bound, angle, kappa_bound)`` for the piece ``Q``, or ``None``.
+
+    The chord when the piece is nearly straight (chord within ``tol``,
+    tangent within ``angle_tol``), else the arc through start, middle and end
+    when that is within ``tol`` and ``angle_tol`` (checks and bounds: module
+    docstring).
+    """
+    D1, D2 = hodographs(Q)
+    line = _line_piece(Q, D1, D2)
+    if line is not None and line[1] <= tol and line[2] <= angle_tol:
+        return line[0], line[1], line[2], 0.0
+    kappa = curvature_bound(Q)
+    arc = _arc_piece(Q, D1, D2, kappa)
+    if arc is not None and arc[1] <= tol and arc[2] <= angle_tol:
+        return arc[0], arc[1], arc[2], kappa
+    return None
+
+
+def fit_bezier(curve: BezierCurve, tol: float, angle_tol: float = EXPORT_FIT_ANGLE_TOL,
+               max_pieces: int = 1 << 14) -> list[FittedPiece]:
+    """Lines and arcs within ``tol`` of ``curve`` (certified, two-sided), in order.
+
+    ``tol`` in program units, ``angle_tol`` in radians (the module docstring
+    has both bounds). The curve is cut at its inflections; each piece becomes
+    a line or an arc (:func:`_fit_bezier_piece`) or is halved (de Casteljau)
+    and tried again. Consecutive pieces share their end points exactly; the
+    first starts at ``curve.start`` and the last ends at ``curve.end``.
+    ``ValueError`` when more than ``max_pieces`` would be needed.
+    """
+    if tol <= 0 or angle_tol <= 0:
+        raise ValueError("tolerances must be > 0")
+    P = np.asarray(curve.control_points, float)
+    # Cut at the inflections, each cut on what is left of the curve.
+    spans: list[tuple[float, float, np.ndarray]] = []
+    rest, t_rest = P, 0.0
+    for t in inflections(P):
+        left, rest = de_casteljau_split(rest, (t - t_rest) / (1.0 - t_rest))
+        spans.append((t_rest, t, left))
+        t_rest = t
+    spans.append((t_rest, 1.0, rest))
+    out: list[FittedPiece] = []
+    stack = spans[::-1]
+    while stack:
+        t0, t1, Q = stack.pop()
+        fit = _fit_bezier_piece(Q, tol, angle_tol)
+        if fit is not None:
+            out.append(FittedPiece(fit[0], fit[1], t0, t1, fit[2], fit[3]))
+            continue
+        if len(out) + len(stack) >= max_pieces:
+            raise ValueError(f"cannot fit the curve within {tol:g} and {angle_tol:g} rad "
+                             f"with {max_pieces} pieces")
+        left, right = de_casteljau_split(Q)
+        tm = 0.5 * (t0 + t1)
+        stack.append((tm, t1, right))
+        stack.append((t0, tm, left))
     return out

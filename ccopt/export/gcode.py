@@ -1,15 +1,16 @@
 """ISO/RS274 G-code of a tool path: G0/G1 lines, G2/G3 arcs with I/J/K.
 
 The exported program carries no compensation words: it is the tool-centre
-path itself. Spirals (and blend curves) become arcs within ``tol``
-(:mod:`.arcfit`, certified bound). Feeds are written per minute (G94).
+path itself. Spirals become arcs and Bezier blend curves arcs and lines
+within ``tol`` (:mod:`.arcfit`, certified bound). Feeds are written per
+minute (G94).
 """
 from __future__ import annotations
 
 import math
 
-from ccopt.export.arcfit import fit_arcs
-from ccopt.geometry import Arc, Line, Spiral
+from ccopt.export.arcfit import fit_arcs, fit_bezier, fit_tolerance
+from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.program.model import PLANE_AXES
 from ccopt.toolpath import ToolPath
 
@@ -51,6 +52,12 @@ class _Writer:
         self.source.append(idx)
         self.intended.append((geom, bound))
 
+    def line(self, idx: int, g: Line, w1: float, feed, bound: float = 0.0) -> None:
+        if feed is None:
+            self.move(idx, f"G0 {self.coords(g.end, w1)}", g, bound)
+        else:
+            self.move(idx, f"G1 {self.coords(g.end, w1)}{self.feed_word(feed)}", g, bound)
+
     def arc(self, idx: int, arc: Arc, w0: float, w1: float, feed, bound: float = 0.0) -> None:
         s, e = arc.start, arc.end
         word = "G3" if arc.sweep > 0 else "G2"
@@ -64,6 +71,25 @@ class _Writer:
                        f"{self.cj}{fmt(j, self.digits)}{p}{self.feed_word(feed)}", arc, bound)
 
 
+def bezier_pieces(g: BezierCurve, w0: float, w1: float, tol: float):
+    """``(FittedPiece, w at its end)`` for the lines and arcs replacing ``g``.
+
+    The out-of-plane coordinate goes from ``w0`` to ``w1`` in proportion to
+    the length of the pieces (a helix-like climb along the curve), landing on
+    ``w1`` exactly at the end.
+    """
+    pieces = fit_bezier(g, tol)
+    lengths = [p.geom.length for p in pieces]
+    total = sum(lengths)
+    out = []
+    acc = 0.0
+    for k, (p, L) in enumerate(zip(pieces, lengths)):
+        acc += L
+        w = w1 if k == len(pieces) - 1 else w0 + (w1 - w0) * (acc / total)
+        out.append((p, w))
+    return out
+
+
 def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, digits: int = 6):
     """G-code text of ``path``.
 
@@ -71,8 +97,9 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
     bound)`` for the m-th move: the index of the tool-path segment it came from
     (-1 for the initial positioning rapid), the exact geometry the line means
     before rounding, and the certified deviation of that geometry from the
-    segment (0 for lines and arcs, the fit bound for arcs replacing a spiral);
-    ``max_fit_error`` is the largest such bound.
+    segment (0 for lines and arcs, the fit bound for arcs replacing a spiral
+    and for lines and arcs replacing a Bezier curve); ``max_fit_error`` is the
+    largest such bound.
     """
     wr = _Writer(path, digits)
     out = ["%"]
@@ -91,24 +118,25 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
         for seconds in dwell_at.get(idx, ()):
             wr.lines.append(f"G4 P{fmt(seconds, 4)}")
         g = seg.geom
-        rapid = seg.feed is None
         if isinstance(g, Line):
-            if rapid:
-                wr.move(idx, f"G0 {wr.coords(g.end, seg.w1)}", g)
-            else:
-                wr.move(idx, f"G1 {wr.coords(g.end, seg.w1)}{wr.feed_word(seg.feed)}", g)
+            wr.line(idx, g, seg.w1, seg.feed)
         elif isinstance(g, Arc):
             wr.arc(idx, g, seg.w0, seg.w1, seg.feed)
         elif isinstance(g, Spiral):
-            # Leave room for the rounding of the written digits (centre and
-            # end points move by up to half a unit of the last digit each).
-            pieces = fit_arcs(g, max(tol - 4 * 10.0 ** -digits, tol / 2))
+            pieces = fit_arcs(g, fit_tolerance(tol, digits))
             total = g.length
             s_acc = 0.0
             for piece in pieces:
                 s_acc += piece.arc.length
                 w = seg.w0 + (seg.w1 - seg.w0) * min(s_acc / total, 1.0)
                 wr.arc(idx, piece.arc, seg.w0, w, seg.feed, piece.bound)
+                max_err = max(max_err, piece.bound)
+        elif isinstance(g, BezierCurve):
+            for piece, w in bezier_pieces(g, seg.w0, seg.w1, fit_tolerance(tol, digits)):
+                if isinstance(piece.geom, Line):
+                    wr.line(idx, piece.geom, w, seg.feed, piece.bound)
+                else:
+                    wr.arc(idx, piece.geom, seg.w0, w, seg.feed, piece.bound)
                 max_err = max(max_err, piece.bound)
         else:
             raise ValueError(f"cannot export a {type(g).__name__} segment to G-code yet")

@@ -3,16 +3,19 @@
 A CIRCLE move whose end lies at another distance from the centre than its
 start is PMAC's native spiral (radius changing linearly with angle, PMAC User
 Manual, CIRCLE), the same curve as ccopt's :class:`~ccopt.geometry.Spiral`, so
-spirals are exported exactly. Centre vectors are incremental from the move
-start (PMAC's default ``INC(R)``); feeds are units per second (Isx90 = 1000).
-No compensation words (the program is the tool-centre path itself).
+spirals are exported exactly. Bezier blend curves become CIRCLE arcs and
+LINEAR moves within ``tol`` (:func:`ccopt.export.arcfit.fit_bezier`, certified
+bound), as in G-code. Centre vectors are incremental from the move start
+(PMAC's default ``INC(R)``); feeds are units per second (Isx90 = 1000). No
+compensation words (the program is the tool-centre path itself).
 """
 from __future__ import annotations
 
 import math
 
-from ccopt.export.gcode import fmt
-from ccopt.geometry import Arc, Line, Spiral
+from ccopt.export.arcfit import DEFAULT_TOL, fit_tolerance
+from ccopt.export.gcode import bezier_pieces, fmt
+from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.program.model import PLANE_AXES
 from ccopt.toolpath import ToolPath
 
@@ -30,9 +33,15 @@ def _pieces(g):
 
 
 def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
-               program_number: int = 1):
-    """PMAC text of ``path``; returns ``(text, moves)`` as :func:`write_gcode`
-    (spirals are native, so every bound is 0)."""
+               program_number: int = 1, tol: float | None = None):
+    """PMAC text of ``path``; returns ``(text, moves)`` as :func:`write_gcode`.
+
+    Spirals are native, so their bound is 0; Bezier curves become arcs and
+    lines within ``tol`` (program units; default :data:`DEFAULT_TOL` for the
+    path's units), each move with its certified bound.
+    """
+    if tol is None:
+        tol = DEFAULT_TOL[path.units]
     iu, iv, iw = PLANE_AXES[path.plane]
     U, V, W = AXES[iu], AXES[iv], AXES[iw]
     CI, CJ = CENTRE[iu], CENTRE[iv]
@@ -45,7 +54,7 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
     def coords(uv, w):
         return f"{U}{fmt(uv[0], digits)} {V}{fmt(uv[1], digits)} {W}{fmt(w, digits)}"
 
-    def emit(idx, new_mode, text, f, geom=None):
+    def emit(idx, new_mode, text, f, geom=None, bound=0.0):
         nonlocal mode, feed
         words = []
         if new_mode != mode:
@@ -55,7 +64,15 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
             words.append(f"F{fmt(f, 6)}")
             feed = f
         lines.append(" ".join(words + [text]))
-        moves.append((idx, geom, 0.0))
+        moves.append((idx, geom, bound))
+
+    def circle(idx, piece, w, f, bound=0.0):
+        su, sv = round(piece.start[0], digits), round(piece.start[1], digits)
+        i, j = piece.center[0] - su, piece.center[1] - sv
+        # PMAC has no rapid circle: a circle in a rapid segment keeps the last feed
+        emit(idx, "CIRCLE2" if piece.sweep > 0 else "CIRCLE1",
+             f"{coords(piece.end, w)} {CI}{fmt(i, digits)} {CJ}{fmt(j, digits)}",
+             f if f is not None else feed, piece, bound)
 
     dwell_at: dict[int, list[float]] = {}
     for idx, seconds, _ in path.dwells:
@@ -74,12 +91,15 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
             s_acc = 0.0
             for piece in _pieces(g):
                 s_acc += piece.length
-                w = seg.w0 + (seg.w1 - seg.w0) * min(s_acc / total, 1.0)
-                su, sv = round(piece.start[0], digits), round(piece.start[1], digits)
-                i, j = piece.center[0] - su, piece.center[1] - sv
-                emit(idx, "CIRCLE2" if piece.sweep > 0 else "CIRCLE1",
-                     f"{coords(piece.end, w)} {CI}{fmt(i, digits)} {CJ}{fmt(j, digits)}",
-                     seg.feed if seg.feed is not None else feed, piece)
+                circle(idx, piece, seg.w0 + (seg.w1 - seg.w0) * min(s_acc / total, 1.0),
+                       seg.feed)
+        elif isinstance(g, BezierCurve):
+            for fp, w in bezier_pieces(g, seg.w0, seg.w1, fit_tolerance(tol, digits)):
+                if isinstance(fp.geom, Line):
+                    emit(idx, "RAPID" if seg.feed is None else "LINEAR", coords(fp.geom.end, w),
+                         seg.feed, fp.geom, fp.bound)
+                else:
+                    circle(idx, fp.geom, w, seg.feed, fp.bound)
         else:
             raise ValueError(f"cannot export a {type(g).__name__} segment to PMAC yet")
     for seconds in dwell_at.get(len(path.segments), ()):

@@ -85,6 +85,189 @@ def _hodograph(ctrl: np.ndarray) -> np.ndarray:
     return n * np.diff(ctrl, axis=0)
 
 
+# --------------------------------------------------------------------------- certified bounds
+#
+# A Bezier curve is a convex combination of its control points at every t, and
+# so are its derivatives of theirs (the hodograph's control points). The bounds
+# below rest on that alone: a linear function of the curve (a projection, a
+# cross product with a fixed vector) lies between its values at the control
+# points. They are exact up to floating-point rounding of the control points.
+
+
+def de_casteljau_split(ctrl, t: float = 0.5) -> tuple[np.ndarray, np.ndarray]:
+    """Control points of the pieces ``[0, t]`` and ``[t, 1]`` of the Bezier ``ctrl``.
+
+    The left piece starts at ``ctrl[0]`` and the right one ends at ``ctrl[-1]``
+    bit for bit, and the two share their middle point bit for bit (the same
+    array value), so pieces split this way join exactly.
+    """
+    pts = np.array(ctrl, dtype=float)
+    n = len(pts) - 1
+    left = np.empty_like(pts)
+    right = np.empty_like(pts)
+    for r in range(n + 1):
+        left[r] = pts[0]
+        right[n - r] = pts[n - r]
+        pts = (1.0 - t) * pts[:-1] + t * pts[1:]
+    return left, right
+
+
+def bernstein_product(a, b) -> np.ndarray:
+    """Bernstein coefficients (degree ``m + k``) of the product of two scalar
+    polynomials given by their Bernstein coefficients ``a`` (degree ``m``) and
+    ``b`` (degree ``k``): ``c_l = sum_{i+j=l} C(m,i) C(k,j) / C(m+k,l) a_i b_j``."""
+    a = np.asarray(a, float)
+    b = np.asarray(b, float)
+    m, k = len(a) - 1, len(b) - 1
+    ca = np.array([math.comb(m, i) for i in range(m + 1)], float) * a
+    cb = np.array([math.comb(k, j) for j in range(k + 1)], float) * b
+    num = np.convolve(ca, cb)
+    return num / np.array([math.comb(m + k, l) for l in range(m + k + 1)], float)
+
+
+def cross_bernstein(P, Q) -> np.ndarray:
+    """Bernstein coefficients of the scalar ``P(t) x Q(t)`` (``x1*y2 - y1*x2``)
+    of two planar Bezier curves given by their control points."""
+    P = np.asarray(P, float)
+    Q = np.asarray(Q, float)
+    return bernstein_product(P[:, 0], Q[:, 1]) - bernstein_product(P[:, 1], Q[:, 0])
+
+
+def hodographs(ctrl) -> tuple[np.ndarray, np.ndarray]:
+    """Control points of ``r'(t)`` and ``r''(t)`` (a single zero point when the
+    degree is too low to have them)."""
+    P = np.asarray(ctrl, float)
+    n = len(P) - 1
+    D1 = derivative_matrix(n, 1) @ P if n >= 1 else np.zeros((1, 2))
+    D2 = derivative_matrix(n, 2) @ P if n >= 2 else np.zeros((1, 2))
+    return D1, D2
+
+
+def speed_lower_bound(ctrl) -> float:
+    """A lower bound of the speed ``|r'(t)|`` on ``[0, 1]``; ``<= 0`` means none found.
+
+    ``|r'(t)| >= r'(t).u >= min_i d_i.u`` for any unit ``u`` (``d_i`` the
+    hodograph's control points). Tried directions: the mean of the ``d_i``,
+    the chord and the end tangents; the best is kept. Positive only when the
+    hodograph's control polygon lies in an open half-plane (and one of those
+    directions shows it), which subdivision achieves for a regular curve.
+    """
+    P = np.asarray(ctrl, float)
+    D1, _ = hodographs(P)
+    best = -math.inf
+    for u in (D1.mean(axis=0), P[-1] - P[0], D1[0], D1[-1]):
+        nu = math.hypot(u[0], u[1])
+        if nu > 0.0:
+            best = max(best, float(np.min(D1 @ (u / nu))))
+    return best
+
+
+def curvature_bound(ctrl, max_depth: int = 30) -> float:
+    """A certified upper bound of ``|kappa(t)|`` on ``[0, 1]`` (1/program units).
+
+    On a piece, ``|kappa| = |r' x r''| / |r'|^3`` is at most the smaller of
+    ``max|r''| / min|r'|^2`` and ``max|r' x r''| / min|r'|^3``, with
+    ``max|r''| <= max_i |e_i|`` (``e_i`` the control points of ``r''``: the
+    norm is convex), ``max|r' x r''|`` at most the largest Bernstein
+    coefficient of that polynomial in magnitude (exact 0 on a straight
+    curve) and ``min|r'|`` from :func:`speed_lower_bound`. Where that
+    lower bound is not positive, or to tighten it, the piece is halved by de
+    Casteljau; the bound is the largest over the pieces. ``inf`` when some
+    piece still has no positive speed bound after ``max_depth`` halvings (the
+    speed vanishes: a cusp or a point where the curve stops). A speed bound
+    within the rounding of the coordinates (``64 (n+1) eps max|P_i|``) counts
+    as none. A line (degree 1) has curvature 0.
+    """
+    P = np.asarray(ctrl, float)
+    if len(P) < 3:
+        return 0.0
+    worst = 0.0
+    stack = [(P, 0)]
+    while stack:
+        Q, depth = stack.pop()
+        vmin = speed_lower_bound(Q)
+        # The hodograph's control points are differences of the coordinates:
+        # a speed bound within their rounding is no evidence of motion.
+        noise = 64.0 * len(Q) * np.finfo(float).eps * float(np.max(np.abs(Q)))
+        if vmin > noise and vmin ** 3 > 0.0:
+            D1, D2 = hodographs(Q)
+            acc = float(np.max(np.hypot(D2[:, 0], D2[:, 1])))
+            turn = float(np.max(np.abs(cross_bernstein(D1, D2))))
+            worst = max(worst, min(acc / (vmin * vmin), turn / (vmin * vmin * vmin)))
+            continue
+        if depth >= max_depth:
+            return math.inf
+        left, right = de_casteljau_split(Q)
+        stack.append((left, depth + 1))
+        stack.append((right, depth + 1))
+    return worst
+
+
+def _bernstein_to_power(b: np.ndarray) -> np.ndarray:
+    """Power-basis coefficients ``c_j`` (``sum c_j t^j``) of Bernstein coefficients ``b``."""
+    n = len(b) - 1
+    c = np.zeros(n + 1)
+    for j in range(n + 1):
+        c[j] = math.comb(n, j) * sum((-1) ** (j - i) * math.comb(j, i) * b[i]
+                                     for i in range(j + 1))
+    return c
+
+
+def inflections(ctrl) -> list[float]:
+    """Parameters ``t`` in ``(0, 1)`` where the curvature of the Bezier ``ctrl``
+    changes sign, ascending.
+
+    The candidates are the real roots of ``r' x r''`` (power basis); the sign
+    of ``r' x r''`` between consecutive candidates decides which are sign
+    changes. Values within rounding of zero (``1e-12`` of the largest
+    Bernstein coefficient) have no sign, so a touching zero (even multiplicity,
+    computed as a cluster of near roots) is not an inflection. Each sign
+    change is polished by bisection to adjacent floats of ``t``.
+    """
+    P = np.asarray(ctrl, float)
+    if len(P) < 3:
+        return []
+    D1, D2 = hodographs(P)
+    k = cross_bernstein(D1, D2)
+    scale = float(np.max(np.abs(k)))
+    if scale == 0.0:
+        return []                      # a straight curve: no turn at all
+    c = _bernstein_to_power(k)
+    nz = np.flatnonzero(np.abs(c) > 1e-14 * np.max(np.abs(c)))
+    cand = []
+    if len(nz) and nz[-1] >= 1:
+        roots = np.polynomial.polynomial.polyroots(c[: nz[-1] + 1])
+        cand = sorted(float(r.real) for r in roots
+                      if abs(r.imag) <= 1e-7 and 0.0 < r.real < 1.0)
+    noise = 1e-12 * scale
+
+    def sign_at(t: float) -> float:
+        v = float(bernstein(np.array([t]), len(k) - 1)[0] @ k)
+        return 0.0 if abs(v) <= noise else math.copysign(1.0, v)
+
+    edges = [0.0, *cand, 1.0]
+    mids = [0.5 * (a + b) for a, b in zip(edges[:-1], edges[1:])]
+    signed = [(m, sg) for m in mids if (sg := sign_at(m)) != 0.0]
+    out = []
+    for (lo, s_lo), (hi, s_hi) in zip(signed[:-1], signed[1:]):
+        if s_lo == s_hi:
+            continue
+        while True:                    # bisection to adjacent floats
+            mid = 0.5 * (lo + hi)
+            if mid <= lo or mid >= hi:
+                break
+            sg = sign_at(mid)
+            if sg == 0.0:
+                lo = hi = mid
+                break
+            if sg == s_lo:
+                lo = mid
+            else:
+                hi = mid
+        out.append(0.5 * (lo + hi))
+    return out
+
+
 @dataclass(frozen=True, eq=False)
 class BezierCurve:
     """Planar Bezier curve of ``degree`` = len(control_points) - 1, by arc length.
