@@ -172,7 +172,7 @@ def cmd_smooth(args: argparse.Namespace) -> int:
         from ccopt.export import export
         try:
             doc["export"] = export(path, args.out, program=prog).to_json()
-        except ValueError as exc:  # a format that cannot carry blend curves
+        except ValueError as exc:  # the arc fit of a blend curve gave up (too many pieces)
             raise ProgramError(f"cannot export the smoothed path: {exc}", args.out) from None
     if args.json:
         emit_json(doc)
