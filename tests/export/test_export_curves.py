@@ -22,7 +22,7 @@ import ccopt
 from ccopt.cases import find_case
 from ccopt.compare import compare
 from ccopt.export import export
-from ccopt.export.arcfit import fit_bezier
+from ccopt.export.arcfit import fit_bezier, fit_tolerance
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.distance import point_arc, point_segment
 from ccopt.program import read_program
@@ -161,8 +161,14 @@ def test_quarter_circle_cubic(R, suffix, tmp_path):
     radial = np.abs(np.hypot(pts[:, 0], pts[:, 1]) - R).max() / R
     assert radial == pytest.approx(QUARTER_RADIAL_ERROR, rel=1e-3)
     res, moves, dev = check_export(ctrl, tmp_path / f"quarter{suffix}")
-    # the bound covers the sampled deviation and is within the default 0.001 mm
+    # the bound covers the sampled deviation and is within the default 0.001 mm:
+    # in the file (the written numbers are rounded to 1e-6) ...
     assert dev <= res.fit_error + 1e-6 <= 1e-3 + 1e-6
+    # ... and before rounding, the fitted pieces themselves
+    pieces = fit_bezier(BezierCurve(ctrl), fit_tolerance(1e-3, 6))
+    assert max(p.bound for p in pieces) == res.fit_error
+    exact = distance_to_moves(pts, [p.geom for p in pieces])
+    assert exact.max() <= res.fit_error <= 1e-3
     # one way round: all arcs counter-clockwise, as the curve turns
     assert all(sg > 0 for sg, _ in turn_of_moves(ctrl, moves))
     if R == 1.0:
