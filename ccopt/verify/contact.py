@@ -6,7 +6,9 @@ and radius as the move before) the largest distance to ``e`` from the points
 of ``T`` that lie alongside ``e`` (whose nearest point on ``e`` is not one of
 its end points: the band normal to a line, the sector of an arc) must be at
 most ``r + eps``. Every added corner arc must stay within ``r + eps`` of its
-corner point ``P`` (the programmed end of its block).
+corner point ``P``: the programmed point where the in-plane moves run before
+and after it meet (:func:`corner_points`; the point belongs to both, whichever
+block carries the arc).
 
 Alongside ``e`` the distance is ``|signed distance to e's line|`` or
 ``|rho - R|``, so for a line tool segment against a line element the
@@ -33,7 +35,7 @@ import math
 
 import numpy as np
 
-from ccopt.geometry import Arc, Line, distance
+from ccopt.geometry import Arc, distance
 from ccopt.geometry.angles import angle_in_sweep
 from ccopt.program.model import PLANE_AXES
 from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
@@ -46,23 +48,81 @@ from ccopt.verify.maxdist import max_distance, max_distance_to_point
 from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed, pack
 
 
+def corner_points(toolpath, contour: Contour, table, ci: np.ndarray):
+    """The programmed corner of each corner arc ``ci`` (tool segment indices).
+
+    (:data:`ccopt.verify.decisions.CORNER_POINT_BETWEEN_ITS_MOVES`.) A corner
+    arc is run between the tool segments of the two in-plane moves that meet
+    at its corner ``P``: ``P`` is the end of the in-plane move run last before
+    it and the start of the one run first after it. Which block *carries* the
+    arc differs between controllers (PMAC and Fagor the incoming move, LinuxCNC
+    the outgoing one: it emits the arc while converting that block), so the
+    carrier only decides when the path alone does not: when the moves run
+    before and after are not consecutive in the program (a move whose tool
+    segment vanished), ``P`` is the carrier's end if its move was run before
+    the arc, its start if run after, and otherwise whichever of its two ends
+    is nearer the arc's centre.
+
+    Returns ``(P, incoming, outgoing)``: the corner points, ``(len(ci), 2)``, and
+    the indices into ``contour.moves`` of the moves ending and starting there
+    (-1 where there is none).
+    """
+    m = ci.size
+    P = np.zeros((m, 2))
+    q_in = np.full(m, -1, np.intp)
+    q_out = np.full(m, -1, np.intp)
+    if m == 0:
+        return P, q_in, q_out
+    n = table.move.size
+    idx = np.arange(n)
+    run = (table.move >= 0) & ~table.is_role(Role.CORNER)
+    # last run segment before / first after each segment (corner arcs are not runs)
+    before = np.maximum.accumulate(np.where(run, idx, -1))[ci]
+    after = np.minimum.accumulate(np.where(run, idx, n)[::-1])[::-1][ci]
+    qa = np.where(before >= 0, table.move[np.maximum(before, 0)], -1)
+    qb = np.where(after < n, table.move[np.minimum(after, n - 1)], -1)
+    qc = table.move[ci]
+    moves = contour.moves
+    last = len(moves) - 1
+    i0, j0, _ = PLANE_AXES[contour.plane]
+    for q in range(m):
+        a, b, c = int(qa[q]), int(qb[q]), int(qc[q])
+        if a >= 0 and b == a + 1:
+            q_in[q], q_out[q] = a, b
+        elif c >= 0 and a == c:
+            q_in[q], q_out[q] = c, (c + 1 if c < last else -1)
+        elif c >= 0 and b == c:
+            q_in[q], q_out[q] = c - 1, c
+        else:
+            # the carrier's own move has no tool segment of its own: its end
+            # nearer the arc's centre (the two are a whole move apart)
+            blk = toolpath.segments[int(ci[q])].block
+            centre = np.asarray(toolpath.segments[int(ci[q])].geom.center, float)
+            ends = np.array([[blk.start[i0], blk.start[j0]], [blk.end[i0], blk.end[j0]]])
+            at_end = bool(np.hypot(*(ends[1] - centre)) <= np.hypot(*(ends[0] - centre)))
+            P[q] = ends[1] if at_end else ends[0]
+            if c >= 0:
+                q_in[q], q_out[q] = (c, c + 1 if c < last else -1) if at_end else (c - 1, c)
+            continue
+        blk = moves[q_in[q]] if q_in[q] >= 0 else moves[q_out[q]]
+        pt = blk.end if q_in[q] >= 0 else blk.start
+        P[q] = (pt[i0], pt[j0])
+    return P, q_in, q_out
+
+
 def contact_pairs(toolpath, contour: Contour, lengths: np.ndarray, table):
-    """``(steady tool segments, their elements, corner arcs, corner points, corner radii)``."""
+    """``(steady tool segments, their elements, corner arcs, corner points, corner radii,
+    moves ending at the corners, moves starting there)``."""
     steady = table.is_role(Role.COMPENSATED) & table.steady & (table.element >= 0) \
         & (lengths > POINT_EPS)
     si = np.flatnonzero(steady)
     ej = table.element[si]
-    corner_i, corner_p, corner_r = [], [], []
-    i0, j0, _ = PLANE_AXES[contour.plane]
-    for i in np.flatnonzero(table.is_role(Role.CORNER) & (table.r > 0.0)):
-        s = toolpath.segments[i]
-        if s.block is None or not isinstance(s.geom, Arc):
-            continue
-        corner_i.append(i)
-        corner_p.append((s.block.end[i0], s.block.end[j0]))
-        corner_r.append(table.r[i])
-    return (si, ej, np.asarray(corner_i, np.intp),
-            np.asarray(corner_p, float).reshape(-1, 2), np.asarray(corner_r, float))
+    cand = np.flatnonzero(table.is_role(Role.CORNER) & (table.r > 0.0))
+    segs = toolpath.segments
+    ci = np.asarray([i for i in cand if segs[i].block is not None
+                     and isinstance(segs[i].geom, Arc)], np.intp)
+    corner_p, q_in, q_out = corner_points(toolpath, contour, table, ci)
+    return si, ej, ci, corner_p, table.r[ci], q_in, q_out
 
 
 def _line_line(T, ti, E, ej):
@@ -131,7 +191,7 @@ def _general(tg, eg, E: Packed, j):
 def check_contact(tool: Packed, toolpath, contour: Contour, eps: float, lengths, info, table):
     """``(Check, [Violation])``; ``info(i)`` gives ``(block line, role)`` of tool segment
     ``i``; ``table`` is the run's :class:`~ccopt.verify.run.SegmentTable`."""
-    si, ej, ci, cp, cr = contact_pairs(toolpath, contour, lengths, table)
+    si, ej, ci, cp, cr, c_in, c_out = contact_pairs(toolpath, contour, lengths, table)
     T, E = tool.arr, contour.elements.arr
     n = si.size
     dmax = np.full(n, np.nan)
@@ -179,9 +239,15 @@ def check_contact(tool: Packed, toolpath, contour: Contour, eps: float, lengths,
     for q in np.flatnonzero(cgap > eps):
         i = int(ci[q])
         line, role = info(i)
-        viol.append(Violation("contact", float(cgap[q]), i, line, role, None, line,
+        # the corner belongs to both moves meeting there; it is reported at the
+        # one ending there (the carrier's line is the tool block)
+        between = [contour.moves[k].source.line if k >= 0 else None
+                   for k in (int(c_in[q]), int(c_out[q]))]
+        at = between[0] if between[0] is not None else line
+        viol.append(Violation("contact", float(cgap[q]), i, line, role, None, at,
                               (float(cq[q, 0]), float(cq[q, 1])), (float(cp[q, 0]), float(cp[q, 1])),
                               EXACT, {"corner_point": [float(cp[q, 0]), float(cp[q, 1])],
+                                      "corner_between_blocks": between,
                                       "radius": float(cr[q])}))
     # every steady element must have a compensated tool segment at all: a path
     # that never runs along an element (e.g. the programmed path itself, or a

@@ -79,3 +79,14 @@ TANGENT_BREAKS_ARE_INFORMATION = True
 #: ``compensate(radius=...)`` override), the tool path's radius is used and
 #: the certificate notes it.
 RADIUS_FROM_TOOLPATH_WHEN_UNIFORM = True
+
+#: [ccopt decision] The corner point ``P`` an added corner arc must stay
+#: within ``r + eps`` of is the programmed point where the in-plane moves run
+#: just before and just after the arc meet, not the end of the block that
+#: carries the arc: PMAC and Fagor attach the arc to the incoming move,
+#: LinuxCNC to the outgoing one (it emits the arc while converting that
+#: block), and the corner is the same point for both. Only when those moves
+#: are not consecutive in the program (a move whose tool segment vanished)
+#: does the carrier decide (see :func:`ccopt.verify.contact.corner_points`).
+#: A corner contact violation is reported at the move ending at ``P``.
+CORNER_POINT_BETWEEN_ITS_MOVES = True

@@ -31,13 +31,17 @@ _LINE = attrgetter("source.line")
 class SegmentTable:
     """Per tool segment: ``role`` (index into :class:`Role`), source ``line``
     (-1 when unknown), contour ``element`` (-1 when not a contour element's
-    segment), ``steady`` (its element is steady), radius ``r`` in force."""
+    segment), ``steady`` (its element is steady), radius ``r`` in force, and
+    ``move``: its block's index into :attr:`Contour.moves` (the program's
+    in-plane moves in order; -1 for a block that is not one, e.g. a Z-only
+    move, or no block)."""
 
     role: np.ndarray
     line: np.ndarray
     element: np.ndarray
     steady: np.ndarray
     r: np.ndarray
+    move: np.ndarray
 
     @classmethod
     def build(cls, roles, blocks, contour: Contour) -> "SegmentTable":
@@ -58,7 +62,7 @@ class SegmentTable:
             r = np.where(hit, contour.move_r[qq], 0.0)
         else:
             elem, steady, r = np.full(n, -1, np.intp), np.zeros(n, bool), np.zeros(n)
-        return cls(role, line, elem, steady, r)
+        return cls(role, line, elem, steady, r, q)
 
     def is_role(self, role: Role) -> np.ndarray:
         return self.role == ROLE_CODES[role]

@@ -280,3 +280,48 @@ def test_empty_program_and_path():
     cert = verify(ToolPath(()), Program((), "<empty>", "pmac"))
     assert cert.ok and cert.min_clearance is None
     assert [c.figure for c in cert.checks] == [None, None, None, 0.0, None]
+
+
+def test_linuxcnc_corner_arcs_are_checked_at_their_corner():
+    # LinuxCNC attaches an outside-corner arc to the *outgoing* block (PMAC to
+    # the incoming one). On the pocket, CC1 r = 3, the boss's corner where
+    # "Y8" (0..8 at x = 25) meets "X35" is P = (25, 8): LinuxCNC's arc about it
+    # is carried by "X35", whose own end (35, 8) is another corner. The clean
+    # path passes. The arc (angles 180 -> 90 deg about P) moved by 0.25 along
+    # its bisector (-1, 1)/sqrt2: |P - (c + 3u)| is largest, 3 + 0.25, at the
+    # mid-sweep point u = (-1, 1)/sqrt2, so a contact gap of 0.25 at P,
+    # reported at "Y8", the move ending there.
+    case, prog, _ = run_case("pocket")
+    path = compensate(prog, "linuxcnc")
+    assert verify(path, prog).ok
+    y8, x35 = line_of(case, "Y8"), line_of(case, "X35")
+    idx = [i for i, s in enumerate(path.segments)
+           if s.role is Role.CORNER and s.block.source.line == x35]
+    assert len(idx) == 1
+    i = idx[0]
+    seg = path.segments[i]
+    assert seg.geom.center == pytest.approx((25.0, 8.0), abs=1e-12)
+    h = 0.25 / math.sqrt(2.0)
+    shifted = replace(seg, geom=replace(seg.geom, center=(25.0 - h, 8.0 + h)))
+    segs = list(path.segments)
+    segs[i] = shifted
+    cert = verify(replace(path, segments=tuple(segs)), prog)
+    contact = cert.violations_of("contact")
+    assert len(contact) == 1
+    v = contact[0]
+    assert v.tool_segment == i and v.tool_block == x35 and v.element_block == y8
+    assert v.depth == pytest.approx(0.25, abs=1e-12)
+    assert v.detail["corner_point"] == pytest.approx([25.0, 8.0], abs=1e-12)
+    assert v.detail["corner_between_blocks"] == [y8, x35]
+
+
+@pytest.mark.parametrize("name", ["leadin-inside-line", "leadin-outside-line", "pocket",
+                                  "z-plunges"])
+def test_linuxcnc_paths_of_clean_cases_verify(name):
+    # Every tool position of these LinuxCNC paths is an offset at exactly r or
+    # an arc of radius r about a programmed corner: nothing to report.
+    case = find_case(name)
+    prog = ccopt.read_program(case.program)
+    cert = verify(compensate(prog, "linuxcnc", radius=case.radius), prog)
+    assert cert.ok, cert.summary()
+    assert cert.violations == ()
