@@ -163,6 +163,10 @@ def cmd_run(args: argparse.Namespace) -> int:
             raise ProgramError("no bundled cases found (is the cases/ folder next to ccopt/?)",
                                "cases")
     out = Path(args.out) if args.out else default_out()
+    variants = [n for group in (args.variants or []) for n in group] or None
+    if variants:
+        from ccopt.compare.registry import require_known
+        require_known(variants, "--variants")
     style_options = {}
     if args.break_cos is not None:
         style_options["break_cos"] = args.break_cos
@@ -170,7 +174,8 @@ def cmd_run(args: argparse.Namespace) -> int:
         style_options["ccbuf"] = args.ccbuf
     opts = RunOptions(style=args.style, radius=args.radius, side=args.side, dialect=args.dialect,
                       tool_table=args.tool_table, vmax=args.vmax, amax=args.amax,
-                      compare=not args.no_compare, style_options=style_options)
+                      compare=not args.no_compare, style_options=style_options,
+                      variants=variants)
 
     def progress(k: int, n: int, label: str) -> None:
         if sys.stderr.isatty() and not args.json:
@@ -410,6 +415,10 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
     p.add_argument("--amax", type=_axis_values, metavar="X,Y[,Z]",
                    help="axis acceleration limits, units/s^2 (default: the case's, else 1000)")
     p.add_argument("--no-compare", action="store_true", help="skip the blend comparison")
+    from ccopt.compare.cli import variant_names
+    p.add_argument("--variants", type=variant_names, action="append", metavar="NAME[,NAME]",
+                   help="blend variants to compare (default: every available one; see "
+                        "ccopt compare --list)")
     program_args(p)
     style_args(p)
     commands["run"] = cmd_run

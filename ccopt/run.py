@@ -39,6 +39,7 @@ class RunOptions:
     vmax: tuple[float, ...] | None = None
     amax: tuple[float, ...] | None = None
     compare: bool = True
+    variants: list[str] | None = None     # blend variants compared (None: every available one)
     style_options: dict = field(default_factory=dict)
 
 
@@ -85,7 +86,7 @@ def run_one(label: str, program_file: Path, case: Case | None, out: Path | None,
         row["verified"] = bool(cert.ok)
         row["min_clearance"] = cert.min_clearance
         if opts.compare:
-            row["compare"] = _compare(prog, path, limits)
+            row["compare"] = _compare(prog, limits, radius, opts.side, opts.variants)
         if out is not None:
             stem = out / label
             for suffix in (".nc", ".pmc"):
@@ -113,12 +114,13 @@ def run_one(label: str, program_file: Path, case: Case | None, out: Path | None,
     return row
 
 
-def _compare(prog, path: ToolPath, limits) -> list[dict]:
-    try:
-        from ccopt.compare import compare
-    except ImportError:  # the comparison module is optional until it lands
-        return []
-    return [v if isinstance(v, dict) else v.to_json() for v in compare(prog, limits=limits)]
+def _compare(prog, limits, radius: float | None, side: str | None,
+             variants: list[str] | None) -> list[dict]:
+    """The blend comparison, with the same compensation overrides as the run
+    (a case's radius, ``--radius``, ``--side``), so a program that names no
+    radius (e.g. ``G41`` without ``D``) is compared, not refused."""
+    from ccopt.compare import compare
+    return [v.to_json() for v in compare(prog, variants, limits=limits, radius=radius, side=side)]
 
 
 def _plots(path: ToolPath, prog, cert, profiles, label: str) -> dict:

@@ -177,3 +177,25 @@ def test_no_traceback_in_a_real_process(tmp_path):
     assert proc.returncode == 2
     assert proc.stderr.startswith(f"{prog}:1:"), proc.stderr
     assert "Traceback" not in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
+
+
+def test_run_compares_with_the_case_radius(capsys, tmp_path):
+    # The Fagor cases program "G41 D1" with no tool table: the radius (2) comes
+    # from case.toml. The comparison must use it too, as compensation does,
+    # not refuse the program for want of a radius.
+    code, _, err = run_cli(capsys, "run", "fagor-g136-g139", "--out", str(tmp_path),
+                           "--variants", "pmac,fagor-g139-g136", "--variants", "tangent-arc")
+    assert code == 0, err
+    row = json.loads((tmp_path / "summary.json").read_text())["cases"][0]
+    assert row["radius"] == 2.0
+    assert [(v["name"], v["status"]) for v in row["compare"]] == [
+        ("pmac", "ok"), ("fagor-g139-g136", "ok"), ("tangent-arc", "ok")]
+
+
+def test_run_rejects_unknown_variants(capsys, tmp_path):
+    code, _, err = run_cli(capsys, "run", "pocket", "--out", str(tmp_path),
+                           "--variants", "pmac,no-such-blend")
+    assert code == 2
+    assert err.startswith("--variants: unknown variant(s) no-such-blend; available: pmac")
+    assert len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "index.html").exists()

@@ -13,7 +13,7 @@ def add_commands(sub, commands: dict, program_args, axis_values, nonneg_float, p
                                        "and timed")
     p.add_argument("program", metavar="PROGRAM", help="program file, case folder or case name")
     program_args(p)
-    p.add_argument("--variants", type=_names, action="append", metavar="NAME[,NAME]",
+    p.add_argument("--variants", type=variant_names, action="append", metavar="NAME[,NAME]",
                    help="variants to compare (default: every available one; see --list)")
     p.add_argument("--list", action="store_true", help="list the available variants and exit")
     _common(p, axis_values, nonneg_float, positive_float)
@@ -45,7 +45,8 @@ def _common(p, axis_values, nonneg_float, positive_float):
                    help="axis acceleration limits, units/s^2 (default: the case's [limits] a)")
 
 
-def _names(text: str) -> list[str]:
+def variant_names(text: str) -> list[str]:
+    """``A,B`` -> ``["A", "B"]`` (argparse type of ``--variants``)."""
     return [n.strip() for n in text.split(",") if n.strip()]
 
 
@@ -82,17 +83,14 @@ def _f(x, fmt="{:.4f}"):
 def cmd_compare(args: argparse.Namespace) -> int:
     from ccopt.cli import EXIT_OK, emit_json, load, resolve_input
     from ccopt.compare import available, compare
+    from ccopt.compare.registry import require_known
     if args.list:
         for n in available():
             print(n)
         return EXIT_OK
     names = [n for group in (args.variants or []) for n in group] or None
     if names:
-        known = set(available())
-        unknown = [n for n in names if n not in known]
-        if unknown:
-            raise ProgramError(f"unknown variant(s) {', '.join(unknown)}; available: "
-                               f"{', '.join(available())}", args.program)
+        require_known(names, args.program)
     inp = resolve_input(args.program)
     prog = load(inp, args)
     limits = _limits(inp, args)

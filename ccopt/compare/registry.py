@@ -96,6 +96,18 @@ def available() -> list[str]:
     return list(BUILTIN_NAMES) + pref + rest
 
 
+def require_known(names, source: str) -> None:
+    """Raise a :class:`~ccopt.errors.ProgramError` (at ``source``, e.g. the
+    program the names were given for) naming every unknown variant in
+    ``names`` and the available ones."""
+    known = available()
+    unknown = [n for n in names if n not in known]
+    if unknown:
+        from ccopt.errors import ProgramError
+        raise ProgramError(f"unknown variant(s) {', '.join(unknown)}; available: "
+                           f"{', '.join(known)}", source)
+
+
 def load(name: str) -> Blend:
     """The blend callable registered as ``name`` (``KeyError`` if none)."""
     if name in BUILTIN_NAMES:
