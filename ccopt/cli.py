@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import sys
 from dataclasses import dataclass
@@ -248,7 +249,8 @@ def cmd_feed(args: argparse.Namespace) -> int:
               f"limits v={list(limits.v)} a={list(limits.a)}")
         print("planner   duration_s  vs_first  max_vel_ratio  max_acc_ratio  max_feed_ratio")
         for name, r in out.items():
-            print(f"{name:8s}  {r['duration']:10.4f}  {r['duration'] / first['duration']:8.4f}  "
+            vs = r["duration"] / first["duration"] if first["duration"] > 0 else math.nan
+            print(f"{name:8s}  {r['duration']:10.4f}  {vs:8.4f}  "
                   f"{r['max_axis_vel_ratio']:13.4f}  {r['max_axis_acc_ratio']:13.4f}  "
                   f"{r['max_feed_ratio']:14.4f}")
     return EXIT_OK
@@ -262,9 +264,12 @@ def _axis_values(text: str) -> tuple[float, ...]:
 
 
 def _positive_float(text: str) -> float:
-    x = _nonneg_float(text)
-    if x == 0:
-        raise argparse.ArgumentTypeError(f"must be a number > 0: {text!r}")
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not (0 < x < float("inf")):
+        raise argparse.ArgumentTypeError(f"must be a finite number > 0: {text!r}")
     return x
 
 
@@ -314,13 +319,6 @@ def _nonneg_float(text: str) -> float:
         raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
     if not (x >= 0 and x < float("inf")):
         raise argparse.ArgumentTypeError(f"must be a finite number >= 0: {text!r}")
-    return x
-
-
-def _pos_float(text: str) -> float:
-    x = _nonneg_float(text)
-    if x <= 0:
-        raise argparse.ArgumentTypeError(f"must be > 0: {text!r}")
     return x
 
 
@@ -389,7 +387,7 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
     p.add_argument("program", metavar="PROGRAM", help="program file, case folder or case name")
     program_args(p)
     style_args(p)
-    p.add_argument("--eps", type=_pos_float, default=1e-6, metavar="E",
+    p.add_argument("--eps", type=_positive_float, default=1e-6, metavar="E",
                    help="tolerance in program units (default 1e-6)")
     p.add_argument("--crosscheck", action="store_true",
                    help="also run the registered cross-check formulations (CVXPY, CasADi)")

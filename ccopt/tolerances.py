@@ -69,6 +69,15 @@ BUDGET_SAMPLE_ANGLE = 0.01
 #: this are not connected: the path must stop there (program units; ccopt.feed).
 GAP_EPS = 1e-6
 
+#: Range accepted for every velocity and acceleration limit (program units per
+#: second, per second squared). Far outside it the planners' squares of speeds
+#: under- or overflow; no machine is there (1e-6 mm/s is 3.6 mm a year).
+LIMIT_RANGE = (1e-6, 1e9)
+
+#: Most samples a feed profile is sampled at (``FeedProfile.sample``): 2e7
+#: samples of ~20 numbers each take about 3 GB.
+MAX_FEED_SAMPLES = 20_000_000
+
 #: A limit counts as active where its ratio |value| / limit is at least this.
 ACTIVE_RATIO = 0.99
 

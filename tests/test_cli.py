@@ -101,6 +101,20 @@ def test_missing_radius_is_located(capsys, tmp_path):
     assert code == 0
 
 
+def test_tool_number_without_a_tool_table_says_so(capsys, tmp_path):
+    # "G41 D1" names tool 1; with no tool table its diameter is unknown
+    prog = tmp_path / "tool.nc"
+    prog.write_text("G21 G90 F600\nG41 D1\nG1 X10 Y0\nG1 X10 Y10\nG40\nG1 X20 Y10\n")
+    code, _, err = run_cli(capsys, "compensate", str(prog))
+    assert code == 2 and len(err.strip().splitlines()) == 1
+    assert err.startswith(f"{prog}:3:") and "tool 1" in err and "--tool-table" in err
+    table = tmp_path / "tool.tbl"
+    table.write_text("T1 P1 D4 ;4 mm end mill\n")
+    code, out, err = run_cli(capsys, "compensate", str(prog), "--tool-table", str(table), "--json")
+    assert code == 0, err
+    assert json.loads(out)["radius"] == 2.0
+
+
 @pytest.mark.parametrize("text, line, fragment", [
     ("LINEAR ABS F10\nCCR1 CC1\nX10 Y0\nTM100\nX10 Y10\nCC0\nX0 Y10\n", 5, "TM"),
     ("LINEAR ABS F10\nCCR1 CC1\nX10 Y0\nNORMAL J-1\nX10 Z10\nCC0\n", 5, "plane change"),

@@ -166,10 +166,12 @@ def cmd_smooth(args: argparse.Namespace) -> int:
                                       "max_curvature", "tangent_breaks", "solve_time")},
            "joins": info.get("joins", []), "certificate": row.certificate.to_json(),
            "toolpath": path.to_json()}
+    exported = None
     if args.out:
         from ccopt.export import export
         try:
-            doc["export"] = export(path, args.out, program=prog).to_json()
+            exported = export(path, args.out, program=prog)
+            doc["export"] = exported.to_json()
         except ValueError as exc:  # the arc fit of a blend curve gave up (too many pieces)
             raise ProgramError(f"cannot export the smoothed path: {exc}", args.out) from None
     if args.json:
@@ -187,6 +189,11 @@ def cmd_smooth(args: argparse.Namespace) -> int:
         for j in doc["joins"]:
             if j["status"] != "blended":
                 print(f"  join at segment {j['segment']} ({j['kind']}): {j['status']}")
-        if args.out:
-            print(f"  exported {args.out}")
-    return EXIT_OK if row.certificate.ok else EXIT_FAILED
+        if exported is not None:
+            verdict = {True: "verified OK", False: "verification FAILED",
+                       None: "not verified"}[exported.verified]
+            print(f"  exported {exported.file}: read back within "
+                  f"{exported.roundtrip_error:.3g} {prog.units}, {verdict}")
+    # the written file is what runs on the machine: its own verdict counts too
+    ok = row.certificate.ok and (exported is None or exported.verified is not False)
+    return EXIT_OK if ok else EXIT_FAILED

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ccopt.program.model import PLANE_AXES
+from ccopt.tolerances import LIMIT_RANGE
 
 AXIS_NAMES = ("X", "Y", "Z")
 
@@ -33,18 +34,24 @@ def _positive_tuple(name: str, values) -> tuple[float, ...]:
     if not 2 <= len(out) <= 3:
         raise ValueError(f"{name} must have 2 or 3 values (X, Y[, Z]), got {len(out)}")
     for axis, x in zip(AXIS_NAMES, out):
-        if not (math.isfinite(x) and x > 0.0):
-            raise ValueError(f"{name} for {axis} must be a finite number > 0, got {x!r}")
+        _in_range(f"{name} for {axis}", x)
     return out
+
+
+def _in_range(what: str, x: float) -> float:
+    """``x`` if it is a limit the planners can use (:data:`LIMIT_RANGE`)."""
+    lo, hi = LIMIT_RANGE
+    if not (math.isfinite(x) and x > 0.0):
+        raise ValueError(f"{what} must be a finite number > 0, got {x!r}")
+    if not lo <= x <= hi:
+        raise ValueError(f"{what} must be between {lo:g} and {hi:g}, got {x!r}")
+    return x
 
 
 def _optional_positive(name: str, value) -> float | None:
     if value is None:
         return None
-    x = float(value)
-    if not (math.isfinite(x) and x > 0.0):
-        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-    return x
+    return _in_range(name, float(value))
 
 
 @dataclass(frozen=True)

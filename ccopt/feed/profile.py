@@ -25,7 +25,7 @@ import numpy as np
 from ccopt.feed.errors import FeedError
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
-from ccopt.tolerances import ACTIVE_RATIO
+from ccopt.tolerances import ACTIVE_RATIO, MAX_FEED_SAMPLES
 
 
 @dataclass(frozen=True, eq=False)
@@ -237,10 +237,17 @@ class FeedProfile:
         return np.where(s >= s1[i], v1[i], v)
 
     def sample(self, dt: float = 1e-3) -> FeedSamples:
-        """Samples every ``dt`` seconds from 0, plus the final instant."""
+        """Samples every ``dt`` seconds from 0, plus the final instant.
+
+        :class:`FeedError` when that is more than :data:`MAX_FEED_SAMPLES`
+        samples (a larger ``dt`` is needed)."""
         if not dt > 0:
             raise ValueError("dt must be > 0")
         T = self.duration
+        if T / dt >= MAX_FEED_SAMPLES:
+            raise FeedError(f"sampling {T:.6g} s every {dt:g} s takes {T / dt:.3g} samples, more "
+                            f"than {MAX_FEED_SAMPLES:g}: use a larger dt (at least "
+                            f"{T / (MAX_FEED_SAMPLES - 1):.3g} s)", self.path.source_file)
         n = int(np.floor(T / dt + 1e-9)) + 1
         times = np.arange(n) * dt
         if times[-1] < T:
@@ -256,7 +263,8 @@ class FeedProfile:
         axes = self.limits.axis_names(path.toolpath.plane, dof)
         vlim, alim = self.limits.in_plane(path.toolpath.plane, dof)
         n = times.size
-        if M == 0:
+        if M == 0 or not path.segments:
+            # no motion: the path stands (a dwell alone still takes its time)
             z = np.zeros(n)
             pos = np.zeros((n, dof))
             if path.segments:

@@ -54,3 +54,22 @@ def test_smooth_json(capsys):
     assert doc["path_continuity"] == "G2"
     assert doc["duration"] < doc["pmac_duration"]
     assert all(j["status"] == "blended" for j in doc["joins"])
+
+
+def test_smooth_export_verdict_sets_the_exit_code(capsys, tmp_path):
+    # The exported file is what runs on the machine: its read-back verdict
+    # counts. On leadin-inside-line the smoothed path exports and verifies;
+    # on the pocket the blends touch the clearance limit and the arcs fitted
+    # to them (within the 0.001 mm export tolerance) dip below it: the file
+    # says FAILED and so must the exit code.
+    ok_file = tmp_path / "lead.nc"
+    code, out, err = run(capsys, "smooth", "leadin-inside-line", "-o", str(ok_file))
+    assert code == 0, err
+    assert f"exported {ok_file}: read back within" in out and "verified OK" in out
+    bad_file = tmp_path / "pocket.nc"
+    code, out, err = run(capsys, "smooth", "pocket", "-o", str(bad_file), "--json")
+    doc = json.loads(out)
+    assert doc["certified"] is True            # the computed path itself is clean
+    assert doc["export"]["verified"] is False
+    assert "verified against the programmed contour: FAILED" in bad_file.read_text()
+    assert code == 1

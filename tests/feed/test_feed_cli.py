@@ -95,13 +95,20 @@ def test_text_output(capsys):
     (["--vmax", "100"], "--vmax"),
     (["--vmax", "1,2,3,4"], "--vmax"),
     (["--amax", "0,100"], "--amax"),
-    (["--amax", "-5,100,1"], "--amax"),
+    (["--amax=-5,100,1"], "--amax: must be a finite number > 0: '-5'"),
+    (["--vmax=0,100,1"], "--vmax: must be a finite number > 0: '0'"),
     (["--vmax", "nan,1"], "--vmax"),
     (["--planner", "fastest"], "--planner"),
     (["--dt", "0"], "--dt"),
     (["--junction-deviation", "-1"], "--junction-deviation"),
     (["--vmax", "100,100", "--amax", "1000,1000"], "axis Z"),     # the pocket plunges in Z
     (["--vmax", "100,100", "--amax", "1000,1000,300"], "same axes"),
+    # limits the planners cannot square without under- or overflow
+    (["--vmax", "1e-300,1,1", "--amax", "1,1,1"], "v for X must be between 1e-06 and 1e+09"),
+    (["--vmax", "1,1,1", "--amax", "1,1e300,1"], "a for Y must be between 1e-06 and 1e+09"),
+    (["--centripetal-acc", "1e-9"], "centripetal_acc must be between"),
+    # the pocket takes 8.77 s: every 1e-8 s is 8.8e8 samples
+    (["--dt", "1e-8"], "use a larger dt"),
 ])
 def test_bad_values_exit_2_with_one_line(capsys, argv, needle):
     code, out, err = run(capsys, "feed", "pocket", *argv)
@@ -109,3 +116,21 @@ def test_bad_values_exit_2_with_one_line(capsys, argv, needle):
     assert out == ""
     assert err.count("\n") == 1 and needle in err
     assert "Traceback" not in err
+
+
+@pytest.mark.parametrize("text, duration", [
+    ("G21 G90 F600\nG4 P1.5\n", 1.5),     # a dwell alone: no motion, 1.5 s
+    ("G21\n", 0.0),                        # nothing at all
+])
+def test_programs_without_motion(capsys, tmp_path, text, duration):
+    prog = tmp_path / "still.nc"
+    prog.write_text(text)
+    for extra in ([], ["--json"]):
+        code, out, err = run(capsys, "feed", str(prog), "--vmax", "1,1", "--amax", "1,1",
+                             "--planner", "all", *extra)
+        assert code == 0, err
+    doc = json.loads(out)
+    for name in ("toppra", "stop", "junction"):
+        r = doc["planners"][name]
+        assert r["duration"] == pytest.approx(duration, abs=1e-12)
+        assert r["max_axis_vel_ratio"] == 0.0 and r["max_axis_acc_ratio"] == 0.0
