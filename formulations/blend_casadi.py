@@ -38,7 +38,9 @@ from formulations.lead_setup import LeadSetup, run_leads
 #: Rounds of "solve, re-classify the clearance cases at the solution".
 MAX_ROUNDS = 4
 
-M_TIME = int(__import__("os").environ.get("MT", 41))
+#: Cuts of ``t`` where the NLP's speed profile lives (TOPP's discrete model).
+M_TIME = 41
+#: Curve samples constrained for clearance (times the setup's refine factor).
 M_CLEAR = 61
 
 

@@ -51,6 +51,12 @@ W_JERK = 1e-5
 REACH = 2.0
 E_MAX = 8
 
+#: The free control points stay within this many ``L0`` (approach distance +
+#: host reach + r) of the approach point ``A``: a blend is a local
+#: replacement of the lead. (With 1000 L0, IPOPT could stop at a "solution"
+#: thousands of mm away on fagor-g136-g139, certified but 30x slower.)
+CONTROL_REACH = 3.0
+
 
 @dataclass
 class LeadSetup:
@@ -141,7 +147,7 @@ class LeadSetup:
 
     def bounds(self):
         """``(lower, upper)`` of ``x``."""
-        big = 1e3 * self.L0
+        big = CONTROL_REACH * self.L0
         m = self.n_free
         lo = np.r_[np.tile(self.A - big, m), 1e-3 * self.L0, -self.L0, self.sigma_lo]
         hi = np.r_[np.tile(self.A + big, m), 2.0 * self.L0, self.L0, self.sigma_hi]

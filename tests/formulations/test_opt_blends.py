@@ -83,3 +83,20 @@ def test_blends_keep_the_contour(runs):
         _, cmp = runs[case]
         for name in OPT:
             assert cmp[name].figures["max_deviation"] == 0.0
+
+
+@pytest.mark.parametrize("name", OPT)
+def test_leads_stay_local_on_the_fagor_episodes(name):
+    # fagor-g136-g139: six activation/cancellation episodes at 60, 120 and 170
+    # degrees. Wherever an optimised lead replaces PMAC's, it is a short local
+    # curve: never longer than 1.5 times the straight distance between its ends
+    # (IPOPT once stopped at a certified "lead" over 2,000 mm long there).
+    import math
+    c = find_case("fagor-g136-g139")
+    prog = ccopt.read_program(c.program)
+    row = compare(prog, [name], radius=c.radius)[name]
+    assert row.status == "ok", row.message
+    curves = [s for s in row.toolpath.segments if isinstance(s.geom, BezierCurve)]
+    assert curves
+    for s in curves:
+        assert s.geom.length <= 1.5 * math.dist(s.start, s.end)
