@@ -273,6 +273,26 @@ def _positive_float(text: str) -> float:
     return x
 
 
+def _nonneg_int(text: str) -> int:
+    try:
+        n = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
+    if n < 0:
+        raise argparse.ArgumentTypeError(f"must be a whole number >= 0: {text!r}")
+    return n
+
+
+def _cosine(text: str) -> float:
+    try:
+        x = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not -1.0 <= x <= 1.0:
+        raise argparse.ArgumentTypeError(f"must be a cosine, between -1 and 1: {text!r}")
+    return x
+
+
 def _planner_names(text: str) -> list[str]:
     names = [n.strip() for n in text.split(",")]
     known = ("toppra", "stop", "junction")
@@ -333,7 +353,8 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
     def program_args(p: argparse.ArgumentParser) -> None:
         p.add_argument("--dialect", choices=["gcode", "pmac"],
                        help="program dialect (default: from the file suffix)")
-        p.add_argument("--tool-table", metavar="FILE",
+        # a Path, so the reader takes it as a file name, never as table text
+        p.add_argument("--tool-table", metavar="FILE", type=Path,
                        help="LinuxCNC tool table for G41/G42 D<tool number>")
         p.add_argument("--json", action="store_true", help="machine-readable output on stdout")
 
@@ -350,9 +371,9 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
                        help="cutter radius in program units, overriding the program")
         p.add_argument("--side", choices=["left", "right"],
                        help="compensation side wherever it is on, overriding the program")
-        p.add_argument("--break-cos", type=float, metavar="C",
+        p.add_argument("--break-cos", type=_cosine, metavar="C",
                        help="PMAC Isx99 outside-corner break (cos of the turn), default 0.9998")
-        p.add_argument("--ccbuf", type=int, metavar="N",
+        p.add_argument("--ccbuf", type=_nonneg_int, metavar="N",
                        help="Turbo PMAC DEFINE CCBUF: non-plane moves looked through at a corner")
 
     p = sub.add_parser("compensate", help="the tool-centre path a controller style makes")

@@ -35,7 +35,7 @@ class RunOptions:
     radius: float | None = None
     side: str | None = None
     dialect: str | None = None
-    tool_table: str | None = None
+    tool_table: str | os.PathLike | None = None
     vmax: tuple[float, ...] | None = None
     amax: tuple[float, ...] | None = None
     compare: bool = True

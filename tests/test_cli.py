@@ -213,3 +213,29 @@ def test_run_rejects_unknown_variants(capsys, tmp_path):
     assert err.startswith("--variants: unknown variant(s) no-such-blend; available: pmac")
     assert len(err.strip().splitlines()) == 1
     assert not (tmp_path / "index.html").exists()
+
+
+@pytest.mark.parametrize("table, fragment", [
+    ("tools.txt", "No such file"),           # a file name that does not exist
+    ("T1 P1 D4", "No such file"),            # table text is not a file name
+    (".", "Is a directory"),
+])
+def test_tool_table_argument_is_a_file(capsys, tmp_path, monkeypatch, table, fragment):
+    monkeypatch.chdir(tmp_path)
+    prog = tmp_path / "tool.nc"
+    prog.write_text("G21 G90 F600\nG41 D1\nG1 X10 Y0\nG1 X10 Y10\nG40\nG1 X20 Y10\n")
+    code, _, err = run_cli(capsys, "compensate", str(prog), "--tool-table", table)
+    assert code == 2 and len(err.strip().splitlines()) == 1
+    assert err.startswith(f"{table}: cannot read tool table") and fragment in err
+
+
+@pytest.mark.parametrize("argv, fragment", [
+    (["--ccbuf=-1"], "--ccbuf: must be a whole number >= 0"),
+    (["--ccbuf", "1.5"], "--ccbuf: not a whole number"),
+    (["--break-cos", "1.5"], "--break-cos: must be a cosine"),
+])
+def test_pmac_options_are_checked(capsys, argv, fragment):
+    with pytest.raises(SystemExit) as exc:          # argparse's own exit
+        main(["compensate", "pocket", *argv])
+    code, err = exc.value.code, capsys.readouterr().err
+    assert code == 2 and fragment in err and len(err.strip().splitlines()) == 1

@@ -59,6 +59,8 @@ class PmacStyle:
     def __init__(self, break_cos: float = PMAC_BREAK_COS, ccbuf: int | None = None):
         if not -1.0 <= break_cos <= 1.0:
             raise ValueError("break_cos must be in [-1, 1]")
+        if ccbuf is not None and not (isinstance(ccbuf, int) and ccbuf >= 0):
+            raise ValueError(f"ccbuf must be a whole number >= 0 or None, got {ccbuf!r}")
         self.break_cos = float(break_cos)
         self.ccbuf = ccbuf
 
@@ -154,7 +156,9 @@ class PmacStyle:
         if cb == LEAD_OUT:
             r_here = a.r
         elif ca == LEAD_IN:
-            r_here = b.r
+            # the lead-in's own radius: a change (e.g. from CCR0) made after
+            # it is introduced over b (decisions.RADIUS_CHANGE_OVER_NEXT_MOVE)
+            r_here = a.r
         elif a.k != b.k:
             r_here = max(a.r, b.r)
         else:
@@ -165,7 +169,7 @@ class PmacStyle:
             return self.lead_out_corner(a, b, a.k, a.r)
         # b is fully compensated
         if ca == LEAD_IN:
-            return self.lead_in_corner(a, b, b.k, b.r)
+            return self.lead_in_corner(a, b, b.k, a.r)
         if a.k != b.k:
             return self.side_change_corner(a, b)
         look_ahead_ok = self.ccbuf is None or gap <= self.ccbuf

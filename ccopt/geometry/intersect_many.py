@@ -22,9 +22,10 @@ def lines_lines(p: np.ndarray, d: np.ndarray, q: np.ndarray, e: np.ndarray, near
     """Line ``p + t*d`` with line ``q + u*e``: ``(x, x, n, delicate)``."""
     den = _cross(d, e)
     delicate = np.abs(den) <= near
+    # parallel pairs (delicate) give inf/nan here; the caller never reads them
     with np.errstate(divide="ignore", invalid="ignore"):
         t = _cross(q - p, e) / den
-    x = p + t[:, None] * d
+        x = p + t[:, None] * d
     n = np.where(delicate, 0, 1)
     return x, x, n, delicate
 
@@ -52,13 +53,14 @@ def circles_circles(c1: np.ndarray, R1: np.ndarray, c2: np.ndarray, R2: np.ndarr
     rsum = R1 + R2
     delicate = (D <= near * np.maximum(R1, R2)) | (np.abs(D - rsum) <= near * rsum) | (
         np.abs(D - np.abs(R1 - R2)) <= near * rsum)
+    # concentric pairs (delicate) give inf/nan here; the caller never reads them
     with np.errstate(divide="ignore", invalid="ignore"):
         u = g / D[:, None]
         a = (D * D + R1 * R1 - R2 * R2) / (2.0 * D)
-    h = np.sqrt(np.maximum((R1 - a) * (R1 + a), 0.0))
-    base = c1 + a[:, None] * u
-    left = np.c_[-u[:, 1], u[:, 0]]
-    x1 = base + h[:, None] * left
-    x2 = base - h[:, None] * left
+        h = np.sqrt(np.maximum((R1 - a) * (R1 + a), 0.0))
+        base = c1 + a[:, None] * u
+        left = np.c_[-u[:, 1], u[:, 0]]
+        x1 = base + h[:, None] * left
+        x2 = base - h[:, None] * left
     n = np.where((D < rsum) & (D > np.abs(R1 - R2)), 2, 0)
     return x1, x2, n, delicate

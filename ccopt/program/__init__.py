@@ -28,7 +28,7 @@ def dialect_of(path: str | os.PathLike) -> str:
     raise ProgramError(
         f"cannot tell the dialect from the suffix {suffix or '(none)'!r}; "
         f"use {sorted(PMAC_SUFFIXES)} for PMAC, {sorted(GCODE_SUFFIXES)} for G-code, "
-        "or pass dialect='gcode'|'pmac'", str(path))
+        "or give the dialect (--dialect gcode|pmac; dialect= in Python)", str(path))
 
 
 def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,

@@ -200,9 +200,9 @@ class Block:
             if self.modal.tool is not None:
                 # G41/G42 D<n> names a tool: its diameter is in a tool table
                 raise CompensationError(
-                    f"cutter compensation is on with tool {self.modal.tool}, whose diameter is "
-                    f"not known: give a LinuxCNC tool table (--tool-table FILE) with tool "
-                    f"{self.modal.tool}, or pass --radius", s.file, s.line, s.col)
+                    f"no cutter radius: compensation is on with tool {self.modal.tool}, whose "
+                    f"diameter is not known: give a LinuxCNC tool table (--tool-table FILE) "
+                    f"with tool {self.modal.tool}, or pass --radius", s.file, s.line, s.col)
             raise CompensationError(
                 "cutter compensation is on but no cutter radius is set: program CCR{r} (PMAC) "
                 "or a tool D word (G-code), or pass --radius", s.file, s.line, s.col)

@@ -418,3 +418,34 @@ def test_radius_zero_runs_on_the_programmed_path(tmp_path):
         L("compensated", (10, -10), (20, -10)),
         L("lead-out", (20, -10), (30, -10)),
     ])
+
+
+def test_radius_change_from_zero_after_the_lead_in(tmp_path):
+    # CCR0 CC1: the lead-in (0,0)->(10,0) runs at r = 0, on the programmed
+    # point. CCR2 before "X20 Y0" is a change 0 -> 2 introduced over that move
+    # (spec rule 4): it starts at r = 0 on P = (10,0) and ends at the r = 2
+    # inside corner with "X20 Y10" (left turn, CC1): y = 2 meets x = 20 - 2.
+    # The outside corner at (20,10) with the lead-out gets the arc of r = 2.
+    f = tmp_path / "from0.pmc"
+    f.write_text("LINEAR ABS F10\nCCR0 CC1\nX10 Y0\nCCR2\nX20 Y0\nX20 Y10\nCC0\nX30 Y10\n")
+    check(compensate(ccopt.read_program(f), "pmac"), [
+        L("lead-in", (0, 0), (10, 0)),
+        L("compensated", (10, 0), (18, 2)),
+        L("compensated", (18, 2), (18, 10)),
+        A("corner", (20, 10), (18, 10), (20, 12), -math.pi / 2),
+        L("lead-out", (20, 12), (30, 10)),
+    ])
+
+
+def test_radius_change_to_zero_after_the_lead_in(tmp_path):
+    # The other way: the lead-in at r = 2 (inside corner with "X20 Y0", which
+    # goes on straight: it ends at P + r*o(t_next) = (10,2)), then CCR0: the
+    # change 2 -> 0 runs over "X20 Y0" to the programmed point (20,0).
+    f = tmp_path / "to0.pmc"
+    f.write_text("LINEAR ABS F10\nCCR2 CC1\nX10 Y0\nCCR0\nX20 Y0\nX20 Y10\nCC0\nX30 Y10\n")
+    check(compensate(ccopt.read_program(f), "pmac"), [
+        L("lead-in", (0, 0), (10, 2)),
+        L("compensated", (10, 2), (20, 0)),
+        L("compensated", (20, 0), (20, 10)),
+        L("lead-out", (20, 10), (30, 10)),
+    ])
