@@ -30,6 +30,23 @@ SPIRAL_RADIUS_LINEAR_IN_ANGLE = True
 SHALLOW_WITHOUT_INTERSECTION = "arc"
 
 
+#: [ccopt decision] In a reversal with an arc (spec rule 3, Turbo p.299) the
+#: "inside intersection" is one *behind* the corner along the incoming
+#: direction, ``(x - P) . t_in < 0``: the tool stops short on the incoming
+#: element and leaves on the outgoing one, which runs back over it. The two
+#: candidates of a line/arc or arc/arc reversal mirror each other across the
+#: normal at ``P``, on which both nominal offset points lie, so
+#: :func:`nearest_root` alone ties and cannot choose.
+REVERSAL_INTERSECTION_BEHIND_CORNER = True
+
+
+def behind_corner(candidates, P, t_in):
+    """The candidates strictly behind the corner ``P`` along ``t_in``
+    (:data:`REVERSAL_INTERSECTION_BEHIND_CORNER`)."""
+    P, t_in = np.asarray(P, float), np.asarray(t_in, float)
+    return [x for x in candidates if float((np.asarray(x, float) - P) @ t_in) < 0.0]
+
+
 def nearest_root(candidates, a_nominal, b_nominal):
     """[spec decision] Of several intersections of two offset elements, take
     the one nearest the nominal offset points.

@@ -81,7 +81,8 @@ class PmacStyle:
             return Joint(A, A)
         if kind is Corner.REVERSAL:
             if not (a.is_line and b.is_line):
-                x = self._intersection(a, b, k, k, r, r, A, B)
+                hits = carrier_intersections(a.carrier(True, k, r), b.carrier(False, k, r))
+                x = decisions.nearest_root(decisions.behind_corner(hits, P, ti), A, B)
                 if x is not None:
                     return Joint(x, x)
             return Joint(A, B, [corner_arc(P, r, ti, tj, k, reversal_sweep(k))])

@@ -1,0 +1,36 @@
+"""``ccopt compare`` with every registered variant (built-ins, the optimised
+leads and the smoother) on the two realistic parts: each is listed, and each
+one that ran has every figure."""
+from __future__ import annotations
+
+import pytest
+
+import ccopt
+from ccopt.cases import find_case
+from ccopt.compare import FIGURES, available, compare
+
+OPTIMISED = ("opt-casadi", "opt-cvxpy", "smooth")
+
+
+@pytest.mark.parametrize("case", ["pocket", "profile"])
+def test_every_variant_listed_with_every_figure(case):
+    c = find_case(case)
+    prog = ccopt.read_program(c.program)
+    cmp = compare(prog, limits=ccopt.AxisLimits(c.vmax, c.amax))
+    doc = cmp.to_json()
+    names = [v["name"] for v in doc["variants"]]
+    assert names == available()
+    assert set(OPTIMISED) <= set(names)
+    for v in doc["variants"]:
+        assert set(FIGURES) <= set(v), v["name"]
+        if v["status"] == "ok":
+            missing = [k for k in FIGURES if v[k] is None]
+            assert not missing, (v["name"], missing)
+        else:
+            # a controller that refuses the program says why (profile: LinuxCNC
+            # and Fagor reject its CIRCLE lead-in and lead-out)
+            assert v["status"] == "refused" and v["message"], v
+    for name in OPTIMISED:
+        row = cmp[name]
+        assert row.status == "ok", (name, row.message)
+        assert row.figures["continuity"] == "G2"
