@@ -33,7 +33,7 @@ from ccopt.compare.blend import (
     BlendProblem, bernstein, derivative_matrix, end_acceleration, jerk_gram,
 )
 from formulations.clearance import CONCAVE, CONVEX, END, LINE, classify
-from formulations.lead_setup import LeadSetup, run_leads
+from formulations.lead_setup import V_MIN_FRACTION, LeadSetup, run_leads
 
 #: Rounds of "solve, re-classify the clearance cases at the solution".
 MAX_ROUNDS = 4
@@ -120,11 +120,15 @@ def lead_model(setup: LeadSetup, classes, m_time: int = M_TIME, m_clear: int = M
                 g.append((px - vx) ** 2 + (py - vy) ** 2 - sc ** 2)
             lbg += [0.0] * len(idx)
             ubg += [ca.inf] * len(idx)
-    # regular curve
-    vmin = 0.02 * setup.L0
+    # regular curve, at the speed cuts and at the (refined) clearance samples
+    vmin = V_MIN_FRACTION * setup.L0
     g.append(sp2[:] - vmin ** 2)
     lbg += [0.0] * m_time
     ubg += [ca.inf] * m_time
+    dc = ca.mtimes(ca.DM(bernstein(tc, n - 1) @ derivative_matrix(n, 1)), P)
+    g.append(dc[:, 0] ** 2 + dc[:, 1] ** 2 - vmin ** 2)
+    lbg += [0.0] * m_clear
+    ubg += [ca.inf] * m_clear
     # axis accelerations q' s'' + q'' s'^2 within the limits, at both ends of every piece
     ax, ay = float(setup.acc[0]), float(setup.acc[1])
     for lo_i, hi_i in ((slice(0, m_time - 1), None), (slice(1, m_time), None)):

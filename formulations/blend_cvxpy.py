@@ -45,7 +45,7 @@ import numpy as np
 
 from ccopt.compare.blend import BlendProblem, bernstein, derivative_matrix
 from formulations.clearance import linear_rows
-from formulations.lead_setup import LeadSetup, run_leads
+from formulations.lead_setup import V_MIN_FRACTION, LeadSetup, run_leads
 
 #: (curvature weight relative to length, curvature cap as a share of the feed) tried.
 CANDIDATES = ((0.03, 0.3), (3.0, 0.6))
@@ -222,7 +222,7 @@ class ConvexLeadModel:
         ub = d1k / np.maximum(np.hypot(d1k[:, 0], d1k[:, 1]), 1e-300)[:, None]
         A = ub[:, 0:1] * (self.D1 @ Jx) + ub[:, 1:2] * (self.D1 @ Jy)
         self.Ar.value = A
-        self.br.value = 0.02 * su.L0 - (np.einsum("ij,ij->i", ub, d1k) - A @ xk)
+        self.br.value = V_MIN_FRACTION * su.L0 - (np.einsum("ij,ij->i", ub, d1k) - A @ xk)
         # normal component of r'' over |r'|^2 is the curvature: cap it where the iterate is
         nb = np.c_[-ub[:, 1], ub[:, 0]]
         D2 = self.D2

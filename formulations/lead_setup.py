@@ -220,6 +220,30 @@ def blend_geometry(setup: LeadSetup, x) -> "BezierCurve":
 # --------------------------------------------------------------------------- the shared driver
 
 
+#: The models keep the curve's speed ``|r'(t)| >= V_MIN_FRACTION * L0`` at their
+#: samples (a regular curve). A solution whose speed falls below half that
+#: between the samples (seen at :data:`REGULARITY_SAMPLES` values of ``t``)
+#: has a near-cusp, a hairpin of micrometre radius: it is not taken (it
+#: passes the clearance checks, but no controller should be sent it, and the
+#: feed grid follows its curvature with hundreds of thousands of points).
+V_MIN_FRACTION = 0.02
+REGULARITY_SAMPLES = 4097
+
+
+def near_cusp(setup: "LeadSetup", geom) -> str | None:
+    """Why ``geom`` is not a regular enough blend, or ``None`` (see :data:`V_MIN_FRACTION`)."""
+    P = np.asarray(geom.control_points, float)
+    n = len(P) - 1
+    t = np.linspace(0.0, 1.0, REGULARITY_SAMPLES)
+    speed = np.hypot(*(bernstein(t, n - 1) @ (n * np.diff(P, axis=0))).T)
+    floor = 0.5 * V_MIN_FRACTION * setup.L0
+    i = int(np.argmin(speed))
+    if speed[i] < floor:
+        return (f"near-cusp: the blend's speed |r'(t)| falls to {speed[i]:.3g} at t = {t[i]:.4f} "
+                f"(below {floor:.3g} between the model's samples)")
+    return None
+
+
 #: Clearance sample multipliers tried in turn when the verifier rejects a blend
 #: (between samples a curve may come closer than at them; denser samples, less).
 ATTEMPTS = (1, 3, 9)
@@ -264,6 +288,10 @@ def run_leads(problem: BlendProblem, solve_lead, name: str) -> "BlendOutcome":
                 break
             except (ValueError, RuntimeError) as exc:
                 last_err = f"{type(exc).__name__}: {exc}"
+                continue
+            cusp = near_cusp(setup, geom)
+            if cusp is not None:
+                last_err = cusp      # denser samples next time (the models scale with refine)
                 continue
             cand = splice(path, ld, [geom], float(x[-1]), style=name)
             mine = [i for i, s in enumerate(cand.segments)
