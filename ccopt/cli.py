@@ -263,34 +263,32 @@ def _axis_values(text: str) -> tuple[float, ...]:
     return tuple(_positive_float(x) for x in parts)
 
 
-def _positive_float(text: str) -> float:
+def _checked(text: str, parse, ok, need: str):
+    """``parse(text)`` if ``ok`` of it holds; else an argparse error saying ``need``."""
     try:
-        x = float(text)
+        x = parse(text)
     except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not (0 < x < float("inf")):
-        raise argparse.ArgumentTypeError(f"must be a finite number > 0: {text!r}")
+        what = "a whole number" if parse is int else "a number"
+        raise argparse.ArgumentTypeError(f"not {what}: {text!r}") from None
+    if not ok(x):
+        raise argparse.ArgumentTypeError(f"must be {need}: {text!r}")
     return x
+
+
+def _positive_float(text: str) -> float:
+    return _checked(text, float, lambda x: 0 < x < math.inf, "a finite number > 0")
+
+
+def _nonneg_float(text: str) -> float:
+    return _checked(text, float, lambda x: 0 <= x < math.inf, "a finite number >= 0")
 
 
 def _nonneg_int(text: str) -> int:
-    try:
-        n = int(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a whole number: {text!r}") from None
-    if n < 0:
-        raise argparse.ArgumentTypeError(f"must be a whole number >= 0: {text!r}")
-    return n
+    return _checked(text, int, lambda n: n >= 0, "a whole number >= 0")
 
 
 def _cosine(text: str) -> float:
-    try:
-        x = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not -1.0 <= x <= 1.0:
-        raise argparse.ArgumentTypeError(f"must be a cosine, between -1 and 1: {text!r}")
-    return x
+    return _checked(text, float, lambda x: -1.0 <= x <= 1.0, "a cosine, between -1 and 1")
 
 
 def _planner_names(text: str) -> list[str]:
@@ -330,16 +328,6 @@ def cmd_verify(args: argparse.Namespace) -> int:
 
 
 Command = Callable[[argparse.Namespace], int]
-
-
-def _nonneg_float(text: str) -> float:
-    try:
-        x = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not (x >= 0 and x < float("inf")):
-        raise argparse.ArgumentTypeError(f"must be a finite number >= 0: {text!r}")
-    return x
 
 
 def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
