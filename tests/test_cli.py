@@ -239,3 +239,55 @@ def test_pmac_options_are_checked(capsys, argv, fragment):
         main(["compensate", "pocket", *argv])
     code, err = exc.value.code, capsys.readouterr().err
     assert code == 2 and fragment in err and len(err.strip().splitlines()) == 1
+
+
+# -- property: mutations of valid programs give exit 0 or one located line -----------
+_POCKET = {".pmc": (CASES / "pocket" / "pocket.pmc").read_text(),
+           ".nc": (CASES / "pocket" / "pocket.nc").read_text()}
+_TOKENS = ["X", "Y", "I", "J", "R", "F", "G2", "G41", "G40", "CC1", "CC0", "CCR", "CIRCLE1",
+           "LINEAR", "[", "]", "(", ")", "#1", "P1=", "/", "0", "-", ".", "1e400", ";", "\n"]
+
+
+@st.composite
+def _mutated(draw):
+    suffix = draw(st.sampled_from(sorted(_POCKET)))
+    text = _POCKET[suffix]
+    for _ in range(draw(st.integers(1, 3))):
+        i = draw(st.integers(0, len(text)))
+        kind = draw(st.sampled_from(["delete", "insert", "replace", "dupline", "dropline"]))
+        if kind == "delete":
+            text = text[:i] + text[draw(st.integers(i, min(len(text), i + 6))):]
+        elif kind == "insert":
+            text = text[:i] + draw(st.sampled_from(_TOKENS)) + text[i:]
+        elif kind == "replace":
+            text = text[:i] + draw(st.sampled_from(_TOKENS)) + text[i + 1:]
+        else:
+            lines = text.split("\n")
+            k = draw(st.integers(0, len(lines) - 1))
+            if kind == "dupline":
+                lines.insert(k, lines[k])
+            else:
+                del lines[k]
+            text = "\n".join(lines)
+    return suffix, text
+
+
+@settings(max_examples=150, deadline=None,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])
+@given(case=_mutated())
+def test_show_on_mutated_programs(tmp_path, capsys, case):
+    suffix, text = case
+    prog = tmp_path / f"mutant{suffix}"
+    prog.write_text(text, encoding="utf-8")
+    code = main(["show", str(prog)])
+    _, err = capsys.readouterr()
+    assert code in (0, 2), err
+    if code == 2:
+        lines = err.strip().splitlines()
+        assert len(lines) == 1, err
+        # file:line[:col]: message, the line within the program
+        head = lines[0][len(str(prog)):]
+        assert lines[0].startswith(str(prog)) and head[0] == ":", err
+        line_no = int(head[1:].split(":")[0])
+        assert 1 <= line_no <= text.count("\n") + 1, err
+        assert "Traceback" not in err and "internal error" not in err

@@ -279,6 +279,13 @@ def test_z_plunges_run_at_the_compensated_corner_point():
     # the dwell happens right after the plunge
     idx = path.dwells[0][0]
     assert path.segments[idx - 1].w1 == pytest.approx(-2)
+    # the outside corner arc: about the programmed corner P = (20,20), radius
+    # r = 2, from P + r*o(t_in) (t_in = +Y: (18,20)) to P + r*o(t_out)
+    # (t_out = +X: (20,22)), turning right with the path: -90 degrees
+    arc = [s for s in segs if s.kind == "arc"][0]
+    assert arc.geom.center == pytest.approx((20.0, 20.0), abs=TOL)
+    assert arc.geom.radius == pytest.approx(2.0, abs=TOL)
+    assert arc.geom.sweep == pytest.approx(-math.pi / 2, abs=TOL)
 
 
 def test_inside_corners_line_arc_arc_line():

@@ -47,7 +47,14 @@ def check_profile(path: ExactPath, prof, dt=1e-3):
     caps = path.feeds[prof.segment[move]]
     assert np.all(prof.sd[:-1][move] <= caps * (1 + FEED_ROUNDING))
     assert np.all(prof.sd[1:][move] <= caps * (1 + FEED_ROUNDING))
-    # speed 0 at every tangent discontinuity and dwell, and at both ends
+    # speed 0 at every tangent discontinuity (found here from the geometry)
+    breaks = tangent_breaks(path.toolpath)
+    assert np.all(prof.speed_at(breaks) == 0.0), (prof.planner, breaks)
+    # (each is one of the planner's own stops)
+    near = np.min(np.abs(breaks[:, None] - np.asarray(path.stop_positions)[None, :]), axis=1,
+                  initial=np.inf)
+    assert np.all(near <= 1e-9), (breaks, path.stop_positions)
+    # ... and dwell, and at both ends
     stops = np.r_[0.0, path.stop_positions, path.length]
     assert np.all(prof.speed_at(stops) == 0.0), prof.planner
     # ... and the profile has a knot there at which it is at rest
@@ -60,6 +67,34 @@ def check_profile(path: ExactPath, prof, dt=1e-3):
         held = (smp.segment < 0)
         assert np.all(smp.feed[held] == 0.0)
     return smp
+
+
+def tangent_breaks(toolpath, angle=1e-6, gap=1e-9) -> np.ndarray:
+    """Arc-length positions (3-D, as the feed path counts them) where two
+    consecutive moving segments of ``toolpath`` do not meet tangentially,
+    from the primitives' own tangents: in-plane ``geom.tangent`` and the
+    out-of-plane slope ``(w1 - w0) / L`` (the third coordinate is linear in
+    the in-plane arc length ``L``)."""
+    out, pos, prev = [], 0.0, None
+    for seg in toolpath.segments:
+        L = seg.geom.length
+        dw = seg.w1 - seg.w0
+        L3 = float(np.hypot(L, dw))
+        if L3 <= gap:
+            continue
+        t0 = np.r_[np.asarray(seg.geom.tangent(0.0)) * L, dw] / L3 if L > 0 else \
+            np.array([0.0, 0.0, np.sign(dw)])
+        t1 = np.r_[np.asarray(seg.geom.tangent(L)) * L, dw] / L3 if L > 0 else t0
+        start = np.r_[seg.start, seg.w0]
+        if prev is not None:
+            end_prev, t_prev = prev
+            jump = float(np.linalg.norm(start - end_prev))
+            turn = float(np.arccos(np.clip(t_prev @ t0, -1.0, 1.0)))
+            if jump > gap or turn > angle:
+                out.append(pos)
+        prev = (np.r_[seg.end, seg.w1], t1)
+        pos += L3
+    return np.asarray(out)
 
 
 def plan_all(path, limits, **kw):
