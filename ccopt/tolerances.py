@@ -60,6 +60,14 @@ SPIRAL_RADIUS_REL_TOL = 1e-9
 #: kink of at most twice it (ccopt.export.arcfit.fit_bezier).
 EXPORT_FIT_ANGLE_TOL = 1e-3
 
+#: Export: where the read-back of a path that verifies comes inside the
+#: clearance (an arc or line fitted to a curve or spiral strays outwards by up
+#: to its bound, where the curve runs at the limit), the curves involved are
+#: fitted again with a tolerance this many times smaller than the offending
+#: piece's bound, at most EXPORT_REFIT_ROUNDS times (ccopt.export.export).
+EXPORT_REFIT_SHRINK = 10.0
+EXPORT_REFIT_ROUNDS = 4
+
 # -- feed planning (ccopt.feed) --------------------------------------------------
 
 #: Tangent turning between two samples of a curved segment for its budget (rad).

@@ -33,6 +33,13 @@ class Role(str, enum.Enum):
     UNCOMPENSATED = "uncompensated"
 
 
+#: ``ToolPath.meta`` key: indices of the segments that are arcs or lines fitted
+#: to a spiral or blend curve (an exported path read back), not segments the
+#: controller itself makes: e.g. a fitted arc with role ``corner`` is a piece
+#: of a blend, not an added corner arc about a programmed corner.
+FITTED_PIECES = "fitted_pieces"
+
+
 def segment_kind(geom: Any) -> str:
     """``"line" | "arc" | "spiral" | "curve"`` for a geometry object."""
     if isinstance(geom, Line):

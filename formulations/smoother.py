@@ -88,7 +88,7 @@ GROW = 1.6
 BISECTIONS = 3
 #: Distance below the clearance the exact acceptance checks forgive (a tenth of
 #: the verifier's tolerance: the verifier judges in the end).
-CHECK_TOL = 1e-7
+CHECK_TOL = 1e-12
 #: Shares of the blend size on the incoming and outgoing side, tried in turn.
 SHARES = ((1.0, 1.0), (1.0, 0.0), (0.0, 1.0))
 #: Dense samples for the exact acceptance checks of one blend.

@@ -26,7 +26,8 @@ from ccopt.export.svg import write_svg
 from ccopt.geometry import Arc, Line
 from ccopt.program import read_text
 from ccopt.program.model import Program
-from ccopt.toolpath import PathSegment, Role, ToolPath, programmed_path
+from ccopt.tolerances import EXPORT_REFIT_ROUNDS, EXPORT_REFIT_SHRINK
+from ccopt.toolpath import FITTED_PIECES, PathSegment, Role, ToolPath, programmed_path
 
 FORMATS = {".nc": "gcode", ".ngc": "gcode", ".gcode": "gcode", ".tap": "gcode",
            ".pmc": "pmac", ".pmac": "pmac", ".svg": "svg", ".json": "json"}
@@ -71,16 +72,18 @@ def readback_path(text: str, dialect: str, original: ToolPath, moves: list, file
     if len(back.segments) != len(moves):
         raise ProgramError(f"read-back has {len(back.segments)} moves, {len(moves)} were written",
                            file)
-    segs = []
-    for seg, (src, _, _) in zip(back.segments, moves):
+    segs, pieces = [], []
+    for m, (seg, (src, _, _)) in enumerate(zip(back.segments, moves)):
         if src < 0:
             segs.append(PathSegment(seg.geom, Role.RAPID, seg.block, seg.w0, seg.w1, None))
         else:
             o = original.segments[src]
             segs.append(PathSegment(seg.geom, o.role, o.block, seg.w0, seg.w1, seg.feed))
+            if not isinstance(o.geom, (Line, Arc)):
+                pieces.append(m)      # an arc or line fitted to a spiral or blend curve
     return ToolPath(tuple(segs), plane=original.plane, style=original.style,
                     radius=original.radius, dwells=back.dwells, units=original.units,
-                    meta={"readback_of": file})
+                    meta={"readback_of": file, FITTED_PIECES: tuple(pieces)})
 
 
 def displacement(meant, got) -> float:
@@ -115,6 +118,24 @@ def roundtrip_error(back: ToolPath, moves: list) -> float:
     return worst
 
 
+def _tighter_fits(cert, moves: list, seg_tol: dict[int, float], tol: float) -> dict[int, float]:
+    """``seg_tol`` with a tighter fit for every source segment one of whose
+    fitted moves (a move with a fit bound) gouges in ``cert``: its bound over
+    :data:`~ccopt.tolerances.EXPORT_REFIT_SHRINK`."""
+    out = dict(seg_tol)
+    for v in cert.violations_of("gouge"):
+        m = v.tool_segment
+        if m is None or not 0 <= m < len(moves):
+            continue
+        src, _, bound = moves[m]
+        if src < 0 or bound <= 0.0:
+            continue              # an exact line or arc: nothing to refit
+        new = min(out.get(src, tol), bound / EXPORT_REFIT_SHRINK)
+        if new < out.get(src, tol):
+            out[src] = new
+    return out
+
+
 def _verify(path: ToolPath, program: Program | None):
     """Certificate of ``path`` against ``program``'s contour, or ``None``."""
     if program is None:
@@ -146,22 +167,42 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
                   f"{path.units}, tool-centre path (no compensation words)"]
         if title:
             header.insert(0, title)
-        if fmt == "gcode":
-            text, moves, _ = write_gcode(path, tol, header)
-        else:
-            text, moves = write_pmac(path, header, tol=tol)
+
+        def write(hdr, seg_tol):
+            if fmt == "gcode":
+                return write_gcode(path, tol, hdr, seg_tol=seg_tol)[:2]
+            return write_pmac(path, hdr, tol=tol, seg_tol=seg_tol)
+
+        # the computed path's own verdict: a fit is tightened only where the
+        # read-back fails and the path itself does not
+        computed = _verify(path, program)
+        seg_tol: dict[int, float] = {}
+        for _ in range(EXPORT_REFIT_ROUNDS + 1):
+            text, moves = write(header, seg_tol)
+            back = readback_path(text, fmt, path, moves, str(out))
+            res.roundtrip_error = roundtrip_error(back, moves)
+            if res.roundtrip_error > tol:
+                raise ProgramError(f"read-back deviates {res.roundtrip_error:.3g} from the "
+                                   f"computed path, more than the tolerance {tol:g}; nothing "
+                                   f"written", str(out))
+            cert = _verify(back, program)
+            if cert is None or cert.ok or not computed.ok:
+                break
+            tighter = _tighter_fits(cert, moves, seg_tol, tol)
+            if tighter == seg_tol:
+                break
+            seg_tol = tighter
         fitted = [bound for src, geom, bound in moves
                   if src >= 0 and type(geom) is not type(path.segments[src].geom)]
         res.fit_error = max(fitted, default=0.0)
         res.fitted_moves = len(fitted)
-        back = readback_path(text, fmt, path, moves, str(out))
-        res.roundtrip_error = roundtrip_error(back, moves)
-        if res.roundtrip_error > tol:
-            raise ProgramError(f"read-back deviates {res.roundtrip_error:.3g} from the computed "
-                               f"path, more than the tolerance {tol:g}; nothing written", str(out))
-        cert = _verify(back, program)
         fit = (f"spirals and blend curves as {res.fitted_moves} arcs/lines certified within "
                f"{res.fit_error:.3g}" if res.fitted_moves else "no spirals or blend curves to fit")
+        if seg_tol:
+            fit += (f"; fitted within {min(seg_tol.values()):.3g} on {len(seg_tol)} segment(s) "
+                    f"running at the clearance limit")
+            res.notes.append(f"fit tightened on segments {sorted(seg_tol)}: the read-back at "
+                             f"the default fit came inside the clearance")
         verdict = [f"read back with ccopt: within {res.roundtrip_error:.3g} {path.units} of the "
                    f"computed path (tolerance {tol:g}; {fit})"]
         if cert is not None:
@@ -172,9 +213,7 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
                            f"{cert.min_clearance:.6g} for radius {path.radius:g}")
         else:
             verdict.append("not verified: no programmed contour given")
-        full_header = header + verdict
-        text = (write_gcode(path, tol, full_header)[0] if fmt == "gcode"
-                else write_pmac(path, full_header, tol=tol)[0])
+        text = write(header + verdict, seg_tol)[0]
         write_text_atomic(out, text)
     elif fmt == "svg":
         contour = programmed_path(program) if program is not None else None

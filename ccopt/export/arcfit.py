@@ -231,19 +231,51 @@ def _line_piece(Q: np.ndarray, D1: np.ndarray, D2: np.ndarray):
     return Line(tuple(Q[0]), tuple(Q[-1])), min(hull, bend), ang
 
 
-def _arc_piece(Q: np.ndarray, D1: np.ndarray, D2: np.ndarray, kappa: float):
-    """``(Arc, bound, angle)`` through the start, middle and end of the piece
-    ``Q``, or ``None`` when the checks of the module docstring fail."""
-    n = len(Q) - 1
-    pm = _sample_basis(n)[BEZIER_SAMPLES // 2] @ Q
-    circ = circle_through(tuple(Q[0]), tuple(pm), tuple(Q[-1]))
-    if circ is None or not math.isfinite(kappa):
+def _tangent_circle(Q: np.ndarray, D1: np.ndarray, at_start: bool):
+    """``(centre, R, ccw)`` of the circle through both ends of the piece ``Q``
+    tangent to it at its start (``at_start``) or its end, or ``None`` when
+    the chord is too nearly along that tangent."""
+    A, B = (Q[0], Q[-1]) if at_start else (Q[-1], Q[0])
+    T = D1[0] if at_start else -D1[-1]          # pointing into the piece
+    T = T / math.hypot(T[0], T[1])
+    d = B - A
+    nrm = np.array([-T[1], T[0]])
+    side = float(d @ nrm)
+    dd = float(d @ d)
+    if abs(side) <= 1e-12 * math.sqrt(dd):
         return None
-    c, R = circ
-    c = np.asarray(c)
-    # Orientation of start, middle, end: the way the arc turns.
-    e1, e2 = pm - Q[0], Q[-1] - Q[0]
-    ccw = e1[0] * e2[1] - e1[1] * e2[0] > 0.0
+    rho = dd / (2.0 * side)                      # signed: > 0 centre to the left of T
+    c = A + rho * nrm
+    # seen from the piece's start, the circle turns left when its centre is on
+    # the left of the forward tangent (at the end, T points backwards)
+    ccw = (rho > 0.0) == at_start
+    return c, abs(rho), ccw
+
+
+def _arc_piece(Q: np.ndarray, D1: np.ndarray, D2: np.ndarray, kappa: float,
+               tangent_at: str | None = None):
+    """``(Arc, bound, angle)`` for the piece ``Q``, or ``None`` when the
+    checks of the module docstring fail: through its start, middle and end,
+    or (``tangent_at`` ``"start"``/``"end"``) through both ends and tangent
+    to the piece at that end, where the curve meets the next segment."""
+    n = len(Q) - 1
+    if not math.isfinite(kappa):
+        return None
+    pm = _sample_basis(n)[BEZIER_SAMPLES // 2] @ Q
+    if tangent_at is None:
+        circ = circle_through(tuple(Q[0]), tuple(pm), tuple(Q[-1]))
+        if circ is None:
+            return None
+        c, R = circ
+        c = np.asarray(c)
+        # Orientation of start, middle, end: the way the arc turns.
+        e1, e2 = pm - Q[0], Q[-1] - Q[0]
+        ccw = e1[0] * e2[1] - e1[1] * e2[0] > 0.0
+    else:
+        circ = _tangent_circle(Q, D1, tangent_at == "start")
+        if circ is None:
+            return None
+        c, R, ccw = circ
     sg = 1.0 if ccw else -1.0
     turn = cross_bernstein(D1, D2) * sg
     if turn.min() < -_SIGN_SLACK * max(float(np.abs(turn).max()), 1e-300):
@@ -272,20 +304,23 @@ def _arc_piece(Q: np.ndarray, D1: np.ndarray, D2: np.ndarray, kappa: float):
     return arc, bound, ang
 
 
-def _fit_bezier_piece(Q: np.ndarray, tol: float, angle_tol: float):
+def _fit_bezier_piece(Q: np.ndarray, tol: float, angle_tol: float,
+                      tangent_at: str | None = None):
     """``(geom, bound, angle, kappa_bound)`` for the piece ``Q``, or ``None``.
 
     The chord when the piece is nearly straight (chord within ``tol``,
     tangent within ``angle_tol``), else the arc through start, middle and end
-    when that is within ``tol`` and ``angle_tol`` (checks and bounds: module
-    docstring).
+    (or tangent at ``tangent_at``, see :func:`_arc_piece`) when that is within
+    ``tol`` and ``angle_tol`` (checks and bounds: module docstring).
     """
     D1, D2 = hodographs(Q)
     line = _line_piece(Q, D1, D2)
     if line is not None and line[1] <= tol and line[2] <= angle_tol:
         return line[0], line[1], line[2], 0.0
+    if tangent_at == "both":
+        return None                      # no one arc is tangent at both ends: halve
     kappa = curvature_bound(Q)
-    arc = _arc_piece(Q, D1, D2, kappa)
+    arc = _arc_piece(Q, D1, D2, kappa, tangent_at)
     if arc is not None and arc[1] <= tol and arc[2] <= angle_tol:
         return arc[0], arc[1], arc[2], kappa
     return None
@@ -317,7 +352,15 @@ def fit_bezier(curve: BezierCurve, tol: float, angle_tol: float = EXPORT_FIT_ANG
     stack = spans[::-1]
     while stack:
         t0, t1, Q = stack.pop()
-        fit = _fit_bezier_piece(Q, tol, angle_tol)
+        # The pieces at the curve's two ends, where it joins its neighbours,
+        # get arcs tangent to it there: the exported path turns onto the next
+        # segment without a kink, and where a blend meets its segment at the
+        # clearance limit (a G2 join, curving away from the part), the arc
+        # curves away too instead of crossing the limit by the fit error.
+        # A piece holding both ends is a line or is halved.
+        ends = (t0 == 0.0, t1 == 1.0)
+        fit = _fit_bezier_piece(Q, tol, angle_tol, {(True, True): "both", (True, False): "start",
+                                                    (False, True): "end"}.get(ends))
         if fit is not None:
             out.append(FittedPiece(fit[0], fit[1], t0, t1, fit[2], fit[3]))
             continue

@@ -90,7 +90,8 @@ def bezier_pieces(g: BezierCurve, w0: float, w1: float, tol: float):
     return out
 
 
-def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, digits: int = 6):
+def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, digits: int = 6,
+                seg_tol: dict[int, float] | None = None):
     """G-code text of ``path``.
 
     Returns ``(text, moves, max_fit_error)``: ``moves[m] = (source, geometry,
@@ -99,9 +100,11 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
     before rounding, and the certified deviation of that geometry from the
     segment (0 for lines and arcs, the fit bound for arcs replacing a spiral
     and for lines and arcs replacing a Bezier curve); ``max_fit_error`` is the
-    largest such bound.
+    largest such bound. ``seg_tol`` gives some segments (by index) a tighter
+    fit tolerance than ``tol``.
     """
     wr = _Writer(path, digits)
+    seg_tol = seg_tol or {}
     out = ["%"]
     for h in header or []:
         out.append(f"({h.replace('(', '[').replace(')', ']')})")
@@ -123,7 +126,7 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
         elif isinstance(g, Arc):
             wr.arc(idx, g, seg.w0, seg.w1, seg.feed)
         elif isinstance(g, Spiral):
-            pieces = fit_arcs(g, fit_tolerance(tol, digits))
+            pieces = fit_arcs(g, fit_tolerance(seg_tol.get(idx, tol), digits))
             total = g.length
             s_acc = 0.0
             for piece in pieces:
@@ -132,7 +135,8 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
                 wr.arc(idx, piece.arc, seg.w0, w, seg.feed, piece.bound)
                 max_err = max(max_err, piece.bound)
         elif isinstance(g, BezierCurve):
-            for piece, w in bezier_pieces(g, seg.w0, seg.w1, fit_tolerance(tol, digits)):
+            for piece, w in bezier_pieces(g, seg.w0, seg.w1,
+                                          fit_tolerance(seg_tol.get(idx, tol), digits)):
                 if isinstance(piece.geom, Line):
                     wr.line(idx, piece.geom, w, seg.feed, piece.bound)
                 else:

@@ -33,15 +33,18 @@ def _pieces(g):
 
 
 def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
-               program_number: int = 1, tol: float | None = None):
+               program_number: int = 1, tol: float | None = None,
+               seg_tol: dict[int, float] | None = None):
     """PMAC text of ``path``; returns ``(text, moves)`` as :func:`write_gcode`.
 
     Spirals are native, so their bound is 0; Bezier curves become arcs and
     lines within ``tol`` (program units; default :data:`DEFAULT_TOL` for the
-    path's units), each move with its certified bound.
+    path's units), each move with its certified bound; ``seg_tol`` gives some
+    segments (by index) a tighter tolerance.
     """
     if tol is None:
         tol = DEFAULT_TOL[path.units]
+    seg_tol = seg_tol or {}
     iu, iv, iw = PLANE_AXES[path.plane]
     U, V, W = AXES[iu], AXES[iv], AXES[iw]
     CI, CJ = CENTRE[iu], CENTRE[iv]
@@ -94,7 +97,8 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
                 circle(idx, piece, seg.w0 + (seg.w1 - seg.w0) * min(s_acc / total, 1.0),
                        seg.feed)
         elif isinstance(g, BezierCurve):
-            for fp, w in bezier_pieces(g, seg.w0, seg.w1, fit_tolerance(tol, digits)):
+            for fp, w in bezier_pieces(g, seg.w0, seg.w1,
+                                       fit_tolerance(seg_tol.get(idx, tol), digits)):
                 if isinstance(fp.geom, Line):
                     emit(idx, "RAPID" if seg.feed is None else "LINEAR", coords(fp.geom.end, w),
                          seg.feed, fp.geom, fp.bound)

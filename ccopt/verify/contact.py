@@ -39,7 +39,7 @@ from ccopt.geometry import Arc, distance
 from ccopt.geometry.angles import angle_in_sweep
 from ccopt.program.model import PLANE_AXES
 from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
-from ccopt.toolpath import Role
+from ccopt.toolpath import FITTED_PIECES, Role
 from ccopt.verify import certified
 from ccopt.verify.certificate import CERTIFIED, EXACT, Check, Violation
 from ccopt.verify.clearance import clip_pieces, end_regions
@@ -119,8 +119,11 @@ def contact_pairs(toolpath, contour: Contour, lengths: np.ndarray, table):
     ej = table.element[si]
     cand = np.flatnonzero(table.is_role(Role.CORNER) & (table.r > 0.0))
     segs = toolpath.segments
+    # arcs fitted to a blend curve are pieces of the blend, not corner arcs
+    # (decisions.CORNER_ARCS_ARE_THE_CONTROLLERS)
+    fitted = set(toolpath.meta.get(FITTED_PIECES, ()))
     ci = np.asarray([i for i in cand if segs[i].block is not None
-                     and isinstance(segs[i].geom, Arc)], np.intp)
+                     and isinstance(segs[i].geom, Arc) and int(i) not in fitted], np.intp)
     corner_p, q_in, q_out = corner_points(toolpath, contour, table, ci)
     return si, ej, ci, corner_p, table.r[ci], q_in, q_out
 

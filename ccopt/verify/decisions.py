@@ -90,3 +90,11 @@ RADIUS_FROM_TOOLPATH_WHEN_UNIFORM = True
 #: does the carrier decide (see :func:`ccopt.verify.contact.corner_points`).
 #: A corner contact violation is reported at the move ending at ``P``.
 CORNER_POINT_BETWEEN_ITS_MOVES = True
+
+#: [ccopt decision] Only the corner arcs a controller adds (about the
+#: programmed corner, radius r) are held to the corner contact rule. The arcs
+#: and lines an export fits to a blend curve or a spiral (listed in the read-back
+#: path's ``meta["fitted_pieces"]``, :data:`ccopt.toolpath.FITTED_PIECES`) keep
+#: the role of the curve they replace; a blend that cuts a corner is checked
+#: for gouge and continuity like the curve itself, not for touching the corner.
+CORNER_ARCS_ARE_THE_CONTROLLERS = True
