@@ -78,7 +78,7 @@ def run_one(label: str, program_file: Path, case: Case | None, out: Path | None,
         from ccopt.feed import ExactPath, plan_feed
         exact = ExactPath(path)
         profiles = {p: plan_feed(exact, limits, planner=p) for p in PLANNERS}
-        row["feed"] = {p: prof.summary(1e-3) for p, prof in profiles.items()}
+        row["feed"] = {p: prof.summary(prof.affordable_dt(1e-3)) for p, prof in profiles.items()}
         row["duration"] = profiles["toppra"].duration
         from ccopt.verify import verify
         cert = verify(path, prog, profile=profiles["toppra"])
@@ -94,7 +94,8 @@ def run_one(label: str, program_file: Path, case: Case | None, out: Path | None,
                 files[suffix[1:]] = Path(res.file).name
             export(path, f"{stem}.svg", program=prog, title=label)
             files["svg"] = f"{label}.svg"
-            profiles["toppra"].to_csv(f"{stem}.feed.csv")
+            best = profiles["toppra"]
+            best.to_csv(f"{stem}.feed.csv", best.affordable_dt(1e-3))
             files["feed csv"] = f"{label}.feed.csv"
             write_text_atomic(f"{stem}.certificate.json", json.dumps(row["certificate"]) + "\n")
             files["certificate"] = f"{label}.certificate.json"

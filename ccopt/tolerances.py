@@ -67,6 +67,9 @@ EXPORT_FIT_ANGLE_TOL = 1e-3
 #: piece's bound, at most EXPORT_REFIT_ROUNDS times (ccopt.export.export).
 EXPORT_REFIT_SHRINK = 10.0
 EXPORT_REFIT_ROUNDS = 4
+#: ... and never below this (program units): the writers' 6 decimals round
+#: every number by up to 5e-7, which no tighter fit can beat.
+EXPORT_REFIT_MIN_TOL = 1e-7
 
 # -- feed planning (ccopt.feed) --------------------------------------------------
 

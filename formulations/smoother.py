@@ -86,8 +86,9 @@ SHRINK = 0.5
 GROWS = 3
 GROW = 1.6
 BISECTIONS = 3
-#: Distance below the clearance the exact acceptance checks forgive (a tenth of
-#: the verifier's tolerance: the verifier judges in the end).
+#: Distance below the clearance the exact acceptance checks forgive: rounding
+#: only (program units). A blend accepted inside the clearance would use up
+#: the verifier's tolerance and leave nothing for its export's arc fit.
 CHECK_TOL = 1e-12
 #: Shares of the blend size on the incoming and outgoing side, tried in turn.
 SHARES = ((1.0, 1.0), (1.0, 0.0), (0.0, 1.0))

@@ -96,7 +96,7 @@ def _duration(path: ToolPath, limits: AxisLimits | None):
         prof = plan_feed(path, limits)
     except CcoptError as exc:
         return None, None, f"feed: {exc}"
-    ratio = float(prof.sample(2e-4).axis_acceleration_ratio.max(initial=0.0))
+    ratio = float(prof.sample(prof.affordable_dt(2e-4)).axis_acceleration_ratio.max(initial=0.0))
     return prof.duration, ratio, None
 
 

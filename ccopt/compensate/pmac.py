@@ -13,6 +13,7 @@ Move classes (by the side in force before and for the move):
 """
 from __future__ import annotations
 
+import numbers
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -59,10 +60,10 @@ class PmacStyle:
     def __init__(self, break_cos: float = PMAC_BREAK_COS, ccbuf: int | None = None):
         if not -1.0 <= break_cos <= 1.0:
             raise ValueError("break_cos must be in [-1, 1]")
-        if ccbuf is not None and not (isinstance(ccbuf, int) and ccbuf >= 0):
+        if ccbuf is not None and not (isinstance(ccbuf, numbers.Integral) and ccbuf >= 0):
             raise ValueError(f"ccbuf must be a whole number >= 0 or None, got {ccbuf!r}")
         self.break_cos = float(break_cos)
-        self.ccbuf = ccbuf
+        self.ccbuf = None if ccbuf is None else int(ccbuf)
 
     # -- joints ------------------------------------------------------------------
     def full_corner(self, a: Element, b: Element, k: int, r: float, look_ahead_ok: bool) -> Joint:

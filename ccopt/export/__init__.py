@@ -26,7 +26,7 @@ from ccopt.export.svg import write_svg
 from ccopt.geometry import Arc, Line
 from ccopt.program import read_text
 from ccopt.program.model import Program
-from ccopt.tolerances import EXPORT_REFIT_ROUNDS, EXPORT_REFIT_SHRINK
+from ccopt.tolerances import EXPORT_REFIT_MIN_TOL, EXPORT_REFIT_ROUNDS, EXPORT_REFIT_SHRINK
 from ccopt.toolpath import FITTED_PIECES, PathSegment, Role, ToolPath, programmed_path
 
 FORMATS = {".nc": "gcode", ".ngc": "gcode", ".gcode": "gcode", ".tap": "gcode",
@@ -121,7 +121,9 @@ def roundtrip_error(back: ToolPath, moves: list) -> float:
 def _tighter_fits(cert, moves: list, seg_tol: dict[int, float], tol: float) -> dict[int, float]:
     """``seg_tol`` with a tighter fit for every source segment one of whose
     fitted moves (a move with a fit bound) gouges in ``cert``: its bound over
-    :data:`~ccopt.tolerances.EXPORT_REFIT_SHRINK`."""
+    :data:`~ccopt.tolerances.EXPORT_REFIT_SHRINK`, never below
+    :data:`~ccopt.tolerances.EXPORT_REFIT_MIN_TOL` (the written numbers'
+    rounding, which no fit can beat)."""
     out = dict(seg_tol)
     for v in cert.violations_of("gouge"):
         m = v.tool_segment
@@ -130,8 +132,9 @@ def _tighter_fits(cert, moves: list, seg_tol: dict[int, float], tol: float) -> d
         src, _, bound = moves[m]
         if src < 0 or bound <= 0.0:
             continue              # an exact line or arc: nothing to refit
-        new = min(out.get(src, tol), bound / EXPORT_REFIT_SHRINK)
-        if new < out.get(src, tol):
+        now = out.get(src, tol)
+        new = max(min(now, bound / EXPORT_REFIT_SHRINK), EXPORT_REFIT_MIN_TOL)
+        if new < now:
             out[src] = new
     return out
 
@@ -173,25 +176,33 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
                 return write_gcode(path, tol, hdr, seg_tol=seg_tol)[:2]
             return write_pmac(path, hdr, tol=tol, seg_tol=seg_tol)
 
-        # the computed path's own verdict: a fit is tightened only where the
-        # read-back fails and the path itself does not
-        computed = _verify(path, program)
-        seg_tol: dict[int, float] = {}
-        for _ in range(EXPORT_REFIT_ROUNDS + 1):
+        def attempt(seg_tol):
+            """Write, read back, verify: ``(moves, round-trip error, certificate)``."""
             text, moves = write(header, seg_tol)
             back = readback_path(text, fmt, path, moves, str(out))
-            res.roundtrip_error = roundtrip_error(back, moves)
-            if res.roundtrip_error > tol:
-                raise ProgramError(f"read-back deviates {res.roundtrip_error:.3g} from the "
-                                   f"computed path, more than the tolerance {tol:g}; nothing "
-                                   f"written", str(out))
-            cert = _verify(back, program)
-            if cert is None or cert.ok or not computed.ok:
-                break
-            tighter = _tighter_fits(cert, moves, seg_tol, tol)
-            if tighter == seg_tol:
-                break
-            seg_tol = tighter
+            return moves, roundtrip_error(back, moves), _verify(back, program)
+
+        seg_tol: dict[int, float] = {}
+        moves, res.roundtrip_error, cert = attempt(seg_tol)
+        if res.roundtrip_error > tol:
+            raise ProgramError(f"read-back deviates {res.roundtrip_error:.3g} from the "
+                               f"computed path, more than the tolerance {tol:g}; nothing "
+                               f"written", str(out))
+        # A fit is tightened only where the read-back fails and the computed
+        # path itself does not; every round that is kept was read back and
+        # verified, and the file is written from the last one.
+        if cert is not None and not cert.ok and _verify(path, program).ok:
+            for _ in range(EXPORT_REFIT_ROUNDS):
+                tighter = _tighter_fits(cert, moves, seg_tol, tol)
+                if tighter == seg_tol:
+                    break
+                try:
+                    moves_t, rt_t, cert_t = attempt(tighter)
+                except ValueError:      # the tighter fit needs too many pieces
+                    break
+                seg_tol, moves, res.roundtrip_error, cert = tighter, moves_t, rt_t, cert_t
+                if cert.ok:
+                    break
         fitted = [bound for src, geom, bound in moves
                   if src >= 0 and type(geom) is not type(path.segments[src].geom)]
         res.fit_error = max(fitted, default=0.0)

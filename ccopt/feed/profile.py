@@ -236,6 +236,12 @@ class FeedProfile:
         v = np.where(s <= s0[i], v0[i], v)
         return np.where(s >= s1[i], v1[i], v)
 
+    def affordable_dt(self, dt: float) -> float:
+        """``dt``, or the smallest step that keeps :meth:`sample` within
+        :data:`MAX_FEED_SAMPLES` on this profile (for callers that sample for
+        a figure, not because a user asked for that step)."""
+        return max(dt, self.duration / (MAX_FEED_SAMPLES - 2))
+
     def sample(self, dt: float = 1e-3) -> FeedSamples:
         """Samples every ``dt`` seconds from 0, plus the final instant.
 

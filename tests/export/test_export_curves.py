@@ -356,3 +356,59 @@ def test_smoothed_pocket_exports_and_verifies(smoothed_pocket, suffix, tmp_path)
         if isinstance(s.geom, BezierCurve):
             pts = bezier_points(np.asarray(s.geom.control_points), np.linspace(0.0, 1.0, 2001))
             assert distance_to_moves(pts, moves).max() <= res.roundtrip_error + 1e-12
+
+
+def test_refit_rounds_are_each_verified_and_bounded(smoothed_pocket, tmp_path, monkeypatch):
+    # A verifier that always finds the read-back gouging at its first fitted
+    # move (and the computed path clean): the export refits that curve at
+    # most EXPORT_REFIT_ROUNDS times, each tighter by EXPORT_REFIT_SHRINK and
+    # never below EXPORT_REFIT_MIN_TOL, writes the last round it verified, and
+    # says FAILED. Every write is followed by its own read-back check.
+    import ccopt.export as ex
+    from ccopt.tolerances import EXPORT_REFIT_MIN_TOL, EXPORT_REFIT_ROUNDS
+
+    prog, path = smoothed_pocket
+    calls = []
+
+    class Gouge:
+        def __init__(self, m):
+            self.tool_segment = m
+
+    class Cert:
+        def __init__(self, ok, moves):
+            self.ok, self.min_clearance = ok, 2.9
+            self.moves = moves
+
+        def violations_of(self, kind):
+            first = next(i for i, (src, _, b) in enumerate(self.moves) if src >= 0 and b > 0)
+            return [Gouge(first)] if kind == "gouge" else []
+
+        def to_json(self):
+            return {"ok": self.ok}
+
+    real_readback = ex.readback_path
+
+    def readback(text, fmt, original, moves, file):
+        calls.append(("read", moves))
+        return real_readback(text, fmt, original, moves, file)
+
+    def fake_verify(p, program):
+        if p is path:                           # the computed path: clean
+            return Cert(True, [])
+        return Cert(False, calls[-1][1])        # the read-back just made
+
+    monkeypatch.setattr(ex, "readback_path", readback)
+    monkeypatch.setattr(ex, "_verify", fake_verify)
+    out = tmp_path / "refit.nc"
+    res = ex.export(path, out, program=prog)
+    assert res.verified is False
+    assert 2 <= len(calls) <= EXPORT_REFIT_ROUNDS + 1
+    text = out.read_text()
+    assert "verified against the programmed contour: FAILED" in text
+    # the file holds the moves of the last verified round (same count)
+    assert res.fitted_moves == sum(1 for src, g, b in calls[-1][1]
+                                   if src >= 0 and type(g) is not type(path.segments[src].geom))
+    # ... and says how tight its fit went, never below the floor
+    line = next(n for n in text.splitlines() if "running at the clearance limit" in n)
+    tightest = float(line.split("fitted within ")[1].split(" ")[0])
+    assert EXPORT_REFIT_MIN_TOL <= tightest < 1e-3
