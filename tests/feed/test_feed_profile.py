@@ -230,3 +230,24 @@ def test_plan_feed_arguments():
     # an ExactPath can be shared between planners
     path = ExactPath(tp)
     assert plan_feed(path, lim).path is path
+
+
+def test_a_long_program_is_sampled_within_the_cap(monkeypatch):
+    # 1 m at a programmed 1 mm/s: T = L/v + v/a = 1000 s (+1e-3). With the cap
+    # lowered to 1e5 samples (the real one, 2e7, is the same code at 3 GB), 1 kHz
+    # is 1e6 samples, past it: asking for that is a located error;
+    # affordable_dt gives the smallest step within the cap.
+    import ccopt.feed.profile as profile
+    cap = 100_000
+    monkeypatch.setattr(profile, "MAX_FEED_SAMPLES", cap)
+    tp = ToolPath((seg(Line((0, 0), (1000, 0)), feed=1.0, line=3),))
+    prof = plan_feed(tp, AxisLimits((100.0, 100.0), (1000.0, 1000.0)))
+    assert 1000 + 1e-3 <= prof.duration <= (1000 + 1e-3) * (1 + 1e-3)
+    with pytest.raises(FeedError, match="use a larger dt"):
+        prof.sample(1e-3)
+    dt = prof.affordable_dt(1e-3)
+    assert dt == pytest.approx(prof.duration / (cap - 2), rel=1e-12)
+    assert prof.affordable_dt(1.0) == 1.0                 # a coarse step is kept
+    smp = prof.sample(dt)
+    assert len(smp) <= cap
+    assert smp.feed.max() <= 1.0 * (1 + 1e-9)
