@@ -29,6 +29,24 @@ def _figure(width=7.0, height=5.0):
     return plt, fig, ax
 
 
+def _plan_figure(xmin, xmax, ymin, ymax, extra_width=0.0):
+    """A figure shaped like the plan view it shows (equal axes): 7 inches wide
+    (plus ``extra_width``, e.g. for a colour bar), as tall as the extent's
+    aspect asks, between 2.4 and 6 inches, so a long narrow part is not a
+    thin strip in a square of white."""
+    w, h = max(xmax - xmin, 1e-9), max(ymax - ymin, 1e-9)
+    return _figure(7.0 + extra_width, float(np.clip(7.0 * h / w + 0.8, 2.4, 6.0)))
+
+
+def _extent(paths) -> tuple[float, float, float, float]:
+    boxes = [seg.geom.bbox() for p in paths if p is not None for seg in p.segments
+             if seg.length > 0]
+    if not boxes:
+        return 0.0, 1.0, 0.0, 1.0
+    b = np.asarray(boxes, float)
+    return float(b[:, 0].min()), float(b[:, 2].max()), float(b[:, 1].min()), float(b[:, 3].max())
+
+
 def _png(plt, fig) -> bytes:
     buf = io.BytesIO()
     fig.savefig(buf, format="png", bbox_inches="tight")
@@ -50,7 +68,8 @@ def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
               violations: list | None = None, title: str = "") -> bytes:
     """Programmed contour (black), tool-centre path by role, tool circles
     along it, violations marked with red crosses at their witness points."""
-    plt, fig, ax = _figure()
+    x0, x1, y0, y1 = _extent([path, contour])
+    plt, fig, ax = _plan_figure(x0, x1, y0 - radius, y1 + radius)
     step = _step(path)
     if contour is not None:
         for seg in contour.segments:
@@ -90,16 +109,19 @@ def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
 def feed_plot(profile, title: str = "") -> bytes:
     """Tool path coloured by the planned tangential speed."""
     from matplotlib.collections import LineCollection
-    plt, fig, ax = _figure()
     samples = profile.sample(max(profile.duration / 4000, 1e-4)) if profile.duration > 0 else None
     if samples is not None and len(samples) > 1:
         xy = samples.position[:, :2]
+        plt, fig, ax = _plan_figure(xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(),
+                                    xy[:, 1].max(), extra_width=1.2)
         segs = np.stack([xy[:-1], xy[1:]], axis=1)
         lc = LineCollection(segs, array=samples.feed[:-1], cmap="viridis", lw=2.0)
         ax.add_collection(lc)
         fig.colorbar(lc, ax=ax, label="feed (units/s)")
         ax.set_xlim(xy[:, 0].min() - 1, xy[:, 0].max() + 1)
         ax.set_ylim(xy[:, 1].min() - 1, xy[:, 1].max() + 1)
+    else:
+        plt, fig, ax = _figure()
     ax.set_aspect("equal")
     ax.set_title(title)
     ax.grid(alpha=0.3)
