@@ -253,7 +253,7 @@ class FeedProfile:
         if T / dt >= MAX_FEED_SAMPLES:
             raise FeedError(f"sampling {T:.6g} s every {dt:g} s takes {T / dt:.3g} samples, more "
                             f"than {MAX_FEED_SAMPLES:g}: use a larger dt (at least "
-                            f"{T / (MAX_FEED_SAMPLES - 1):.3g} s)", self.path.source_file)
+                            f"{self.affordable_dt(dt):.3g} s)", self.path.source_file)
         n = int(np.floor(T / dt + 1e-9)) + 1
         times = np.arange(n) * dt
         if times[-1] < T:
