@@ -17,7 +17,8 @@ certified ``kappa_max`` (:func:`ccopt.geometry.curve.curvature_bound`) and
 more checks, all on control points, so the bound covers the whole piece and
 not only its samples:
 
-* the curve is cut at its inflections first, so every piece turns one way,
+* the curve is cut at its inflections first (not at the rounding lobes of a
+  G2 end onto a line, :func:`turning_cuts`), so every piece turns one way,
   and an arc is taken only if it turns that way too;
 * the arc's centre ``c`` sees the piece turn monotonically: every Bernstein
   coefficient of ``(p(t) - c) x p'(t)`` has the arc's sign, so each point of
@@ -326,6 +327,48 @@ def _fit_bezier_piece(Q: np.ndarray, tol: float, angle_tol: float,
     return None
 
 
+def _restricted(coeffs: np.ndarray, t0: float, t1: float) -> np.ndarray:
+    """Bernstein coefficients of the scalar polynomial ``coeffs`` on ``[t0, t1]``
+    (in the same parameter, not rescaled): their largest magnitude bounds the
+    polynomial's there (convex hull)."""
+    c = np.asarray(coeffs, float)[:, None]
+    if t0 > 0.0:
+        _, c = de_casteljau_split(c, t0)
+    if t1 < 1.0:
+        c, _ = de_casteljau_split(c, (t1 - t0) / (1.0 - t0))
+    return c[:, 0]
+
+
+def turning_cuts(P) -> list[float]:
+    """The inflections of the Bezier ``P`` that bound a real turn, ascending.
+
+    Where a blend joins a line G2, its curvature is zero and the control
+    points on the line are collinear only to the rounding of their floats:
+    ``p' x p''`` then has a lobe of either sign about ``1e-12`` of the
+    parameter long, an inflection to :func:`inflections`. A piece cut there
+    is too short for its chord to have a direction, and halving it never
+    ends. A lobe whose ``|p' x p''|`` stays within :data:`_SIGN_SLACK` of the
+    curve's largest (a bound from the Bernstein coefficients on the lobe)
+    turns by rounding only: its cut is dropped and the lobe joins its
+    neighbour, whose one-sign checks allow that slack.
+    """
+    P = np.asarray(P, float)
+    cuts = list(inflections(P))
+    if not cuts:
+        return cuts
+    k = cross_bernstein(*hodographs(P))
+    slack = _SIGN_SLACK * float(np.max(np.abs(k)))
+    while cuts:
+        edges = [0.0, *cuts, 1.0]
+        for i in range(len(edges) - 1):
+            if float(np.max(np.abs(_restricted(k, edges[i], edges[i + 1])))) <= slack:
+                del cuts[i - 1 if i > 0 else 0]   # the cut between the lobe and its neighbour
+                break
+        else:
+            break
+    return cuts
+
+
 def fit_bezier(curve: BezierCurve, tol: float, angle_tol: float = EXPORT_FIT_ANGLE_TOL,
                max_pieces: int = 1 << 14) -> list[FittedPiece]:
     """Lines and arcs within ``tol`` of ``curve`` (certified, two-sided), in order.
@@ -343,7 +386,7 @@ def fit_bezier(curve: BezierCurve, tol: float, angle_tol: float = EXPORT_FIT_ANG
     # Cut at the inflections, each cut on what is left of the curve.
     spans: list[tuple[float, float, np.ndarray]] = []
     rest, t_rest = P, 0.0
-    for t in inflections(P):
+    for t in turning_cuts(P):
         left, rest = de_casteljau_split(rest, (t - t_rest) / (1.0 - t_rest))
         spans.append((t_rest, t, left))
         t_rest = t
