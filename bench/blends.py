@@ -1,4 +1,4 @@
-"""Benchmark: the optimised blends and the smoother on the pocket case.
+"""Benchmark: the optimised blends and the smoother on the pocket cases.
 
 Measured in one run, medians of ``--repeat`` runs (the first run of each
 also pays its imports, CasADi's or CVXPY's, and is left out when
@@ -14,7 +14,12 @@ also pays its imports, CasADi's or CVXPY's, and is left out when
   its programmed feed with no acceleration limit (the rapid at the axis
   speeds), as a ratio to PMAC's cycle time.
 
-    python bench/blends.py [--case pocket] [--repeat 3] [--deltas 0.01,0.1]
+Run on ``pocket`` (corners as arcs: it cuts at F30 most of the way, so the
+floor is close to PMAC's time) and ``pocket-chords`` (the same pocket with
+its corners as CAM chords: 66 inside corners where PMAC's exact path stops)
+by default.
+
+    python bench/blends.py [--case pocket,pocket-chords] [--repeat 3] [--deltas 0.01,0.1]
 """
 from __future__ import annotations
 
@@ -58,43 +63,49 @@ def timed(fn, repeat: int):
 
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--case", default="pocket")
+    ap.add_argument("--case", default="pocket,pocket-chords",
+                    help="bundled case names or folders, comma-separated")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--deltas", default="0.01,0.1,0.3",
                     help="smoother bands as fractions of the cutter radius")
     args = ap.parse_args(argv)
-    case = find_case(args.case)
+    for i, name in enumerate(args.case.split(",")):
+        if i:
+            print()
+        bench_case(find_case(name), args.repeat, [float(f) for f in args.deltas.split(",")])
+    return 0
+
+
+def bench_case(case, repeat: int, deltas: list[float]) -> None:
+    from ccopt.compare.figures import max_deviation, path_figures
+    from ccopt.compare.leads import lead_joins
+
     prog = ccopt.read_program(case.program)
     limits = ccopt.AxisLimits(case.vmax, case.amax)
     ref = ccopt.compensate(prog, "pmac")
     t_ref = ccopt.plan_feed(ref, limits).duration
     r = ref.radius
     print(f"{case.name}: cutter radius {r:g} {prog.units}, limits v={list(limits.v)} "
-          f"a={list(limits.a)}, {args.repeat} runs (median)")
+          f"a={list(limits.a)}, {repeat} runs (median)")
     print(f"PMAC cycle time {t_ref:.4f} s; feed-limited bound {feed_bound(ref, limits):.4f} s "
           f"= {feed_bound(ref, limits) / t_ref:.4f} of PMAC")
     print(f"{'variant':26s} {'solve_s':>8s} {'cycle_s':>8s} {'vs_pmac':>8s} {'bound':>8s} "
           f"{'certified':>9s} {'max_dev':>8s}  continuity")
     rows = [(name, {}) for name in ("opt-casadi", "opt-cvxpy")]
-    rows += [(f"smooth delta={float(f):g}r", {"delta": float(f) * r})
-             for f in args.deltas.split(",")]
+    rows += [(f"smooth delta={f:g}r", {"delta": f * r}) for f in deltas]
     for label, kw in rows:
         name = label.split()[0]
         blend = load(name)
         problem = BlendProblem(prog, ref, limits, kw.get("delta"))
-        solve, out = timed(lambda: blend(problem), args.repeat)
+        solve, out = timed(lambda: blend(problem), repeat)
         path = out.toolpath if isinstance(out, BlendOutcome) else out
         cert = out.info.get("certificate") if isinstance(out, BlendOutcome) else None
         cert = cert or problem.certify(path)
         t = ccopt.plan_feed(path, limits).duration
-        from ccopt.compare.figures import max_deviation, path_figures
-        from ccopt.compare.leads import lead_joins
         dev, _ = max_deviation(path, ref)
         cont = path_figures(path, lead_joins(path))["continuity"]
         print(f"{label:26s} {solve:8.3f} {t:8.4f} {t / t_ref:8.4f} "
               f"{feed_bound(path, limits) / t_ref:8.4f} {str(cert.ok):>9s} {dev:8.4f}  {cont}")
-    return 0
-
 
 if __name__ == "__main__":
     sys.exit(main())
