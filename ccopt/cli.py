@@ -415,7 +415,7 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
 
     p = sub.add_parser("run", help="the main job, on bundled cases or given programs")
     p.add_argument("inputs", nargs="*", metavar="CASE|PROGRAM")
-    p.add_argument("--out", metavar="DIR",
+    p.add_argument("-o", "--out", metavar="DIR",
                    help="write the report and exported files into DIR (default ccopt-out)")
     p.add_argument("--vmax", type=_axis_values, metavar="X,Y[,Z]",
                    help="axis velocity limits, units/s (default: the case's, else 100)")

@@ -151,6 +151,15 @@ def test_run_writes_report_and_exports(capsys, tmp_path):
     assert json.loads((tmp_path / "summary.json").read_text())["cases"][0]["name"] == "pocket"
 
 
+
+def test_run_out_short_option(capsys, tmp_path):
+    # -o as for smooth, export and compare
+    code, out, err = run_cli(capsys, "run", "leadin-inside-line", "-o", str(tmp_path / "r"),
+                             "--no-compare")
+    assert code == 0, err
+    assert (tmp_path / "r" / "index.html").is_file()
+    assert (tmp_path / "r" / "leadin-inside-line.nc").is_file()
+
 def test_run_exit_codes(capsys, tmp_path):
     # an expected error is fine; an unexpected one is exit 2
     code, _, _ = run_cli(capsys, "run", str(CASES / "concave-arc-too-small"), "--out",
