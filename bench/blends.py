@@ -12,7 +12,7 @@ also pays its imports, CasADi's or CVXPY's, and is left out when
   PMAC's;
 - what bounds any path this close to PMAC's from below: every feed move at
   its programmed feed with no acceleration limit (the rapid at the axis
-  speeds), as a ratio to PMAC's cycle time.
+  speeds; ``ccopt.feed.feed_limited_time``), as a ratio to PMAC's cycle time.
 
 Run on ``pocket`` (corners as arcs: it cuts at F30 most of the way, so the
 floor is close to PMAC's time) and ``pocket-chords`` (the same pocket with
@@ -24,7 +24,6 @@ by default.
 from __future__ import annotations
 
 import argparse
-import math
 import statistics
 import sys
 import time
@@ -35,19 +34,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import ccopt  # noqa: E402
 from ccopt.cases import find_case  # noqa: E402
 from ccopt.compare import BlendOutcome, BlendProblem, load  # noqa: E402
-
-
-def feed_bound(path, limits) -> float:
-    """Every feed move at its feed, no acceleration limit; rapids at the axis speeds."""
-    t = 0.0
-    for s in path.segments:
-        L3 = math.hypot(s.length, s.w1 - s.w0)
-        if s.feed is not None:
-            t += L3 / s.feed
-        elif s.block is not None:
-            b = s.block
-            t += max(abs(e - a) / v for a, e, v in zip(b.start, b.end, limits.v))
-    return t
+from ccopt.feed import feed_limited_time as feed_bound  # noqa: E402
 
 
 def timed(fn, repeat: int):

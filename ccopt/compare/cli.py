@@ -129,6 +129,16 @@ def cmd_compare(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+def _feed_floor(path, limits) -> float | None:
+    """:func:`ccopt.feed.feed_limited_time` (s), ``None`` when the limits do not fit the path
+    (the cycle time says why)."""
+    from ccopt.feed import feed_limited_time
+    try:
+        return feed_limited_time(path, limits)
+    except ValueError:
+        return None
+
+
 def cmd_smooth(args: argparse.Namespace) -> int:
     from ccopt.cli import EXIT_FAILED, EXIT_OK, emit_json, load, resolve_input
     from ccopt.compare import BlendOutcome, BlendProblem, measure
@@ -161,6 +171,9 @@ def cmd_smooth(args: argparse.Namespace) -> int:
     doc = {"program": prog.file, "delta": problem.band, "radius": ref.radius,
            "duration": fig.get("duration"), "pmac_duration": base.figures.get("duration"),
            "duration_ratio": ratio,
+           # what neither path can beat (no acceleration limit at all): how much any
+           # smoothing of PMAC's path could buy
+           "feed_floor": _feed_floor(path, limits), "pmac_feed_floor": _feed_floor(ref, limits),
            **{k: fig.get(k) for k in ("min_clearance", "certified", "max_deviation",
                                       "max_deviation_bound", "continuity", "path_continuity",
                                       "max_curvature", "tangent_breaks", "solve_time")},
@@ -180,8 +193,11 @@ def cmd_smooth(args: argparse.Namespace) -> int:
         blended = sum(1 for j in doc["joins"] if j["status"] == "blended")
         print(f"{prog.file}: smoothed within delta {problem.band:g} {prog.units} "
               f"(cutter radius {ref.radius:g}): {blended} of {len(doc['joins'])} joins blended")
+        floor = doc["pmac_feed_floor"]
+        floor_txt = "" if floor is None or not doc["pmac_duration"] else (
+            f"; feed-limited floor {floor:.4f} s ({floor / doc['pmac_duration']:.4f})")
         print(f"  cycle time {_f(doc['duration'])} s vs PMAC {_f(doc['pmac_duration'])} s "
-              f"(ratio {_f(ratio)})")
+              f"(ratio {_f(ratio)}){floor_txt}")
         print(f"  certified {_f(doc['certified'])}, min clearance {_f(doc['min_clearance'], '{:.9f}')}"
               f", max deviation {_f(doc['max_deviation'], '{:.6f}')} (bound "
               f"{_f(doc['max_deviation_bound'], '{:.6f}')}), joins {doc['continuity']}, "

@@ -12,6 +12,7 @@ One concept per module, after toppra's layout:
 - :mod:`.junction`: corner speeds (stop, or grbl's junction deviation);
 - :mod:`.toppra_planner`: the time-optimal planner (TOPPRA);
 - :mod:`.baselines`: stop-per-block and grbl-style junction planners;
+- :mod:`.bounds`: :func:`feed_limited_time`, the time no planner can beat;
 - :mod:`.profile`: :class:`FeedProfile`, its samples and CSV.
 
 Example::
@@ -50,6 +51,7 @@ _LAZY = {
     "plan_toppra": "ccopt.feed.toppra_planner",
     "plan_stop_per_block": "ccopt.feed.baselines",
     "plan_junction": "ccopt.feed.baselines",
+    "feed_limited_time": "ccopt.feed.bounds",
 }
 
 
@@ -115,6 +117,7 @@ __all__ = [
     "FeedProfile",
     "FeedSamples",
     "GridOptions",
+    "feed_limited_time",
     "plan_feed",
     "plan_junction",
     "plan_stop_per_block",

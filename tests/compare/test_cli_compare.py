@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 import pytest
 
@@ -54,6 +55,15 @@ def test_smooth_json(capsys):
     assert doc["path_continuity"] == "G2"
     assert doc["duration"] < doc["pmac_duration"]
     assert all(j["status"] == "blended" for j in doc["joins"])
+    # the feed-limited floor of PMAC's path: the rapid from the origin to (0, -20) at
+    # Y's 50 mm/s, then at F20 the lead-in to (0, -2), the first move to (-20, -2),
+    # the R2 quarter arc round the outside corner, (-22, 0) to (-22, 20) and the
+    # lead-out to (-40, 20)
+    assert doc["pmac_feed_floor"] == pytest.approx(20 / 50 + (18 + 20 + math.pi + 20 + 18) / 20,
+                                                   rel=1e-12)
+    # blends cut corners: the smoothed path is shorter, and neither beats its floor
+    assert doc["feed_floor"] < doc["pmac_feed_floor"] < doc["pmac_duration"]
+    assert doc["feed_floor"] < doc["duration"]
 
 
 def test_smooth_export_verdict_sets_the_exit_code(capsys, tmp_path, monkeypatch):

@@ -9,6 +9,7 @@ import pytest
 import ccopt
 from ccopt.cases import find_case
 from ccopt.compare import BlendProblem
+from ccopt.feed import feed_limited_time
 from ccopt.geometry import BezierCurve
 from ccopt.program import read_text
 from ccopt.toolpath import Role
@@ -84,22 +85,9 @@ def test_pocket_cycle_time(pocket):
     # here) bounds the time from below at ~94 % of PMAC's, so the issue's 10 % is out of
     # reach for any smoothing of this program at these limits; the smoother's time lies
     # between the two.
-    lower = _feed_floor(path, limits)
+    lower = feed_limited_time(path, limits)
     assert lower < t_smooth
     assert lower > 0.9 * t_ref
-
-
-def _feed_floor(path, limits) -> float:
-    """Every feed move at its programmed feed, no acceleration limit; rapids at axis speeds (s)."""
-    lower = 0.0
-    for s in path.segments:
-        L3 = math.hypot(s.length, s.w1 - s.w0)
-        if s.feed is not None:
-            lower += L3 / s.feed
-        else:
-            b = s.block
-            lower += max(abs(e - a) / v for a, e, v in zip(b.start, b.end, limits.v))
-    return lower
 
 
 # The same pocket as a CAM system writes it: the R6 corners as LINEAR chords. Each chord
@@ -166,7 +154,7 @@ def test_pocket_chords_smoother_meets_the_bar(pocket_chords):
     # the issue's bar: at least 10 % below PMAC's cycle time under the case's limits ...
     assert prof.duration <= 0.9 * t_ref
     # ... and no faster than the feed allows
-    assert prof.duration > _feed_floor(path, limits)
+    assert prof.duration > feed_limited_time(path, limits)
 
 
 def test_square_pocket_corners():
