@@ -160,6 +160,7 @@ def test_run_out_short_option(capsys, tmp_path):
     assert (tmp_path / "r" / "index.html").is_file()
     assert (tmp_path / "r" / "leadin-inside-line.nc").is_file()
 
+
 def test_run_exit_codes(capsys, tmp_path):
     # an expected error is fine; an unexpected one is exit 2
     code, _, _ = run_cli(capsys, "run", str(CASES / "concave-arc-too-small"), "--out",

@@ -17,8 +17,8 @@ certified ``kappa_max`` (:func:`ccopt.geometry.curve.curvature_bound`) and
 more checks, all on control points, so the bound covers the whole piece and
 not only its samples:
 
-* the curve is cut at its inflections first (not at the rounding lobes of a
-  G2 end onto a line, :func:`turning_cuts`), so every piece turns one way,
+* the curve is cut at its inflections first (not at lobes of rounding size,
+  such as at a G2 end onto a line: :func:`turning_cuts`), so every piece turns one way,
   and an arc is taken only if it turns that way too;
 * the arc's centre ``c`` sees the piece turn monotonically: every Bernstein
   coefficient of ``(p(t) - c) x p'(t)`` has the arc's sign, so each point of
@@ -77,8 +77,10 @@ DEFAULT_TOL = {"mm": 1e-3, "inch": 1e-3 / 25.4}
 
 #: Curvature of a piece whose Bernstein coefficients of ``p' x p''`` are at
 #: least this fraction of their largest magnitude on the wrong side counts as
-#: one-signed: the only such pieces end at an inflection, where the cut
-#: parameter is the root to the last bit and the coefficient there is rounding.
+#: one-signed: such pieces end at an inflection, where the cut parameter is the
+#: root to the last bit and the coefficient there is rounding. (It is also the
+#: size, relative to the whole curve's, below which :func:`turning_cuts` does
+#: not cut at a lobe.)
 _SIGN_SLACK = 1e-9
 
 
@@ -346,11 +348,15 @@ def turning_cuts(P) -> list[float]:
     points on the line are collinear only to the rounding of their floats:
     ``p' x p''`` then has a lobe of either sign about ``1e-12`` of the
     parameter long, an inflection to :func:`inflections`. A piece cut there
-    is too short for its chord to have a direction, and halving it never
-    ends. A lobe whose ``|p' x p''|`` stays within :data:`_SIGN_SLACK` of the
-    curve's largest (a bound from the Bernstein coefficients on the lobe)
-    turns by rounding only: its cut is dropped and the lobe joins its
-    neighbour, whose one-sign checks allow that slack.
+    is too short for its chord to have a direction: halving it runs into
+    the fit's piece limit. Any lobe whose ``|p' x p''|`` stays within
+    :data:`_SIGN_SLACK` of the curve's largest (a bound from the Bernstein
+    coefficients on the lobe) is not cut at, a genuine but negligible one
+    too: it joins its neighbour. The fit stays certified either way: arcs
+    are still checked one-signed on each piece (against the piece's own
+    largest coefficient, so near such a lobe a piece may need halving down
+    to lines), and the bounds come from the checks and samples, not from
+    where the curve was cut.
     """
     P = np.asarray(P, float)
     cuts = list(inflections(P))

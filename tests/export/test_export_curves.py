@@ -23,8 +23,8 @@ from ccopt.cases import find_case
 from ccopt.compare import compare
 from ccopt.export import export
 from ccopt.export.arcfit import fit_bezier, fit_tolerance
-from ccopt.geometry.curve import inflections
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
+from ccopt.geometry.curve import inflections
 from ccopt.geometry.distance import point_arc, point_segment
 from ccopt.program import read_program
 from ccopt.tolerances import EXPORT_FIT_ANGLE_TOL
@@ -317,6 +317,7 @@ def test_g2_ends_onto_lines_far_from_the_origin():
             if isinstance(p.geom, Arc):
                 assert p.geom.sweep > 0
     assert spurious > 0       # the rounding lobes are there to be handled
+
 
 @pytest.fixture(scope="module")
 def optimised():
