@@ -14,7 +14,8 @@ separate, so the same NLP can go to another CasADi solver (``sqpmethod``,
                clearance from every element within reach at m_clear samples,
                  by the case of each (formulations.clearance): n . p >= n . A + r
                  alongside a line, |p - c|^2 <= (R - r)^2 or >= (R + r)^2 alongside
-                 an arc, |p - E|^2 >= r^2 beyond an end E,
+                 an arc, |p - E|^2 >= r^2 beyond an end E (beyond a line's open
+                 end too, and u . p >= u . E, u its direction out of E),
                |r'(t_i)| >= v_min (a regular curve),
 
 so the path and its speed are optimised together (a small time-optimal
@@ -32,7 +33,7 @@ import numpy as np
 from ccopt.compare.blend import (
     BlendProblem, bernstein, derivative_matrix, end_acceleration, jerk_gram,
 )
-from formulations.clearance import CONCAVE, CONVEX, END, LINE, classify
+from formulations.clearance import CONCAVE, CONVEX, END, EXEMPT, LINE, classify
 from formulations.lead_setup import V_MIN_FRACTION, LeadSetup, run_leads
 
 #: Rounds of "solve, re-classify the clearance cases at the solution".
@@ -105,13 +106,30 @@ def lead_model(setup: LeadSetup, classes, m_time: int = M_TIME, m_clear: int = M
     pts = ca.mtimes(ca.DM(bernstein(tc, n)), P)
     # every element within reach, by the case of each sample (ends excluded)
     inner = pts[1:-1, :]
-    for kind, vec, scal in classes:
-        for k in (LINE, CONCAVE, CONVEX, END):
+    for el, (kind, vec, scal) in zip(setup.elements, classes):
+        for k in (LINE, CONCAVE, CONVEX, END, EXEMPT):
+            if k == EXEMPT and el.kind != "line":
+                continue                       # beyond an arc's open end: free
             idx = [int(i) for i in np.flatnonzero(kind == k)]
             if not idx:
                 continue
             px, py = inner[idx, 0], inner[idx, 1]
             vx, vy, sc = ca.DM(vec[idx, 0]), ca.DM(vec[idx, 1]), ca.DM(scal[idx])
+            if k == EXEMPT:
+                # beyond a line's open end E: kept beyond it (u . p >= u . E), and r from
+                # E. The verifier checks no point there, but one just inside the end
+                # (between samples) it does; and a sample left free would drift into
+                # the band along the line, where the next round, with its case re-taken,
+                # could not move it out (the model fixes each sample's case for a round)
+                d = np.subtract(el.geom.p1, el.geom.p0)
+                at_start = vec[idx] @ d < 0.0
+                E = np.where(at_start[:, None], el.geom.p0, el.geom.p1)
+                g.append(vx * px + vy * py - sc)
+                g.append((px - ca.DM(E[:, 0])) ** 2 + (py - ca.DM(E[:, 1])) ** 2
+                         - el.clearance ** 2)
+                lbg += [0.0] * (2 * len(idx))
+                ubg += [ca.inf] * (2 * len(idx))
+                continue
             if k == LINE:
                 g.append(vx * px + vy * py - sc)
             elif k == CONCAVE:
@@ -183,7 +201,16 @@ def solve_lead_model(model: dict, solver: str = "ipopt", options: dict | None = 
 
 def solve_lead(setup: LeadSetup, solver: str = "ipopt"):
     """Solve one lead; re-classify the clearance cases at the solution and solve
-    again until they no longer change (at most :data:`MAX_ROUNDS` rounds)."""
+    again until they no longer change (at most :data:`MAX_ROUNDS` rounds).
+
+    A later round can fail where an earlier one succeeded: re-classified at
+    the earlier solution, a sample that was beyond an open end of the contour
+    (exempt) and now has its foot on an element must get out of that
+    element's band on its own side, which from there may be locally
+    infeasible. The earlier solution is then returned (``stats["note"]``
+    says so): like every blend it is taken only if the verifier certifies it,
+    between samples too (:func:`formulations.lead_setup.run_leads`).
+    """
     t0 = time.perf_counter()
     m_clear = M_CLEAR * setup.refine
     x = setup.initial()
@@ -191,9 +218,15 @@ def solve_lead(setup: LeadSetup, solver: str = "ipopt"):
     X, stats, rounds = None, {}, 0
     for rounds in range(1, MAX_ROUNDS + 1):
         model = lead_model(setup, classes, m_clear=m_clear)
-        X, stats = solve_lead_model(model, solver, x0=X)
-        if not stats["success"]:
-            raise RuntimeError(f"IPOPT: {stats['status']}")
+        X_new, st = solve_lead_model(model, solver, x0=X)
+        if not st["success"]:
+            if X is None:
+                raise RuntimeError(f"IPOPT: {st['status']}")
+            stats["note"] = (f"round {rounds} (re-classified clearance cases): IPOPT "
+                             f"{st['status']}; round {rounds - 1}'s solution kept")
+            rounds -= 1
+            break
+        X, stats = X_new, st
         x = X[:setup.nx]
         new = classes_at(setup, x, m_clear)
         if all(np.array_equal(a[0], b[0]) for a, b in zip(new, classes)):

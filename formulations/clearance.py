@@ -11,7 +11,11 @@ distance to the element is exactly one of (by where the foot of ``p`` lies):
 - ``END``: the foot beyond an end ``E``: ``|p - E| >= r``;
 - ``EXEMPT``: the foot beyond an *open* end, where the contour stops (the
   verifier's decision ``OPEN_END_EXEMPTION``, :mod:`ccopt.verify.decisions`:
-  such points are not checked against that element): no constraint.
+  such points are not checked against that element). :func:`classify` gives,
+  beyond a line's open end ``E``, the half-plane ``u . p >= u . E`` (``u`` the
+  line's direction out of that end: exactly the exempt region), which the
+  CasADi model imposes there together with ``|p - E| >= r``; the convex rows
+  leave exempt points free.
 
 :func:`classify` says which, at a given set of points (the models re-classify
 at every iterate; on the boundary between two cases both give the same
@@ -112,7 +116,8 @@ def checked_distance(el: Element, pts: np.ndarray) -> np.ndarray:
 def classify(el: Element, p: np.ndarray):
     """``(kind, vec, scal)`` per point (see the module docstring): for ``LINE`` the
     unit normal and ``n . A + r``; for ``CONCAVE``/``CONVEX`` the centre and
-    ``R -/+ r``; for ``END`` the end point and ``r``."""
+    ``R -/+ r``; for ``END`` the end point and ``r``; for ``EXEMPT`` beyond a
+    line's open end ``u`` and ``u . E`` (beyond an arc's: unused)."""
     p = np.asarray(p, float)
     n = len(p)
     kind = np.full(n, END)
@@ -135,10 +140,13 @@ def classify(el: Element, p: np.ndarray):
         vec[inside] = sgn[inside, None] * nl
         scal[inside] = vec[inside] @ A + r
         vec[~inside] = np.where((t[~inside] <= 0.0)[:, None], A, B)
+        u = d / math.sqrt(L2)
         if el.open_start:
-            kind[t <= 0.0] = EXEMPT
+            m = t <= 0.0
+            kind[m], vec[m], scal[m] = EXEMPT, -u, float(-u @ A)
         if el.open_end:
-            kind[t >= 1.0] = EXEMPT
+            m = t >= 1.0
+            kind[m], vec[m], scal[m] = EXEMPT, u, float(u @ B)
         return kind, vec, scal
     if el.kind == "arc":
         c = np.asarray(g.center, float)

@@ -294,9 +294,13 @@ def run_leads(problem: BlendProblem, solve_lead, name: str) -> "BlendOutcome":
                 last_err = cusp      # denser samples next time (the models scale with refine)
                 continue
             cand = splice(path, ld, [geom], float(x[-1]), style=name)
-            mine = [i for i, s in enumerate(cand.segments)
-                    if s.geom is geom or (i > 0 and cand.segments[i - 1].geom is geom)
-                    or (i + 1 < len(cand.segments) and cand.segments[i + 1].geom is geom)]
+            # the segments the splice made (a lead-out's blend is the curve reversed, a
+            # new object, so it is found by what is new, not by the curve) and their
+            # neighbours
+            old = {id(s) for s in path.segments}
+            made = [i for i, s in enumerate(cand.segments) if id(s) not in old]
+            mine = sorted({j for i in made for j in (i - 1, i, i + 1)
+                           if 0 <= j < len(cand.segments)})
             try:
                 cert = problem.accept(cand, mine)
             except BlendRejected as exc:

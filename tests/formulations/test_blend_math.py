@@ -97,3 +97,21 @@ def test_clearance_cases():
     assert list(soc) == [True, False, False] and not np.isfinite(h[0])
     # the half-plane of a convex case lies inside |p - c| >= R + r: tight at the point
     assert (G[1] @ q[1]) - h[1] == pytest.approx(math.hypot(6, 6) - 6.0)
+
+
+def test_exempt_samples_beyond_a_lines_open_ends():
+    # a line element (0, 0)-(10, 0), open at both ends: points with their foot beyond
+    # an end are exempt; classify gives the half-plane beyond that end, exactly (the
+    # CasADi model keeps such samples there), and the convex rows leave them free
+    from formulations.clearance import EXEMPT, LINE, Element, classify, linear_rows
+    el = Element("line", 2.0, Line((0.0, 0.0), (10.0, 0.0)), open_start=True, open_end=True)
+    p = np.array([[-1.0, 0.5], [-0.001, -3.0], [5.0, 3.0], [10.5, -1.0], [12.0, 4.0]])
+    kind, vec, scal = classify(el, p)
+    assert list(kind) == [EXEMPT, EXEMPT, LINE, EXEMPT, EXEMPT]
+    # beyond the start: -x >= 0; beyond the end: x >= 10; alongside: y >= 2
+    assert np.allclose(vec[[0, 1]], [[-1.0, 0.0]] * 2) and np.allclose(scal[[0, 1]], 0.0)
+    assert np.allclose(vec[[3, 4]], [[1.0, 0.0]] * 2) and np.allclose(scal[[3, 4]], 10.0)
+    assert np.allclose(vec[2], [0.0, 1.0]) and scal[2] == pytest.approx(2.0)
+    assert np.all(np.einsum("ij,ij->i", vec, p) >= scal)
+    G, h, _, _, _ = linear_rows(el, p)
+    assert np.all(np.isneginf(h[kind == EXEMPT])) and np.allclose(G[kind == EXEMPT], 0.0)
