@@ -14,6 +14,8 @@ from hypothesis import HealthCheck, given, settings, strategies as st
 import ccopt
 from ccopt.cli import main
 
+from text_mutations import mutate
+
 CASES = Path(__file__).resolve().parents[1] / "cases"
 
 
@@ -261,25 +263,8 @@ _TOKENS = ["X", "Y", "I", "J", "R", "F", "G2", "G41", "G40", "CC1", "CC0", "CCR"
 @st.composite
 def _mutated(draw):
     suffix = draw(st.sampled_from(sorted(_POCKET)))
-    text = _POCKET[suffix]
-    for _ in range(draw(st.integers(1, 3))):
-        i = draw(st.integers(0, len(text)))
-        kind = draw(st.sampled_from(["delete", "insert", "replace", "dupline", "dropline"]))
-        if kind == "delete":
-            text = text[:i] + text[draw(st.integers(i, min(len(text), i + 6))):]
-        elif kind == "insert":
-            text = text[:i] + draw(st.sampled_from(_TOKENS)) + text[i:]
-        elif kind == "replace":
-            text = text[:i] + draw(st.sampled_from(_TOKENS)) + text[i + 1:]
-        else:
-            lines = text.split("\n")
-            k = draw(st.integers(0, len(lines) - 1))
-            if kind == "dupline":
-                lines.insert(k, lines[k])
-            else:
-                del lines[k]
-            text = "\n".join(lines)
-    return suffix, text
+    return suffix, mutate(draw, _POCKET[suffix], inserts=_TOKENS, replaces=_TOKENS,
+                          edits=(1, 3), delete_max=6)
 
 
 @settings(max_examples=150, deadline=None,

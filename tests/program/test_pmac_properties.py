@@ -16,6 +16,8 @@ from ccopt.errors import ProgramError
 from ccopt.program.model import Motion
 from ccopt.program.pmac import read_pmac
 
+from text_mutations import mutate
+
 SETTINGS = settings(max_examples=300, deadline=None,
                     suppress_health_check=[HealthCheck.too_slow])
 
@@ -91,27 +93,8 @@ def test_valid_sample_reads():
 
 @st.composite
 def mutations(draw):
-    text = VALID
-    for _ in range(draw(st.integers(1, 4))):
-        kind = draw(st.sampled_from(["delete", "insert", "replace", "dupline", "dropline"]))
-        i = draw(st.integers(0, len(text)))
-        if kind == "delete":
-            j = draw(st.integers(i, min(len(text), i + 8)))
-            text = text[:i] + text[j:]
-        elif kind == "insert":
-            text = text[:i] + draw(st.sampled_from(TOKENS)) + text[i:]
-        elif kind == "replace" and i < len(text):
-            text = text[:i] + draw(st.sampled_from(list("XYZIJKR0123456789.-()=; \nPQ"))) \
-                + text[i + 1:]
-        elif kind in ("dupline", "dropline"):
-            lines = text.split("\n")
-            k = draw(st.integers(0, len(lines) - 1))
-            if kind == "dupline":
-                lines.insert(k, lines[k])
-            else:
-                del lines[k]
-            text = "\n".join(lines)
-    return text
+    return mutate(draw, VALID, inserts=TOKENS, replaces=list("XYZIJKR0123456789.-()=; \nPQ"),
+                  edits=(1, 4), delete_max=8)
 
 
 @SETTINGS
