@@ -162,20 +162,34 @@ def test_line_circle_infinite_count_is_complete():
     assert checked >= 990 and hits >= 400
 
 
+def random_segment_circle(rng, sweep):
+    """A random segment and arc (``sweep`` given, or drawn in +-3 pi when ``None``) with
+    the segment's parameters where its line crosses the circle (``roots``, by the
+    discriminant), those within it (``inside``) and their points; ``None`` when the
+    segment or the sweep is degenerate or a root is within ``NEAR`` of a segment end."""
+    p0, p1 = tuple(rng.uniform(-5, 5, 2)), tuple(rng.uniform(-5, 5, 2))
+    c, R = tuple(rng.uniform(-3, 3, 2)), rng.uniform(0.2, 4.0)
+    theta0 = rng.uniform(-math.pi, math.pi)
+    if sweep is None:
+        sweep = rng.uniform(-3 * math.pi, 3 * math.pi)
+    if math.dist(p0, p1) < 1e-3 or abs(sweep) < 1e-3:
+        return None
+    roots = segment_roots(p0, p1, c, R)
+    if roots is None or any(abs(t) < NEAR or abs(t - 1.0) < NEAR for t in roots):
+        return None
+    inside = [t for t in roots if 0.0 < t < 1.0]
+    pts = [(p0[0] + t * (p1[0] - p0[0]), p0[1] + t * (p1[1] - p0[1])) for t in inside]
+    return p0, p1, c, R, theta0, sweep, roots, inside, pts
+
+
 def test_segment_full_circle_count_is_complete():
     rng = np.random.default_rng(102)
     checked = sampled = total = 0
     for _ in range(N_PAIRS):
-        p0, p1 = tuple(rng.uniform(-5, 5, 2)), tuple(rng.uniform(-5, 5, 2))
-        c, R = tuple(rng.uniform(-3, 3, 2)), rng.uniform(0.2, 4.0)
-        theta0, sweep = rng.uniform(-math.pi, math.pi), rng.choice([-TWO_PI, TWO_PI])
-        if math.dist(p0, p1) < 1e-3:
+        pair = random_segment_circle(rng, rng.choice([-TWO_PI, TWO_PI]))
+        if pair is None:
             continue
-        roots = segment_roots(p0, p1, c, R)
-        if roots is None or any(abs(t) < NEAR or abs(t - 1.0) < NEAR for t in roots):
-            continue
-        inside = [t for t in roots if 0.0 < t < 1.0]
-        pts = [(p0[0] + t * (p1[0] - p0[0]), p0[1] + t * (p1[1] - p0[1])) for t in inside]
+        p0, p1, c, R, theta0, sweep, roots, inside, pts = pair
         angles = [math.atan2(q[1] - c[1], q[0] - c[0]) for q in pts]
         if any(passes(a, theta0, sweep) is None for a in angles):
             continue                                   # crossing at the circle's seam
@@ -203,16 +217,10 @@ def test_segment_arc_count_is_complete():
     rng = np.random.default_rng(103)
     checked = total = 0
     for _ in range(N_PAIRS):
-        p0, p1 = tuple(rng.uniform(-5, 5, 2)), tuple(rng.uniform(-5, 5, 2))
-        c, R = tuple(rng.uniform(-3, 3, 2)), rng.uniform(0.2, 4.0)
-        theta0, sweep = rng.uniform(-math.pi, math.pi), rng.uniform(-3 * math.pi, 3 * math.pi)
-        if math.dist(p0, p1) < 1e-3 or abs(sweep) < 1e-3:
+        pair = random_segment_circle(rng, None)
+        if pair is None:
             continue
-        roots = segment_roots(p0, p1, c, R)
-        if roots is None or any(abs(t) < NEAR or abs(t - 1.0) < NEAR for t in roots):
-            continue
-        inside = [t for t in roots if 0.0 < t < 1.0]
-        pts = [(p0[0] + t * (p1[0] - p0[0]), p0[1] + t * (p1[1] - p0[1])) for t in inside]
+        p0, p1, c, R, theta0, sweep, roots, inside, pts = pair
         counts = [passes(math.atan2(q[1] - c[1], q[0] - c[0]), theta0, sweep) for q in pts]
         if any(n is None for n in counts):
             continue
