@@ -47,11 +47,13 @@ class Case:
 
 
 def bundled_cases_dir() -> Path:
-    """The repository's ``cases/`` folder (next to the installed package source)."""
-    here = Path(__file__).resolve().parent.parent / "cases"
-    if here.is_dir():
-        return here
-    return Path.cwd() / "cases"
+    """The bundled ``cases/`` folder: the repository's own in a source tree or an
+    editable install, else the copy the wheel ships as ``ccopt.bundled_cases``."""
+    package = Path(__file__).resolve().parent
+    source_tree = package.parent / "cases"
+    if source_tree.is_dir():
+        return source_tree
+    return package / "bundled_cases"
 
 
 def bundled_cases() -> list[Case]:

@@ -2,7 +2,7 @@
 
 The model (:func:`lead_model`) and the solve (:func:`solve_lead_model`) are
 separate, so the same NLP can go to another CasADi solver (``sqpmethod``,
-``bonmin`` ...). The numbers come from :mod:`formulations.lead_setup`:
+``bonmin`` ...). The numbers come from :mod:`ccopt_formulations.lead_setup`:
 
     minimise   sum_i 2 ds_i / (v_i + v_i+1) + (F - v_end)^2 / (2 a F)
                + (L_host - sigma)/F + mu * integral |r'''(t)|^2 dt
@@ -12,7 +12,7 @@ separate, so the same NLP can go to another CasADi solver (``sqpmethod``,
                |q'_k u_i + q''_k b_i| <= a_k for each axis k at both ends of every
                piece, u_i = (b_i+1 - b_i) / (2 ds_i) (TOPP's discrete model),
                clearance from every element within reach at m_clear samples,
-                 by the case of each (formulations.clearance): n . p >= n . A + r
+                 by the case of each (ccopt_formulations.clearance): n . p >= n . A + r
                  alongside a line, |p - c|^2 <= (R - r)^2 or >= (R + r)^2 alongside
                  an arc, |p - E|^2 >= r^2 beyond an end E (beyond a line's open
                  end too, and u . p >= u . E, u its direction out of E),
@@ -33,8 +33,8 @@ import numpy as np
 from ccopt.compare.blend import (
     BlendProblem, bernstein, derivative_matrix, end_acceleration, jerk_gram,
 )
-from formulations.clearance import CONCAVE, CONVEX, END, EXEMPT, LINE, classify
-from formulations.lead_setup import V_MIN_FRACTION, LeadSetup, run_leads
+from ccopt_formulations.clearance import CONCAVE, CONVEX, END, EXEMPT, LINE, classify
+from ccopt_formulations.lead_setup import V_MIN_FRACTION, LeadSetup, run_leads
 
 #: Rounds of "solve, re-classify the clearance cases at the solution".
 MAX_ROUNDS = 4
@@ -46,7 +46,7 @@ M_CLEAR = 61
 
 
 def classes_at(setup: LeadSetup, x, m_clear: int):
-    """Clearance cases (:func:`formulations.clearance.classify`) of every element at the
+    """Clearance cases (:func:`ccopt_formulations.clearance.classify`) of every element at the
     curve samples of ``x`` (ends excluded)."""
     pts = bernstein(np.linspace(0.0, 1.0, m_clear)[1:-1], setup.degree) @ setup.controls(x)
     return [classify(el, pts) for el in setup.elements]
@@ -209,7 +209,7 @@ def solve_lead(setup: LeadSetup, solver: str = "ipopt"):
     element's band on its own side, which from there may be locally
     infeasible. The earlier solution is then returned (``stats["note"]``
     says so): like every blend it is taken only if the verifier certifies it,
-    between samples too (:func:`formulations.lead_setup.run_leads`).
+    between samples too (:func:`ccopt_formulations.lead_setup.run_leads`).
     """
     t0 = time.perf_counter()
     m_clear = M_CLEAR * setup.refine

@@ -1,6 +1,6 @@
 """``opt-cvxpy``: the G2 lead blend as a sequence of convex problems, solved with Clarabel.
 
-Same curve as ``opt-casadi`` (:mod:`formulations.lead_setup`: a Bezier from
+Same curve as ``opt-casadi`` (:mod:`ccopt_formulations.lead_setup`: a Bezier from
 the approach point ``A`` matching the host's position, tangent and curvature
 at the join, decision vector ``x = [P1 .. P(n-3), a, e, sigma]``), but every
 subproblem is convex. At iterate ``x_k`` (:class:`ConvexLeadModel`, the model):
@@ -20,7 +20,7 @@ subproblem is convex. At iterate ``x_k`` (:class:`ConvexLeadModel`, the model):
 where ``p_i(x)`` are points of the curve at ``m`` samples of ``t``,
 ``len`` the length of the polyline through them (a sum of norms), ``E2 =
 integral |r''|^2 dt`` and ``E3 = integral |r'''|^2 dt`` (convex quadratics),
-the clearance rows those of :mod:`formulations.clearance` (every half-plane
+the clearance rows those of :mod:`ccopt_formulations.clearance` (every half-plane
 lies inside the true feasible set, so an iterate with zero slack keeps its
 clearance at the samples), ``w_i`` the point of the reference lead
 nearest ``p_i(x_k)`` (``|p - w_i| <= W`` implies distance to the reference
@@ -44,8 +44,8 @@ import time
 import numpy as np
 
 from ccopt.compare.blend import BlendProblem, bernstein, derivative_matrix
-from formulations.clearance import linear_rows
-from formulations.lead_setup import V_MIN_FRACTION, LeadSetup, run_leads
+from ccopt_formulations.clearance import linear_rows
+from ccopt_formulations.lead_setup import V_MIN_FRACTION, LeadSetup, run_leads
 
 #: (curvature weight relative to length, curvature cap as a share of the feed) tried.
 CANDIDATES = ((0.03, 0.3), (3.0, 0.6))
@@ -109,7 +109,7 @@ class ConvexLeadModel:
     sets the linearisation at an iterate, :attr:`problem` is what a solver gets.
 
     Clearance rows: for every element within reach and every inner curve
-    sample, the row of its case at the iterate (:func:`formulations.clearance.linear_rows`;
+    sample, the row of its case at the iterate (:func:`ccopt_formulations.clearance.linear_rows`;
     concave arcs as cones), with one slack per curve sample; a step over which
     the exact clearance fails is refused by :func:`scp`, which then shrinks the
     trust region.

@@ -16,7 +16,7 @@ contours where that is acceptable).
 
 Clearance from the contour: every element the verifier checks that comes
 within reach of the lead, exactly, by where the foot of each curve sample lies
-on it (:mod:`formulations.clearance`: the supporting line, the circle of an
+on it (:mod:`ccopt_formulations.clearance`: the supporting line, the circle of an
 arc, or an end point), re-classified at every iterate. The curve's two ends
 are PMAC's own points and are not constrained.
 
@@ -35,7 +35,7 @@ from ccopt.compare.blend import (
 )
 from ccopt.compare.leads import Lead, LeadGeometry
 from ccopt.geometry import Arc, Line
-from formulations.clearance import checked_distance, contour_elements, near
+from ccopt_formulations.clearance import checked_distance, contour_elements, near
 
 if TYPE_CHECKING:  # pragma: no cover
     from ccopt.compare.blend import BlendOutcome
@@ -80,7 +80,7 @@ class LeadSetup:
     feed: float
     acc: np.ndarray                 # in-plane axis acceleration limits (a_u, a_v)
     L0: float
-    elements: list                  # contour elements within reach (formulations.clearance)
+    elements: list                  # contour elements within reach (ccopt_formulations.clearance)
     w_jerk: float = W_JERK
     degree: int = DEGREE
     refine: int = 1                 # clearance samples are multiplied by this

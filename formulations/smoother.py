@@ -59,7 +59,7 @@ from ccopt.compare.blend import (
 from ccopt.compare.figures import joins as path_joins, max_deviation
 from ccopt.geometry import BezierCurve
 from ccopt.toolpath import PathSegment, Role, ToolPath
-from formulations.clearance import (
+from ccopt_formulations.clearance import (
     Element, checked_distance, contour_elements, linear_rows, near,
 )
 

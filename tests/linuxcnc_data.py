@@ -1,5 +1,5 @@
-"""LinuxCNC's own cutter-compensation test data (``crazy-paths``), read from
-the shared folder next to the repository (never copied into the project).
+"""LinuxCNC's own cutter-compensation test data (``crazy-paths``), kept in
+``tests/conformance/linuxcnc`` (source and licence in its README).
 
 A missing copy is a test failure, never a skip.
 """
@@ -10,7 +10,8 @@ from pathlib import Path
 
 import pytest
 
-DATA = Path(__file__).resolve().parents[1] / ".." / "shared" / "conformance" / "linuxcnc" / "crazy-paths"
+CONFORMANCE = Path(__file__).resolve().parent / "conformance" / "linuxcnc"
+DATA = CONFORMANCE / "crazy-paths"
 TOL = 5e-5  # `expected` prints its figures to 4 decimals
 N_CALLS = 75
 _CANON = re.compile(r"\b(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED|COMMENT)\((.*)\)\s*$")
@@ -19,8 +20,8 @@ _CANON = re.compile(r"\b(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED|COMMENT)\((.*)
 def data_file(name: str) -> Path:
     path = DATA / name
     if not path.is_file():
-        pytest.fail(f"LinuxCNC conformance data missing: {path.resolve()} (expected the shared "
-                    "folder next to the repository: shared/conformance/linuxcnc/crazy-paths)")
+        pytest.fail(f"LinuxCNC conformance data missing: {path} (kept in the repository "
+                    "under tests/conformance/linuxcnc/crazy-paths)")
     return path
 
 

@@ -8,8 +8,8 @@ canonical moves LinuxCNC's interpreter prints in ``expected``:
 point, centre, turn), every figure within 5e-5 (``expected`` prints 4
 decimals).
 
-The data lives next to the repository in ``shared/conformance/linuxcnc``; it is
-never copied into the project. A missing copy is a failure, not a skip.
+The data is kept in ``tests/conformance/linuxcnc`` (source and licence in its
+README). A missing copy is a failure, not a skip.
 """
 from __future__ import annotations
 

@@ -11,7 +11,7 @@ from ccopt.compare.blend import (
     bernstein, g2_end, g2_start, jerk_gram, speed_profile_time, subdivision_matrix,
 )
 from ccopt.geometry import Arc, BezierCurve, Line
-from formulations.clearance import CONCAVE, CONVEX, END, LINE, Element, classify, linear_rows
+from ccopt_formulations.clearance import CONCAVE, CONVEX, END, LINE, Element, classify, linear_rows
 
 
 @settings(max_examples=40, deadline=None)
@@ -103,7 +103,7 @@ def test_exempt_samples_beyond_a_lines_open_ends():
     # a line element (0, 0)-(10, 0), open at both ends: points with their foot beyond
     # an end are exempt; classify gives the half-plane beyond that end, exactly (the
     # CasADi model keeps such samples there), and the convex rows leave them free
-    from formulations.clearance import EXEMPT, LINE, Element, classify, linear_rows
+    from ccopt_formulations.clearance import EXEMPT, LINE, Element, classify, linear_rows
     el = Element("line", 2.0, Line((0.0, 0.0), (10.0, 0.0)), open_start=True, open_end=True)
     p = np.array([[-1.0, 0.5], [-0.001, -3.0], [5.0, 3.0], [10.5, -1.0], [12.0, 4.0]])
     kind, vec, scal = classify(el, p)

@@ -15,7 +15,7 @@ from ccopt.geometry import Arc, Line
 from ccopt.toolpath import Role
 from ccopt.verify import verify
 from ccopt.verify.crosschecks import run_crosschecks
-from formulations import crosscheck_casadi as F
+from ccopt_formulations import crosscheck_casadi as F
 from random_contours import contour_program, contours
 
 CASES = [c for c in bundled_cases() if c.expect != "error"]
@@ -23,7 +23,7 @@ CASES = [c for c in bundled_cases() if c.expect != "error"]
 
 def test_registered_as_an_entry_point():
     eps = {e.name: e.value for e in entry_points(group="ccopt.crosschecks")}
-    assert eps["casadi"] == "formulations.crosscheck_casadi:crosscheck"
+    assert eps["casadi"] == "ccopt_formulations.crosscheck_casadi:crosscheck"
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])

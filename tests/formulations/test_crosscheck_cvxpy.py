@@ -12,7 +12,7 @@ from ccopt.compensate import compensate
 from ccopt.geometry.distance import point_segment, segment_segment
 from ccopt.verify import verify
 from ccopt.verify.crosschecks import available, run_crosschecks
-from formulations import crosscheck_cvxpy as F
+from ccopt_formulations import crosscheck_cvxpy as F
 
 
 def test_socp_segment_segment_agrees_with_the_closed_form_on_1000_pairs():
@@ -50,7 +50,7 @@ def test_model_and_solver_are_separate():
 
 def test_registered_as_an_entry_point():
     eps = {e.name: e.value for e in entry_points(group="ccopt.crosschecks")}
-    assert eps["cvxpy"] == "formulations.crosscheck_cvxpy:crosscheck"
+    assert eps["cvxpy"] == "ccopt_formulations.crosscheck_cvxpy:crosscheck"
     assert "cvxpy" in available()
 
 

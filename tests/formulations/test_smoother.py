@@ -13,7 +13,7 @@ from ccopt.feed import feed_limited_time
 from ccopt.geometry import BezierCurve
 from ccopt.program import read_text
 from ccopt.toolpath import Role
-from formulations.smoother import smooth
+from ccopt_formulations.smoother import smooth
 
 import blend_checks as bc
 

@@ -2,8 +2,8 @@
 moves LinuxCNC's own interpreter prints in `expected` (uncompensated calls), and
 the compensation state of the compensated calls.
 
-The data lives next to the repository in ``shared/conformance/linuxcnc``; it is
-never copied into the project. A missing copy is a failure, not a skip.
+The data is kept in ``tests/conformance/linuxcnc`` (source and licence in its
+README). A missing copy is a failure, not a skip.
 """
 from __future__ import annotations
 

@@ -1,0 +1,1 @@
+"""The HTML report of `ccopt run` and the plots it embeds."""
