@@ -64,7 +64,11 @@ def _import_graph() -> dict[str, set[str]]:
         for node in ast.walk(_tree(path)):
             if not isinstance(node, (ast.Import, ast.ImportFrom)):
                 continue
-            for target in _imported(path, node):
+            names = _imported(path, node)
+            if isinstance(node, ast.ImportFrom) and any(n in modules for n in names[1:]):
+                # ``from pkg import submodule``: the submodule is what is used
+                names = [n for n in names[1:] if n in modules]
+            for target in names:
                 while target and target not in modules:
                     target = target.rpartition(".")[0]
                 if target and target != name:
