@@ -6,12 +6,15 @@ positive; "left" is the tangent rotated by +90 degrees.
 
 - :mod:`~ccopt.geometry.angles`: sweep conventions and the inside-the-sweep test.
 - :mod:`~ccopt.geometry.primitives`: :class:`Line`, :class:`Arc`,
-  :class:`Spiral`, evaluated by arc length.
+  :class:`Spiral` (:mod:`~ccopt.geometry.spiral`), evaluated by arc length
+  (shared helpers in :mod:`~ccopt.geometry.arclength`).
 - :mod:`~ccopt.geometry.offset`: :func:`offset` (raw offset to the left).
 - :mod:`~ccopt.geometry.intersect`: :func:`line_line`, :func:`line_circle`,
   :func:`circle_circle`, :func:`intersections`.
-- :mod:`~ccopt.geometry.distance`: vectorised closed-form distance kernels,
-  :func:`distance`, :class:`SegmentArray`, :func:`pair_distance`.
+- :mod:`~ccopt.geometry.distance`: vectorised closed-form distance kernels
+  (:mod:`~ccopt.geometry.point_distance`, :mod:`~ccopt.geometry.curve_distance`,
+  on :mod:`~ccopt.geometry.columns`), :func:`distance`, :class:`SegmentArray`,
+  :func:`pair_distance`.
 """
 from ccopt.geometry.angles import TWO_PI, angle_along, angle_in_sweep, sweep_between, sweep_sign
 from ccopt.geometry.distance import (
