@@ -213,6 +213,20 @@ def _bernstein_to_power(b: np.ndarray) -> np.ndarray:
     return c
 
 
+#: Power-basis coefficients below this fraction of the largest are rounding
+#: left over from the basis change (exact zeros in exact arithmetic).
+POWER_COEFF_NOISE_REL = 1e-14
+
+#: Polynomial roots whose imaginary part is at most this are real: a double
+#: root splits into a pair about sqrt(eps) ~ 1e-8 apart, the candidate is
+#: only a candidate (its sign change is tested), so the bound is generous.
+ROOT_IMAG_TOL = 1e-7
+
+#: Values of ``r' x r''`` within this fraction of its largest Bernstein
+#: coefficient have no sign (rounding of the cross product).
+CROSS_SIGN_NOISE_REL = 1e-12
+
+
 def inflections(ctrl) -> list[float]:
     """Parameters ``t`` in ``(0, 1)`` where the curvature of the Bezier ``ctrl``
     changes sign, ascending.
@@ -233,13 +247,13 @@ def inflections(ctrl) -> list[float]:
     if scale == 0.0:
         return []                      # a straight curve: no turn at all
     c = _bernstein_to_power(k)
-    nz = np.flatnonzero(np.abs(c) > 1e-14 * np.max(np.abs(c)))
+    nz = np.flatnonzero(np.abs(c) > POWER_COEFF_NOISE_REL * np.max(np.abs(c)))
     cand = []
     if len(nz) and nz[-1] >= 1:
         roots = np.polynomial.polynomial.polyroots(c[: nz[-1] + 1])
         cand = sorted(float(r.real) for r in roots
-                      if abs(r.imag) <= 1e-7 and 0.0 < r.real < 1.0)
-    noise = 1e-12 * scale
+                      if abs(r.imag) <= ROOT_IMAG_TOL and 0.0 < r.real < 1.0)
+    noise = CROSS_SIGN_NOISE_REL * scale
 
     def sign_at(t: float) -> float:
         v = float(bernstein(np.array([t]), len(k) - 1)[0] @ k)
@@ -266,6 +280,19 @@ def inflections(ctrl) -> list[float]:
                 hi = mid
         out.append(0.5 * (lo + hi))
     return out
+
+
+#: A curve whose speed ``|r'(t)|`` falls to this times ``max(1, |control
+#: points|)`` on the check grid is not regular (the arc-length map needs it > 0).
+REGULAR_SPEED_REL = 1e-12
+
+#: Newton for ``s -> t`` stops once every step in ``t`` (in [0, 1]) is at most
+#: this: a few ulps of ``t``.
+T_NEWTON_STEP = 1e-15
+
+#: A root of a hodograph component is real when its imaginary part is below
+#: this (the roots of the low-degree hodographs used here are well separated).
+BBOX_ROOT_IMAG_TOL = 1e-12
 
 
 @dataclass(frozen=True, eq=False)
@@ -296,7 +323,7 @@ class BezierCurve:
         object.__setattr__(self, "_D2", D2)
         tk = np.linspace(0.0, 1.0, PIECES + 1)
         speed_check = np.hypot(*_bernstein_eval(D1, np.linspace(0, 1, 64 * PIECES + 1)).T)
-        if speed_check.min() <= 1e-12 * max(1.0, float(np.abs(P).max())):
+        if speed_check.min() <= REGULAR_SPEED_REL * max(1.0, float(np.abs(P).max())):
             raise ValueError("the Bezier curve is not regular (its speed vanishes)")
         seg = np.array([self._quad(a, b) for a, b in zip(tk[:-1], tk[1:])])
         object.__setattr__(self, "_knots_t", tk)
@@ -330,7 +357,7 @@ class BezierCurve:
             st = s0 + 0.5 * (t - t0) * (sp @ _GL_W)
             step = (st - s) / self._speed(t)
             t_new = np.clip(t - step, t0, t1)
-            if np.all(np.abs(t_new - t) <= 1e-15):
+            if np.all(np.abs(t_new - t) <= T_NEWTON_STEP):
                 t = t_new
                 break
             t = t_new
@@ -407,7 +434,7 @@ class BezierCurve:
                     coeffs[j] += c * math.comb(n1, i) * math.comb(n1 - i, j - i) * (-1) ** (j - i)
             if np.any(coeffs[1:] != 0):
                 for root in np.roots(coeffs[::-1]):
-                    if abs(root.imag) < 1e-12 and 0.0 < root.real < 1.0:
+                    if abs(root.imag) < BBOX_ROOT_IMAG_TOL and 0.0 < root.real < 1.0:
                         ts.append(float(root.real))
         pts = _bernstein_eval(self._P, np.array(ts))
         return (float(pts[:, 0].min()), float(pts[:, 1].min()),

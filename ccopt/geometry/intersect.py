@@ -15,8 +15,8 @@ Low-level (supporting curves, no range limits):
 
 Tangency: a line whose distance from the centre is within ``tol * R`` of
 ``R``, or circles whose centre distance is within ``tol * (R1 + R2)`` of
-``R1 + R2`` or ``|R1 - R2|``, touch in exactly one point (``tol = 1e-12``
-by default).
+``R1 + R2`` or ``|R1 - R2|``, touch in exactly one point (``tol`` is
+:data:`TANGENT_REL_TOL` ``= 1e-12`` by default).
 
 Primitives: :func:`intersections` ``(a, b, extend=False)`` for two
 :class:`Line`/:class:`Arc` objects returns ``[(point, sa, sb)]`` sorted by
@@ -33,6 +33,16 @@ from ccopt.geometry.primitives import Arc, Line, Spiral
 
 __all__ = ["line_line", "line_circle", "circle_circle", "intersections"]
 
+#: Relative tolerance of tangency and parallelism (``|sin(angle)|``, or a
+#: fraction of the radii): a few thousand ulps, so a contact computed from
+#: rounded input still counts as the single touching point it is meant to be.
+TANGENT_REL_TOL = 1e-12
+
+#: A point within this times the coordinate scale of a primitive's end counts
+#: as on the piece and is clamped to the end (rounding of points computed on
+#: both pieces; the same relative bound as ``Arc.from_points``).
+END_REL_TOL = 1e-9
+
 Point = tuple[float, float]
 
 
@@ -40,7 +50,7 @@ def _cross(ax, ay, bx, by):
     return ax * by - ay * bx
 
 
-def line_line(p0, p1, q0, q1, tol: float = 1e-12):
+def line_line(p0, p1, q0, q1, tol: float = TANGENT_REL_TOL):
     """Intersection of the infinite lines ``p0 p1`` and ``q0 q1``.
 
     Returns ``[(point, t, u)]`` (fractions along ``p0 -> p1`` and
@@ -61,7 +71,7 @@ def line_line(p0, p1, q0, q1, tol: float = 1e-12):
     return [((p0x + t * rx, p0y + t * ry), t, u)]
 
 
-def line_circle(p0, p1, c, R, tol: float = 1e-12):
+def line_circle(p0, p1, c, R, tol: float = TANGENT_REL_TOL):
     """Intersections of the infinite line ``p0 p1`` with the circle ``(c, R)``.
 
     Returns ``[(point, t, theta)]`` sorted by ``t`` (fraction along
@@ -96,7 +106,7 @@ def line_circle(p0, p1, c, R, tol: float = 1e-12):
     return out
 
 
-def circle_circle(c1, R1, c2, R2, tol: float = 1e-12):
+def circle_circle(c1, R1, c2, R2, tol: float = TANGENT_REL_TOL):
     """Intersections of circles ``(c1, R1)`` and ``(c2, R2)``.
 
     Returns ``[(point, theta1, theta2)]`` with the polar angles of the point
@@ -231,7 +241,8 @@ def _dedupe(hits, eps: float):
     return out
 
 
-def intersections(a, b, extend: bool = False, tol: float = 1e-12, end_tol: float = 1e-9):
+def intersections(a, b, extend: bool = False, tol: float = TANGENT_REL_TOL,
+                  end_tol: float = END_REL_TOL):
     """All intersections of two :class:`Line`/:class:`Arc` primitives.
 
     Returns ``[(point, sa, sb)]`` sorted by ``sa``; ``sa``/``sb`` are arc-length

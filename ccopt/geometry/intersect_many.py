@@ -13,12 +13,18 @@ from __future__ import annotations
 
 import numpy as np
 
+#: Relative closeness to parallel lines or tangency below which a pair is
+#: ``delicate`` and goes to the scalar reference: far above the rounding of
+#: these formulas (~1e-15), far below a real corner's turn.
+DELICATE_REL = 1e-9
+
 
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]
 
 
-def lines_lines(p: np.ndarray, d: np.ndarray, q: np.ndarray, e: np.ndarray, near: float = 1e-9):
+def lines_lines(p: np.ndarray, d: np.ndarray, q: np.ndarray, e: np.ndarray,
+                near: float = DELICATE_REL):
     """Line ``p + t*d`` with line ``q + u*e``: ``(x, x, n, delicate)``."""
     den = _cross(d, e)
     delicate = np.abs(den) <= near
@@ -30,7 +36,8 @@ def lines_lines(p: np.ndarray, d: np.ndarray, q: np.ndarray, e: np.ndarray, near
     return x, x, n, delicate
 
 
-def lines_circles(p: np.ndarray, d: np.ndarray, c: np.ndarray, R: np.ndarray, near: float = 1e-9):
+def lines_circles(p: np.ndarray, d: np.ndarray, c: np.ndarray, R: np.ndarray,
+                  near: float = DELICATE_REL):
     """Line ``p + t*d`` with circle ``(c, R)``: candidates ordered by ``t``."""
     g = c - p
     along = np.einsum("ij,ij->i", g, d)          # foot of the centre along the line
@@ -46,7 +53,7 @@ def lines_circles(p: np.ndarray, d: np.ndarray, c: np.ndarray, R: np.ndarray, ne
 
 
 def circles_circles(c1: np.ndarray, R1: np.ndarray, c2: np.ndarray, R2: np.ndarray,
-                    near: float = 1e-9):
+                    near: float = DELICATE_REL):
     """Circle ``(c1, R1)`` with circle ``(c2, R2)``: the first candidate lies left of c1 -> c2."""
     g = c2 - c1
     D = np.hypot(g[:, 0], g[:, 1])
