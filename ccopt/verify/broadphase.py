@@ -26,6 +26,10 @@ CELL_FACTOR = 2.0
 #: Pairs are produced in chunks of about this many to bound memory.
 CHUNK = 1 << 21
 
+#: Smallest cell size (program units): boxes that are all points with zero
+#: reach would otherwise give a zero cell and divide by it.
+MIN_CELL = 1e-12
+
 
 def _cells(box: np.ndarray, origin: np.ndarray, h: float):
     lo = np.floor((box[:, :2] - origin) / h).astype(np.int64)
@@ -69,7 +73,7 @@ def candidate_pairs(tool_box: np.ndarray, elem_box: np.ndarray, reach: np.ndarra
     grown = elem_box + np.c_[-reach, -reach, reach, reach]
     allbox = np.r_[tool_box, grown]
     ext = np.maximum(allbox[:, 2] - allbox[:, 0], allbox[:, 3] - allbox[:, 1])
-    h = float(max(CELL_FACTOR * np.median(ext), float(reach.max(initial=0.0)), 1e-12))
+    h = float(max(CELL_FACTOR * np.median(ext), float(reach.max(initial=0.0)), MIN_CELL))
     origin = allbox[:, :2].min(axis=0)
     span = (allbox[:, 2:].max(axis=0) - origin) / h
     ncol = np.int64(np.floor(span[0])) + 2

@@ -34,18 +34,25 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ccopt.geometry import Arc, Line, Spiral
+from ccopt.geometry import Arc, Line, SegmentArray, Spiral
+from ccopt.geometry.angles import sweep_sign
 from ccopt.geometry.distance import (
     point_arc, point_segment, segment_arc, segment_segment,
 )
-from ccopt.geometry.angles import sweep_sign
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
+from ccopt.verify.maxdist import max_distance as exact_max_distance
 
 #: Pieces per pair are never more than this (the bound is then reported with its gap).
 MAX_PIECES = 1 << 18
 
 #: Chords per curve in a certified farthest distance (contact), at most.
 MAX_CHORDS = 1 << 15
+
+#: The first cut of a curve's parameter range: this many equal pieces ...
+FIRST_PIECES = 8
+#: ... and, for an arc or a spiral, at least one per this swept angle
+#: (radians), so the first chords already follow the turns.
+FIRST_PIECE_ANGLE = math.pi / 16
 
 
 # --------------------------------------------------------------------------- parameterisations
@@ -205,9 +212,17 @@ class Bound:
         return self.ub - self.lb
 
 
-def _initial(U, n0=8):
+def _initial(U, n0=FIRST_PIECES):
     u = np.linspace(0.0, U, n0 + 1)
     return u[:-1], u[1:]
+
+
+def _first_pieces(p: Param):
+    """The first cut of ``[0, p.U]``: ``(u0, u1)`` of each piece; an arc or a
+    spiral gets at least one piece per :data:`FIRST_PIECE_ANGLE` of sweep."""
+    if isinstance(p, SpiralParam):
+        return _initial(p.U, max(FIRST_PIECES, int(math.ceil(p.U / FIRST_PIECE_ANGLE))))
+    return _initial(p.U, FIRST_PIECES)
 
 
 def min_distance(a, b, tol: float, cap: float = math.inf, exempt=None,
@@ -228,57 +243,21 @@ def min_distance(a, b, tol: float, cap: float = math.inf, exempt=None,
         r = min_distance(b, a, tol, cap, None, max_rounds)
         return Bound(r.lb, r.ub, r.wb, r.wa, r.converged, r.pieces)
     pa = param_of(a)
-    b_exact = is_exact(b)
-    pb = None if b_exact else param_of(b)
-    n0a = max(8, int(math.ceil(pa.U / (math.pi / 16)))) if isinstance(pa, SpiralParam) else 8
-    ua0, ua1 = _initial(pa.U, n0a)
-    if b_exact:
-        ub0 = ub1 = None
-    else:
-        n0b = max(8, int(math.ceil(pb.U / (math.pi / 16)))) if isinstance(pb, SpiralParam) else 8
-        b0, b1 = _initial(pb.U, n0b)
-        # all piece pairs
-        ua0, ub0 = np.repeat(ua0, b0.size), np.tile(b0, ua0.size)
-        ua1, ub1 = np.repeat(ua1, b1.size), np.tile(b1, ua1.size)
+    pb = None if is_exact(b) else param_of(b)
+    pieces = _first_piece_pairs(pa, pb)
     best = math.inf
     wa = wb = None
     dropped_lb = math.inf
     rounds = 0
     remaining_lb = math.inf
-    while ua0.size:
+    while pieces[0].size:
         rounds += 1
-        c0, c1 = pa.eval(ua0), pa.eval(ua1)
-        da = pa.delta(ua0, ua1)
-        if b_exact:
-            d, w_a, w_b = _chords_to(b, c0, c1)
-            db = 0.0
-        else:
-            e0, e1 = pb.eval(ub0), pb.eval(ub1)
-            db = pb.delta(ub0, ub1)
-            d, w_a, w_b = segment_segment(c0, c1, e0, e1)
-        lb = d - da - db
-        skip = np.zeros(ua0.size, bool)
-        if exempt is not None:
-            inside_by, _ = exempt
-            skip = inside_by(c0, da) & inside_by(c1, da)
-        # upper bounds from genuine curve points at the chord witnesses
-        ta = _fraction(w_a, c0, c1)
-        qa = pa.eval(ua0 + ta * (ua1 - ua0))
-        if b_exact:
-            dq, _, qb = _points_to(b, qa)
-        else:
-            tb = _fraction(w_b, e0, e1)
-            qb = pb.eval(ub0 + tb * (ub1 - ub0))
-            dq = np.hypot(*(qa - qb).T)
-        ok_ub = ~skip
-        if exempt is not None:
-            ok_ub &= ~exempt[1](qa)
+        lb, live, dq, qa, qb, ok_ub = _bound_pieces(pa, b, pb, pieces, exempt)
         if ok_ub.any():
             k = int(np.argmin(np.where(ok_ub, dq, np.inf)))
             if dq[k] < best:
                 best = float(dq[k])
                 wa, wb = (float(qa[k, 0]), float(qa[k, 1])), (float(qb[k, 0]), float(qb[k, 1]))
-        live = ~skip
         keep = live & (lb < best - tol) & (lb < cap)
         gone = live & ~keep
         if gone.any():
@@ -287,23 +266,74 @@ def min_distance(a, b, tol: float, cap: float = math.inf, exempt=None,
             remaining_lb = math.inf
             break
         remaining_lb = float(lb[keep].min())
-        if rounds >= max_rounds or 2 * keep.sum() * (1 if b_exact else 2) > MAX_PIECES:
+        if rounds >= max_rounds or 2 * keep.sum() * (1 if pb is None else 2) > MAX_PIECES:
             break
-        ua0, ua1 = ua0[keep], ua1[keep]
-        mid = 0.5 * (ua0 + ua1)
-        if b_exact:
-            ua0, ua1 = np.r_[ua0, mid], np.r_[mid, ua1]
-        else:
-            ub0, ub1 = ub0[keep], ub1[keep]
-            midb = 0.5 * (ub0 + ub1)
-            A0 = np.r_[ua0, ua0, mid, mid]
-            A1 = np.r_[mid, mid, ua1, ua1]
-            B0 = np.r_[ub0, midb, ub0, midb]
-            B1 = np.r_[midb, ub1, midb, ub1]
-            ua0, ua1, ub0, ub1 = A0, A1, B0, B1
+        pieces = _halve(pieces, keep)
     lbv = min(dropped_lb, remaining_lb, best)
     converged = best - lbv <= tol or lbv >= cap
-    return Bound(lbv, best, wa, wb, bool(converged), int(ua0.size))
+    return Bound(lbv, best, wa, wb, bool(converged), int(pieces[0].size))
+
+
+def _first_piece_pairs(pa: Param, pb: Param | None):
+    """``(ua0, ua1, ub0, ub1)``: the first pieces of ``a`` and, when ``b`` is
+    curved (``pb``), every pair of them with the first pieces of ``b``
+    (``ub0 = ub1 = None`` for an exact ``b``)."""
+    ua0, ua1 = _first_pieces(pa)
+    if pb is None:
+        return ua0, ua1, None, None
+    b0, b1 = _first_pieces(pb)
+    return (np.repeat(ua0, b0.size), np.repeat(ua1, b1.size),
+            np.tile(b0, ua0.size), np.tile(b1, ua1.size))
+
+
+def _bound_pieces(pa: Param, b, pb: Param | None, pieces, exempt):
+    """Bounds of the distance on each piece (pair): ``(lb, live, dq, qa, qb, ok_ub)``.
+
+    ``lb``: chord distance minus both chord deviations (certified lower
+    bound); ``live``: pieces not exempt; ``dq``: true distance between the
+    curve points ``qa``, ``qb`` at the chord witnesses (an upper bound where
+    ``ok_ub``: the point ``qa`` is not exempt).
+    """
+    ua0, ua1, ub0, ub1 = pieces
+    c0, c1 = pa.eval(ua0), pa.eval(ua1)
+    da = pa.delta(ua0, ua1)
+    if pb is None:
+        d, w_a, w_b = _chords_to(b, c0, c1)
+        db = 0.0
+    else:
+        e0, e1 = pb.eval(ub0), pb.eval(ub1)
+        db = pb.delta(ub0, ub1)
+        d, w_a, w_b = segment_segment(c0, c1, e0, e1)
+    lb = d - da - db
+    skip = np.zeros(ua0.size, bool)
+    if exempt is not None:
+        inside_by, _ = exempt
+        skip = inside_by(c0, da) & inside_by(c1, da)
+    # upper bounds from genuine curve points at the chord witnesses
+    ta = _fraction(w_a, c0, c1)
+    qa = pa.eval(ua0 + ta * (ua1 - ua0))
+    if pb is None:
+        dq, _, qb = _points_to(b, qa)
+    else:
+        tb = _fraction(w_b, e0, e1)
+        qb = pb.eval(ub0 + tb * (ub1 - ub0))
+        dq = np.hypot(*(qa - qb).T)
+    ok_ub = ~skip
+    if exempt is not None:
+        ok_ub &= ~exempt[1](qa)
+    return lb, ~skip, dq, qa, qb, ok_ub
+
+
+def _halve(pieces, keep):
+    """The kept pieces (pairs), each cut in two halves (a pair in four)."""
+    ua0, ua1 = pieces[0][keep], pieces[1][keep]
+    mid = 0.5 * (ua0 + ua1)
+    if pieces[2] is None:
+        return np.r_[ua0, mid], np.r_[mid, ua1], None, None
+    ub0, ub1 = pieces[2][keep], pieces[3][keep]
+    midb = 0.5 * (ub0 + ub1)
+    return (np.r_[ua0, ua0, mid, mid], np.r_[mid, mid, ua1, ua1],
+            np.r_[ub0, midb, ub0, midb], np.r_[midb, ub1, midb, ub1])
 
 
 def _chords(p: Param, n: int):
@@ -336,8 +366,6 @@ def max_distance(t, e, tol: float, max_rounds: int = 16, n0: int = 16) -> Bound:
     polyline of ``e`` minus ``e``'s delta (or the exact distance when ``e`` is
     a line or arc).
     """
-    from ccopt.verify.maxdist import max_distance as exact_max
-    from ccopt.geometry import SegmentArray
     pt = param_of(t)
     e_exact = is_exact(e)
     pe = None if e_exact else param_of(e)
@@ -353,7 +381,7 @@ def max_distance(t, e, tol: float, max_rounds: int = 16, n0: int = 16) -> Bound:
             chords = SegmentArray(np.zeros(n, np.int8), c0, c1, np.full((n, 2), np.nan), nan, nan,
                                   nan, nan)
             earr = SegmentArray.from_segments([e])
-            dmax, _, _ = exact_max(chords, np.arange(n), earr, np.zeros(n, np.intp))
+            dmax, _, _ = exact_max_distance(chords, np.arange(n), earr, np.zeros(n, np.intp))
             ub_n = float((dmax + dt).max())
             dq = _points_to(e, ends)[0]
             de = 0.0

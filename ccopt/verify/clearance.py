@@ -208,9 +208,16 @@ def clipped_distance(tool_geom, elem_geom, regions):
 # --------------------------------------------------------------------------- all pairs
 
 
+#: The broad phase looks this many ``eps`` beyond an element's clearance ...
+REACH_MARGIN_EPS = 10.0
+#: ... and at least this far (program units), so a tiny ``eps`` still leaves
+#: room for the rounding of the boxes (a few ulps of coordinates up to ~1e6).
+REACH_MARGIN_MIN = 1e-9
+
+
 def reach_of(contour: Contour, eps: float) -> np.ndarray:
     """How far from an element the broad phase looks: its clearance plus a margin."""
-    return contour.clearance + max(10.0 * eps, 1e-9)
+    return contour.clearance + max(REACH_MARGIN_EPS * eps, REACH_MARGIN_MIN)
 
 
 def pair_distances(tool: Packed, contour: Contour, eps: float,
@@ -219,6 +226,9 @@ def pair_distances(tool: Packed, contour: Contour, eps: float,
 
     ``counted``: per tool segment, whether its pairs count as gouges (all by default).
     """
+    # In the plane of compensation only: a tool position counts whatever its
+    # out-of-plane coordinate (conservative: a tool above the part is checked
+    # as if at depth; a verifier decision, docs/compensation.md section 8.2).
     E = contour.elements
     reach = reach_of(contour, eps)
     it, je = candidate_pairs(tool.bbox, E.bbox, reach)

@@ -1,6 +1,6 @@
 """Contact: wherever the tool runs alongside its element, it reaches it.
 
-(:data:`ccopt.verify.decisions.CONTACT_ALONGSIDE`.) For the tool segment
+(A verifier decision, docs/compensation.md section 8.3.) For the tool segment
 ``T`` of every *steady* contour element ``e`` (compensated with the same side
 and radius as the move before) the largest distance to ``e`` from the points
 of ``T`` that lie alongside ``e`` (whose nearest point on ``e`` is not one of
@@ -51,7 +51,7 @@ from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed, pack
 def corner_points(toolpath, contour: Contour, table, ci: np.ndarray):
     """The programmed corner of each corner arc ``ci`` (tool segment indices).
 
-    (:data:`ccopt.verify.decisions.CORNER_POINT_BETWEEN_ITS_MOVES`.) A corner
+    (A verifier decision, docs/compensation.md section 8.3.) A corner
     arc is run between the tool segments of the two in-plane moves that meet
     at its corner ``P``: ``P`` is the end of the in-plane move run last before
     it and the start of the one run first after it. Which block *carries* the
@@ -119,8 +119,10 @@ def contact_pairs(toolpath, contour: Contour, lengths: np.ndarray, table):
     ej = table.element[si]
     cand = np.flatnonzero(table.is_role(Role.CORNER) & (table.r > 0.0))
     segs = toolpath.segments
-    # arcs fitted to a blend curve are pieces of the blend, not corner arcs
-    # (decisions.CORNER_ARCS_ARE_THE_CONTROLLERS)
+    # Only the arcs a controller adds are held to the corner rule: arcs fitted
+    # to a blend curve or a spiral by an export keep the role of the curve they
+    # replace (checked for gouge and continuity like it, not for touching the
+    # corner; a verifier decision, docs/compensation.md section 8.3)
     fitted = set(toolpath.meta.get(FITTED_PIECES, ()))
     ci = np.asarray([i for i in cand if segs[i].block is not None
                      and isinstance(segs[i].geom, Arc) and int(i) not in fitted], np.intp)
@@ -161,10 +163,16 @@ def _line_line(T, ti, E, ej):
     return dmax, q, along
 
 
+#: Two centres within this times ``max(1, radii)`` are the same centre (an arc
+#: tool segment and its element both computed about the programmed centre
+#: agree to rounding).
+CONCENTRIC_REL = 1e-12
+
+
 def _arc_arc_concentric(T, ti, E, ej):
     cT, cE = T.center[ti], E.center[ej]
     scale = np.maximum(1.0, np.maximum(T.radius[ti], E.radius[ej]))
-    conc = np.hypot(*(cT - cE).T) <= 1e-12 * scale
+    conc = np.hypot(*(cT - cE).T) <= CONCENTRIC_REL * scale
     # angular overlap (same centre, so polar angles compare directly): the middle
     # or an end of one arc inside the other's sweep; the middles make it robust
     # to the rounding of arcs that share their end angles
@@ -195,6 +203,51 @@ def check_contact(tool: Packed, toolpath, contour: Contour, eps: float, lengths,
     """``(Check, [Violation])``; ``info(i)`` gives ``(block line, role)`` of tool segment
     ``i``; ``table`` is the run's :class:`~ccopt.verify.run.SegmentTable`."""
     si, ej, ci, cp, cr, c_in, c_out = contact_pairs(toolpath, contour, lengths, table)
+    n = si.size
+    dmax, wq, exact = farthest_alongside(tool, contour, si, ej, eps)
+    gap = dmax - contour.radius[ej]
+    # corner arcs
+    cgap = np.full(ci.size, -np.inf)
+    cq = np.zeros((ci.size, 2))
+    if ci.size:
+        dd, cq[:] = max_distance_to_point(tool.arr, ci, cp)
+        cgap[:] = dd - cr
+    viol = []
+    for q in np.flatnonzero(gap > eps):
+        i, j = int(si[q]), int(ej[q])
+        line, role = info(i)
+        viol.append(Violation("contact", float(gap[q]), i, line, role, j, contour.element_line(j),
+                              (float(wq[q, 0]), float(wq[q, 1])), None,
+                              EXACT if exact[q] else CERTIFIED,
+                              {"max_distance": float(dmax[q]), "radius": float(contour.radius[j])}))
+    for q in np.flatnonzero(cgap > eps):
+        viol.append(_corner_violation(contour, info, int(ci[q]), float(cgap[q]), cq[q], cp[q],
+                                      float(cr[q]), int(c_in[q]), int(c_out[q])))
+    unreached = _unreached_elements(contour, table)
+    for j in unreached:
+        viol.append(Violation("contact", math.inf, None, None, None, int(j),
+                              contour.element_line(j), None, None, EXACT,
+                              {"reason": "no compensated tool segment runs along this element"}))
+    allgap = np.r_[gap, cgap, np.full(unreached.size, math.inf)]
+    if allgap.size:
+        k = int(np.argmax(allgap))
+        basis = EXACT if (k >= n or exact[k]) else CERTIFIED
+        figure = float(allgap[k])
+    else:
+        figure, basis = None, EXACT
+    check = Check("contact", not viol, figure, eps, basis, "length",
+                  "wherever a steady tool segment runs alongside its element it is within "
+                  "r + eps of it; every corner arc within r + eps of its corner point "
+                  "(figure: largest excess over r)", int(n + ci.size), len(viol))
+    return check, viol
+
+
+def farthest_alongside(tool: Packed, contour: Contour, si: np.ndarray, ej: np.ndarray,
+                       eps: float):
+    """``(dmax, witness, exact)``: for each steady tool segment ``si`` the largest
+    distance to its element ``ej`` from its points alongside the element (program
+    units), the tool point where it is reached, and whether it is exact (else a
+    certified upper bound within a fraction of ``eps``)."""
     T, E = tool.arr, contour.elements.arr
     n = si.size
     dmax = np.full(n, np.nan)
@@ -224,53 +277,29 @@ def check_contact(tool: Packed, toolpath, contour: Contour, eps: float, lengths,
         b = certified.max_distance(tool.geom(si[q]), contour.elements.geom(ej[q]), tol)
         dmax[q] = b.ub
         wq[q] = b.wa if b.wa is not None else T.p0[si[q]]
-    gap = dmax - contour.radius[ej]
-    # corner arcs
-    cgap = np.full(ci.size, -np.inf)
-    cq = np.zeros((ci.size, 2))
-    if ci.size:
-        dd, cq[:] = max_distance_to_point(T, ci, cp)
-        cgap[:] = dd - cr
-    viol = []
-    for q in np.flatnonzero(gap > eps):
-        i, j = int(si[q]), int(ej[q])
-        line, role = info(i)
-        viol.append(Violation("contact", float(gap[q]), i, line, role, j, contour.element_line(j),
-                              (float(wq[q, 0]), float(wq[q, 1])), None,
-                              EXACT if exact[q] else CERTIFIED,
-                              {"max_distance": float(dmax[q]), "radius": float(contour.radius[j])}))
-    for q in np.flatnonzero(cgap > eps):
-        i = int(ci[q])
-        line, role = info(i)
-        # the corner belongs to both moves meeting there; it is reported at the
-        # one ending there (the carrier's line is the tool block)
-        between = [contour.moves[k].source.line if k >= 0 else None
-                   for k in (int(c_in[q]), int(c_out[q]))]
-        at = between[0] if between[0] is not None else line
-        viol.append(Violation("contact", float(cgap[q]), i, line, role, None, at,
-                              (float(cq[q, 0]), float(cq[q, 1])), (float(cp[q, 0]), float(cp[q, 1])),
-                              EXACT, {"corner_point": [float(cp[q, 0]), float(cp[q, 1])],
-                                      "corner_between_blocks": between,
-                                      "radius": float(cr[q])}))
-    # every steady element must have a compensated tool segment at all: a path
-    # that never runs along an element (e.g. the programmed path itself, or a
-    # path made for another program) does not reach it
+    return dmax, wq, exact
+
+
+def _corner_violation(contour: Contour, info, i: int, gap: float, q, P, r: float,
+                      q_in: int, q_out: int) -> Violation:
+    """The contact violation of corner arc ``i`` (farthest point ``q`` from its
+    corner point ``P``, ``gap`` beyond ``r``) between moves ``q_in`` and ``q_out``."""
+    line, role = info(i)
+    # the corner belongs to both moves meeting there; it is reported at the
+    # one ending there (the carrier's line is the tool block)
+    between = [contour.moves[k].source.line if k >= 0 else None for k in (q_in, q_out)]
+    at = between[0] if between[0] is not None else line
+    return Violation("contact", gap, i, line, role, None, at,
+                     (float(q[0]), float(q[1])), (float(P[0]), float(P[1])),
+                     EXACT, {"corner_point": [float(P[0]), float(P[1])],
+                             "corner_between_blocks": between, "radius": r})
+
+
+def _unreached_elements(contour: Contour, table) -> np.ndarray:
+    """Steady elements with no compensated tool segment at all: a path that never
+    runs along an element (e.g. the programmed path itself, or a path made for
+    another program) does not reach it."""
     has = np.zeros(len(contour), bool)
     own = table.is_role(Role.COMPENSATED) & (table.element >= 0)
     has[table.element[own]] = True
-    for j in np.flatnonzero(contour.steady & ~has):
-        viol.append(Violation("contact", math.inf, None, None, None, int(j),
-                              contour.element_line(j), None, None, EXACT,
-                              {"reason": "no compensated tool segment runs along this element"}))
-    allgap = np.r_[gap, cgap, np.full(int((contour.steady & ~has).sum()), math.inf)]
-    if allgap.size:
-        k = int(np.argmax(allgap))
-        basis = EXACT if (k >= n or exact[k]) else CERTIFIED
-        figure = float(allgap[k])
-    else:
-        figure, basis = None, EXACT
-    check = Check("contact", not viol, figure, eps, basis, "length",
-                  "wherever a steady tool segment runs alongside its element it is within "
-                  "r + eps of it; every corner arc within r + eps of its corner point "
-                  "(figure: largest excess over r)", int(n + ci.size), len(viol))
-    return check, viol
+    return np.flatnonzero(contour.steady & ~has)

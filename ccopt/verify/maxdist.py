@@ -28,8 +28,11 @@ along ``A`` (0..1 of the length).
 """
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 
+from ccopt.geometry import KIND_LINE
 from ccopt.geometry.angles import TWO_PI, angle_along, angle_in_sweep
 from ccopt.geometry.distance import point_arc, point_segment
 
@@ -84,6 +87,60 @@ def _fraction_arc(c, th0, sw, q):
     return np.clip(along / np.where(full > 0.0, full, 1.0), 0.0, 1.0)
 
 
+@dataclass(frozen=True, eq=False)
+class _Rows:
+    """The selected rows of a :class:`~ccopt.geometry.SegmentArray` as columns:
+    ``line`` (True for a line, else an arc), end points ``p0``, ``p1`` and the
+    arc's centre ``c``, radius ``R``, start angle ``th`` and sweep ``sw``
+    (NaN for lines)."""
+
+    line: np.ndarray
+    p0: np.ndarray
+    p1: np.ndarray
+    c: np.ndarray
+    R: np.ndarray
+    th: np.ndarray
+    sw: np.ndarray
+
+    @classmethod
+    def take(cls, S, idx) -> "_Rows":
+        return cls(S.kind[idx] == KIND_LINE, S.p0[idx], S.p1[idx], S.center[idx],
+                   S.radius[idx], S.theta0[idx], S.sweep[idx])
+
+    def finite_center(self) -> np.ndarray:
+        """Centres with the NaN of line rows replaced by 0 (those rows are masked out)."""
+        return np.where(np.isfinite(self.c), self.c, 0.0)
+
+
+class _Farthest:
+    """Running maximum over candidate points ``q`` of the ``A`` rows of the
+    exact distance from ``q`` to the ``B`` rows: ``d`` and the point ``q``."""
+
+    def __init__(self, b: _Rows):
+        self.b = b
+        n = b.line.size
+        self.d = np.full(n, -np.inf)
+        self.q = np.zeros((n, 2))
+
+    def distance(self, q: np.ndarray) -> np.ndarray:
+        b = self.b
+        d = np.empty(b.line.size)
+        if b.line.any():
+            d[b.line] = point_segment(q[b.line], b.p0[b.line], b.p1[b.line])[0]
+        if (~b.line).any():
+            m = ~b.line
+            d[m] = point_arc(q[m], b.c[m], b.R[m], b.th[m], b.sw[m])[0]
+        return d
+
+    def offer(self, q: np.ndarray, valid: np.ndarray) -> None:
+        """Keep the candidates ``q`` (rows flagged ``valid``) that are farther."""
+        q = np.where(np.isfinite(q), q, 0.0)
+        d = self.distance(q)
+        better = valid & (d > self.d)
+        self.d[better] = d[better]
+        self.q[better] = q[better]
+
+
 def max_distance(A, ia, B, ib):
     """``(dmax, q, t)`` for rows ``A[ia]`` (lines/arcs) against ``B[ib]`` (lines/arcs).
 
@@ -91,86 +148,67 @@ def max_distance(A, ia, B, ib):
     distance from a point of the ``A`` row to the ``B`` row; ``q``: that point;
     ``t``: its fraction along the ``A`` row.
     """
-    ia = np.asarray(ia, np.intp)
-    ib = np.asarray(ib, np.intp)
-    n = ia.size
-    a_line = A.kind[ia] == 0
-    b_line = B.kind[ib] == 0
-    a0, a1 = A.p0[ia], A.p1[ia]
-    ca, Ra, tha, swa = A.center[ia], A.radius[ia], A.theta0[ia], A.sweep[ia]
-    b0, b1 = B.p0[ib], B.p1[ib]
-    cb, Rb, thb, swb = B.center[ib], B.radius[ib], B.theta0[ib], B.sweep[ib]
+    a = _Rows.take(A, np.asarray(ia, np.intp))
+    b = _Rows.take(B, np.asarray(ib, np.intp))
+    far = _Farthest(b)
+    every = np.ones(a.line.size, bool)
+    far.offer(a.p0, every)
+    far.offer(a.p1, every)
+    tb, _ = _unit(b.p1 - b.p0)
+    nb = np.c_[-tb[:, 1], tb[:, 0]]                 # normal of a line B
+    _offer_boundary_crossings(far, a, b, nb)
+    _offer_interior_maxima(far, a, b, nb)
+    t = np.where(a.line, _fraction_line(a.p0, a.p1, far.q),
+                 _fraction_arc(a.finite_center(), np.nan_to_num(a.th), np.nan_to_num(a.sw),
+                               far.q))
+    return far.d, far.q, t
 
-    def f(q):
-        d = np.empty(n)
-        if b_line.any():
-            d[b_line] = point_segment(q[b_line], b0[b_line], b1[b_line])[0]
-        if (~b_line).any():
-            m = ~b_line
-            d[m] = point_arc(q[m], cb[m], Rb[m], thb[m], swb[m])[0]
-        return d
 
-    best = np.full(n, -np.inf)
-    bq = np.zeros((n, 2))
-
-    def offer(q, valid):
-        q = np.where(np.isfinite(q), q, 0.0)
-        d = f(q)
-        better = valid & (d > best)
-        best[better] = d[better]
-        bq[better] = q[better]
-
-    true = np.ones(n, bool)
-    offer(a0, true)
-    offer(a1, true)
-
-    # Boundary lines of B's pieces, as (point X, direction v, valid).
-    bounds = []
-    tb, _ = _unit(b1 - b0)
-    nb = np.c_[-tb[:, 1], tb[:, 0]]
-    # line B: normal lines at both ends
-    bounds.append((b0, nb, b_line))
-    bounds.append((b1, nb, b_line))
-    # arc B: lines through the centre and each end, and the gap bisector
-    bisect = thb + swb + np.copysign(1.0, swb) * 0.5 * (TWO_PI - np.abs(swb))
-    for ang in (thb, thb + swb, bisect):
+def _offer_boundary_crossings(far: _Farthest, a: _Rows, b: _Rows, nb: np.ndarray) -> None:
+    """Offer the crossings of ``A`` with the boundary lines of ``B``'s pieces:
+    for a line ``B`` the normal lines at both ends; for an arc ``B`` the lines
+    through the centre and each end, and the gap's bisector."""
+    bounds = [(b.p0, nb, b.line), (b.p1, nb, b.line)]
+    bisect = b.th + b.sw + np.copysign(1.0, b.sw) * 0.5 * (TWO_PI - np.abs(b.sw))
+    for ang in (b.th, b.th + b.sw, bisect):
         v = np.c_[np.cos(ang), np.sin(ang)]
-        bounds.append((cb, v, ~b_line & np.isfinite(ang)))
+        bounds.append((b.c, v, ~b.line & np.isfinite(ang)))
+    ca = a.finite_center()
     for X, v, ok in bounds:
         X = np.where(np.isfinite(X), X, 0.0)
         v = np.where(np.isfinite(v), v, 0.0)
-        if (ok & a_line).any():
-            q, _, valid = _on_line_segment(a0, a1, X, v)
-            offer(q, ok & a_line & valid)
-        if (ok & ~a_line).any():
-            for q, valid in _on_circle(np.where(np.isfinite(ca), ca, 0.0), np.nan_to_num(Ra), X, v):
-                ang = np.arctan2(q[:, 1] - ca[:, 1], q[:, 0] - ca[:, 0])
-                offer(q, ok & ~a_line & valid & angle_in_sweep(ang, tha, swa))
+        if (ok & a.line).any():
+            q, _, valid = _on_line_segment(a.p0, a.p1, X, v)
+            far.offer(q, ok & a.line & valid)
+        if (ok & ~a.line).any():
+            for q, valid in _on_circle(ca, np.nan_to_num(a.R), X, v):
+                ang = np.arctan2(q[:, 1] - a.c[:, 1], q[:, 0] - a.c[:, 0])
+                far.offer(q, ok & ~a.line & valid & angle_in_sweep(ang, a.th, a.sw))
 
-    # Interior local maxima.
-    # line A vs arc B: foot of c_B on A
-    m = a_line & ~b_line
+
+def _offer_interior_maxima(far: _Farthest, a: _Rows, b: _Rows, nb: np.ndarray) -> None:
+    """Offer the local maxima inside a piece: for a line ``A`` against an arc
+    ``B`` the foot of ``B``'s centre; for an arc ``A`` the points ``c_A +- R_A u``
+    where its tangent is parallel to a line ``B``, on the line of centres, and
+    opposite each end point of ``B``."""
+    m = a.line & ~b.line
     if m.any():
-        t = _fraction_line(a0, a1, np.where(np.isfinite(cb), cb, 0.0))
-        offer(a0 + t[:, None] * (a1 - a0), m)
-    # arc A: points c_A +- R_A u for directions u
-    if (~a_line).any():
-        dirs = [(nb, b_line)]                                   # tangent parallel to line B
-        u_cc, ok_cc = _unit(np.where(np.isfinite(cb), cb, 0.0) - np.where(np.isfinite(ca), ca, 0.0))
-        dirs.append((u_cc, ~b_line & ok_cc))                    # line of centres
-        for E in (b0, b1):                                      # opposite the end points
-            u_e, ok_e = _unit(E - np.where(np.isfinite(ca), ca, 0.0))
-            dirs.append((u_e, true & ok_e))
-        for u, ok in dirs:
-            for sg in (1.0, -1.0):
-                q = ca + sg * Ra[:, None] * u
-                ang = np.arctan2(sg * u[:, 1], sg * u[:, 0])
-                offer(q, ok & ~a_line & angle_in_sweep(ang, tha, swa))
-
-    t = np.where(a_line, _fraction_line(a0, a1, bq),
-                 _fraction_arc(np.where(np.isfinite(ca), ca, 0.0), np.nan_to_num(tha),
-                               np.nan_to_num(swa), bq))
-    return best, bq, t
+        t = _fraction_line(a.p0, a.p1, b.finite_center())
+        far.offer(a.p0 + t[:, None] * (a.p1 - a.p0), m)
+    if not (~a.line).any():
+        return
+    ca = a.finite_center()
+    dirs = [(nb, b.line)]                                   # tangent parallel to line B
+    u_cc, ok_cc = _unit(b.finite_center() - ca)
+    dirs.append((u_cc, ~b.line & ok_cc))                    # line of centres
+    for E in (b.p0, b.p1):                                  # opposite the end points
+        u_e, ok_e = _unit(E - ca)
+        dirs.append((u_e, ok_e))
+    for u, ok in dirs:
+        for sg in (1.0, -1.0):
+            q = a.c + sg * a.R[:, None] * u
+            ang = np.arctan2(sg * u[:, 1], sg * u[:, 0])
+            far.offer(q, ok & ~a.line & angle_in_sweep(ang, a.th, a.sw))
 
 
 def max_distance_to_point(A, ia, P):
@@ -182,7 +220,7 @@ def max_distance_to_point(A, ia, P):
     d1 = np.hypot(*(a1 - P).T)
     best = np.maximum(d0, d1)
     bq = np.where((d0 >= d1)[:, None], a0, a1)
-    arc = A.kind[ia] != 0
+    arc = A.kind[ia] != KIND_LINE
     if arc.any():
         c, R = A.center[ia][arc], A.radius[ia][arc]
         u, ok = _unit(c - P[arc])

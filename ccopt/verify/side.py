@@ -12,8 +12,6 @@ check makes sure) stays on one side, so its middle point decides for all of it.
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from ccopt.geometry import Line
