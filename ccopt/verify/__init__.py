@@ -14,8 +14,9 @@ its figure, tolerance and basis (exact / certified bound / sampled):
 - ``limits``: axis velocity/acceleration and feed from a feed profile (:mod:`.limits`).
 
 Which programmed elements are the contour, and the other choices the spec
-leaves open, are in :mod:`.decisions`. ``verify`` consumes a tool path and a
-program and never compensates. Cross-checks (CVXPY, CasADi) are found as
+leaves open, are documented in docs/compensation.md (section 8); those with a
+real alternative are switches in :mod:`.decisions`. ``verify`` consumes a tool
+path and a program and never compensates. Cross-checks (CVXPY, CasADi) are found as
 ``ccopt.crosschecks`` entry points (:mod:`.crosschecks`).
 """
 from ccopt.verify.certificate import Certificate, Check, Violation

@@ -4,7 +4,8 @@ A jump (in-plane and out-of-plane together) larger than ``eps`` fails the
 check. Tangent breaks (direction changes at a joint, measured between the
 last in-plane segment and the next one, skipping Z-only moves) are listed
 for information: inside corners and lead-in diagonals have them by design
-(:data:`ccopt.verify.decisions.TANGENT_BREAKS_ARE_INFORMATION`).
+(a verifier decision, docs/compensation.md section 8.5: they are what the
+controllers do, so they never fail the check).
 """
 from __future__ import annotations
 

@@ -1,8 +1,9 @@
 """The contour: which programmed elements are part surface, and on which side.
 
-See :mod:`ccopt.verify.decisions` for the rules (fully compensated moves are
-the contour; side-change moves are transitions; radius-change moves keep the
-smaller radius; where the contour stops its ends are *open*).
+The rules (the verifier's decisions, docs/compensation.md section 8.1):
+fully compensated moves are the contour; side-change moves are transitions;
+radius-change moves keep the smaller radius; where the contour stops its ends
+are *open* (:data:`ccopt.verify.decisions.OPEN_END_EXEMPTION`).
 
 The programmed geometry of each element is exactly
 :func:`ccopt.toolpath.block_geometry` of its block; lines and arcs are built
@@ -20,8 +21,11 @@ import numpy as np
 
 from ccopt.geometry import KIND_ARC, KIND_LINE, KIND_SPIRAL, SegmentArray
 from ccopt.geometry.angles import TWO_PI
+from ccopt.geometry.arclength import END_POINT_REL_TOL
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
+from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL
 from ccopt.toolpath import block_geometry
+from ccopt.verify import decisions
 from ccopt.verify.segments import Packed, arc_bbox, pack
 
 #: Why a move is or is not part of the contour.
@@ -35,6 +39,10 @@ _ARCS = frozenset((Motion.ARC_CW, Motion.ARC_CCW))
 _MOTION, _START, _END, _MODAL = (attrgetter(a) for a in ("motion", "start", "end", "modal"))
 _SIDE, _RADIUS = attrgetter("side"), attrgetter("radius")
 _CENTER, _TURNS = attrgetter("center"), attrgetter("turns")
+
+#: The program's radius and the tool path's are the same when they differ by
+#: at most this times ``max(1, r)`` (a radius written to a file and read back).
+RADIUS_SAME_REL = 1e-12
 
 
 @dataclass(frozen=True, eq=False)
@@ -50,8 +58,9 @@ class Contour:
     clearance: required tool-centre distance (the radius, or the smaller of
         the two around a radius change).
     steady: contact and side are required along the element's tool segment.
-    open_start, open_end: the contour stops at that end (see
-        :data:`ccopt.verify.decisions.OPEN_END_EXEMPTION`).
+    open_start, open_end: the contour stops at that end and is open there:
+        tool points beyond it are exempt from the element (all False when
+        :data:`ccopt.verify.decisions.OPEN_END_EXEMPTION` is off).
     plane: plane of compensation.
     moves: every in-plane move of the program, in order; per move:
         ``move_status`` (a ``STATUS_*``), ``move_k``, ``move_r`` (side and radius
@@ -138,7 +147,7 @@ def element_geometry(blocks: list[Block], plane: str, st=None, en=None, ce=None,
         turns = np.array([b.turns for b in blocks], float)
     R0 = np.hypot(*(st - ce).T)
     R1 = np.hypot(*(en - ce).T)
-    spiral = is_arc & (np.abs(R1 - R0) > 1e-9 * np.maximum(1.0, R0))
+    spiral = is_arc & (np.abs(R1 - R0) > SPIRAL_RADIUS_REL_TOL * np.maximum(1.0, R0))
     arc = is_arc & ~spiral
     kind = np.where(is_arc, np.where(spiral, KIND_SPIRAL, KIND_ARC), KIND_LINE).astype(np.int8)
     p0, p1 = st.copy(), en.copy()
@@ -158,7 +167,7 @@ def element_geometry(blocks: list[Block], plane: str, st=None, en=None, ce=None,
         gap = np.where(ccw[a], th1 - th0, th0 - th1)
         gap = np.fmod(gap, TWO_PI)
         gap = np.where(gap < 0.0, gap + TWO_PI, gap)
-        fib = 1e-9 * np.maximum(1.0, R) / R
+        fib = END_POINT_REL_TOL * np.maximum(1.0, R) / R
         gap = np.where((gap <= fib) | (TWO_PI - gap <= fib) | (gap >= TWO_PI), TWO_PI, gap)
         gap = gap + TWO_PI * turns[a]
         sw = np.where(ccw[a], gap, -gap)
@@ -184,65 +193,24 @@ def element_geometry(blocks: list[Block], plane: str, st=None, en=None, ce=None,
 
 def contour_of(program: Program, radius: float | None = None, side: int | None = None,
                toolpath_radius: float | None = None) -> Contour:
-    """The contour of ``program`` (see :mod:`ccopt.verify.decisions`).
+    """The contour of ``program`` (docs/compensation.md section 8.1).
 
     ``radius``/``side`` override the program as in
     :func:`ccopt.compensate.compensate`. ``toolpath_radius`` is the radius the
     tool path says it was made with
     (:data:`~ccopt.verify.decisions.RADIUS_FROM_TOOLPATH_WHEN_UNIFORM`).
     """
-    # Array form of everything read from the blocks (C-level map/attrgetter
-    # passes: this runs once per verification over up to millions of blocks).
-    dwell = Motion.DWELL
-    allmoves = [b for b in program.blocks if b.motion is not dwell]
-    plane = allmoves[0].modal.plane if allmoves else (program.blocks[0].modal.plane
-                                                      if program.blocks else "XY")
-    i0, j0, _ = PLANE_AXES[plane]
-    m = len(allmoves)
-    motions = list(map(_MOTION, allmoves))
-    arc_all = np.fromiter(map(_ARCS.__contains__, motions), bool, m)
-    st_all = np.fromiter(chain.from_iterable(map(_START, allmoves)), float, 3 * m
-                         ).reshape(m, 3)[:, [i0, j0]]
-    en_all = np.fromiter(chain.from_iterable(map(_END, allmoves)), float, 3 * m
-                         ).reshape(m, 3)[:, [i0, j0]]
-    # Block.in_plane, for all moves at once
-    inp = arc_all | (np.hypot(*(en_all - st_all).T) > 0.0)
-    sel_mv = np.flatnonzero(inp)
-    moves = allmoves if inp.all() else [allmoves[q] for q in sel_mv]
-    st_mv, en_mv, arc_mv = st_all[inp], en_all[inp], arc_all[inp]
-    n = len(moves)
-    modals = list(map(_MODAL, moves))
-    raw_k = np.fromiter(map(_SIDE, modals), int, n)
-    rad = list(map(_RADIUS, modals))
-    notes: list[str] = []
-    on_blocks = raw_k != 0
-    on_radii = set(np.asarray(rad, dtype=object)[on_blocks].tolist()) if n else set()
-    if radius is None and toolpath_radius is not None and toolpath_radius > 0.0:
-        r_prog = next(iter(on_radii)) if len(on_radii) == 1 and None not in on_radii else None
-        if None in on_radii:
-            radius = float(toolpath_radius)
-            notes.append(f"the program sets no cutter radius: verified with the tool path's "
-                         f"{toolpath_radius:g}")
-        elif r_prog is not None and abs(r_prog - toolpath_radius) > 1e-12 * max(1.0, r_prog):
-            radius = float(toolpath_radius)
-            notes.append(f"the program's radius {r_prog:g} differs from the tool path's "
-                         f"{toolpath_radius:g}: verified with {toolpath_radius:g} "
-                         "(a compensate(radius=...) override)")
-    k = raw_k.copy()
-    if radius is None and None in on_radii:
-        q = next(q for q in range(n) if on_blocks[q] and rad[q] is None)
-        effective_side_radius(moves[q], None, None)      # raises, located
-    if radius is not None:
-        r = np.full(n, float(radius))
-    elif None in rad:
-        r = np.array([0.0 if rr is None else rr for rr in rad], float)
-    else:
-        r = np.array(rad, float)
-    if side is not None:
-        k = np.where(k != 0, int(side), 0)
-    r = np.where(k != 0, r, 0.0)
+    mv = _InPlaneMoves.of(program)
+    k, r, notes = _sides_and_radii(mv.moves, radius, side, toolpath_radius)
+    n = len(mv.moves)
     prev_k = np.r_[0, k[:-1]] if n else k
     prev_r = np.r_[0.0, r[:-1]] if n else r
+    # The contour is the fully compensated moves: compensation on for the move
+    # and for the one before (lead-ins approach the contour, they are not part
+    # surface); a move introducing a side change is a transition (the tool
+    # crosses it from one side to the other); one introducing a radius change
+    # is part surface with the smaller radius (docs/compensation.md, rule 4:
+    # the offset varies linearly along it) and no contact requirement.
     on = (k != 0) & (prev_k != 0)
     side_change = on & (k != prev_k)
     radius_change = on & ~side_change & (r != prev_r)
@@ -257,23 +225,115 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
     sel = np.flatnonzero(in_contour)
     prev_in = np.r_[False, in_contour[:-1]] if n else in_contour
     next_in = np.r_[in_contour[1:], False] if n else in_contour
-    cblocks = tuple(moves[q] for q in sel) if sel.size < n else tuple(moves)
-    nc = len(cblocks)
-    cmot = [motions[q] for q in sel_mv[sel]]
-    ccw = np.fromiter(map(Motion.ARC_CCW.__eq__, cmot), bool, nc)
-    carc = arc_mv[sel]
-    ce = np.full((nc, 2), np.nan)
-    turns = np.zeros(nc)
-    arcs_q = np.flatnonzero(carc)
-    if arcs_q.size:
-        ab = [cblocks[q] for q in arcs_q]
-        na = len(ab)
-        cc = np.fromiter(chain.from_iterable(map(_CENTER, ab)), float, 3 * na).reshape(na, 3)
-        ce[arcs_q] = cc[:, [i0, j0]]
-        turns[arcs_q] = np.fromiter(map(_TURNS, ab), float, na)
-    elements = element_geometry(list(cblocks), plane, st_mv[sel], en_mv[sel], ce, carc, ccw,
-                                turns)
+    if decisions.OPEN_END_EXEMPTION:
+        # where the contour stops, tool points beyond the element's end are not
+        # checked against it (clearance.exempt_regions)
+        open_start, open_end = ~prev_in[sel], ~next_in[sel]
+    else:
+        open_start, open_end = np.zeros(sel.size, bool), np.zeros(sel.size, bool)
+    cblocks = tuple(mv.moves[q] for q in sel) if sel.size < n else tuple(mv.moves)
+    elements = mv.elements(sel, cblocks)
     clearance = np.where(radius_change[sel], np.minimum(r[sel], prev_r[sel]), r[sel])
-    return Contour(cblocks, elements, k[sel], r[sel], clearance, steady[sel],
-                   ~prev_in[sel], ~next_in[sel], plane, tuple(moves), status, k, r, elem_idx,
-                   tuple(notes))
+    return Contour(cblocks, elements, k[sel], r[sel], clearance, steady[sel], open_start,
+                   open_end, mv.plane, tuple(mv.moves), status, k, r, elem_idx, tuple(notes))
+
+
+@dataclass(frozen=True, eq=False)
+class _InPlaneMoves:
+    """The program's in-plane moves (dwells and moves without an in-plane
+    component left out), with their in-plane start and end points and arc flags
+    as arrays (``(n, 2)``, ``(n,)``), in the plane of compensation."""
+
+    plane: str
+    moves: list
+    motions: list          # per in-plane move
+    start: np.ndarray
+    end: np.ndarray
+    is_arc: np.ndarray
+
+    @classmethod
+    def of(cls, program: Program) -> "_InPlaneMoves":
+        # Array form of everything read from the blocks (C-level map/attrgetter
+        # passes: this runs once per verification over up to millions of blocks).
+        dwell = Motion.DWELL
+        allmoves = [b for b in program.blocks if b.motion is not dwell]
+        plane = allmoves[0].modal.plane if allmoves else (program.blocks[0].modal.plane
+                                                          if program.blocks else "XY")
+        i0, j0, _ = PLANE_AXES[plane]
+        m = len(allmoves)
+        motions = list(map(_MOTION, allmoves))
+        arc_all = np.fromiter(map(_ARCS.__contains__, motions), bool, m)
+        st_all = np.fromiter(chain.from_iterable(map(_START, allmoves)), float, 3 * m
+                             ).reshape(m, 3)[:, [i0, j0]]
+        en_all = np.fromiter(chain.from_iterable(map(_END, allmoves)), float, 3 * m
+                             ).reshape(m, 3)[:, [i0, j0]]
+        # Block.in_plane, for all moves at once
+        inp = arc_all | (np.hypot(*(en_all - st_all).T) > 0.0)
+        if inp.all():
+            return cls(plane, allmoves, motions, st_all, en_all, arc_all)
+        sel = np.flatnonzero(inp)
+        return cls(plane, [allmoves[q] for q in sel], [motions[q] for q in sel],
+                   st_all[inp], en_all[inp], arc_all[inp])
+
+    def elements(self, sel: np.ndarray, cblocks: tuple) -> Packed:
+        """Programmed geometry of the moves ``sel`` (whose blocks are ``cblocks``)."""
+        i0, j0, _ = PLANE_AXES[self.plane]
+        nc = len(cblocks)
+        ccw = np.fromiter(map(Motion.ARC_CCW.__eq__, [self.motions[q] for q in sel]), bool, nc)
+        carc = self.is_arc[sel]
+        ce = np.full((nc, 2), np.nan)
+        turns = np.zeros(nc)
+        arcs_q = np.flatnonzero(carc)
+        if arcs_q.size:
+            ab = [cblocks[q] for q in arcs_q]
+            na = len(ab)
+            cc = np.fromiter(chain.from_iterable(map(_CENTER, ab)), float, 3 * na).reshape(na, 3)
+            ce[arcs_q] = cc[:, [i0, j0]]
+            turns[arcs_q] = np.fromiter(map(_TURNS, ab), float, na)
+        return element_geometry(list(cblocks), self.plane, self.start[sel], self.end[sel], ce,
+                                carc, ccw, turns)
+
+
+def _sides_and_radii(moves: list, radius: float | None, side: int | None,
+                     toolpath_radius: float | None):
+    """``(k, r, notes)``: side (+1 left, -1 right, 0 off) and cutter radius in
+    force for each move after the overrides, and what the verifier assumed."""
+    n = len(moves)
+    modals = list(map(_MODAL, moves))
+    k = np.fromiter(map(_SIDE, modals), int, n)
+    rad = list(map(_RADIUS, modals))
+    on_radii = set(np.asarray(rad, dtype=object)[k != 0].tolist()) if n else set()
+    notes: list[str] = []
+    if radius is None and toolpath_radius is not None and toolpath_radius > 0.0:
+        radius = _radius_from_toolpath(on_radii, float(toolpath_radius), notes)
+    if radius is None and None in on_radii:
+        q = next(q for q in range(n) if k[q] != 0 and rad[q] is None)
+        effective_side_radius(moves[q], None, None)      # raises, located
+    if radius is not None:
+        r = np.full(n, float(radius))
+    elif None in rad:
+        r = np.array([0.0 if rr is None else rr for rr in rad], float)
+    else:
+        r = np.array(rad, float)
+    if side is not None:
+        k = np.where(k != 0, int(side), 0)
+    return k, np.where(k != 0, r, 0.0), notes
+
+
+def _radius_from_toolpath(on_radii: set, toolpath_radius: float, notes: list) -> float | None:
+    """The radius to verify with instead of the program's (``None``: the
+    program's), given the set of radii of the compensated blocks and the tool
+    path's radius; appends a note when it takes the tool path's."""
+    if None in on_radii:
+        notes.append(f"the program sets no cutter radius: verified with the tool path's "
+                     f"{toolpath_radius:g}")
+        return toolpath_radius
+    if not decisions.RADIUS_FROM_TOOLPATH_WHEN_UNIFORM or len(on_radii) != 1:
+        return None
+    r_prog = next(iter(on_radii))
+    if abs(r_prog - toolpath_radius) > RADIUS_SAME_REL * max(1.0, r_prog):
+        notes.append(f"the program's radius {r_prog:g} differs from the tool path's "
+                     f"{toolpath_radius:g}: verified with {toolpath_radius:g} "
+                     "(a compensate(radius=...) override)")
+        return toolpath_radius
+    return None

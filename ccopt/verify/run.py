@@ -11,6 +11,7 @@ from ccopt.errors import ProgramError
 from ccopt.program.model import Program
 from ccopt.tolerances import VERIFY_EPS
 from ccopt.toolpath import Role, ToolPath
+from ccopt.verify import decisions
 from ccopt.verify.certificate import CERTIFIED, EXACT, Certificate, Check, Violation
 from ccopt.verify.clearance import PairDistances, pair_distances
 from ccopt.verify.contact import check_contact
@@ -121,8 +122,9 @@ def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info):
         figure, basis = float(pairs.margin[k]), EXACT if pairs.exact[k] else CERTIFIED
     else:
         figure, basis = None, EXACT
+    made = "made with compensation in force " if decisions.GOUGE_ONLY_WHILE_COMPENSATED else ""
     return Check("gouge", not viol, figure, eps, basis, "length",
-                 "every tool position made with compensation in force at least the element's "
+                 f"every tool position {made}at least the element's "
                  "clearance r - eps from every contour element (figure: smallest distance - r)",
                  int(c.size), len(viol),
                  {"elements": len(contour), "certified_pairs": int((~pairs.exact).sum()),
@@ -138,7 +140,7 @@ def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = V
     ----------
     toolpath: the tool-centre path (from :func:`ccopt.compensate` or elsewhere).
     program: the program it was made from; its fully compensated moves are the
-        contour (see :mod:`ccopt.verify.decisions`).
+        contour (see :func:`ccopt.verify.contour.contour_of`).
     profile: optional feed profile (:class:`ccopt.feed.FeedProfile` or samples
         shaped like it) for the limits check.
     eps: tolerance in program units (default ``VERIFY_EPS`` = 1e-6).
@@ -180,7 +182,12 @@ def _verify(toolpath, program, profile, eps, radius, side) -> Certificate:
         s = segs[i]
         return (s.block.source.line if s.block is not None else None), s.role.value
 
-    counted = ~(table.is_role(Role.RAPID) | table.is_role(Role.UNCOMPENSATED))
+    if decisions.GOUGE_ONLY_WHILE_COMPENSATED:
+        # rapids and uncompensated moves run at the programmer's own points:
+        # listed in the gouge check's detail, not counted
+        counted = ~(table.is_role(Role.RAPID) | table.is_role(Role.UNCOMPENSATED))
+    else:
+        counted = np.ones(len(segs), bool)
     pairs = pair_distances(tool, contour, eps, counted)
     results = [check_gouge(pairs, contour, eps, info),
                check_contact(tool, toolpath, contour, eps, seg_len, info, table),
