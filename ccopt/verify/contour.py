@@ -209,8 +209,9 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
     # and for the one before (lead-ins approach the contour, they are not part
     # surface); a move introducing a side change is a transition (the tool
     # crosses it from one side to the other); one introducing a radius change
-    # is part surface with the smaller radius (docs/compensation.md, rule 4:
-    # the offset varies linearly along it) and no contact requirement.
+    # is part surface with the smaller radius and no contact requirement (PMAC
+    # rule 4 makes the offset vary along it). These are verifier decisions with
+    # no alternative the verifier could take (docs/compensation.md section 8.1).
     on = (k != 0) & (prev_k != 0)
     side_change = on & (k != prev_k)
     radius_change = on & ~side_change & (r != prev_r)
