@@ -37,6 +37,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from ccopt.compensate import compensate  # noqa: E402
+from ccopt.geometry import Line  # noqa: E402
 from ccopt.program.model import Block, Modal, Motion, Program, Source  # noqa: E402
 from ccopt.verify import verify  # noqa: E402
 from ccopt.verify.clearance import reach_of  # noqa: E402
@@ -93,8 +94,7 @@ def program(units: int) -> Program:
 
 def polylines(geoms) -> np.ndarray:
     """Each primitive as a shapely LineString (an arc as ARC_POINTS chords)."""
-    import shapely
-    from ccopt.geometry import Line
+    import shapely  # deferred: optional, only this comparison needs it
     coords, index = [], []
     for i, g in enumerate(geoms):
         if isinstance(g, Line):
@@ -111,7 +111,7 @@ def main(argv=None) -> int:
     ap.add_argument("--units", type=int, default=25_000, help="pattern repeats (4 elements each)")
     ap.add_argument("--repeat", type=int, default=5)
     args = ap.parse_args(argv)
-    import shapely
+    import shapely  # deferred: optional, only this comparison needs it
 
     prog = program(args.units)
     path = compensate(prog, "pmac")
