@@ -36,6 +36,7 @@ from ccopt.toolpath import ToolPath
 from ccopt.verify import Certificate, contour_of, verify
 from ccopt.verify.run import SIDES
 
+
 class BlendRejected(RuntimeError):
     """A blend could not be made or was not certified (the message says why)."""
 
