@@ -27,12 +27,13 @@ change (at most :data:`MAX_ROUNDS` rounds).
 from __future__ import annotations
 
 import time
+from dataclasses import dataclass
 
 import numpy as np
 
-from ccopt.compare.blend import (
-    BlendProblem, bernstein, derivative_matrix, end_acceleration, jerk_gram,
-)
+from ccopt.compare.contract import BlendProblem
+from ccopt.geometry.bezier import DIVISION_FLOOR, curve_samples, end_acceleration, jerk_gram
+from ccopt.geometry.curve import bernstein, derivative_matrix
 from ccopt_formulations.clearance import CONCAVE, CONVEX, END, EXEMPT, LINE, classify
 from ccopt_formulations.lead_setup import V_MIN_FRACTION, LeadSetup, run_leads
 
@@ -44,6 +45,18 @@ M_TIME = 41
 #: Curve samples constrained for clearance (times the setup's refine factor).
 M_CLEAR = 61
 
+# Smoothing terms under square roots: they keep the NLP differentiable where a
+# speed or a piece length is zero, and are far below anything that matters.
+#: ... of ``|r'(t)|``, times ``L0^2``;
+SPEED_SMOOTHING = 1e-12
+#: ... of a piece's chord length, times ``L0^2``;
+PIECE_SMOOTHING = 1e-14
+#: ... of the speed ``v = sqrt(b)`` (the approach point is a stop, ``b = 0``), times ``F^2``.
+SPEED_SQUARE_SMOOTHING = 1e-10
+
+#: IPOPT's convergence and constraint tolerances (the verifier judges the result).
+IPOPT_TOL = 1e-9
+
 
 def classes_at(setup: LeadSetup, x, m_clear: int):
     """Clearance cases (:func:`ccopt_formulations.clearance.classify`) of every element at the
@@ -52,13 +65,14 @@ def classes_at(setup: LeadSetup, x, m_clear: int):
     return [classify(el, pts) for el in setup.elements]
 
 
-def lead_model(setup: LeadSetup, classes, m_time: int = M_TIME, m_clear: int = M_CLEAR) -> dict:
-    """The NLP of one lead as a CasADi dict: ``nlp`` (``x``, ``f``, ``g``),
-    bounds ``lbx, ubx, lbg, ubg``, first guess ``x0``."""
-    import casadi as ca
+def _join_controls(setup: LeadSetup, x):
+    """The control points (``(n+1) x 2``, CasADi) of the decision vector ``x``: ``A``,
+    the free points, and the G2 end at the host point ``J(sigma)`` (as
+    :func:`ccopt.geometry.bezier.g2_end`, with ``J``, its tangent and curvature
+    symbolic in ``sigma`` on an arc host)."""
+    import casadi as ca  # deferred: heavy, and only this blend needs it
 
     n = setup.degree
-    x = ca.SX.sym("x", setup.nx)
     free = [x[2 * i: 2 * i + 2] for i in range(setup.n_free)]
     a, e, sg = x[-3], x[-2], x[-1]
     if setup.host_kind == "line":
@@ -74,38 +88,75 @@ def lead_model(setup: LeadSetup, classes, m_time: int = M_TIME, m_clear: int = M
     c = n * kappa * a * a / (n - 1)
     Pm2 = J + (e - 2.0 * a) * t + c * nl
     Pm1 = J - a * t
-    P = ca.horzcat(ca.DM(setup.A), *free, Pm2, Pm1, J).T          # (n + 1) x 2
+    return ca.horzcat(ca.DM(setup.A), *free, Pm2, Pm1, J).T
 
-    # speed profile: b_i = v_i^2 at m_time cuts of t (TOPP inside the NLP)
+
+@dataclass
+class SpeedModel:
+    """The speed profile inside the NLP: ``b_i = v_i^2`` at ``m_time`` cuts of ``t``
+    (TOPP's discrete model), as CasADi expressions of the control points ``P``.
+
+    ``Tx, Ty``: unit tangent ``q'``; ``Kx, Ky``: ``q'' = kappa * normal``
+    (1/program units); ``sp2``: ``|r'(t)|^2``; ``u``: the path acceleration
+    ``s''`` on each piece; ``time``: the seconds to run the blend and regain
+    the feed after it."""
+
+    b: object
+    sp2: object
+    Tx: object
+    Ty: object
+    Kx: object
+    Ky: object
+    u: object
+    time: object
+
+
+def _speed_model(setup: LeadSetup, P, m_time: int) -> SpeedModel:
+    """The speed profile of the curve ``P`` and its time (see :class:`SpeedModel`)."""
+    import casadi as ca  # deferred: heavy, and only this blend needs it
+
+    n = setup.degree
     b = ca.SX.sym("b", m_time)
     tt = np.linspace(0.0, 1.0, m_time)
     pt = ca.mtimes(ca.DM(bernstein(tt, n)), P)
     d1 = ca.mtimes(ca.DM(bernstein(tt, n - 1) @ derivative_matrix(n, 1)), P)
     d2 = ca.mtimes(ca.DM(bernstein(tt, n - 2) @ derivative_matrix(n, 2)), P)
     sp2 = d1[:, 0] ** 2 + d1[:, 1] ** 2
-    sp = ca.sqrt(sp2 + 1e-12 * setup.L0 ** 2)
-    Tx, Ty = d1[:, 0] / sp, d1[:, 1] / sp                  # q' (unit tangent)
+    sp = ca.sqrt(sp2 + SPEED_SMOOTHING * setup.L0 ** 2)
+    Tx, Ty = d1[:, 0] / sp, d1[:, 1] / sp
     dn = d2[:, 0] * Tx + d2[:, 1] * Ty
-    Kx = (d2[:, 0] - dn * Tx) / sp2                        # q'' = kappa * normal
+    Kx = (d2[:, 0] - dn * Tx) / sp2
     Ky = (d2[:, 1] - dn * Ty) / sp2
     dp = pt[1:, :] - pt[:-1, :]
-    ds = ca.sqrt(dp[:, 0] ** 2 + dp[:, 1] ** 2 + 1e-14 * setup.L0 ** 2)
-    u = (b[1:] - b[:-1]) / (2.0 * ds)                      # s'' on each piece
-    eb = 1e-10 * setup.feed ** 2
-    v = ca.sqrt(b + eb)
+    ds = ca.sqrt(dp[:, 0] ** 2 + dp[:, 1] ** 2 + PIECE_SMOOTHING * setup.L0 ** 2)
+    u = (b[1:] - b[:-1]) / (2.0 * ds)
+    v = ca.sqrt(b + SPEED_SQUARE_SMOOTHING * setup.feed ** 2)
     a_end = end_acceleration(setup.t0, setup.acc) \
         if setup.host_kind == "line" else float(np.min(setup.acc))
     T = ca.sum1(2.0 * ds / (v[:-1] + v[1:]))
     T += (setup.feed - v[-1]) ** 2 / (2.0 * a_end * setup.feed)
-    G = ca.DM(jerk_gram(n))
-    jerk = ca.dot(P[:, 0], ca.mtimes(G, P[:, 0])) + ca.dot(P[:, 1], ca.mtimes(G, P[:, 1]))
-    obj = T + (setup.lg.host_length - sg) / setup.feed + setup.jerk_weight * jerk
+    return SpeedModel(b, sp2, Tx, Ty, Kx, Ky, u, T)
 
-    g, lbg, ubg = [], [], []
-    tc = np.linspace(0.0, 1.0, m_clear)
-    pts = ca.mtimes(ca.DM(bernstein(tc, n)), P)
-    # every element within reach, by the case of each sample (ends excluded)
-    inner = pts[1:-1, :]
+
+class _Rows:
+    """Constraint rows ``lbg <= g <= ubg`` as they are added."""
+
+    def __init__(self):
+        self.g, self.lbg, self.ubg = [], [], []
+
+    def add(self, expr, count: int, lo=0.0, hi=None):
+        import casadi as ca  # deferred: heavy, and only this blend needs it
+
+        self.g.append(expr)
+        self.lbg += lo if isinstance(lo, list) else [lo] * count
+        self.ubg += hi if isinstance(hi, list) else [ca.inf if hi is None else hi] * count
+
+
+def _clearance_rows(rows: _Rows, setup: LeadSetup, classes, pts) -> None:
+    """Clearance from every element within reach, by the case of each sample
+    (:mod:`ccopt_formulations.clearance`; ``pts`` the curve samples, ends excluded)."""
+    import casadi as ca  # deferred: heavy, and only this blend needs it
+
     for el, (kind, vec, scal) in zip(setup.elements, classes):
         for k in (LINE, CONCAVE, CONVEX, END, EXEMPT):
             if k == EXEMPT and el.kind != "line":
@@ -113,7 +164,7 @@ def lead_model(setup: LeadSetup, classes, m_time: int = M_TIME, m_clear: int = M
             idx = [int(i) for i in np.flatnonzero(kind == k)]
             if not idx:
                 continue
-            px, py = inner[idx, 0], inner[idx, 1]
+            px, py = pts[idx, 0], pts[idx, 1]
             vx, vy, sc = ca.DM(vec[idx, 0]), ca.DM(vec[idx, 1]), ca.DM(scal[idx])
             if k == EXEMPT:
                 # beyond a line's open end E: kept beyond it (u . p >= u . E), and r from
@@ -124,55 +175,62 @@ def lead_model(setup: LeadSetup, classes, m_time: int = M_TIME, m_clear: int = M
                 d = np.subtract(el.geom.p1, el.geom.p0)
                 at_start = vec[idx] @ d < 0.0
                 E = np.where(at_start[:, None], el.geom.p0, el.geom.p1)
-                g.append(vx * px + vy * py - sc)
-                g.append((px - ca.DM(E[:, 0])) ** 2 + (py - ca.DM(E[:, 1])) ** 2
-                         - el.clearance ** 2)
-                lbg += [0.0] * (2 * len(idx))
-                ubg += [ca.inf] * (2 * len(idx))
-                continue
-            if k == LINE:
-                g.append(vx * px + vy * py - sc)
+                rows.add(vx * px + vy * py - sc, len(idx))
+                rows.add((px - ca.DM(E[:, 0])) ** 2 + (py - ca.DM(E[:, 1])) ** 2
+                         - el.clearance ** 2, len(idx))
+            elif k == LINE:
+                rows.add(vx * px + vy * py - sc, len(idx))
             elif k == CONCAVE:
-                g.append(sc ** 2 - (px - vx) ** 2 - (py - vy) ** 2)
+                rows.add(sc ** 2 - (px - vx) ** 2 - (py - vy) ** 2, len(idx))
             else:
-                g.append((px - vx) ** 2 + (py - vy) ** 2 - sc ** 2)
-            lbg += [0.0] * len(idx)
-            ubg += [ca.inf] * len(idx)
+                rows.add((px - vx) ** 2 + (py - vy) ** 2 - sc ** 2, len(idx))
+
+
+def lead_model(setup: LeadSetup, classes, m_time: int = M_TIME, m_clear: int = M_CLEAR) -> dict:
+    """The NLP of one lead as a CasADi dict: ``nlp`` (``x``, ``f``, ``g``),
+    bounds ``lbx, ubx, lbg, ubg``, first guess ``x0``."""
+    import casadi as ca  # deferred: heavy, and only this blend needs it
+
+    n = setup.degree
+    x = ca.SX.sym("x", setup.nx)
+    P = _join_controls(setup, x)                                  # (n + 1) x 2
+    spd = _speed_model(setup, P, m_time)
+    G = ca.DM(jerk_gram(n))
+    jerk = ca.dot(P[:, 0], ca.mtimes(G, P[:, 0])) + ca.dot(P[:, 1], ca.mtimes(G, P[:, 1]))
+    obj = spd.time + (setup.lg.host_length - x[-1]) / setup.feed + setup.jerk_weight * jerk
+
+    rows = _Rows()
+    tc = np.linspace(0.0, 1.0, m_clear)
+    pts = ca.mtimes(ca.DM(bernstein(tc, n)), P)
+    _clearance_rows(rows, setup, classes, pts[1:-1, :])
     # regular curve, at the speed cuts and at the (refined) clearance samples
     vmin = V_MIN_FRACTION * setup.L0
-    g.append(sp2[:] - vmin ** 2)
-    lbg += [0.0] * m_time
-    ubg += [ca.inf] * m_time
+    rows.add(spd.sp2[:] - vmin ** 2, m_time)
     dc = ca.mtimes(ca.DM(bernstein(tc, n - 1) @ derivative_matrix(n, 1)), P)
-    g.append(dc[:, 0] ** 2 + dc[:, 1] ** 2 - vmin ** 2)
-    lbg += [0.0] * m_clear
-    ubg += [ca.inf] * m_clear
+    rows.add(dc[:, 0] ** 2 + dc[:, 1] ** 2 - vmin ** 2, m_clear)
     # axis accelerations q' s'' + q'' s'^2 within the limits, at both ends of every piece
     ax, ay = float(setup.acc[0]), float(setup.acc[1])
-    for lo_i, hi_i in ((slice(0, m_time - 1), None), (slice(1, m_time), None)):
-        g.append(Tx[lo_i] * u + Kx[lo_i] * b[lo_i])
-        g.append(Ty[lo_i] * u + Ky[lo_i] * b[lo_i])
-        lbg += [-ax] * (m_time - 1) + [-ay] * (m_time - 1)
-        ubg += [ax] * (m_time - 1) + [ay] * (m_time - 1)
+    for end in (slice(0, m_time - 1), slice(1, m_time)):
+        rows.add(spd.Tx[end] * spd.u + spd.Kx[end] * spd.b[end], m_time - 1, -ax, ax)
+        rows.add(spd.Ty[end] * spd.u + spd.Ky[end] * spd.b[end], m_time - 1, -ay, ay)
     lo, hi = setup.bounds()
     blo = np.zeros(m_time)
     bhi = np.full(m_time, setup.feed ** 2)
     bhi[0] = 0.0                       # the approach point is a stop
     x0 = setup.initial()
-    return {"nlp": {"x": ca.vertcat(x, b), "f": obj, "g": ca.vertcat(*g)},
+    return {"nlp": {"x": ca.vertcat(x, spd.b), "f": obj, "g": ca.vertcat(*rows.g)},
             "lbx": np.r_[lo, blo], "ubx": np.r_[hi, bhi],
-            "lbg": np.asarray(lbg, float), "ubg": np.asarray(ubg, float),
+            "lbg": np.asarray(rows.lbg, float), "ubg": np.asarray(rows.ubg, float),
             "x0": np.r_[x0, speed_squares(setup, x0, m_time)], "m_time": m_time}
 
 
 def speed_squares(setup: LeadSetup, x, m: int) -> np.ndarray:
     """``v^2`` at ``m`` cuts of the blend ``x`` by the forward/backward passes (a first guess)."""
-    from ccopt.compare.blend import curve_samples
     P = setup.controls(x)
     pts, _, k = curve_samples(P, np.linspace(0.0, 1.0, m))
     ds = np.hypot(*np.diff(pts, axis=0).T)
     a = float(np.min(setup.acc))
-    b = np.minimum(setup.feed ** 2, a / np.maximum(np.abs(k), 1e-300))
+    b = np.minimum(setup.feed ** 2, a / np.maximum(np.abs(k), DIVISION_FLOOR))
     b[0] = 0.0
     for i in range(m - 1):
         b[i + 1] = min(b[i + 1], b[i] + 2.0 * a * ds[i])
@@ -183,10 +241,11 @@ def speed_squares(setup: LeadSetup, x, m: int) -> np.ndarray:
 
 def solve_lead_model(model: dict, solver: str = "ipopt", options: dict | None = None, x0=None):
     """Solve a :func:`lead_model` with a CasADi NLP solver: ``(x, stats)``."""
-    import casadi as ca
+    import casadi as ca  # deferred: heavy, and only this blend needs it
 
     opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
-            "ipopt.tol": 1e-9, "ipopt.constr_viol_tol": 1e-9, "ipopt.max_iter": 1000} \
+            "ipopt.tol": IPOPT_TOL, "ipopt.constr_viol_tol": IPOPT_TOL,
+            "ipopt.max_iter": 1000} \
         if solver == "ipopt" else {}
     opts.update(options or {})
     S = ca.nlpsol("lead", solver, model["nlp"], opts)

@@ -32,7 +32,7 @@ G2 at the join holds whatever the iterate).
 :func:`scp` iterates to a fixed point for one ``lam``; :func:`solve_lead`
 tries a few ``lam`` (how much curvature costs against length) and curvature
 caps, and keeps the curve with the shortest traversal time
-(:func:`ccopt.compare.blend.speed_profile_time`, the same time model as the
+(:func:`ccopt.geometry.bezier.speed_profile_time`, the same time model as the
 CasADi NLP). :func:`solve_subproblem` is the solver call: the same model
 goes to Clarabel (default), ECOS or SCS.
 """
@@ -40,10 +40,13 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 
 import numpy as np
 
-from ccopt.compare.blend import BlendProblem, bernstein, derivative_matrix
+from ccopt.compare.contract import BlendProblem
+from ccopt.geometry.bezier import DIVISION_FLOOR, bezier_energy, energy_root
+from ccopt.geometry.curve import bernstein, derivative_matrix
 from ccopt_formulations.clearance import linear_rows
 from ccopt_formulations.lead_setup import V_MIN_FRACTION, LeadSetup, run_leads
 
@@ -65,23 +68,30 @@ CURVATURE_PENALTY = 10.0
 C_MAX = 3
 VOID = 1e3
 
-
-def _gram(m: int) -> np.ndarray:
-    """Gram matrix of the degree-``m`` Bernstein basis on [0, 1]."""
-    return np.array([[math.comb(m, i) * math.comb(m, j) / (math.comb(2 * m, i + j) * (2 * m + 1))
-                      for j in range(m + 1)] for i in range(m + 1)])
-
-
-def _sqrt_factor(G: np.ndarray) -> np.ndarray:
-    w, V = np.linalg.eigh(0.5 * (G + G.T))
-    return (V * np.sqrt(np.clip(w, 0.0, None))).T
+# Lengths below relative to ``L0`` (the lead's approach distance + host reach + r).
+#: Central-difference step of the control-point Jacobian (the map is smooth;
+#: this balances truncation against rounding).
+JACOBIAN_STEP = 1e-6
+#: The first trust radius (share of ``L0``); it halves on every refused step.
+TRUST_START = 0.1
+#: A trust radius below this gives up the iteration: no step can help any more.
+TRUST_MIN = 1e-9
+#: Slack (clearance violation) that counts as none while iterating: rounding.
+SLACK_EPS = 1e-9
+#: A step at most this is a fixed point.
+STEP_EPS = 1e-5
+#: Slack and exact clearance violation the final iterate may have and still be
+#: feasible (looser than SLACK_EPS: the last solve may be "optimal_inaccurate").
+FEASIBLE_EPS = 1e-7
+#: Floor of the energy scales (E2_0, E3_0): a straight first guess has none.
+ENERGY_FLOOR = 1e-12
 
 
 def control_jacobian(setup: LeadSetup, x: np.ndarray, h: float | None = None):
     """``(P(x), dP/dx)`` with ``dP/dx`` of shape ``((n+1)*2, nx)`` (central differences;
     exact for line hosts, where ``P`` is affine in ``x``)."""
     P0 = setup.controls(x)
-    h = h or 1e-6 * setup.L0
+    h = h or JACOBIAN_STEP * setup.L0
     Jc = np.zeros((P0.size, x.size))
     for k in range(x.size):
         d = np.zeros_like(x)
@@ -117,7 +127,7 @@ class ConvexLeadModel:
 
     def __init__(self, setup: LeadSetup, lam: float, ref_pts: np.ndarray, band: float,
                  scales: dict, cap_speed: float = 0.5):
-        import cvxpy as cp
+        import cvxpy as cp  # deferred: heavy, and only this blend needs it
 
         self.setup = setup
         self.ref_pts = ref_pts
@@ -143,8 +153,8 @@ class ConvexLeadModel:
         px, py = self.B @ Px, self.B @ Py
         Dm = np.diff(np.eye(m), axis=0)
         obj = cp.sum(cp.norm(cp.vstack([Dm @ px, Dm @ py]), 2, axis=0)) / scales["len"]
-        R2 = _sqrt_factor(_gram(n - 2)) @ derivative_matrix(n, 2)
-        R3 = _sqrt_factor(_gram(n - 3)) @ derivative_matrix(n, 3)
+        R2 = energy_root(n, 2)
+        R3 = energy_root(n, 3)
         obj += lam * (cp.sum_squares(R2 @ Px) + cp.sum_squares(R2 @ Py)) / scales["e2"]
         obj += MU * (cp.sum_squares(R3 @ Px) + cp.sum_squares(R3 @ Py)) / scales["e3"]
         cons = []
@@ -219,7 +229,7 @@ class ConvexLeadModel:
         w = self.ref_pts[np.argmin(dref, axis=1)]
         self.w0.value, self.w1.value = w[:, 0], w[:, 1]
         d1k = self.D1 @ Pk
-        ub = d1k / np.maximum(np.hypot(d1k[:, 0], d1k[:, 1]), 1e-300)[:, None]
+        ub = d1k / np.maximum(np.hypot(d1k[:, 0], d1k[:, 1]), DIVISION_FLOOR)[:, None]
         A = ub[:, 0:1] * (self.D1 @ Jx) + ub[:, 1:2] * (self.D1 @ Jy)
         self.Ar.value = A
         self.br.value = V_MIN_FRACTION * su.L0 - (np.einsum("ij,ij->i", ub, d1k) - A @ xk)
@@ -238,7 +248,6 @@ class ConvexLeadModel:
 
 def solve_subproblem(problem, solver: str = "CLARABEL", **options):
     """The solver call, kept apart from the model: ``problem.solve`` with ``solver``."""
-    import warnings
     with warnings.catch_warnings():
         # "solution may be inaccurate": the exact clearance check after the solve judges it
         warnings.simplefilter("ignore", UserWarning)
@@ -258,42 +267,34 @@ def scp(setup: LeadSetup, problem: BlendProblem, lam: float, solver: str = "CLAR
     dref = np.hypot(*(Pk[:, None, :] - ref_pts[None]).transpose(2, 0, 1))
     band = float(problem.options.get("band_width", 2.0 * setup.r)) + float(
         np.max(np.min(dref, axis=1)))
-    n = setup.degree
-    scales = {"len": setup.L0,
-              "e2": max(_energy(Pk, n, 2), 1e-12), "e3": max(_energy(Pk, n, 3), 1e-12)}
+    scales = {"len": setup.L0, "e2": max(bezier_energy(Pk, 2), ENERGY_FLOOR),
+              "e3": max(bezier_energy(Pk, 3), ENERGY_FLOOR)}
     model = ConvexLeadModel(setup, lam, ref_pts, band, scales, cap_speed)
-    delta = 0.1 * setup.L0
+    delta = TRUST_START * setup.L0
     status, it, slack_max = None, 0, math.inf
     for it in range(1, MAX_ITER + 1):
         model.update(xk, delta)
         status = solve_subproblem(model.problem, solver)
         if model.x.value is None or status not in ("optimal", "optimal_inaccurate"):
             delta *= 0.5
-            if delta < 1e-9 * setup.L0:
+            if delta < TRUST_MIN * setup.L0:
                 break
             continue
         xn = np.asarray(model.x.value, float)
         slack_max = model.slack_max()
         step = float(np.max(np.abs(xn - xk)))
         # the linearised rows are safe, but cases may change over a step: check exactly
-        if slack_max <= 1e-9 * setup.L0 and \
-                setup.clearance_violation(xn, m=M_SAMPLES) > 1e-9 * setup.L0:
+        if slack_max <= SLACK_EPS * setup.L0 and \
+                setup.clearance_violation(xn, m=M_SAMPLES) > SLACK_EPS * setup.L0:
             delta *= 0.5
             continue
         xk = xn
-        if step <= 1e-5 * setup.L0 and slack_max <= 1e-9 * setup.L0:
+        if step <= STEP_EPS * setup.L0 and slack_max <= SLACK_EPS * setup.L0:
             break
-    ok = slack_max <= 1e-7 * setup.L0 and \
-        setup.clearance_violation(xk, m=M_SAMPLES) <= 1e-7 * setup.L0
+    ok = slack_max <= FEASIBLE_EPS * setup.L0 and \
+        setup.clearance_violation(xk, m=M_SAMPLES) <= FEASIBLE_EPS * setup.L0
     return xk, {"status": status, "iterations": it, "feasible": bool(ok), "lambda": lam,
                 "cap_speed": cap_speed}
-
-
-def _energy(P, n, order):
-    D = derivative_matrix(n, order)
-    G = _gram(n - order)
-    Q = D @ P
-    return float(np.sum(Q * (G @ Q)))
 
 
 def solve_lead(setup: LeadSetup, problem: BlendProblem | None = None, solver: str = "CLARABEL"):

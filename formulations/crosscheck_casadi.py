@@ -35,7 +35,8 @@ import casadi as ca
 import numpy as np
 
 from ccopt.geometry import Arc, Line, Spiral
-from ccopt.verify.clearance import _contains
+from ccopt.geometry.angles import TWO_PI
+from ccopt.verify.clearance import exempt_regions, in_regions
 
 #: Parameters per curve: kind (1 line, 0 polar), p0x, p0y, p1x, p1y, cx, cy, rho0, rho1, th0, sweep.
 NPAR = 11
@@ -130,10 +131,10 @@ def _param_of_point(g, w) -> float:
         rr = float(r @ r)
         return float(np.clip(np.dot(np.subtract(w, g.p0), r) / rr, 0, 1)) if rr > 0 else 0.0
     ang = math.atan2(w[1] - g.center[1], w[0] - g.center[0])
-    along = ((ang - g.theta0) * math.copysign(1.0, g.sweep)) % (2 * math.pi)
+    along = ((ang - g.theta0) * math.copysign(1.0, g.sweep)) % TWO_PI
     full = abs(g.sweep)
     if along > full:
-        along = full if along - full < 2 * math.pi - along else 0.0
+        along = full if along - full < TWO_PI - along else 0.0
     return along / full if full > 0 else 0.0
 
 
@@ -148,7 +149,7 @@ def allowed_intervals(tool_geom, regions, samples: int = 2049) -> list[tuple[flo
 
     def inside(u):
         u = np.atleast_1d(np.asarray(u, float))
-        return _contains(regions, _eval(np.repeat(p, u.size, axis=0), u))
+        return in_regions(regions, _eval(np.repeat(p, u.size, axis=0), u))
 
     u = np.linspace(0.0, 1.0, samples)
     ins = inside(u)
@@ -199,7 +200,6 @@ def search_pairs(tool_geoms, elem_geoms, intervals, starts) -> np.ndarray:
 
 def crosscheck(certificate) -> dict:
     """Entry point: IPOPT worst-case gouge search from the certificate's nearest pairs."""
-    from ccopt.verify.clearance import exempt_regions
     ctx = certificate.context
     if ctx is None or len(ctx.pairs) == 0:
         return {"name": "casadi", "agree": True, "pairs": 0,

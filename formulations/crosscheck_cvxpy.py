@@ -35,12 +35,21 @@ from dataclasses import dataclass
 import cvxpy as cp
 import numpy as np
 
+from ccopt.geometry.angles import TWO_PI
+
 #: Largest allowed |SOCP - closed form| for agreement (program units).
 AGREEMENT = 1e-6
 
 #: Clarabel settings tight enough for 1e-9-level distances.
 CLARABEL_OPTIONS = {"tol_gap_abs": 1e-12, "tol_gap_rel": 1e-12, "tol_feas": 1e-12,
                     "tol_ktratio": 1e-10, "max_iter": 200}
+#: ... and looser ones, tried when Clarabel reports those as not quite reached.
+CLARABEL_FALLBACK_OPTIONS = dict(CLARABEL_OPTIONS, tol_gap_abs=1e-10, tol_gap_rel=1e-10,
+                                 tol_feas=1e-10)
+
+#: A direction within this angle (rad) of an arc's end is not strictly inside
+#: its sweep (the end point is the element's own, measured by the end case).
+ANGLE_MARGIN = 1e-9
 
 #: How many of the verifier's nearest pairs are cross-checked.
 PAIRS = 200
@@ -96,8 +105,7 @@ def solve(model: Model, solver: str = "CLARABEL", **options) -> np.ndarray:
     the solver reports them as not quite reached, looser ones (1e-10).
     """
     tries = [options] if (options or solver != "CLARABEL") else [
-        dict(CLARABEL_OPTIONS), dict(CLARABEL_OPTIONS, tol_gap_abs=1e-10, tol_gap_rel=1e-10,
-                                     tol_feas=1e-10)]
+        dict(CLARABEL_OPTIONS), dict(CLARABEL_FALLBACK_OPTIONS)]
     for opts in tries:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", UserWarning)   # "may be inaccurate": we look at status
@@ -117,9 +125,9 @@ def segment_disk(a0, a1, c, R, solver: str = "CLARABEL") -> np.ndarray:
     return solve(segment_disk_model(a0, a1, c, R), solver)
 
 
-def _angle_inside(phi, th0, sw, margin=1e-9):
-    along = np.mod((phi - th0) * np.sign(sw), 2 * np.pi)
-    return (along > margin) & (along < np.abs(sw) - margin) | (np.abs(sw) >= 2 * np.pi)
+def _angle_inside(phi, th0, sw, margin=ANGLE_MARGIN):
+    along = np.mod((phi - th0) * np.sign(sw), TWO_PI)
+    return (along > margin) & (along < np.abs(sw) - margin) | (np.abs(sw) >= TWO_PI)
 
 
 def crosscheck(certificate) -> dict:

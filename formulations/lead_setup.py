@@ -4,7 +4,7 @@ A lead (see :mod:`ccopt.compare.leads`; a lead-out is handed over reversed)
 becomes a Bezier curve ``P[0..n]`` (degree ``n``, :data:`DEGREE` by default: a
 quintic) from the approach point ``A`` to the host tool segment at arc length
 ``sigma`` (``J``), matching the host's position, tangent and curvature there
-(:func:`ccopt.compare.blend.g2_end`). Decision vector
+(:func:`ccopt.geometry.bezier.g2_end`). Decision vector
 ``x = [P1, ..., P(n-3), a, e, sigma]`` (points flattened); ``P0 = A``, and
 ``P(n-2), P(n-1), Pn`` follow from ``(a, e, sigma)``.
 
@@ -26,20 +26,15 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ccopt.compare.blend import (
-    BlendProblem, BlendRejected, bernstein, g2_end, jerk_gram, speed_profile_time,
-)
-from ccopt.compare.leads import Lead, LeadGeometry
-from ccopt.geometry import Arc, Line
+from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
+from ccopt.compare.leads import Lead, LeadGeometry, splice
+from ccopt.geometry import Arc, BezierCurve, Line
+from ccopt.geometry.bezier import g2_end, jerk_gram, speed_profile_time
+from ccopt.geometry.curve import bernstein
 from ccopt_formulations.clearance import checked_distance, contour_elements, near
-
-if TYPE_CHECKING:  # pragma: no cover
-    from ccopt.compare.blend import BlendOutcome
-    from ccopt.geometry import BezierCurve
 
 DEGREE = 5
 
@@ -118,7 +113,7 @@ class LeadSetup:
 
     def objective(self, x, m: int = 81) -> float:
         """Time to run the blend from rest and go on at the feed (speed profile,
-        :func:`~ccopt.compare.blend.speed_profile_time`), plus the host time it
+        :func:`~ccopt.geometry.bezier.speed_profile_time`), plus the host time it
         skips, plus the jerk term: what both models minimise."""
         P = self.controls(x)
         host_left = (self.lg.host_length - x[-1]) / self.feed
@@ -212,8 +207,8 @@ def lead_setup(problem: BlendProblem, lead: Lead, *, join: str = "start",
                      r, feed, acc, L0, elements, w_jerk, int(degree), int(refine))
 
 
-def blend_geometry(setup: LeadSetup, x) -> "BezierCurve":
-    from ccopt.geometry import BezierCurve
+def blend_geometry(setup: LeadSetup, x) -> BezierCurve:
+    """The blend curve of the decision vector ``x``."""
     return BezierCurve(setup.controls(x))
 
 
@@ -249,7 +244,7 @@ def near_cusp(setup: "LeadSetup", geom) -> str | None:
 ATTEMPTS = (1, 3, 9)
 
 
-def run_leads(problem: BlendProblem, solve_lead, name: str) -> "BlendOutcome":
+def run_leads(problem: BlendProblem, solve_lead, name: str) -> BlendOutcome:
     """Replace every lead of the reference with ``solve_lead(setup) -> (x, info)``.
 
     Each blend is spliced in and certified (:meth:`BlendProblem.accept`); when
@@ -258,9 +253,6 @@ def run_leads(problem: BlendProblem, solve_lead, name: str) -> "BlendOutcome":
     and the reason is reported in ``info["leads"]``. No lead replaced at all
     is a :class:`BlendRejected`.
     """
-    from ccopt.compare.blend import BlendOutcome
-    from ccopt.compare.leads import splice
-
     opts = dict(problem.options)
     join = str(opts.get("join", "start"))
     w_jerk = float(opts.get("w_jerk", W_JERK))

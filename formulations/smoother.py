@@ -18,7 +18,7 @@ Each blend is a small convex problem (:class:`CornerModel`, CVXPY with
 parameters, compiled once and solved with Clarabel; :func:`solve_model` is
 the solver call). In coordinates centred on the join and scaled by the blend
 size, with ``x = [a0, e0, a1, e1, P3, P4]`` (the legs and offsets of the
-G2 end conditions, :func:`ccopt.compare.blend.g2_start` / ``g2_end``, and the
+G2 end conditions, :func:`ccopt.geometry.bezier.g2_start` / ``g2_end``, and the
 two free control points):
 
     minimise   integral |r'''|^2 dt + lam * integral |r''|^2 dt
@@ -49,15 +49,16 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from dataclasses import dataclass, field
 
 import numpy as np
 
-from ccopt.compare.blend import (
-    BlendOutcome, BlendProblem, BlendRejected, bernstein, derivative_matrix, g2_end, g2_start,
-)
+from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.figures import joins as path_joins, max_deviation
 from ccopt.geometry import BezierCurve
+from ccopt.geometry.bezier import DIVISION_FLOOR, energy_root, g2_end, g2_start
+from ccopt.geometry.curve import bernstein, derivative_matrix
 from ccopt.toolpath import PathSegment, Role, ToolPath
 from ccopt_formulations.clearance import (
     Element, checked_distance, contour_elements, linear_rows, near,
@@ -94,6 +95,20 @@ CHECK_TOL = 1e-12
 SHARES = ((1.0, 1.0), (1.0, 0.0), (0.0, 1.0))
 #: Dense samples for the exact acceptance checks of one blend.
 CHECK_SAMPLES = 801
+#: Central-difference step (in the scaled decision variables, O(1)) of the map
+#: x -> control points: it is smooth, so this balances truncation and rounding.
+JACOBIAN_STEP = 1e-6
+#: A linearisation has converged once its clearance slack is at most this
+#: (scaled: rounding) and its step at most CONVERGED_STEP (scaled).
+CONVERGED_SLACK = 1e-12
+CONVERGED_STEP = 1e-6
+#: Smallest turn (rad) and curvature jump (1/program units) the first blend size
+#: divides by: a join barely broken gets the largest size its segments allow.
+MIN_TURN = 1e-3
+MIN_JUMP = 1e-9
+#: A segment trimmed to at most this length (program units) by the blends at both
+#: its ends is gone: the two blends meet.
+TRIMMED_AWAY = 1e-12
 
 
 # --------------------------------------------------------------------------- joins
@@ -201,16 +216,6 @@ def near_elements(problem: BlendProblem, V, reach: float) -> list[Element]:
 # --------------------------------------------------------------------------- the model
 
 
-def _gram(m: int) -> np.ndarray:
-    return np.array([[math.comb(m, i) * math.comb(m, j) / (math.comb(2 * m, i + j) * (2 * m + 1))
-                      for j in range(m + 1)] for i in range(m + 1)])
-
-
-def _sqrt_factor(G: np.ndarray) -> np.ndarray:
-    w, V = np.linalg.eigh(0.5 * (G + G.T))
-    return (V * np.sqrt(np.clip(w, 0.0, None))).T
-
-
 class CornerModel:
     """The convex model of one blend (see the module docstring), compiled once
     with parameters and reused for every join and every linearisation."""
@@ -218,7 +223,7 @@ class CornerModel:
     NX = 8
 
     def __init__(self, lam: float = LAM):
-        import cvxpy as cp
+        import cvxpy as cp  # deferred: heavy, and only this blend needs it
 
         n, m, nx = DEGREE, M_SAMPLES, self.NX
         self.t = np.linspace(0.0, 1.0, m)
@@ -232,8 +237,8 @@ class CornerModel:
         self.cx, self.cy = Par(n + 1), Par(n + 1)
         Px, Py = self.Mx @ x + self.cx, self.My @ x + self.cy
         px, py = self.B @ Px, self.B @ Py
-        R3 = _sqrt_factor(_gram(n - 3)) @ derivative_matrix(n, 3)
-        R2 = _sqrt_factor(_gram(n - 2)) @ derivative_matrix(n, 2)
+        R3 = energy_root(n, 3)
+        R2 = energy_root(n, 2)
         obj = cp.sum_squares(R3 @ Px) + cp.sum_squares(R3 @ Py) \
             + lam * (cp.sum_squares(R2 @ Px) + cp.sum_squares(R2 @ Py))
         inner = slice(1, m - 1)
@@ -270,7 +275,7 @@ class CornerModel:
         S, V = fr.S, fr.V
         # affine map x -> scaled control points (exact but for the a^2 curvature terms)
         P0 = (fr.controls(xk) - V) / S
-        h = 1e-6
+        h = JACOBIAN_STEP
         M = np.zeros(((n + 1) * 2, self.NX))
         for k in range(self.NX):
             d = np.zeros(self.NX)
@@ -320,7 +325,7 @@ class CornerModel:
         D1 = self.D1
         d1 = D1 @ P0
         sp = np.hypot(d1[:, 0], d1[:, 1])
-        ub = d1 / np.maximum(sp, 1e-300)[:, None]
+        ub = d1 / np.maximum(sp, DIVISION_FLOOR)[:, None]
         A = ub[:, 0:1] * (D1 @ Mx) + ub[:, 1:2] * (D1 @ My)
         self.Ar.value = A
         self.br.value = 0.05 - (np.einsum("ij,ij->i", ub, d1) - A @ xk)
@@ -330,7 +335,6 @@ class CornerModel:
 
 def solve_model(model: CornerModel, solver: str = "CLARABEL", **options):
     """The solver call: ``(x or None, status)``."""
-    import warnings
     try:
         with warnings.catch_warnings():
             # "solution may be inaccurate": the exact checks after the solve judge it
@@ -363,6 +367,78 @@ def _exact_ok(curve_pts: np.ndarray, elements, fr: BlendFrame, delta: float, tol
     return True, "ok"
 
 
+def solve_blend(model: CornerModel, fr: BlendFrame, elements, delta: float,
+                band_fraction: float = BAND_FRACTION, solver: str = "CLARABEL"):
+    """The blend of the frame ``fr``: the model re-linearised and solved up to
+    :data:`SCP_ITERATIONS` times (trust region shrinking), then the exact checks
+    (:func:`_exact_ok`) on the exact curve. The curve, or ``None`` when there is
+    no solution or it fails a check."""
+    x = _initial(fr)
+    trust = 0.5 * max(x[0], x[2])
+    sol = None
+    for it in range(SCP_ITERATIONS):
+        model.update(fr, x, elements, band_fraction * delta, trust)
+        xn, _ = solve_model(model, solver)
+        if xn is None:
+            break
+        step = float(np.max(np.abs(xn - x)))
+        x, sol = xn, xn
+        if it >= 1 and float(np.max(model.slack.value)) <= CONVERGED_SLACK \
+                and step <= CONVERGED_STEP:
+            break
+        trust *= 0.7
+    if sol is None:
+        return None
+    P = fr.controls(sol)
+    pts = bernstein(np.linspace(0.0, 1.0, CHECK_SAMPLES), DEGREE) @ P
+    ok, _ = _exact_ok(pts, elements, fr, delta, CHECK_TOL)
+    if not ok:
+        return None
+    try:
+        return BezierCurve(P)
+    except ValueError:
+        return None
+
+
+def largest_feasible(attempt, start: float, lmax: float):
+    """The blend size search: from ``start``, shrink by :data:`SHRINK` until
+    ``attempt(l)`` succeeds (at most :data:`SHRINKS` tries); if the first try
+    succeeded, grow by :data:`GROW` up to ``lmax`` until one fails; then bisect
+    between the largest success and the smallest failure. Returns what
+    ``attempt`` gave for the largest size that succeeded, or ``None``."""
+    best, bad = None, None
+    l = start
+    for _ in range(SHRINKS):
+        res = attempt(l)
+        if res is not None:
+            best = (l, res)
+            break
+        bad = l
+        l *= SHRINK
+    if best is None:
+        return None
+    good = best[0]
+    if bad is None:
+        for _ in range(GROWS):
+            if good >= lmax:
+                break
+            nxt = min(lmax, good * GROW)
+            res = attempt(nxt)
+            if res is None:
+                bad = nxt
+                break
+            good, best = nxt, (nxt, res)
+    if bad is not None:
+        for _ in range(BISECTIONS):
+            mid = 0.5 * (good + bad)
+            res = attempt(mid)
+            if res is None:
+                bad = mid
+            else:
+                good, best = mid, (mid, res)
+    return best[1]
+
+
 def solve_join(model: CornerModel, problem: BlendProblem, path: ToolPath, jn: Join, delta: float,
                band_fraction: float = BAND_FRACTION, solver: str = "CLARABEL"):
     """The largest feasible blend at ``jn`` (sets ``jn.curve``, ``l_in``, ``l_out``)."""
@@ -373,75 +449,19 @@ def solve_join(model: CornerModel, problem: BlendProblem, path: ToolPath, jn: Jo
         return jn
     V = np.asarray(seg_out.start, float)
     elements = near_elements(problem, V, 2.0 * lmax + delta)
-    tol = CHECK_TOL
 
-    def attempt(l: float, share=(1.0, 1.0)):
+    def attempt(l: float, share):
         l_in = min(l, jn.lim_in) * share[0]
         l_out = min(l, jn.lim_out) * share[1]
         fr = _frame(seg_in, seg_out, l_in, l_out)
-        x = _initial(fr)
-        trust = 0.5 * max(x[0], x[2])
-        sol = None
-        for it in range(SCP_ITERATIONS):
-            model.update(fr, x, elements, band_fraction * delta, trust)
-            xn, st = solve_model(model, solver)
-            if xn is None:
-                break
-            step = float(np.max(np.abs(xn - x)))
-            x, sol = xn, xn
-            if it >= 1 and float(np.max(model.slack.value)) <= 1e-12 and step <= 1e-6:
-                break
-            trust *= 0.7
-        if sol is None:
-            return None
-        P = fr.controls(sol)
-        pts = bernstein(np.linspace(0.0, 1.0, CHECK_SAMPLES), DEGREE) @ P
-        ok, why = _exact_ok(pts, elements, fr, delta, tol)
-        if not ok:
-            return None
-        try:
-            curve = BezierCurve(P)
-        except ValueError:
-            return None
-        return curve, l_in, l_out
-
-    def search(share):
-        best, bad = None, None
-        l = min(lmax, size_estimate(jn, delta))
-        for _ in range(SHRINKS):
-            res = attempt(l, share)
-            if res is not None:
-                best = (l, res)
-                break
-            bad = l
-            l *= SHRINK
-        if best is None:
-            return None
-        good = best[0]
-        if bad is None:
-            for _ in range(GROWS):
-                if good >= lmax:
-                    break
-                nxt = min(lmax, good * GROW)
-                res = attempt(nxt, share)
-                if res is None:
-                    bad = nxt
-                    break
-                good, best = nxt, (nxt, res)
-        if bad is not None:
-            for _ in range(BISECTIONS):
-                mid = 0.5 * (good + bad)
-                res = attempt(mid, share)
-                if res is None:
-                    bad = mid
-                else:
-                    good, best = mid, (mid, res)
-        return best[1]
+        curve = solve_blend(model, fr, elements, delta, band_fraction, solver)
+        return None if curve is None else (curve, l_in, l_out)
 
     # symmetric first; then one-sided (a blend that ends exactly at the join point, as
     # at an open end of the contour, where the other side has no room inside the band)
     for share in SHARES:
-        res = search(share)
+        res = largest_feasible(lambda l, share=share: attempt(l, share),
+                               min(lmax, size_estimate(jn, delta)), lmax)
         if res is not None:
             jn.curve, jn.l_in, jn.l_out = res
             jn.status = "blended"
@@ -456,8 +476,8 @@ def size_estimate(jn: Join, delta: float) -> float:
     by about ``l * theta / 6``, and shifts a transition into curvature ``kappa``
     by about ``l^2 * kappa / 3``, so try ``l`` with that equal to ``delta``."""
     if jn.kind == "tangent-break":
-        return 6.0 * delta / max(jn.angle, 1e-3)
-    return math.sqrt(3.0 * delta / max(jn.jump, 1e-9))
+        return 6.0 * delta / max(jn.angle, MIN_TURN)
+    return math.sqrt(3.0 * delta / max(jn.jump, MIN_JUMP))
 
 
 # --------------------------------------------------------------------------- the path
@@ -483,7 +503,7 @@ def assemble(path: ToolPath, joins: list[Join], style: str = "smooth") -> ToolPa
         s1 = seg.length - (j_end.l_in if j_end is not None else 0.0)
         g = seg.geom
         if s0 > 0.0 or s1 < seg.length:
-            if s1 - s0 <= 1e-12:
+            if s1 - s0 <= TRIMMED_AWAY:
                 g = None
             else:
                 if s1 < seg.length:

@@ -11,13 +11,14 @@
 Variants are the controller styles and geometric leads built in
 (:mod:`.registry`) plus every ``ccopt.blends`` entry point (the optimised
 blends and the smoother of :mod:`formulations` register there). A blend is
-``blend(problem: BlendProblem) -> ToolPath | BlendOutcome`` (:mod:`.blend`);
+``blend(problem: BlendProblem) -> ToolPath | BlendOutcome`` (:mod:`.contract`);
 leads are found and replaced with :mod:`.leads`; figures are in
 :mod:`.figures`.
 """
-from ccopt.compare.blend import BlendOutcome, BlendProblem, BlendRejected
+from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.core import FIGURES, REFERENCE, Comparison, VariantResult, compare, measure
-from ccopt.compare.registry import ENTRY_POINT_GROUP, available, load
+from ccopt.compare.contract import ENTRY_POINT_GROUP
+from ccopt.compare.registry import available, load
 
 __all__ = ["BlendOutcome", "BlendProblem", "BlendRejected", "Comparison", "ENTRY_POINT_GROUP",
            "FIGURES", "REFERENCE", "VariantResult", "available", "compare", "load", "measure"]

@@ -14,11 +14,13 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 
-from ccopt.compare.blend import BlendOutcome, BlendProblem, BlendRejected
+from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.figures import max_deviation, path_figures
 from ccopt.compare.leads import lead_joins
 from ccopt.compare.registry import available, load
+from ccopt.compensate import compensate
 from ccopt.errors import CcoptError
+from ccopt.feed import plan_feed
 from ccopt.feed.limits import AxisLimits
 from ccopt.program.model import Program
 from ccopt.toolpath import ToolPath
@@ -91,7 +93,6 @@ def _duration(path: ToolPath, limits: AxisLimits | None):
     """``(duration, max axis acceleration ratio sampled every 0.2 ms, message)``."""
     if limits is None:
         return None, None, None
-    from ccopt.feed import plan_feed
     try:
         prof = plan_feed(path, limits)
     except CcoptError as exc:
@@ -137,7 +138,6 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     reference = None
     ref_error = None
     try:
-        from ccopt.compensate import compensate
         reference = compensate(program, REFERENCE, radius=radius, side=side)
     except CcoptError as exc:
         ref_error = str(exc)

@@ -218,14 +218,14 @@ def _box_gap(a, b) -> float:
 def _one_side(src: ToolPath, dst: ToolPath, h: float):
     """``(estimate, upper bound)`` of the largest distance from the changed contour
     part of ``src`` to ``dst``'s feed path."""
-    from scipy.spatial import cKDTree
+    from scipy.spatial import cKDTree  # deferred: scipy loads slowly, only this figure needs it
     dst_geoms = [s.geom for s in dst.segments if s.role in FEED_ROLES and _in_plane(s)]
     src_geoms = [s.geom for s in src.segments
                  if s.role in CONTOUR_ROLES and _in_plane(s)
                  and not any(_same(s.geom, g) for g in dst_geoms)]
     if not src_geoms or not dst_geoms:
         return 0.0, 0.0
-    coarse_h = max(50.0 * h, 1e-9)
+    coarse_h = max(50.0 * h, POINT_EPS)
     coarse = cKDTree(_samples(dst_geoms, coarse_h))
     dst_boxes = [g.bbox() for g in dst_geoms]
     bound, cand = 0.0, []

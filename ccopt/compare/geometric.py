@@ -23,8 +23,15 @@ import numpy as np
 
 from ccopt.compare.leads import LeadGeometry, straight_line
 from ccopt.geometry import Arc
+from ccopt.geometry.angles import TWO_PI
 
-TWO_PI = 2.0 * math.pi
+#: The approach point must lie outside the lead circle by this share of its
+#: radius: nearer, the tangent from it is too ill-conditioned to construct.
+OUTSIDE_CIRCLE_REL = 1e-9
+
+#: A tangent arc of at most this length (program units) is left out: the
+#: tangent point is the join itself (rounding only).
+NO_ARC_LENGTH = 1e-12
 
 
 class ConstructionError(ValueError):
@@ -57,7 +64,7 @@ def line_arc(lg: LeadGeometry, rho: float) -> list:
     A = np.asarray(lg.approach, float)
     v = A - C
     d = math.hypot(*v)
-    if d <= rho * (1.0 + 1e-9):
+    if d <= rho * (1.0 + OUTSIDE_CIRCLE_REL):
         raise ConstructionError(f"the approach point is within the lead circle (radius {rho:g}): "
                                 "no tangent line")
     alpha = math.acos(rho / d)
@@ -79,6 +86,6 @@ def line_arc(lg: LeadGeometry, rho: float) -> list:
     else:
         sweep = -((phiT - phiJ) % TWO_PI)
     geoms = [straight_line(A, T)]
-    if abs(sweep) * rho > 1e-12:
+    if abs(sweep) * rho > NO_ARC_LENGTH:
         geoms.append(Arc(tuple(C), rho, phiT, sweep))
     return geoms

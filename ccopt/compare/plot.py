@@ -8,6 +8,8 @@ from __future__ import annotations
 import numpy as np
 
 from ccopt.compare.figures import FEED_ROLES
+from ccopt.compare.leads import find_leads
+from ccopt.geometry.curve import bernstein
 from ccopt.toolpath import programmed_path
 
 
@@ -20,7 +22,6 @@ def _xy(path):
             cps = getattr(g, "control_points", None)
             if cps is not None:
                 P = np.asarray(cps, float)
-                from ccopt.compare.blend import bernstein
                 pts.append(bernstein(np.linspace(0, 1, 4 * n), len(P) - 1) @ P)
             else:
                 pts.append(np.asarray(g.point(np.linspace(0.0, g.length, n))).reshape(-1, 2))
@@ -30,9 +31,10 @@ def _xy(path):
 
 def plot_comparison(comparison, out, title: str | None = None) -> str:
     """Write the plot to ``out`` (PNG/SVG/PDF by suffix); returns the file name."""
+    # deferred: matplotlib is heavy and optional (only plots need it)
     import matplotlib
     matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # deferred with matplotlib, after its backend is chosen
 
     prog = comparison.program
     contour = programmed_path(prog)
@@ -41,7 +43,6 @@ def plot_comparison(comparison, out, title: str | None = None) -> str:
     ref = comparison.reference
     focus = None
     if ref is not None:
-        from ccopt.compare.leads import find_leads
         leads = find_leads(ref)
         if leads:
             focus = np.asarray(ref.segments[leads[0].host].start, float)

@@ -7,32 +7,24 @@ the program's G136/G137), ``fagor-g139-g136`` and ``fagor-g139-g137``
 the Fagor style's ``start_end``/``corner`` options), and the geometric leads
 ``tangent-arc`` and ``line-arc`` (:mod:`.geometric`).
 
-Any package adds a blend with one entry point in the group
-:data:`ENTRY_POINT_GROUP`::
-
-    [project.entry-points."ccopt.blends"]
-    my-blend = "my_package.my_module:my_blend"
-
-where ``my_blend(problem: BlendProblem) -> ToolPath | BlendOutcome``
-(:mod:`.blend`). An entry point may not take a built-in name.
+Every other variant is a plug-in blend registered as an entry point of group
+``ccopt.blends``; what it implements and how it registers is
+:mod:`ccopt.compare.contract`.
 """
 from __future__ import annotations
 
-from importlib.metadata import EntryPoint, entry_points
-from typing import Callable
-
-from ccopt.compare.blend import BlendOutcome, BlendProblem, BlendRejected
+from ccopt.compare.contract import (
+    BUILTIN_NAMES, Blend, BlendOutcome, BlendProblem, BlendRejected, blend_entry_points,
+)
+from ccopt.compare.geometric import ConstructionError, line_arc, tangent_arc
 from ccopt.compare.leads import find_leads, splice
+from ccopt.compensate import compensate
+from ccopt.errors import ProgramError
 from ccopt.toolpath import ToolPath
-
-ENTRY_POINT_GROUP = "ccopt.blends"
-
-Blend = Callable[[BlendProblem], "ToolPath | BlendOutcome"]
 
 
 def _style(style: str, **options) -> Blend:
     def run(problem: BlendProblem) -> ToolPath:
-        from ccopt.compensate import compensate
         return compensate(problem.program, style, radius=problem.radius, side=problem.side,
                           **options)
     run.__doc__ = f"compensate with style {style!r} {options or ''}".strip()
@@ -42,7 +34,6 @@ def _style(style: str, **options) -> Blend:
 
 def _geometric(build, name: str) -> Blend:
     def run(problem: BlendProblem) -> BlendOutcome:
-        from ccopt.compare.geometric import ConstructionError
         rho = float(problem.options.get("lead_radius", problem.cutter_radius))
         path = problem.reference
         leads = find_leads(path)
@@ -60,7 +51,6 @@ def _geometric(build, name: str) -> Blend:
 
 
 def _builtins() -> dict[str, Blend]:
-    from ccopt.compare.geometric import line_arc, tangent_arc
     return {
         "pmac": _style("pmac"),
         "linuxcnc": _style("linuxcnc"),
@@ -72,20 +62,8 @@ def _builtins() -> dict[str, Blend]:
     }
 
 
-BUILTIN_NAMES = ("pmac", "linuxcnc", "fagor-g138", "fagor-g139-g136", "fagor-g139-g137",
-                 "tangent-arc", "line-arc")
-
 #: Entry-point blends listed first, in this order, when installed.
 PREFERRED_ORDER = ("opt-casadi", "opt-cvxpy", "smooth")
-
-
-def blend_entry_points() -> dict[str, EntryPoint]:
-    """Entry points of group ``ccopt.blends`` by name (the first of a name wins)."""
-    out: dict[str, EntryPoint] = {}
-    for ep in entry_points(group=ENTRY_POINT_GROUP):
-        if ep.name not in BUILTIN_NAMES:
-            out.setdefault(ep.name, ep)
-    return out
 
 
 def available() -> list[str]:
@@ -103,7 +81,6 @@ def require_known(names, source: str) -> None:
     known = available()
     unknown = [n for n in names if n not in known]
     if unknown:
-        from ccopt.errors import ProgramError
         raise ProgramError(f"unknown variant(s) {', '.join(unknown)}; available: "
                            f"{', '.join(known)}", source)
 

@@ -18,8 +18,8 @@ The curve must be regular (``|r'(t)| > 0``); the constructor checks it on a
 dense grid and on the derivative's control polygon (a sufficient condition
 is that the hodograph's control points stay in an open half-plane).
 
-Bernstein basics shared with the blend formulations (:mod:`ccopt.compare.blend`
-re-exports them): :func:`bernstein` (basis matrix), :func:`derivative_matrix`
+Bernstein basics shared with the blend mathematics (:mod:`ccopt.geometry.bezier`)
+and the formulations: :func:`bernstein` (basis matrix), :func:`derivative_matrix`
 (control points of a derivative), :func:`subdivision_matrix` (control points
 of a piece ``[t0, t1]``).
 """

@@ -9,6 +9,7 @@ import io
 
 import numpy as np
 
+from ccopt.tolerances import POINT_EPS
 from ccopt.toolpath import Role, ToolPath
 
 ROLE_STYLE = {
@@ -22,9 +23,10 @@ ROLE_STYLE = {
 
 
 def _figure(width=7.0, height=5.0):
+    # deferred: matplotlib is heavy and optional (only reports with plots need it)
     import matplotlib
     matplotlib.use("Agg", force=True)
-    import matplotlib.pyplot as plt
+    import matplotlib.pyplot as plt  # deferred with matplotlib, after its backend is chosen
     fig, ax = plt.subplots(figsize=(width, height), dpi=110)
     return plt, fig, ax
 
@@ -34,7 +36,8 @@ def _plan_figure(xmin, xmax, ymin, ymax, extra_width=0.0):
     (plus ``extra_width``, e.g. for a colour bar), as tall as the extent's
     aspect asks, between 2.4 and 6 inches, so a long narrow part is not a
     thin strip in a square of white."""
-    w, h = max(xmax - xmin, 1e-9), max(ymax - ymin, 1e-9)
+    # a part with no extent one way (a single line) still gets a figure
+    w, h = max(xmax - xmin, POINT_EPS), max(ymax - ymin, POINT_EPS)
     return _figure(7.0 + extra_width, float(np.clip(7.0 * h / w + 0.8, 2.4, 6.0)))
 
 
@@ -60,7 +63,7 @@ def _samples(geom, step: float) -> np.ndarray:
 
 
 def _step(path: ToolPath) -> float:
-    total = max(path.length, 1e-9)
+    total = max(path.length, POINT_EPS)
     return total / 2000
 
 
@@ -85,7 +88,7 @@ def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
         seen.add(seg.role)
         ax.plot(p[:, 0], p[:, 1], label=label, **ROLE_STYLE[seg.role])
     if radius > 0:
-        from matplotlib.patches import Circle
+        from matplotlib.patches import Circle  # deferred: matplotlib is heavy and optional
         cut = [s for s in path.segments if s.role is not Role.RAPID and s.length > 0]
         total = sum(s.length for s in cut)
         spacing = max(total / 60, radius)
@@ -108,7 +111,7 @@ def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
 
 def feed_plot(profile, title: str = "") -> bytes:
     """Tool path coloured by the planned tangential speed."""
-    from matplotlib.collections import LineCollection
+    from matplotlib.collections import LineCollection  # deferred: heavy and optional
     samples = profile.sample(max(profile.duration / 4000, 1e-4)) if profile.duration > 0 else None
     if samples is not None and len(samples) > 1:
         xy = samples.position[:, :2]

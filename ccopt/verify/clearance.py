@@ -126,7 +126,7 @@ def exempt_regions(contour: Contour, j: int):
 BOUNDARY_REL = 1e-12
 
 
-def _contains(regions, q: np.ndarray, margin=0.0) -> np.ndarray:
+def in_regions(regions, q: np.ndarray, margin=0.0) -> np.ndarray:
     """Points ``q`` inside one of the closed ``regions`` by at least ``margin``."""
     q = np.atleast_2d(q)
     margin = np.broadcast_to(np.asarray(margin, float), (q.shape[0],))
@@ -185,7 +185,7 @@ def clip_pieces(g, regions) -> list:
         if u1 - u0 <= 0.0:
             continue
         mid = g.point(0.5 * (u0 + u1) * L)
-        if not _contains(regions, mid)[0]:
+        if not in_regions(regions, mid)[0]:
             out.append(_piece(g, u0, u1))
     return out
 
@@ -194,7 +194,7 @@ def clipped_distance(tool_geom, elem_geom, regions):
     """Exact ``(d, wt, we)`` from the part of ``tool_geom`` outside ``regions``
     to ``elem_geom`` (both lines/arcs); ``d = inf`` when nothing is left."""
     if tool_geom.length == 0.0:
-        if _contains(regions, np.asarray(tool_geom.start))[0]:
+        if in_regions(regions, np.asarray(tool_geom.start))[0]:
             return (math.inf, None, None)
         return distance(tool_geom.start, elem_geom)
     best = (math.inf, None, None)
@@ -249,8 +249,8 @@ def pair_distances(tool: Packed, contour: Contour, eps: float,
         regions = exempt_regions(contour, j) if open_elem[j] and certified.is_exact(eg) else []
         ex = None
         if regions:
-            ex = (lambda pts, m, R=regions: _contains(R, pts, m),
-                  lambda pts, R=regions: _contains(R, pts))
+            ex = (lambda pts, m, R=regions: in_regions(R, pts, m),
+                  lambda pts, R=regions: in_regions(R, pts))
         if certified.is_exact(tg) and not certified.is_exact(eg):
             b = certified.min_distance(eg, tg, tol, cap=float(reach[j]))
             b = certified.Bound(b.lb, b.ub, b.wb, b.wa, b.converged, b.pieces)

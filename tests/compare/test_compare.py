@@ -9,7 +9,7 @@ import pytest
 import ccopt
 from ccopt.cases import find_case
 from ccopt.compare import FIGURES, compare
-from ccopt.compare.registry import BUILTIN_NAMES
+from ccopt.compare.contract import BUILTIN_NAMES
 
 
 def _run(case):

@@ -7,10 +7,9 @@ import numpy as np
 import pytest
 from hypothesis import given, settings, strategies as st
 
-from ccopt.compare.blend import (
-    bernstein, g2_end, g2_start, jerk_gram, speed_profile_time, subdivision_matrix,
-)
 from ccopt.geometry import Arc, BezierCurve, Line
+from ccopt.geometry.bezier import g2_end, g2_start, jerk_gram, speed_profile_time
+from ccopt.geometry.curve import bernstein, subdivision_matrix
 from ccopt_formulations.clearance import CONCAVE, CONVEX, END, LINE, Element, classify, linear_rows
 
 

@@ -18,7 +18,7 @@ from ccopt.geometry.distance import point_arc, point_segment
 from ccopt.toolpath import block_geometry
 from ccopt.verify import certified, contour_of
 from ccopt.verify.broadphase import MAX_CELLS, candidate_pairs
-from ccopt.verify.clearance import _contains, clipped_distance, end_regions
+from ccopt.verify.clearance import clipped_distance, end_regions, in_regions
 from ccopt.verify.maxdist import max_distance
 from ccopt.verify.segments import pack
 
@@ -196,7 +196,7 @@ def test_end_regions_are_the_points_nearest_an_end(which):
     _, k = cKDTree(curve).query(pts)
     for start, end in ((True, False), (False, True)):
         reg = end_regions(E, 0, start, end)
-        got = _contains(reg, pts)
+        got = in_regions(reg, pts)
         want = (k == 0) if start else (k == len(curve) - 1)
         # sampling decides ties within ~1e-4 of a boundary either way
         d_end = np.hypot(*(pts - (g.start if start else g.end)).T)

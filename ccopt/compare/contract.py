@@ -1,0 +1,146 @@
+"""The blend contract: what a plug-in blend gets, gives back, and how it is found.
+
+A blend is a callable ``blend(problem: BlendProblem) -> ToolPath | BlendOutcome``
+(:data:`Blend`). It receives the program, PMAC's compensated path (the
+*reference*), the contour the verifier checks against, the machine limits and
+the options; it returns the whole tool path of its variant. Optimised blends
+call :meth:`BlendProblem.accept` on their result: a blend is accepted only when
+the verifier certifies the segments it made (clearance between samples too),
+else :class:`BlendRejected` is raised.
+
+Registration: any package adds a blend with one entry point in the group
+:data:`ENTRY_POINT_GROUP`::
+
+    [project.entry-points."ccopt.blends"]
+    my-blend = "my_package.my_module:my_blend"
+
+An entry point may not take a built-in name (:data:`BUILTIN_NAMES`);
+:func:`blend_entry_points` discovers them. The catalogue of every variant,
+built-in ones included, is :mod:`ccopt.compare.registry`. The Bezier
+mathematics optimised blends share (G2 end conditions, energies, time models)
+is in :mod:`ccopt.geometry.bezier`.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from functools import cached_property
+from importlib.metadata import EntryPoint, entry_points
+from typing import Any, Callable, Mapping
+
+import numpy as np
+
+from ccopt.compare.leads import Lead, find_leads
+from ccopt.feed.limits import AxisLimits
+from ccopt.program.model import Program
+from ccopt.toolpath import ToolPath
+from ccopt.verify import Certificate, contour_of, verify
+from ccopt.verify.run import SIDES
+
+
+class BlendRejected(RuntimeError):
+    """A blend could not be made or was not certified (the message says why)."""
+
+
+@dataclass(frozen=True)
+class BlendOutcome:
+    """A blend's tool path and what it wants reported (solver, iterations, ...)."""
+
+    toolpath: ToolPath
+    info: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True, eq=False)
+class BlendProblem:
+    """Everything a blend may use.
+
+    Attributes
+    ----------
+    program: the part program.
+    reference: PMAC's compensated path of it (the comparison's reference;
+        ``None`` only for controller styles run when PMAC refused the program).
+    limits: machine limits (``None`` when none were given; blends that
+        optimise time then assume :data:`DEFAULT_ACC` and the programmed feed).
+    delta: tolerance band of the smoother (program units); ``None`` means 1 %
+        of the cutter radius.
+    options: blend options by name (e.g. ``lead_radius``).
+    radius, side: the compensation overrides the reference was made with.
+    """
+
+    program: Program
+    reference: ToolPath
+    limits: AxisLimits | None = None
+    delta: float | None = None
+    options: Mapping[str, Any] = field(default_factory=dict)
+    radius: float | None = None
+    side: Any = None
+
+    @property
+    def cutter_radius(self) -> float:
+        return float(self.reference.radius)
+
+    @property
+    def band(self) -> float:
+        """The smoother's tolerance band: ``delta`` or 1 % of the cutter radius."""
+        return float(self.delta) if self.delta is not None else 0.01 * self.cutter_radius
+
+    @cached_property
+    def contour(self):
+        """The verifier's contour of the program (:func:`ccopt.verify.contour_of`)."""
+        return contour_of(self.program, radius=self.radius, side=SIDES[self.side],
+                          toolpath_radius=self.reference.radius if self.radius is None else None)
+
+    def acc(self) -> np.ndarray:
+        """In-plane axis acceleration limits ``(a_u, a_v)`` used by the time models."""
+        if self.limits is None:
+            return np.array([DEFAULT_ACC, DEFAULT_ACC])
+        _, a = self.limits.in_plane(self.reference.plane, 2)
+        return np.asarray(a, float)
+
+    def leads(self) -> list[Lead]:
+        """The reference's lead-ins and lead-outs (:func:`ccopt.compare.leads.find_leads`)."""
+        return find_leads(self.reference)
+
+    def certify(self, toolpath: ToolPath) -> Certificate:
+        """The verifier's certificate of ``toolpath`` against the program."""
+        return verify(toolpath, self.program, radius=self.radius, side=self.side)
+
+    def accept(self, toolpath: ToolPath, segments) -> Certificate:
+        """Certify ``toolpath``; :class:`BlendRejected` when a gouge, gap or side
+        violation lies on one of ``segments`` (indices of the segments the blend
+        made or trimmed). Returns the certificate."""
+        cert = self.certify(toolpath)
+        mine = set(int(i) for i in segments)
+        bad = [v for v in cert.violations
+               if v.kind in ("gouge", "gap", "side") and v.tool_segment in mine]
+        if bad:
+            v = max(bad, key=lambda v: v.depth)
+            raise BlendRejected(f"verifier: {v.kind} of depth {v.depth:.3g} on blend segment "
+                                f"{v.tool_segment} ({len(bad)} violation(s))")
+        return cert
+
+
+#: Acceleration assumed by time proxies when no limits are given (units/s^2).
+DEFAULT_ACC = 1000.0
+
+
+#: What a plug-in implements: the whole tool path of its variant, or it with a report.
+Blend = Callable[[BlendProblem], "ToolPath | BlendOutcome"]
+
+# --------------------------------------------------------------------------- registration
+
+#: The entry-point group plug-in blends register in.
+ENTRY_POINT_GROUP = "ccopt.blends"
+
+#: The variants built into ccopt (:mod:`ccopt.compare.registry`); an entry point
+#: of one of these names is ignored.
+BUILTIN_NAMES = ("pmac", "linuxcnc", "fagor-g138", "fagor-g139-g136", "fagor-g139-g137",
+                 "tangent-arc", "line-arc")
+
+
+def blend_entry_points() -> dict[str, EntryPoint]:
+    """Entry points of group ``ccopt.blends`` by name (the first of a name wins)."""
+    out: dict[str, EntryPoint] = {}
+    for ep in entry_points(group=ENTRY_POINT_GROUP):
+        if ep.name not in BUILTIN_NAMES:
+            out.setdefault(ep.name, ep)
+    return out
