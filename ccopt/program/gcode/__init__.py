@@ -1,0 +1,74 @@
+"""ISO/RS274NGC G-code reader (LinuxCNC dialect, plus Fagor G136-G139).
+
+:func:`read_gcode` runs a part program the way LinuxCNC's interpreter reads
+it and returns an immutable :class:`~ccopt.program.model.Program`: one
+:class:`~ccopt.program.model.Block` per executed move or dwell, in execution
+order, with O-word subroutines, branches and loops expanded. Coordinates are
+absolute program units; feeds are program units per second; ``G2`` is
+clockwise seen down the plane normal; side +1 is ``G41`` (left).
+
+The dialect (words, codes, O-words, units and signs) and every decision the
+reader takes are described in ``docs/gcode.md``. The stages follow LinuxCNC's
+interpreter: :mod:`.words` (``interp_read.cc``, lexing), :mod:`.parameters`
+(parameters and expression values), :mod:`.codes` (a line's words and code
+checks), :mod:`.oword` (``interp_o_word.cc``), :mod:`.execute`
+(``interp_convert.cc``), :mod:`.arcs` (``interp_arc.cc``) and :mod:`.reader`
+(the line loop), all passing one :class:`~.state.GCodeState`.
+"""
+from __future__ import annotations
+
+from ccopt.errors import ProgramError
+# The limits the single-module reader exposed stay importable from here.
+from ccopt.program.gcode.arcs import MAX_ARC_TURNS, MM_PER_INCH  # noqa: F401
+from ccopt.program.gcode.parameters import MAX_PARAMETER, SUB_PARAMS  # noqa: F401
+from ccopt.program.gcode.reader import check_inputs, open_program, run
+# read_gcode reads these two at each call, so setting them here (as the
+# runaway tests do) changes the guards.
+from ccopt.program.gcode.state import MAX_CALL_DEPTH, MAX_EXECUTED_LINES
+from ccopt.program.model import Program
+
+__all__ = ["read_gcode", "MAX_EXECUTED_LINES", "MAX_CALL_DEPTH"]
+
+
+def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float] | None = None,
+               start=(0.0, 0.0, 0.0)) -> Program:
+    """Read RS274NGC/LinuxCNC G-code into a :class:`Program` (dialect ``"gcode"``).
+
+    Parameters
+    ----------
+    text:
+        The program text.
+    file:
+        Name used in :class:`~ccopt.program.model.Source` and in errors.
+    tool_table:
+        Tool number -> DIAMETER (program units), e.g. from
+        :func:`ccopt.program.tooltable.read_tool_table`; used by ``G41``/``G42``
+        with ``D<tool>`` or a loaded tool (``T<n> M6``).
+    start:
+        Machine position ``(x, y, z)`` before the first block, program units.
+
+    The runaway guards are this module's :data:`MAX_EXECUTED_LINES` and
+    :data:`MAX_CALL_DEPTH`, read at each call.
+
+    Raises
+    ------
+    ProgramError
+        For anything wrong with the text, located by file, line and column.
+    """
+    file, table, s = check_inputs(file, tool_table, start)
+    if not isinstance(text, str):
+        raise ProgramError(f"program text must be a string, not {type(text).__name__}", file)
+    state = None
+    try:
+        state = open_program(text, file, table, s, max_executed_lines=MAX_EXECUTED_LINES,
+                             max_call_depth=MAX_CALL_DEPTH)
+        return run(state)
+    except ProgramError:
+        raise
+    except RecursionError:
+        line = state.line_no + 1 if state is not None else None
+        raise ProgramError("program nested too deeply to read", file, line) from None
+    except Exception as exc:  # a bug in this reader must still reach users located
+        line = state.line_no + 1 if state is not None else None
+        raise ProgramError(f"internal error of the G-code reader ({type(exc).__name__}: {exc}); "
+                           "please report it with this program", file, line) from exc

@@ -1,0 +1,169 @@
+"""The words of an ordinary line (LinuxCNC ``read_items`` and the G/M code
+checks of ``interp_check.cc``).
+
+:func:`read_words` reads the words and ``#`` settings of a lexed line into
+:class:`Words`; :func:`classify` checks its G- and M-codes against what ccopt
+knows and their modal groups (two codes of one group on a line are an
+error). G-codes are kept in tenths (``G41.1`` -> 411), with their column.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from ccopt.program.expr import ExprError
+from ccopt.program.gcode.parameters import parameter_target, read_value
+from ccopt.program.gcode.state import GCodeState
+from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, Lexed, fmt, gname, skip_blanks
+
+#: A G number within this of a tenth is that tenth (``G41.1`` read as 41.1
+#: in floating point): the codes have one decimal at most.
+_G_TENTHS_TOL = 1e-3
+#: G numbers this large cannot be a G-code (and would overflow rounding).
+_G_NUMBER_LIMIT = 1e6
+
+# G-codes ccopt knows, in tenths (G41.1 -> 411), with their modal group.
+G_GROUPS: dict[int, str] = {
+    0: "motion", 10: "motion", 20: "motion", 30: "motion", 800: "motion",
+    40: "dwell",
+    170: "plane", 180: "plane", 190: "plane",
+    200: "units", 210: "units",
+    400: "comp", 410: "comp", 420: "comp", 411: "comp", 421: "comp",
+    430: "length", 490: "length",
+    540: "coord",
+    610: "path", 611: "path", 640: "path",
+    900: "distance", 910: "distance",
+    901: "arc_distance", 911: "arc_distance",
+    930: "feed_mode", 940: "feed_mode",
+    1360: "corner", 1370: "corner",
+    1380: "start_end", 1390: "start_end",
+}
+_KNOWN_G = ("G0 G1 G2 G3 G4 G17 G18 G19 G20 G21 G40 G41 G42 G41.1 G42.1 G43 G49 "
+            "G54 G61 G61.1 G64 G80 G90 G91 G90.1 G91.1 G93 G94 G136 G137 G138 G139")
+_G_UNSUPPORTED_HINT: dict[int, str] = {
+    **{t: "work offsets other than G54 would move the path; ccopt works in program "
+          "coordinates: remove it or use G54" for t in (550, 560, 570, 580, 590, 591, 592, 593)},
+    950: "feed per revolution is not supported: use G94 (units per minute) or G93",
+    100: "G10 (setting offsets/tool data) is not supported: give the tool table to ccopt instead",
+    280: "homing moves are not supported", 300: "homing moves are not supported",
+    530: "machine-coordinate moves are not supported",
+    920: "coordinate offsets (G92) are not supported",
+    921: "coordinate offsets are not supported", 922: "coordinate offsets are not supported",
+    923: "coordinate offsets are not supported",
+}
+# M-code modal groups that may not appear twice on a line.
+_M_GROUPS: dict[int, str] = {0: "stop", 1: "stop", 2: "stop", 30: "stop", 60: "stop",
+                             6: "tool change", 3: "spindle", 4: "spindle", 5: "spindle",
+                             7: "coolant", 8: "coolant", 9: "coolant"}
+_M_LIMIT = 1000  # M-codes run from M0 to M999
+
+_WORD_LETTERS = set("GMXYZIJKRFPDHTSQ")
+_UNSUPPORTED_AXES = set("ABCUVW")
+
+
+@dataclass(slots=True)
+class Words:
+    """The words of one line. ``g``/``m``: ``(value, col)`` in line order;
+    ``letters``: other letter -> ``(value, col)``; after :func:`classify`,
+    ``gcodes``: modal group -> ``(tenths, col)`` and ``mcodes`` the M numbers."""
+
+    g: list = field(default_factory=list)
+    m: list = field(default_factory=list)
+    letters: dict = field(default_factory=dict)
+    gcodes: dict = field(default_factory=dict)
+    mcodes: list = field(default_factory=list)
+    first: int | None = None
+    classified: bool = False
+
+
+def read_words(state: GCodeState, lx: Lexed) -> tuple[Words, list[tuple[str, object, float]]]:
+    """The words of line ``lx`` and its parameter settings ``(kind, key,
+    value)``, which take effect after the whole line has been read."""
+    code = lx.code
+    n = len(code)
+    p = lx.start
+    words = Words()
+    settings: list[tuple[str, object, float]] = []
+    while True:
+        p = skip_blanks(code, p)
+        if p >= n:
+            break
+        ch = code[p]
+        up = ch.upper()
+        if ch == "#":
+            kind, key, q = parameter_target(state, code, p)
+            q = skip_blanks(code, q)
+            if q >= n or code[q] != "=":
+                raise ExprError("parameter setting needs '=' and a value, e.g. #1 = 2.5", p)
+            value, p = read_value(state, code, q + 1, "=", q)
+            settings.append((kind, key, value))
+        elif up in _WORD_LETTERS:
+            value, q = read_value(state, code, p + 1, up, p)
+            if up == "G":
+                words.g.append((value, p))
+            elif up == "M":
+                words.m.append((value, p))
+            else:
+                if up in words.letters:
+                    raise ExprError(f"two {up} words on one line: keep one", p)
+                words.letters[up] = (value, p)
+            p = q
+        else:
+            raise _not_a_word(ch, p)
+    words.first = lx.first
+    return words, settings
+
+
+def _not_a_word(ch: str, p: int) -> ExprError:
+    """The error for character ``ch`` at ``p`` where a word should start."""
+    up = ch.upper()
+    if up == "N":
+        return ExprError("N (line number) must be the first word on the line", p)
+    if up == "O":
+        return ExprError("an O-word must be the first word on its line", p)
+    if up in _UNSUPPORTED_AXES:
+        return ExprError(f"axis {up} is not supported: ccopt reads X, Y and Z only", p)
+    if up == "/":
+        return ExprError("block delete '/' is not supported: ccopt cannot know the "
+                         "switch; remove the '/' or the line", p)
+    if "A" <= up <= "Z":
+        return ExprError(f"unknown word {up}: ccopt reads G M X Y Z I J K R F P D H T S "
+                         "N Q words, #parameters and O-words", p)
+    return ExprError(f"unexpected character {ch!r}: expected a word such as G1 or X10", p)
+
+
+def classify(state: GCodeState, words: Words) -> None:
+    """Check G/M codes and their modal groups; fills ``words.gcodes``/``mcodes``."""
+    for value, col in words.g:
+        tenths = _g_tenths(state, value, col)
+        group = G_GROUPS[tenths]
+        if group in words.gcodes:
+            other = words.gcodes[group][0]
+            raise state.error(f"{gname(other)} and {gname(tenths)} on one line belong to the "
+                              f"same modal group ({group}): keep one", col)
+        words.gcodes[group] = (tenths, col)
+    mgroups: dict[str, int] = {}
+    for value, col in words.m:
+        if abs(value - round(value)) > WHOLE_NUMBER_TOL or not 0 <= value < _M_LIMIT:
+            raise state.error(f"M-code M{fmt(value)} is not a whole number from 0 to 999", col)
+        m = int(round(value))
+        if m in (98, 99):
+            raise state.error(f"M{m} (Fanuc subprogram call/return) is not supported: use "
+                              "O-word subroutines (o100 sub / o100 call)", col)
+        g = _M_GROUPS.get(m)
+        if g is not None:
+            if g in mgroups:
+                raise state.error(f"M{mgroups[g]} and M{m} on one line belong to the same "
+                                  f"modal group ({g}): keep one", col)
+            mgroups[g] = m
+        words.mcodes.append(m)
+
+
+def _g_tenths(state: GCodeState, value: float, col: int) -> int:
+    """The known G-code ``value`` in tenths; an error naming it otherwise."""
+    tenths = round(value * 10) if abs(value) < _G_NUMBER_LIMIT else -1
+    if tenths < 0 or abs(value * 10 - tenths) > _G_TENTHS_TOL or tenths not in G_GROUPS:
+        hint = _G_UNSUPPORTED_HINT.get(tenths) if tenths >= 0 and \
+            abs(value * 10 - tenths) <= _G_TENTHS_TOL else None
+        raise state.error(f"unknown G-code G{fmt(value)}: "
+                          + (hint if hint else f"ccopt reads {_KNOWN_G}"), col)
+    return tenths

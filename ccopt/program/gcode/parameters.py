@@ -1,0 +1,171 @@
+"""Parameters and word values (LinuxCNC ``interp_read.cc`` values,
+``interp_namedparams.cc``).
+
+Numbered parameters ``#1``..``#5601`` read 0 when unset; ``#1``..``#30`` are
+local to a subroutine call (its arguments, then 0). Named parameters
+``#<name>`` are local to the sub (or main program) that sets them, unless the
+name starts with ``_`` (global); reading an unset one is an error. A word's
+value is a literal number, a parameter, a bracketed expression or a unary
+function; expressions are evaluated by :mod:`ccopt.program.expr` with the
+G-code grammar, whose variables are the parameters read here.
+"""
+from __future__ import annotations
+
+import math
+
+from ccopt.program.expr import (
+    GCODE_BINARY,
+    GCODE_FUNCTIONS,
+    ExprError,
+    Grammar,
+    parse_bracketed,
+    parse_operand,
+)
+from ccopt.program.gcode.state import Frame, GCodeState
+from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, read_number, skip_blanks
+
+#: Highest numbered parameter (LinuxCNC RS274NGC_MAX_PARAMETERS - 1).
+MAX_PARAMETER = 5601
+#: Positional parameters #1..#30 local to a call.
+SUB_PARAMS = 30
+
+_FUNC_NAMES = sorted(set(GCODE_FUNCTIONS) | {"ATAN"}, key=len, reverse=True)
+
+
+def attach_grammar(state: GCodeState) -> None:
+    """Give the state its expression grammar: brackets ``[ ]``, the G-code
+    operators and functions (degrees), ``ATAN[a]/[b]``, and ``#`` parameters
+    as variables."""
+    def variable(text: str, pos: int):
+        if text[pos] != "#":
+            return None
+        return read_parameter(state, text, pos)
+
+    state.grammar = Grammar("[", "]", GCODE_BINARY, GCODE_FUNCTIONS, atan2_form=True,
+                            variable=variable)
+
+
+def read_parameter(state: GCodeState, code: str, pos: int) -> tuple[float, int]:
+    """Value of the parameter reference at ``code[pos] == '#'`` and the
+    position after it."""
+    kind, key, end = parameter_target(state, code, pos)
+    if kind == "name":
+        value = _get_named(state, key, pos)
+    else:
+        value = state.params.get(key, 0.0)
+    return value, end
+
+
+def parameter_target(state: GCodeState, code: str, pos: int) -> tuple[str, object, int]:
+    """Parse ``#n``, ``#[expr]``, ``##n`` or ``#<name>`` at ``pos``.
+
+    Returns ``("name", lower-case name, end)`` or ``("index", n, end)``.
+    """
+    p = skip_blanks(code, pos + 1)
+    n = len(code)
+    if p >= n:
+        raise ExprError("'#' needs a parameter number or <name>, e.g. #1 or #<depth>", pos)
+    ch = code[p]
+    if ch == "<":
+        end = code.find(">", p)
+        if end < 0:
+            raise ExprError("parameter name has no closing '>'", p)
+        name = "".join(code[p + 1:end].split()).lower()
+        if not name:
+            raise ExprError("empty parameter name '#<>'", p)
+        return "name", name, end + 1
+    if ch.isdigit() or ch == ".":
+        value, end = read_number(state, code, p, "#")
+    elif ch == "[":
+        value, end = parse_bracketed(code, p, state.grammar)
+    elif ch == "#":
+        value, end = read_parameter(state, code, p)
+    else:
+        raise ExprError("'#' needs a parameter number or <name>, e.g. #1 or #<depth>", pos)
+    if not math.isfinite(value) or abs(value - round(value)) > WHOLE_NUMBER_TOL:
+        raise ExprError(f"parameter number {fmt(value)} is not an integer", pos)
+    index = int(round(value))
+    if not 1 <= index <= MAX_PARAMETER:
+        raise ExprError(f"parameter number #{index} out of range: use #1 to #{MAX_PARAMETER}",
+                        pos)
+    return "index", index, end
+
+
+def _get_named(state: GCodeState, name: str, col: int) -> float:
+    if not name.startswith("_"):
+        local = state.frames[-1].named
+        if name in local:
+            return local[name]
+    elif name in state.globals:
+        return state.globals[name]
+    raise ExprError(f"named parameter #<{name}> is not set: assign it first "
+                    f"(#<{name}> = ...)", col)
+
+
+def set_parameter(state: GCodeState, kind: str, key, value: float) -> None:
+    """Set the parameter :func:`parameter_target` parsed (a named one in
+    the running frame unless global)."""
+    if kind == "name":
+        if key.startswith("_"):
+            state.globals[key] = value
+        else:
+            state.frames[-1].named[key] = value
+    else:
+        state.params[key] = value
+
+
+def read_value(state: GCodeState, code: str, p: int, letter: str,
+               letter_col: int) -> tuple[float, int]:
+    """A word value at ``p`` (number, parameter, [expression] or unary
+    function, after any signs) and the position after it."""
+    n = len(code)
+    negate = False
+    p = skip_blanks(code, p)
+    while p < n and code[p] in "+-":
+        q = skip_blanks(code, p + 1)
+        if q < n and (code[q].isdigit() or code[q] == "."):
+            break
+        if code[p] == "-":
+            negate = not negate
+        p = q
+    if p >= n:
+        raise ExprError(f"{letter} word has no value: write a number after {letter}",
+                        letter_col)
+    ch = code[p]
+    if ch.isdigit() or ch in ".+-":
+        value, end = read_number(state, code, p, letter)
+    elif ch == "[" or ch == "#":
+        value, end = parse_operand(code, p, state.grammar)
+    elif ch.isalpha() and any(code[p:p + 5].upper().startswith(f) for f in _FUNC_NAMES):
+        value, end = parse_operand(code, p, state.grammar)
+    else:
+        raise ExprError(f"{letter} word has no value (found {ch!r}): write a number, "
+                        "#parameter or [expression] after it", letter_col)
+    if not math.isfinite(value):
+        raise ExprError(f"value of {letter} is not a finite number", p)
+    return (-value if negate else value), end
+
+
+def bind_call_arguments(state: GCodeState, args: list[float]) -> dict[int, float]:
+    """Make ``args`` the call's ``#1``.. (the rest of ``#1..#30`` unset, so
+    0) and reset ``#<_value>``/``#<_value_returned>``; returns the caller's
+    ``#1..#30`` to restore on return."""
+    saved = {k: state.params[k] for k in range(1, SUB_PARAMS + 1) if k in state.params}
+    for k in range(1, SUB_PARAMS + 1):
+        state.params.pop(k, None)
+    for k, v in enumerate(args, start=1):
+        state.params[k] = v
+    state.globals["_value"] = 0.0
+    state.globals["_value_returned"] = 0.0
+    return saved
+
+
+def restore_after_call(state: GCodeState, frame: Frame, value: float | None) -> None:
+    """Give the caller back its ``#1..#30``; a returned ``value`` sets
+    ``#<_value>`` and ``#<_value_returned>`` = 1."""
+    for k in range(1, SUB_PARAMS + 1):
+        state.params.pop(k, None)
+    state.params.update(frame.saved)
+    if value is not None:
+        state.globals["_value"] = value
+        state.globals["_value_returned"] = 1.0

@@ -1,0 +1,113 @@
+"""Running a program text line by line (LinuxCNC ``rs274ngc_pre.cc``).
+
+:func:`open_program` builds the state (lines, expression grammar, the span
+of lines ``%`` delimits); :func:`run` executes lines in order, handing
+O-word lines to :mod:`.oword` (which returns the next line) and ordinary
+lines to :mod:`.codes` and :mod:`.execute`, until the program ends.
+"""
+from __future__ import annotations
+
+import math
+
+from ccopt.errors import ProgramError
+from ccopt.program.expr import ExprError
+from ccopt.program.gcode.codes import read_words
+from ccopt.program.gcode.execute import execute_words
+from ccopt.program.gcode.oword import exec_oword
+from ccopt.program.gcode.parameters import attach_grammar, set_parameter
+from ccopt.program.gcode.state import GCodeState, ProgramEnd
+from ccopt.program.gcode.words import Lexed, lex, olabel, program_span
+from ccopt.program.model import Program
+
+
+def check_inputs(file, tool_table, start) -> tuple[str, dict[int, float] | None,
+                                                   tuple[float, float, float]]:
+    """``read_gcode``'s arguments checked and normalised: the file name as a
+    string, the tool table as ``{int: float}``, the start as three floats."""
+    if not isinstance(file, str):
+        file = str(file)
+    try:
+        s = tuple(float(v) for v in start)
+    except (TypeError, ValueError):
+        raise ProgramError(f"start must be three numbers (x, y, z), got {start!r}", file) from None
+    if len(s) != 3 or not all(math.isfinite(v) for v in s):
+        raise ProgramError(f"start must be three finite numbers (x, y, z), got {start!r}", file)
+    table = None
+    if tool_table is not None:
+        table = {}
+        try:
+            for k, v in dict(tool_table).items():
+                table[int(k)] = float(v)
+        except (TypeError, ValueError):
+            raise ProgramError("tool_table must map tool numbers to diameters", file) from None
+    return file, table, s
+
+
+def open_program(text: str, file: str, tool_table: dict[int, float] | None,
+                 start: tuple[float, float, float], *, max_executed_lines: int,
+                 max_call_depth: int) -> GCodeState:
+    """The state to run ``text`` with (its ``%`` span already found)."""
+    state = GCodeState(text, file, tool_table, start, max_executed_lines=max_executed_lines,
+                       max_call_depth=max_call_depth)
+    attach_grammar(state)
+    state.first_line, state.end_line = program_span(state)
+    return state
+
+
+def run(state: GCodeState) -> Program:
+    """Execute the program; the blocks it made as a :class:`Program`.
+
+    Errors raised inside a subroutine name the call that ran it.
+    """
+    try:
+        _run_lines(state)
+    except ProgramEnd:
+        pass
+    except ProgramError as exc:
+        if len(state.frames) > 1 and exc.line is not None:
+            f = state.frames[-1]
+            exc.message += (f" (in subroutine {olabel(f.name)} called from line "
+                            f"{f.call_line + 1})")
+        raise
+    units = state.units or "mm"
+    return Program(tuple(state.blocks), file=state.file, dialect="gcode", units=units,
+                   start=state.start, meta=state.meta)
+
+
+def _run_lines(state: GCodeState) -> None:
+    """The line loop, with the runaway guard; expression errors are located
+    on the line being executed."""
+    pc = state.first_line
+    while pc < state.end_line:
+        state.line_no = pc
+        state.executed += 1
+        if state.executed > state.max_executed_lines:
+            raise state.error(f"more than {state.max_executed_lines} lines executed: endless "
+                              "loop or runaway recursion? check the loop conditions")
+        try:
+            lx = lex(state, pc)
+            if lx.oword is not None:
+                pc = exec_oword(state, pc, lx)
+            else:
+                if lx.first is not None:
+                    _exec_line(state, lx)
+                pc += 1
+        except ExprError as exc:
+            raise state.error(exc.message, exc.col) from None
+        except RecursionError:
+            raise state.error("expression or parameter reference nested too deeply") from None
+
+
+def _exec_line(state: GCodeState, lx: Lexed) -> None:
+    """An ordinary line: its parameter settings (after all its words are
+    read), then its words."""
+    words = state.constant.get(state.line_no)
+    if words is None:
+        words, settings = read_words(state, lx)
+        for kind, key, value in settings:
+            set_parameter(state, kind, key, value)
+        if not settings and "#" not in lx.code and "[" not in lx.code:
+            # No parameter or expression: the words are the same every time.
+            state.constant[state.line_no] = words
+    if words.letters or words.g or words.m:
+        execute_words(state, words)

@@ -1,0 +1,130 @@
+"""The reader's state: one object every stage reads and updates.
+
+As LinuxCNC's interpreter passes its ``setup`` to every ``read_*``,
+``convert_*`` and O-word function, the stages of this reader (lexing in
+:mod:`.words`, parameters in :mod:`.parameters`, O-word flow in
+:mod:`.oword`, modal execution in :mod:`.execute`, arcs in :mod:`.arcs`) all
+take one :class:`GCodeState`: the program text and its caches, the modal
+machine state, the parameters, the subroutine call frames and the limits.
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+
+from ccopt.errors import ProgramError
+from ccopt.program.expr import Grammar
+from ccopt.program.model import Block, Modal
+
+#: Executed lines (loops and calls counted each time) before the reader
+#: gives up on a runaway program.
+MAX_EXECUTED_LINES = 1_000_000
+#: Deepest subroutine call nesting accepted.
+MAX_CALL_DEPTH = 100
+
+_LINE_SPLIT = re.compile(r"\r\n|\r|\n")
+
+
+class ProgramEnd(Exception):
+    """Program end (``M2``/``M30``) reached: nothing after it executes."""
+
+
+@dataclass(slots=True)
+class Ctrl:
+    """An O-word structure being executed (an ``if`` branch or a loop)."""
+
+    kind: str      # "if" | "do" | "while" | "repeat"
+    label: str
+    start: int     # 0-based line of the opener
+    end: int       # 0-based line of the closer
+    remaining: int = 0  # repeat: passes still to run after this one
+
+
+@dataclass(slots=True)
+class Frame:
+    """The main program or one subroutine call being executed."""
+
+    name: str | None   # subroutine label; None for the main program
+    return_pc: int     # 0-based line to continue at after the return
+    call_line: int     # 0-based line of the call (-1: main program)
+    saved: dict = field(default_factory=dict)   # caller's #1..#30, restored on return
+    named: dict = field(default_factory=dict)   # local named parameters
+    ctrl: list = field(default_factory=list)    # open Ctrl structures, innermost last
+
+
+class GCodeState:
+    """Everything the reader knows while it runs one program text.
+
+    Positions are absolute ``(x, y, z)`` in program units; ``feed`` is the
+    ``G94`` F word in units per minute; modes are stored as the reader
+    exposes them in :class:`~ccopt.program.model.Modal` (``plane`` "XY",
+    "ZX" or "YZ"; ``side`` +1 left, -1 right, 0 off). Line numbers held here
+    (``line_no``, ``first_line``, ``end_line``, structure lines) are 0-based.
+    """
+
+    def __init__(self, text: str, file: str, tool_table: dict[int, float] | None,
+                 start: tuple[float, float, float], *,
+                 max_executed_lines: int = MAX_EXECUTED_LINES,
+                 max_call_depth: int = MAX_CALL_DEPTH):
+        self.file = file
+        self.lines = _LINE_SPLIT.split(text)
+        if self.lines and self.lines[-1] == "":
+            self.lines.pop()
+        # caches, per 0-based line: lexed text, matched O-word structure,
+        # words of a line whose values cannot change
+        self.lexed: dict = {}
+        self.matched: dict[int, tuple] = {}
+        self.constant: dict = {}
+        self.tool_table = tool_table
+        self.grammar: Grammar | None = None  # set by parameters.attach_grammar
+        self.max_executed_lines = max_executed_lines
+        self.max_call_depth = max_call_depth
+        # machine state
+        self.pos = start
+        self.start = start
+        self.blocks: list[Block] = []
+        self.moved = False
+        self.plane = "XY"
+        self.units: str | None = None
+        self.incremental = False
+        self.arc_incremental = True
+        self.feed_mode = "per_minute"
+        self.feed: float | None = None       # G94 F, units per minute
+        self.motion_mode: int | None = None  # tenths (G1 -> 10); None = G80
+        self.side = 0
+        self.radius: float | None = None
+        self.tool: int | None = None
+        self.selected_tool: int | None = None
+        self.loaded_tool: int | None = None
+        self.corner = "circular"
+        self.start_end = "contour"
+        self._modal: Modal | None = None
+        self.meta: dict = {"tool_length": []}
+        # parameters
+        self.params: dict[int, float] = {}
+        self.globals: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}
+        # control
+        self.subs: dict[str, tuple[int, int]] = {}
+        self.frames: list[Frame] = [Frame(name=None, return_pc=-1, call_line=-1)]
+        self.line_no = 0          # 0-based index of the line being executed
+        self.executed = 0
+        self.first_line = 0       # program lines are [first_line, end_line)
+        self.end_line = len(self.lines)
+
+    def error(self, message: str, col: int | None = None, line: int | None = None) -> ProgramError:
+        """A located error; ``col`` is 0-based (None: unknown), ``line`` 0-based
+        (None: the line being executed)."""
+        ln = self.line_no if line is None else line
+        return ProgramError(message, self.file, ln + 1, None if col is None else col + 1)
+
+    def modal(self) -> Modal:
+        """The modal state blocks carry (one shared object until a mode changes)."""
+        if self._modal is None:
+            self._modal = Modal(plane=self.plane, units=self.units or "mm", side=self.side,
+                                radius=self.radius, tool=self.tool, corner=self.corner,
+                                start_end=self.start_end)
+        return self._modal
+
+    def modal_changed(self) -> None:
+        """A mode carried by :class:`Modal` changed: the next block takes a new one."""
+        self._modal = None
