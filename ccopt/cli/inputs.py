@@ -11,7 +11,7 @@ import argparse
 
 from ccopt.cases import Case, Job, Overrides, resolve_input
 
-#: command-line option (argparse dest) -> the style option it sets in compensation
+#: the command-line options (argparse dests) that are compensation style options of the same name
 STYLE_OPTIONS = ("break_cos", "ccbuf")
 
 

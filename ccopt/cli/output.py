@@ -33,7 +33,7 @@ def path_table(path: ToolPath) -> str:
         extra = ""
         if "center" in d:
             extra = (f"({_fmt(d['center'][0])}, {_fmt(d['center'][1])}) "
-                     f"{'ccw' if d['ccw'] else 'cw'} {d['sweep'] * 180 / 3.141592653589793:.3f} deg")
+                     f"{'ccw' if d['ccw'] else 'cw'} {d['sweep'] * 180 / math.pi:.3f} deg")
         rows.append((str(i), d["kind"], d["role"], str(d["block"] or ""),
                      f"({_fmt(d['start'][0])}, {_fmt(d['start'][1])})",
                      f"({_fmt(d['end'][0])}, {_fmt(d['end'][1])})", extra))
