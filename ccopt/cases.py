@@ -15,6 +15,11 @@
 
 A case folder is found either by path or by name among the bundled cases in
 the repository's ``cases/`` folder.
+
+:func:`resolve_input` is the one place where an input (program file, case
+folder or bundled case name) gets its settings: what the command line says
+(:class:`Overrides`), else what its ``case.toml`` says, else the defaults. It
+returns a :class:`Job`, which every command and :mod:`ccopt.run` work from.
 """
 from __future__ import annotations
 
@@ -24,9 +29,18 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from ccopt.compensate import compensate
 from ccopt.errors import ProgramError
+from ccopt.feed import AxisLimits
+from ccopt.program import read_program
+from ccopt.program.model import Program
+from ccopt.toolpath import ToolPath
 
 EXPECTS = ("ok", "gouge", "error")
+
+#: The controller style of a program that is not a case and gets none on the
+#: command line: the reference.
+DEFAULT_STYLE = "pmac"
 
 
 @dataclass(frozen=True)
@@ -136,3 +150,120 @@ def find_case(name_or_path: str) -> Case | None:
     if (bundled / "case.toml").is_file():
         return load_case(bundled)
     return None
+
+
+@dataclass(frozen=True)
+class Overrides:
+    """What the command line says for every input; ``None`` where it says nothing.
+
+    style: controller style; radius: cutter radius, program units (>= 0);
+    side: ``"left"``/``"right"``; vmax, amax: axis limits ``(X, Y[, Z])`` in
+    units/s and units/s^2; delta: the smoother's tolerance band, program units;
+    dialect, tool_table: how to read the program; style_options: the style's
+    own options (``break_cos``, ``ccbuf``), passed to compensation as given.
+    """
+
+    style: str | None = None
+    radius: float | None = None
+    side: str | None = None
+    vmax: tuple[float, ...] | None = None
+    amax: tuple[float, ...] | None = None
+    delta: float | None = None
+    dialect: str | None = None
+    tool_table: str | os.PathLike | None = None
+    style_options: dict = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class Job:
+    """One input with its settings resolved (see :func:`resolve_input`).
+
+    ``radius``/``side`` ``None``: the program's own. ``vmax``/``amax``
+    ``None``: no limits known (:meth:`limits` says so). ``delta`` ``None``:
+    the smoother's default band.
+    """
+
+    label: str
+    program: Path
+    case: Case | None
+    style: str
+    radius: float | None
+    side: str | None
+    vmax: tuple[float, ...] | None
+    amax: tuple[float, ...] | None
+    delta: float | None = None
+    dialect: str | None = None
+    tool_table: str | os.PathLike | None = None
+    style_options: dict = field(default_factory=dict)
+
+    @property
+    def title(self) -> str:
+        return self.case.title if self.case else ""
+
+    @property
+    def source(self) -> str:
+        return self.case.source if self.case else ""
+
+    @property
+    def expect(self) -> str:
+        """The verdict the input should get: a case's ``expect``, else ``"ok"``."""
+        return self.case.expect if self.case else "ok"
+
+    def read(self) -> Program:
+        """The program, read with the job's dialect and tool table."""
+        return read_program(self.program, self.dialect, tool_table=self.tool_table)
+
+    def compensate(self, prog: Program) -> ToolPath:
+        """``prog`` compensated with the job's style, radius, side and style options."""
+        return compensate(prog, style=self.style, radius=self.radius, side=self.side,
+                          **self.style_options)
+
+    def limits(self, tangential_acc: float | None = None,
+               centripetal_acc: float | None = None) -> AxisLimits:
+        """The job's axis limits (plus the optional path limits, units/s^2);
+        a ProgramError located at the program when they are missing or bad."""
+        if self.vmax is None or self.amax is None:
+            raise ProgramError("no axis limits: give --vmax and --amax (X,Y[,Z]) or use a case "
+                               "whose case.toml has [limits]", str(self.program))
+        try:
+            return AxisLimits(self.vmax, self.amax, tangential_acc=tangential_acc,
+                              centripetal_acc=centripetal_acc)
+        except ValueError as exc:
+            raise ProgramError(f"bad limits: {exc}", str(self.program)) from None
+
+
+def _locate(what: str | Case) -> tuple[str, Path, Case | None]:
+    """Label, program file and case of a case, case folder, bundled case name or program file."""
+    case = what if isinstance(what, Case) else find_case(what)
+    if case is not None:
+        return case.name, case.program, case
+    p = Path(what)
+    if not p.exists():
+        raise ProgramError("no such program, case folder or bundled case name", what)
+    if p.is_dir():
+        raise ProgramError("a folder without case.toml is not a case", what)
+    return p.name, p, None
+
+
+def resolve_input(what: str | Case, overrides: Overrides = Overrides(),
+                  default_limits: dict | None = None) -> Job:
+    """The job for ``what`` (a program file, case folder, bundled case name or
+    loaded :class:`Case`) with every setting resolved once: the command line's
+    ``overrides``, else the case's, else :data:`DEFAULT_STYLE` for the style
+    and ``default_limits`` (``{"v": (X, Y[, Z]), "a": (...)}``, units/s and
+    units/s^2; ``None``: no default) for the axis limits.
+
+    A ProgramError located at ``what`` when it is none of those.
+    """
+    label, program, case = _locate(what)
+    default_limits = default_limits or {}
+    return Job(
+        label=label, program=program, case=case,
+        style=overrides.style or (case.style if case else DEFAULT_STYLE),
+        radius=overrides.radius if overrides.radius is not None else (
+            case.radius if case else None),
+        side=overrides.side,
+        vmax=overrides.vmax or (case.vmax if case else None) or default_limits.get("v"),
+        amax=overrides.amax or (case.amax if case else None) or default_limits.get("a"),
+        delta=overrides.delta, dialect=overrides.dialect, tool_table=overrides.tool_table,
+        style_options=dict(overrides.style_options))

@@ -1,24 +1,35 @@
 """The main job: for each case or program, compensate, plan the feed, verify,
 compare blend variants, export, and write one HTML report.
 
-Used by ``ccopt run``. A case's ``case.toml`` gives its style, radius,
-expected verdict (``ok``, ``gouge``, ``error``) and axis limits; a bare
-program uses the command line's values or :data:`DEFAULT_LIMITS`.
+Used by ``ccopt run``. Every input comes as a :class:`ccopt.cases.Job`, its
+settings resolved once by :func:`ccopt.cases.resolve_input`: a case's
+``case.toml`` gives its style, radius, expected verdict (``ok``, ``gouge``,
+``error``) and axis limits; a bare program uses the command line's values or
+:data:`DEFAULT_LIMITS`.
 """
 from __future__ import annotations
 
 import json
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
-from ccopt.cases import Case
+from ccopt.cases import Job
+from ccopt.compare import compare
 from ccopt.errors import CcoptError, ProgramError
 from ccopt.export import export
 from ccopt.export.atomic import write_text_atomic
-from ccopt.program import read_program
+from ccopt import feed as feed_planning
+from ccopt.feed import AxisLimits, plan_feed
+from ccopt.program.model import Program
+from ccopt.report.html import render
+from ccopt.report.plots import feed_plot, path_plot, speed_time_plot
 from ccopt.toolpath import ToolPath, programmed_path
+from ccopt.verify import Certificate, verify
+
+if TYPE_CHECKING:  # pragma: no cover - importing it loads toppra (see ccopt.feed)
+    from ccopt.feed.profile import FeedProfile
 
 #: Axis limits for a program that is not a case and gets none on the command
 #: line: 100 units/s and 1000 units/s^2 on every axis (a small mill in mm).
@@ -26,47 +37,34 @@ DEFAULT_LIMITS = {"v": (100.0, 100.0, 100.0), "a": (1000.0, 1000.0, 1000.0)}
 
 PLANNERS = ("toppra", "stop", "junction")
 
+#: Sampling step of the feed figures and the feed CSV, seconds (fine enough to
+#: show a millisecond-scale acceleration phase; longer paths get a coarser one,
+#: :meth:`FeedProfile.affordable_dt`).
+SAMPLE_DT = 1e-3
+
 
 @dataclass
 class RunOptions:
-    """What the command line can change for every input."""
+    """What the command line can change for the whole run (the per-input
+    settings are in each :class:`Job`)."""
 
-    style: str | None = None
-    radius: float | None = None
-    side: str | None = None
-    dialect: str | None = None
-    tool_table: str | os.PathLike | None = None
-    vmax: tuple[float, ...] | None = None
-    amax: tuple[float, ...] | None = None
     compare: bool = True
     variants: list[str] | None = None     # blend variants compared (None: every available one)
-    style_options: dict = field(default_factory=dict)
 
 
-def _limits(case: Case | None, opts: RunOptions):
-    from ccopt.feed import AxisLimits
-    v = opts.vmax or (case.vmax if case and case.vmax else None) or DEFAULT_LIMITS["v"]
-    a = opts.amax or (case.amax if case and case.amax else None) or DEFAULT_LIMITS["a"]
-    return AxisLimits(v=list(v), a=list(a))
-
-
-def run_one(label: str, program_file: Path, case: Case | None, out: Path | None,
-            opts: RunOptions) -> dict:
+def run_one(job: Job, out: Path | None, opts: RunOptions) -> dict:
     """Everything for one input; returns the row the report and summary use.
 
     ``status``: ``ok``; ``error (expected)``/``gouge (expected)`` when the case
     says so; ``error``/``FAILED``/``UNEXPECTED PASS`` otherwise. Bad input is
     reported in the row (``message``), never raised, so other inputs still run.
     """
-    from ccopt.compensate import compensate
-    expect = case.expect if case else "ok"
-    row: dict = {"name": label, "program": str(program_file), "expect": expect,
-                 "title": case.title if case else "", "source": case.source if case else ""}
+    expect = job.expect
+    row: dict = {"name": job.label, "program": str(job.program), "expect": expect,
+                 "title": job.title, "source": job.source}
     try:
-        prog = read_program(program_file, opts.dialect, tool_table=opts.tool_table)
-        style = opts.style or (case.style if case else "pmac")
-        radius = opts.radius if opts.radius is not None else (case.radius if case else None)
-        path = compensate(prog, style=style, radius=radius, side=opts.side, **opts.style_options)
+        prog = job.read()
+        path = job.compensate(prog)
     except CcoptError as exc:
         row.update(status="error (expected)" if expect == "error" else "error", message=str(exc))
         return row
@@ -74,58 +72,76 @@ def run_one(label: str, program_file: Path, case: Case | None, out: Path | None,
                segments=len(path.segments), length=path.length)
     files: dict[str, str] = {}
     try:
-        limits = _limits(case, opts)
-        from ccopt.feed import ExactPath, plan_feed
-        exact = ExactPath(path)
-        profiles = {p: plan_feed(exact, limits, planner=p) for p in PLANNERS}
-        row["feed"] = {p: prof.summary(prof.affordable_dt(1e-3)) for p, prof in profiles.items()}
-        row["duration"] = profiles["toppra"].duration
-        from ccopt.verify import verify
+        limits = job.limits()
+        profiles = _plan(path, limits, row)
         cert = verify(path, prog, profile=profiles["toppra"])
         row["certificate"] = cert.to_json()
         row["verified"] = bool(cert.ok)
         row["min_clearance"] = cert.min_clearance
         if opts.compare:
-            row["compare"] = _compare(prog, limits, radius, opts.side, opts.variants)
+            row["compare"] = _compare(prog, limits, job, opts.variants)
         if out is not None:
-            stem = out / label
-            for suffix in (".nc", ".pmc"):
-                res = export(path, f"{stem}{suffix}", program=prog, title=row["title"] or label)
-                files[suffix[1:]] = Path(res.file).name
-            export(path, f"{stem}.svg", program=prog, title=label)
-            files["svg"] = f"{label}.svg"
-            best = profiles["toppra"]
-            best.to_csv(f"{stem}.feed.csv", best.affordable_dt(1e-3))
-            files["feed csv"] = f"{label}.feed.csv"
-            write_text_atomic(f"{stem}.certificate.json", json.dumps(row["certificate"]) + "\n")
-            files["certificate"] = f"{label}.certificate.json"
-            write_text_atomic(f"{stem}.toolpath.json", json.dumps(path.to_json()) + "\n")
-            files["tool path"] = f"{label}.toolpath.json"
-            row["plots"] = _plots(path, prog, cert, profiles, label)
+            _write_files(out / job.label, job, path, prog, profiles, row, files)
+            row["plots"] = _plots(path, prog, cert, profiles, job.label)
     except CcoptError as exc:
         row.update(status="error", message=str(exc), files=files)
         return row
     row["files"] = files
-    if expect == "error":
-        row["status"] = "UNEXPECTED PASS"
-    elif cert.ok:
-        row["status"] = "ok" if expect == "ok" else "UNEXPECTED PASS"
-    else:
-        row["status"] = "gouge (expected)" if expect == "gouge" else "FAILED"
+    row["status"] = _status(expect, cert.ok)
     return row
 
 
-def _compare(prog, limits, radius: float | None, side: str | None,
+def _plan(path: ToolPath, limits: AxisLimits, row: dict) -> dict[str, FeedProfile]:
+    """Every planner's feed profile of ``path``; their summaries and the
+    TOPPRA cycle time (s) go into ``row``."""
+    # ccopt.feed loads ExactPath (and toppra, ~2 s) on first use, so `ccopt show` stays fast
+    exact = feed_planning.ExactPath(path)
+    profiles = {p: plan_feed(exact, limits, planner=p) for p in PLANNERS}
+    row["feed"] = {p: prof.summary(prof.affordable_dt(SAMPLE_DT)) for p, prof in profiles.items()}
+    row["duration"] = profiles["toppra"].duration
+    return profiles
+
+
+def _write_files(stem: Path, job: Job, path: ToolPath, prog: Program,
+                 profiles: dict[str, FeedProfile], row: dict, files: dict[str, str]) -> None:
+    """The exported programs, SVG, feed CSV, certificate and tool path of one
+    input, named ``stem.*``; ``files`` maps what each is to its file name as
+    they are written (so a failure still lists the ones that were)."""
+    label = job.label
+    for suffix in (".nc", ".pmc"):
+        res = export(path, f"{stem}{suffix}", program=prog, title=row["title"] or label)
+        files[suffix[1:]] = Path(res.file).name
+    export(path, f"{stem}.svg", program=prog, title=label)
+    files["svg"] = f"{label}.svg"
+    best = profiles["toppra"]
+    best.to_csv(f"{stem}.feed.csv", best.affordable_dt(SAMPLE_DT))
+    files["feed csv"] = f"{label}.feed.csv"
+    write_text_atomic(f"{stem}.certificate.json", json.dumps(row["certificate"]) + "\n")
+    files["certificate"] = f"{label}.certificate.json"
+    write_text_atomic(f"{stem}.toolpath.json", json.dumps(path.to_json()) + "\n")
+    files["tool path"] = f"{label}.toolpath.json"
+
+
+def _status(expect: str, verified: bool) -> str:
+    """The row's status once everything ran: the verdict against the case's ``expect``."""
+    if expect == "error":
+        return "UNEXPECTED PASS"
+    if verified:
+        return "ok" if expect == "ok" else "UNEXPECTED PASS"
+    return "gouge (expected)" if expect == "gouge" else "FAILED"
+
+
+def _compare(prog: Program, limits: AxisLimits, job: Job,
              variants: list[str] | None) -> list[dict]:
     """The blend comparison, with the same compensation overrides as the run
     (a case's radius, ``--radius``, ``--side``), so a program that names no
     radius (e.g. ``G41`` without ``D``) is compared, not refused."""
-    from ccopt.compare import compare
-    return [v.to_json() for v in compare(prog, variants, limits=limits, radius=radius, side=side)]
+    return [v.to_json() for v in compare(prog, variants, limits=limits, radius=job.radius,
+                                         side=job.side)]
 
 
-def _plots(path: ToolPath, prog, cert, profiles, label: str) -> dict:
-    from ccopt.report.plots import feed_plot, path_plot, speed_time_plot
+def _plots(path: ToolPath, prog: Program, cert: Certificate, profiles: dict[str, FeedProfile],
+           label: str) -> dict:
     contour = programmed_path(prog)
     viol = cert.to_json().get("violations", [])
     return {
@@ -135,7 +151,7 @@ def _plots(path: ToolPath, prog, cert, profiles, label: str) -> dict:
     }
 
 
-def run_all(inputs: list[tuple[str, Path, Case | None]], out: Path | None, opts: RunOptions,
+def run_all(jobs: list[Job], out: Path | None, opts: RunOptions,
             progress: Callable[[int, int, str], None] | None = None) -> list[dict]:
     """Run every input, write the report into ``out`` (if given)."""
     if out is not None:
@@ -145,14 +161,13 @@ def run_all(inputs: list[tuple[str, Path, Case | None]], out: Path | None, opts:
             raise ProgramError(f"cannot create output folder: {exc.strerror or exc}",
                                str(out)) from None
     rows = []
-    for k, (label, program_file, case) in enumerate(inputs):
+    for k, job in enumerate(jobs):
         if progress:
-            progress(k, len(inputs), label)
-        rows.append(run_one(label, program_file, case, out, opts))
+            progress(k, len(jobs), job.label)
+        rows.append(run_one(job, out, opts))
     if progress:
-        progress(len(inputs), len(inputs), "")
+        progress(len(jobs), len(jobs), "")
     if out is not None:
-        from ccopt.report.html import render
         write_text_atomic(out / "index.html", render(rows, "ccopt run"))
         summary = [{k: v for k, v in r.items() if k not in ("plots",)} for r in rows]
         write_text_atomic(out / "summary.json", json.dumps({"cases": summary}, default=str) + "\n")

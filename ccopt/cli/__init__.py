@@ -1,0 +1,83 @@
+"""The ``ccopt`` command: the parser assembled from one module per command
+group, and :func:`main`.
+
+- :mod:`.show`: ``show`` and ``compensate``; :mod:`.feed`: ``feed``;
+  :mod:`.verify`: ``verify``; :mod:`.export`: ``export``; :mod:`.run`:
+  ``run``; :mod:`.compare`: ``compare`` and ``smooth``;
+- :mod:`.inputs`: the input and its settings, resolved once for every command;
+- :mod:`.options`: the option groups the commands share; :mod:`.output`: exit
+  codes, JSON and tables.
+
+Exit codes (DESIGN.md): 0 success, 1 verification failed, 2 bad input (one
+line ``file:line: message`` on stderr, never a traceback). An unexpected
+internal failure prints one line and exits 3; ``CCOPT_DEBUG=1`` shows the
+traceback.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from importlib.metadata import PackageNotFoundError, version
+from typing import Callable, Sequence
+
+from ccopt.cli import compare, export, feed, run, show, verify
+from ccopt.cli.options import Parser
+from ccopt.cli.output import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_OK
+from ccopt.errors import CcoptError
+
+Command = Callable[[argparse.Namespace], int]
+
+#: exit code of an interrupted command (128 + SIGINT, as a shell reports it)
+EXIT_INTERRUPTED = 130
+
+
+def _version() -> str:
+    """The installed distribution's version (as ``ccopt.__version__``, without
+    importing the package root, which sits above the CLI)."""
+    try:
+        return version("ccopt")
+    except PackageNotFoundError:  # running from a source tree without install
+        return "0.0.0+unknown"
+
+
+def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
+    """The ``ccopt`` parser and each command's function by name."""
+    parser = Parser(prog="ccopt", description=(
+        "Cutter radius compensation as a controller does it (PMAC reference), "
+        "time-optimal feed, verification, blend comparison and export."))
+    parser.add_argument("--version", action="version", version=f"ccopt {_version()}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
+    commands: dict[str, Command] = {}
+    for group in (show, feed, verify, export, run, compare):
+        group.add_commands(sub, commands)
+    return parser, commands
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser, commands = build_parser()
+    args = parser.parse_args(argv)
+    if not args.command:
+        parser.print_help()
+        return EXIT_BAD_INPUT
+    try:
+        return commands[args.command](args)
+    except CcoptError as exc:
+        print(str(exc), file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except BrokenPipeError:
+        # The reader went away (``ccopt ... | head``): not an error of ours.
+        try:
+            sys.stdout = open(os.devnull, "w")
+        except OSError:
+            pass
+        return EXIT_OK
+    except KeyboardInterrupt:
+        print("ccopt: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    except Exception as exc:  # an internal bug: one line, traceback on request
+        if os.environ.get("CCOPT_DEBUG"):
+            raise
+        print(f"ccopt: internal error: {type(exc).__name__}: {exc} "
+              "(set CCOPT_DEBUG=1 for the traceback and please report it)", file=sys.stderr)
+        return EXIT_INTERNAL

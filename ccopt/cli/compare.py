@@ -1,0 +1,199 @@
+"""``ccopt compare`` and ``ccopt smooth``: blend variants side by side, and the smoother alone."""
+from __future__ import annotations
+
+import argparse
+import time
+
+from ccopt.cases import Job
+from ccopt.cli.inputs import job
+from ccopt.cli.options import (add_limit_options, add_output_option, add_program,
+                               add_radius_side, add_reading_options, add_variants_option,
+                               chosen_variants, positive_float)
+from ccopt.cli.output import EXIT_FAILED, EXIT_OK, aligned, emit_json, figure
+from ccopt.compare import REFERENCE, BlendOutcome, BlendProblem, available, compare, measure
+from ccopt.compare.plot import plot_comparison
+from ccopt.compare.registry import Blend, require_known
+from ccopt.compare.registry import load as load_blend
+from ccopt.compensate import compensate
+from ccopt.errors import ProgramError
+from ccopt.export import ExportResult, export
+from ccopt.feed import AxisLimits
+from ccopt.feed.bounds import feed_limited_time
+from ccopt.program.model import Program
+from ccopt.toolpath import ToolPath
+
+#: the comparison table: header, figure of :meth:`Comparison.to_json`'s variants, format
+COLUMNS = [("variant", "name", "{}"), ("status", "status", "{}"), ("cycle_s", "duration", "{:.4f}"),
+           ("vs_pmac", "duration_ratio", "{:.4f}"), ("length", "length", "{:.3f}"),
+           ("max_curv", "max_curvature", "{:.3f}"), ("curv_jump", "max_curvature_jump", "{:.3f}"),
+           ("joins", "continuity", "{}"), ("path", "path_continuity", "{}"),
+           ("min_clear", "min_clearance", "{:.6f}"), ("certified", "certified", "{}"),
+           ("max_dev", "max_deviation", "{:.4f}"), ("solve_s", "solve_time", "{:.3f}")]
+
+#: the figures of the smoothed path ``ccopt smooth`` reports as they are
+SMOOTH_FIGURES = ("min_clearance", "certified", "max_deviation", "max_deviation_bound",
+                  "continuity", "path_continuity", "max_curvature", "tangent_breaks",
+                  "solve_time")
+
+
+def cmd_compare(args: argparse.Namespace) -> int:
+    """Every blend variant (or ``--variants``) of the program, certified and timed."""
+    if args.list:
+        for n in available():
+            print(n)
+        return EXIT_OK
+    names = chosen_variants(args)
+    if names:
+        require_known(names, args.program)
+    work = job(args.program, args)
+    prog = work.read()
+    limits = work.limits()
+    options = {}
+    if args.lead_radius is not None:
+        options["lead_radius"] = args.lead_radius
+    cmp = compare(prog, names, limits=limits, delta=work.delta, radius=work.radius,
+                  side=work.side, options=options)
+    doc = cmp.to_json()
+    if args.plot:
+        doc["plot"] = plot_comparison(cmp, args.plot, f"{work.label}: variants")
+    if args.json:
+        emit_json(doc)
+        return EXIT_OK
+    print(f"{prog.file}: reference pmac, cutter radius {figure(doc['radius'], '{:g}')} "
+          f"{prog.units}, limits v={list(limits.v)} a={list(limits.a)}")
+    rows = [[h for h, _, _ in COLUMNS]]
+    for v in doc["variants"]:
+        rows.append([figure(v.get(k), f) for _, k, f in COLUMNS])
+    print(aligned(rows))
+    for v in doc["variants"]:
+        if v["status"] != "ok" or v.get("message"):
+            print(f"  {v['name']}: {v['message']}")
+    if args.plot:
+        print(f"plot: {doc['plot']}")
+    return EXIT_OK
+
+
+def _feed_floor(path: ToolPath, limits: AxisLimits) -> float | None:
+    """:func:`ccopt.feed.feed_limited_time` (s), ``None`` when the limits do not fit the path
+    (the cycle time says why)."""
+    try:
+        return feed_limited_time(path, limits)
+    except ValueError:
+        return None
+
+
+def _smoothed(blend: Blend, work: Job, prog: Program,
+              limits: AxisLimits) -> tuple[dict, ToolPath, bool]:
+    """The smoother ``blend``'s path of ``prog`` measured against the reference
+    (PMAC) path: the JSON document of ``ccopt smooth``, the path, and whether
+    its certificate holds."""
+    ref = compensate(prog, REFERENCE, radius=work.radius, side=work.side)
+    problem = BlendProblem(prog, ref, limits, work.delta, {}, work.radius, work.side)
+    t0 = time.perf_counter()
+    out = blend(problem)
+    solve = time.perf_counter() - t0
+    info = dict(out.info) if isinstance(out, BlendOutcome) else {}
+    path = out.toolpath if isinstance(out, BlendOutcome) else out
+    cert = info.pop("certificate", None)
+    row = measure("smooth", path, problem, solve, info, cert)
+    base = measure(REFERENCE, ref, problem, 0.0)
+    fig = row.figures
+    ratio = fig["duration"] / base.figures["duration"] if fig.get("duration") and \
+        base.figures.get("duration") else None
+    doc = {"program": prog.file, "delta": problem.band, "radius": ref.radius,
+           "duration": fig.get("duration"), "pmac_duration": base.figures.get("duration"),
+           "duration_ratio": ratio,
+           # what neither path can beat (no acceleration limit at all): how much any
+           # smoothing of PMAC's path could buy
+           "feed_floor": _feed_floor(path, limits), "pmac_feed_floor": _feed_floor(ref, limits),
+           **{k: fig.get(k) for k in SMOOTH_FIGURES},
+           "joins": info.get("joins", []), "certificate": row.certificate.to_json(),
+           "toolpath": path.to_json()}
+    return doc, path, row.certificate.ok
+
+
+def cmd_smooth(args: argparse.Namespace) -> int:
+    """G2 blends at every corner within ``--delta``, certified, timed against
+    PMAC's path and exported with ``-o`` (exit 1 when the certificate or the
+    exported file's read-back fails)."""
+    work = job(args.program, args)
+    prog = work.read()
+    limits = work.limits()
+    try:
+        blend = load_blend("smooth")
+    except KeyError:
+        raise ProgramError("the smoother is not installed: no 'smooth' entry point in group "
+                           "ccopt.blends (install ccopt with its formulations)",
+                           args.program) from None
+    doc, path, certified = _smoothed(blend, work, prog, limits)
+    exported = None
+    if args.out:
+        try:
+            exported = export(path, args.out, program=prog)
+            doc["export"] = exported.to_json()
+        except ValueError as exc:  # the arc fit of a blend curve gave up (too many pieces)
+            raise ProgramError(f"cannot export the smoothed path: {exc}", args.out) from None
+    if args.json:
+        emit_json(doc)
+    else:
+        _print_smoothed(doc, prog, exported)
+    # the written file is what runs on the machine: its own verdict counts too
+    ok = certified and (exported is None or exported.verified is not False)
+    return EXIT_OK if ok else EXIT_FAILED
+
+
+def _print_smoothed(doc: dict, prog: Program, exported: ExportResult | None) -> None:
+    """The human-readable report of ``ccopt smooth``."""
+    blended = sum(1 for j in doc["joins"] if j["status"] == "blended")
+    print(f"{prog.file}: smoothed within delta {doc['delta']:g} {prog.units} "
+          f"(cutter radius {doc['radius']:g}): {blended} of {len(doc['joins'])} joins blended")
+    floor = doc["pmac_feed_floor"]
+    floor_txt = "" if floor is None or not doc["pmac_duration"] else (
+        f"; feed-limited floor {floor:.4f} s ({floor / doc['pmac_duration']:.4f})")
+    print(f"  cycle time {figure(doc['duration'])} s vs PMAC {figure(doc['pmac_duration'])} s "
+          f"(ratio {figure(doc['duration_ratio'])}){floor_txt}")
+    print(f"  certified {figure(doc['certified'])}, min clearance "
+          f"{figure(doc['min_clearance'], '{:.9f}')}, max deviation "
+          f"{figure(doc['max_deviation'], '{:.6f}')} (bound "
+          f"{figure(doc['max_deviation_bound'], '{:.6f}')}), joins {doc['continuity']}, "
+          f"max curvature {figure(doc['max_curvature'], '{:.3f}')}")
+    for j in doc["joins"]:
+        if j["status"] != "blended":
+            print(f"  join at segment {j['segment']} ({j['kind']}): {j['status']}")
+    if exported is not None:
+        verdict = {True: "verified OK", False: "verification FAILED",
+                   None: "not verified"}[exported.verified]
+        print(f"  exported {exported.file}: read back within "
+              f"{exported.roundtrip_error:.3g} {prog.units}, {verdict}")
+
+
+def _add_blend_options(p: argparse.ArgumentParser) -> None:
+    """The smoother's band, the compensation overrides and the axis limits."""
+    p.add_argument("--delta", type=positive_float, metavar="D",
+                   help="tolerance band of the smoother, program units (default: 1%% of the "
+                        "cutter radius)")
+    add_radius_side(p)
+    add_limit_options(p)
+
+
+def add_commands(sub, commands: dict) -> None:
+    """Register ``compare`` and ``smooth`` on ``sub`` (argparse subparsers)."""
+    p = sub.add_parser("compare", help="compare lead-in/lead-out/corner variants, certified "
+                                       "and timed")
+    add_program(p)
+    add_reading_options(p)
+    add_variants_option(p, "variants to compare (default: every available one; see --list)")
+    p.add_argument("--list", action="store_true", help="list the available variants and exit")
+    _add_blend_options(p)
+    p.add_argument("--lead-radius", type=positive_float, metavar="R",
+                   help="radius of the tangent-arc and line-arc leads (default: the cutter radius)")
+    p.add_argument("--plot", metavar="FILE", help="plot the variants over the contour (PNG/SVG/PDF)")
+    commands["compare"] = cmd_compare
+
+    p = sub.add_parser("smooth", help="G2 blends at every corner within a tolerance band")
+    add_program(p)
+    add_reading_options(p)
+    _add_blend_options(p)
+    add_output_option(p, "out", "FILE",
+                      help="export the smoothed path (.nc/.pmc/.svg/.json, read back and verified)")
+    commands["smooth"] = cmd_smooth

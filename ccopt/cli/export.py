@@ -1,0 +1,40 @@
+"""``ccopt export``: write the verified tool-centre path."""
+from __future__ import annotations
+
+import argparse
+
+from ccopt.cli.inputs import job
+from ccopt.cli.options import (add_output_option, add_program, add_reading_options,
+                               add_style_options, positive_float)
+from ccopt.cli.output import EXIT_FAILED, EXIT_OK, emit_json
+from ccopt.export import export
+
+
+def cmd_export(args: argparse.Namespace) -> int:
+    """Compensate, then write the tool-centre path (read back and verified
+    first, see :mod:`ccopt.export`). Exit 1 when the verification fails."""
+    work = job(args.program, args)
+    prog = work.read()
+    path = work.compensate(prog)
+    res = export(path, args.output, program=prog, tol=args.tol, title=work.title)
+    if args.json:
+        emit_json(res.to_json())
+    else:
+        verdict = {True: "verified OK", False: "verification FAILED", None: "not verified"}
+        print(f"{res.file}: {res.format}, read back within {res.roundtrip_error:.3g} "
+              f"{path.units} (tolerance {res.tolerance:g}), {verdict[res.verified]}")
+    return EXIT_FAILED if res.verified is False else EXIT_OK
+
+
+def add_commands(sub, commands: dict) -> None:
+    """Register ``export`` on ``sub`` (argparse subparsers)."""
+    p = sub.add_parser("export", help="write the verified tool-centre path (.nc .pmc .svg .json)")
+    add_program(p)
+    add_output_option(p, "output", "OUT", required=True,
+                      help="output file; the suffix picks the format (.nc .ngc .pmc .svg .json)")
+    p.add_argument("--tol", type=positive_float, metavar="T",
+                   help="arc-fit tolerance for spirals in G-code (default 0.001 mm or its inch "
+                        "equivalent)")
+    add_reading_options(p)
+    add_style_options(p)
+    commands["export"] = cmd_export

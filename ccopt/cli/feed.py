@@ -1,0 +1,100 @@
+"""``ccopt feed``: time-optimal feed (TOPPRA) and the baseline planners."""
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+from ccopt import feed as feed_planning
+from ccopt.cli.inputs import job
+from ccopt.cli.options import (add_limit_options, add_program, add_reading_options,
+                               add_style_options, positive_float)
+from ccopt.cli.output import EXIT_OK, emit_json
+from ccopt.export.atomic import write_text_atomic
+from ccopt.feed import AxisLimits, plan_feed
+from ccopt.toolpath import ToolPath
+
+#: ``--dt``, seconds: the sampling step of the ratios and the CSV.
+DEFAULT_DT = 1e-3
+
+#: the planners ``--planner`` knows (``all`` names them all), in the order they are reported
+PLANNER_NAMES = ("toppra", "stop", "junction")
+
+
+def planner_names(text: str) -> list[str]:
+    """``A,B`` -> planner names (argparse type of ``--planner``); ``all``: every one."""
+    names = [n.strip() for n in text.split(",")]
+    for n in names:
+        if n not in PLANNER_NAMES + ("all",):
+            raise argparse.ArgumentTypeError(f"unknown planner {n!r} (toppra, stop, junction, all)")
+    return list(PLANNER_NAMES) if "all" in names else names
+
+
+def cmd_feed(args: argparse.Namespace) -> int:
+    """Feed profiles of the compensated path: TOPPRA and/or the baselines."""
+    work = job(args.program, args)
+    prog = work.read()
+    path = work.compensate(prog)
+    limits = work.limits(args.tangential_acc, args.centripetal_acc)
+    planners = list(dict.fromkeys(p for group in (args.planner or [["toppra"]]) for p in group))
+    out = _plan(path, limits, planners, args)
+    first = out[planners[0]]
+    if args.json:
+        emit_json({"program": str(work.program), "style": path.style, "units": path.units,
+                   "limits": limits.to_json(), "planner": planners[0],
+                   **{k: first[k] for k in ("duration", "samples", "max_axis_acc_ratio",
+                                            "max_axis_vel_ratio", "max_feed_ratio")},
+                   "planners": out})
+    else:
+        print(f"{prog.file}: style {path.style}, tool path {path.length:.4f} {path.units}, "
+              f"limits v={list(limits.v)} a={list(limits.a)}")
+        print("planner   duration_s  vs_first  max_vel_ratio  max_acc_ratio  max_feed_ratio")
+        for name, r in out.items():
+            vs = r["duration"] / first["duration"] if first["duration"] > 0 else math.nan
+            print(f"{name:8s}  {r['duration']:10.4f}  {vs:8.4f}  "
+                  f"{r['max_axis_vel_ratio']:13.4f}  {r['max_axis_acc_ratio']:13.4f}  "
+                  f"{r['max_feed_ratio']:14.4f}")
+    return EXIT_OK
+
+
+def _plan(path: ToolPath, limits: AxisLimits, planners: list[str],
+          args: argparse.Namespace) -> dict[str, dict]:
+    """Each planner's summary sampled every ``--dt`` s, its samples written as
+    CSV when ``--csv`` asks (``FILE.<planner>.csv`` when several)."""
+    # ccopt.feed loads ExactPath (and toppra, ~2 s) on first use, so `ccopt show` stays fast
+    exact = feed_planning.ExactPath(path)
+    out: dict = {}
+    for name in planners:
+        prof = plan_feed(exact, limits, planner=name, junction_deviation=args.junction_deviation)
+        smp = prof.sample(args.dt)
+        out[name] = prof.summary(args.dt, smp)
+        if args.csv:
+            csv = Path(args.csv)
+            if len(planners) > 1:
+                csv = csv.with_name(f"{csv.stem}.{name}{csv.suffix}")
+            write_text_atomic(csv, smp.to_csv_text())
+            out[name]["csv"] = str(csv)
+    return out
+
+
+def add_commands(sub, commands: dict) -> None:
+    """Register ``feed`` on ``sub`` (argparse subparsers)."""
+    p = sub.add_parser("feed", help="time-optimal feed (TOPPRA) and baseline planners")
+    add_program(p)
+    add_reading_options(p)
+    add_style_options(p)
+    add_limit_options(p)
+    p.add_argument("--tangential-acc", type=positive_float, metavar="A",
+                   help="limit on the acceleration along the path, units/s^2")
+    p.add_argument("--centripetal-acc", type=positive_float, metavar="A",
+                   help="limit on speed^2 * curvature, units/s^2")
+    p.add_argument("--planner", type=planner_names, action="append", metavar="NAME[,NAME]",
+                   help="toppra (default), stop, junction or all; repeat or comma-separate")
+    p.add_argument("--junction-deviation", type=positive_float, metavar="D",
+                   help="allow grbl's corner speed at tangent breaks (default: stop there)")
+    p.add_argument("--dt", type=positive_float, default=DEFAULT_DT, metavar="S",
+                   help="sampling step for ratios and CSV, seconds (default 0.001)")
+    p.add_argument("--csv", metavar="FILE", help="write the samples as CSV "
+                   "(FILE.<planner>.csv per planner when several)")
+    commands["feed"] = cmd_feed
+

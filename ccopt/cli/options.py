@@ -1,0 +1,123 @@
+"""The parser class, the argument types and the option groups the commands share.
+
+Each option shared by several commands is defined once here; a command's
+module adds the groups it takes, in the order its ``--help`` lists them.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+from ccopt.cli.output import EXIT_BAD_INPUT
+from ccopt.compensate import STYLES
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse with one-line errors and exit code 2."""
+
+    def error(self, message: str) -> None:  # noqa: D401 - argparse API
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: {message} (see {self.prog} --help)\n")
+
+
+# -- argument types: each checks its value and says what it needs ------------------
+def _checked(text: str, parse, ok, need: str):
+    """``parse(text)`` if ``ok`` of it holds; else an argparse error saying ``need``."""
+    try:
+        x = parse(text)
+    except ValueError:
+        what = "a whole number" if parse is int else "a number"
+        raise argparse.ArgumentTypeError(f"not {what}: {text!r}") from None
+    if not ok(x):
+        raise argparse.ArgumentTypeError(f"must be {need}: {text!r}")
+    return x
+
+
+def positive_float(text: str) -> float:
+    return _checked(text, float, lambda x: 0 < x < math.inf, "a finite number > 0")
+
+
+def nonneg_float(text: str) -> float:
+    return _checked(text, float, lambda x: 0 <= x < math.inf, "a finite number >= 0")
+
+
+def nonneg_int(text: str) -> int:
+    return _checked(text, int, lambda n: n >= 0, "a whole number >= 0")
+
+
+def cosine(text: str) -> float:
+    return _checked(text, float, lambda x: -1.0 <= x <= 1.0, "a cosine, between -1 and 1")
+
+
+def axis_values(text: str) -> tuple[float, ...]:
+    """``X,Y[,Z]`` -> positive numbers per axis."""
+    parts = text.split(",")
+    if not 2 <= len(parts) <= 3:
+        raise argparse.ArgumentTypeError(f"give 2 or 3 comma-separated numbers X,Y[,Z]: {text!r}")
+    return tuple(positive_float(x) for x in parts)
+
+
+def variant_names(text: str) -> list[str]:
+    """``A,B`` -> ``["A", "B"]`` (argparse type of ``--variants``)."""
+    return [n.strip() for n in text.split(",") if n.strip()]
+
+
+def chosen_variants(args: argparse.Namespace) -> list[str] | None:
+    """Every ``--variants`` name given, in order; ``None`` when none was."""
+    return [n for group in (args.variants or []) for n in group] or None
+
+
+# -- option groups -----------------------------------------------------------------
+def add_program(p: argparse.ArgumentParser) -> None:
+    """The one input of a command."""
+    p.add_argument("program", metavar="PROGRAM", help="program file, case folder or case name")
+
+
+def add_reading_options(p: argparse.ArgumentParser) -> None:
+    """How to read the program, and ``--json`` (every command has both)."""
+    p.add_argument("--dialect", choices=["gcode", "pmac"],
+                   help="program dialect (default: from the file suffix)")
+    # a Path, so the reader takes it as a file name, never as table text
+    p.add_argument("--tool-table", metavar="FILE", type=Path,
+                   help="LinuxCNC tool table for G41/G42 D<tool number>")
+    p.add_argument("--json", action="store_true", help="machine-readable output on stdout")
+
+
+def add_output_option(p: argparse.ArgumentParser, dest: str, metavar: str, help: str,
+                      required: bool = False) -> None:
+    """``-o``: where a command writes (a file or a folder, by command)."""
+    p.add_argument("-o", f"--{dest}", required=required, metavar=metavar, help=help)
+
+
+def add_radius_side(p: argparse.ArgumentParser) -> None:
+    """The compensation overrides every command that compensates takes."""
+    p.add_argument("--radius", type=nonneg_float, metavar="R",
+                   help="cutter radius in program units, overriding the program")
+    p.add_argument("--side", choices=["left", "right"],
+                   help="compensation side wherever it is on, overriding the program")
+
+
+def add_style_options(p: argparse.ArgumentParser) -> None:
+    """The controller style, the radius and side, and the style's own options."""
+    p.add_argument("--style", choices=sorted(STYLES),
+                   help="controller style (default: the case's, else pmac)")
+    add_radius_side(p)
+    p.add_argument("--break-cos", type=cosine, metavar="C",
+                   help="PMAC Isx99 outside-corner break (cos of the turn), default 0.9998")
+    p.add_argument("--ccbuf", type=nonneg_int, metavar="N",
+                   help="Turbo PMAC DEFINE CCBUF: non-plane moves looked through at a corner")
+
+
+def add_limit_options(p: argparse.ArgumentParser, v_default: str = "the case's [limits] v",
+                      a_default: str = "the case's [limits] a") -> None:
+    """The axis limits ``--vmax``/``--amax``; the defaults are named in their help."""
+    p.add_argument("--vmax", type=axis_values, metavar="X,Y[,Z]",
+                   help=f"axis velocity limits, units/s (default: {v_default})")
+    p.add_argument("--amax", type=axis_values, metavar="X,Y[,Z]",
+                   help=f"axis acceleration limits, units/s^2 (default: {a_default})")
+
+
+def add_variants_option(p: argparse.ArgumentParser, help: str) -> None:
+    """``--variants``: blend variants by name, repeated or comma-separated."""
+    p.add_argument("--variants", type=variant_names, action="append", metavar="NAME[,NAME]",
+                   help=help)

@@ -1,0 +1,49 @@
+"""``ccopt verify``: certify that the tool path keeps the radius offset."""
+from __future__ import annotations
+
+import argparse
+
+from ccopt.cli.inputs import job
+from ccopt.cli.options import (add_program, add_reading_options, add_style_options,
+                               positive_float)
+from ccopt.cli.output import EXIT_FAILED, EXIT_OK, emit_json
+from ccopt.tolerances import VERIFY_EPS
+from ccopt.verify import verify
+from ccopt.verify.crosschecks import run_crosschecks
+
+
+def cmd_verify(args: argparse.Namespace) -> int:
+    """Compensate, then certify the radius offset (exit 1 when a check fails)."""
+    work = job(args.program, args)
+    prog = work.read()
+    path = work.compensate(prog)
+    cert = verify(path, prog, eps=args.eps, radius=work.radius, side=work.side)
+    report = cert.to_json()
+    agree = True
+    if args.crosscheck:
+        report["crosschecks"] = run_crosschecks(cert)
+        agree = all(x["agree"] for x in report["crosschecks"])
+    if args.json:
+        emit_json(report)
+    else:
+        print(f"{prog.file}: style {path.style}, {len(path.segments)} tool segments")
+        print(cert.summary())
+        for x in report.get("crosschecks", ()):
+            print(f"  cross-check {x['name']}: {'agrees' if x['agree'] else 'DISAGREES'} - "
+                  f"{x.get('summary', '')}")
+        if args.crosscheck and not report["crosschecks"]:
+            print("  cross-checks: none installed (entry points 'ccopt.crosschecks')")
+    return EXIT_OK if cert.ok and agree else EXIT_FAILED
+
+
+def add_commands(sub, commands: dict) -> None:
+    """Register ``verify`` on ``sub`` (argparse subparsers)."""
+    p = sub.add_parser("verify", help="certify that the tool path keeps the radius offset")
+    add_program(p)
+    add_reading_options(p)
+    add_style_options(p)
+    p.add_argument("--eps", type=positive_float, default=VERIFY_EPS, metavar="E",
+                   help="tolerance in program units (default 1e-6)")
+    p.add_argument("--crosscheck", action="store_true",
+                   help="also run the registered cross-check formulations (CVXPY, CasADi)")
+    commands["verify"] = cmd_verify
