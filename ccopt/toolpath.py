@@ -168,7 +168,9 @@ def block_geometry(block: Block, start_uv=None, end_uv=None):
 
     ``start_uv``/``end_uv`` override the block's own in-plane points (used by
     compensation for gradual changes about the programmed centre). A CIRCLE
-    move whose end radius differs from its start radius is a :class:`Spiral`.
+    move whose end radius differs from its start radius is a :class:`Spiral`:
+    radius linear in swept angle (an Archimedean spiral, the only spiral
+    ccopt has; docs/compensation.md, "spiral radius linear in angle").
     """
     s = block.start_uv if start_uv is None else start_uv
     e = block.end_uv if end_uv is None else end_uv
