@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from typing import Any, Iterator
 
 from ccopt.geometry import Arc, Line, Spiral
-from ccopt.program.model import PLANE_AXES, Block, Motion, Program
+from ccopt.program.model import Block, Motion, Program
 from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL
 
 
@@ -205,10 +205,3 @@ def programmed_path(program: Program) -> ToolPath:
     return ToolPath(tuple(segs), plane=plane, style="programmed", radius=0.0,
                     dwells=tuple(dwells), units=program.units)
 
-
-def plane_point(plane: str, u: float, v: float, w: float) -> tuple[float, float, float]:
-    """Back from plane coordinates to machine ``(x, y, z)``."""
-    i, j, k = PLANE_AXES[plane]
-    out = [0.0, 0.0, 0.0]
-    out[i], out[j], out[k] = u, v, w
-    return (out[0], out[1], out[2])

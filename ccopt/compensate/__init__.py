@@ -2,8 +2,9 @@
 
 Styles register in :data:`STYLES` (name -> class taking the style's options);
 a new style is one module plus one line here. The shared geometry of corners
-lives in :mod:`.corners`, the program scan in :mod:`.scan`, and every decision
-the manuals leave open in :mod:`.decisions`.
+lives in :mod:`.corners`, the program scan in :mod:`.scan`, and every
+switchable decision the manuals leave open in :mod:`.decisions` (the rules:
+docs/compensation.md).
 """
 from __future__ import annotations
 

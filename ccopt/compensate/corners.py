@@ -1,11 +1,11 @@
 """Shared corner machinery of every compensation style.
 
-Notation (spec, "Notation"): ``t`` unit tangent, ``k = +1`` left / ``-1``
-right, offset direction ``o(t) = k * (-t_y, t_x)``, corner turn
-``c = t_in x t_out``, ``d = t_in . t_out``. An :class:`Element` is one
-programmed in-plane move with its exact geometry; its *carrier* is the curve
-its offset lies on (an infinite line or a full circle), which is what corner
-intersections are computed on.
+Notation (docs/compensation.md, 1.3 "Symbols and signs"): ``t`` unit
+tangent, ``k = +1`` left / ``-1`` right, offset direction
+``o(t) = k * (-t_y, t_x)``, corner turn ``c = t_in x t_out``,
+``d = t_in . t_out``. An :class:`Element` is one programmed in-plane move with
+its exact geometry; its *carrier* is the curve its offset lies on (an infinite
+line or a full circle), which is what corner intersections are computed on.
 """
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ from ccopt.compensate import decisions
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral, intersect
 from ccopt.geometry.angles import TWO_PI, sweep_between
-from ccopt.program.model import Block, Motion
+from ccopt.program.model import Block
 from ccopt.tolerances import (
     OFFSET_CIRCLE_REL_TOL, POINT_EPS, TOOL_ARC_SAME_RADIUS_REL_TOL, TURN_EPS,
 )
@@ -139,7 +139,7 @@ class Element:
         ``("circle", centre, radius)``.
 
         An arc's offset radius is ``R - k*r`` counter-clockwise and ``R + k*r``
-        clockwise (spec: "Arc offset"); a radius at or below zero has no tool
+        clockwise (docs/compensation.md, 1.4); a radius at or below zero has no tool
         path: CompensationError naming the block.
         """
         if self.is_line:
@@ -280,6 +280,3 @@ def tool_geometry(el: Element, s, e):
         return Arc(cc, rs, th_s, sweep)
     return Spiral(cc, rs, re, th_s, sweep)
 
-
-def is_rapid(block: Block) -> bool:
-    return block.motion is Motion.RAPID

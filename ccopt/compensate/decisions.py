@@ -33,7 +33,7 @@ PMAC_OFFSET_RAPIDS = True
 SHALLOW_WITHOUT_INTERSECTION = "arc"
 
 
-#: [ccopt decision] In a reversal with an arc (spec rule 3, Turbo p.299) the
+#: [ccopt decision] In a reversal with an arc (rule 3, Turbo p.299) the
 #: "inside intersection" is one *behind* the corner along the incoming
 #: direction, ``(x - P) . t_in < 0``: the tool stops short on the incoming
 #: element and leaves on the outgoing one, which runs back over it. The two
@@ -152,7 +152,7 @@ FAGOR_REVERSAL_IS_OUTSIDE = True
 FAGOR_ARC_ACTIVATION_IS_AN_ERROR = True
 
 #: [ccopt decision] Program end while Fagor compensation is on behaves as a
-#: cancellation without motion in the plane (spec Fagor rule 4): the last move
+#: cancellation without motion in the plane (Fagor rule 4): the last move
 #: ends at its offset end and the tool goes straight to its programmed end.
 #: Alternative ``"stay-at-offset"``: the path ends at the offset end.
 FAGOR_PROGRAM_END_WHILE_ON = "cancel-in-place"

@@ -1,7 +1,7 @@
 """Fagor 8070 cutter radius compensation (G41/G42/G40, G136/G137, G138/G139).
 
-Rules: spec "Fagor 8070 style", from the CNC 8070 Programming manual (ref
-0504), chapter 9 "Tool compensation" (activation, section 9.1.5
+Rules: docs/compensation.md, section 6 "Fagor 8070 style", from the CNC 8070
+Programming manual (ref 0504), chapter 9 "Tool compensation" (activation, section 9.1.5
 "Cancellation of tool radius compensation"). Like PMAC, the control looks
 ahead: the engine walks the in-plane moves once and decides a *joint* at each
 boundary (where the incoming tool path ends, which transition segments are
@@ -23,7 +23,7 @@ geometry between those points (:func:`corners.tool_geometry`).
   ``A``, the transition goes to ``B = P + r*o(t_out)``, then straight to the
   end. A cancellation block that does not move in the plane cancels where
   the tool is: during that block the tool goes from ``A`` to the programmed
-  end ``P`` of the last compensated move (spec rule 4, both seed programs).
+  end ``P`` of the last compensated move (Fagor rule 4, both seed programs).
 """
 from __future__ import annotations
 
@@ -80,7 +80,7 @@ def _err(block: Block, message: str) -> CompensationError:
 
 def linear_transition(A, B, t_in, t_out, d: float, r: float) -> list[np.ndarray]:
     """Corner points of a G137 linear transition from ``A`` to ``B`` (both
-    included), spec Fagor rule 2 and :data:`decisions.FAGOR_G137_LINEAR_TRANSITION`.
+    included), Fagor rule 2 and :data:`decisions.FAGOR_G137_LINEAR_TRANSITION`.
 
     Turning by at most 90 degrees (``d = t_in . t_out >= 0``): the tangent lines
     at ``A`` (along ``t_in``) and ``B`` (along ``t_out``) meet at ``X``:

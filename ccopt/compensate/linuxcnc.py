@@ -1,7 +1,7 @@
 """LinuxCNC cutter radius compensation (``G41``/``G42``/``G41.1``/``G42.1``, ``G40``).
 
-Rules: spec "LinuxCNC style", re-derived from LinuxCNC's interpreter
-(``src/emc/rs274ngc/interp_convert.cc``: ``convert_straight_comp1/2``,
+Rules: docs/compensation.md, section 5 "LinuxCNC style", re-derived from
+LinuxCNC's interpreter (``src/emc/rs274ngc/interp_convert.cc``: ``convert_straight_comp1/2``,
 ``convert_arc_comp1/2``, ``convert_cutter_compensation_off``; and
 ``interp_queue.cc``: ``move_endpoint_and_flush``) and checked against its own
 test suite (``tests/conformance/linuxcnc/crazy-paths``).

@@ -1,11 +1,12 @@
 """PMAC / Turbo PMAC cutter radius compensation — the reference style.
 
-Rules: spec "PMAC / Turbo PMAC style", from the PMAC User Manual pp.184-194
-and the Turbo PMAC User Manual pp.294-302. The engine walks the in-plane
-moves once; at each boundary between two of them it decides a *joint*: where
-the incoming move's tool path ends, which corner segments are added, and
-where the outgoing move's tool path starts. Each move's exact tool segment is
-then its geometry between those two points (:func:`corners.tool_geometry`).
+Rules: docs/compensation.md, section 4 "PMAC / Turbo PMAC style", from the
+PMAC User Manual pp.184-194 and the Turbo PMAC User Manual pp.294-302. The
+engine walks the in-plane moves once; at each boundary between two of them it
+decides a *joint*: where the incoming move's tool path ends, which corner
+segments are added, and where the outgoing move's tool path starts. Each
+move's exact tool segment is then its geometry between those two points
+(:func:`corners.tool_geometry`).
 
 Move classes (by the side in force before and for the move):
 ``uncompensated`` (off, off), ``lead-in`` (off, on), ``compensated`` (on, on),
@@ -86,7 +87,7 @@ class PmacStyle:
         kind = classify(k, tr)
         if not look_ahead_ok:
             # Turbo CCBUF exhausted: the controller could not see the next
-            # move in time and treats the corner as outside (spec rule 6).
+            # move in time and treats the corner as outside (rule 6).
             return Joint(A, B, [corner_arc(P, r, ti, tj, k)] if kind is not Corner.TANGENT else [])
         if kind is Corner.TANGENT:
             return Joint(A, A)
@@ -121,7 +122,7 @@ class PmacStyle:
         return decisions.nearest_root(hits, A, B)
 
     def lead_in_corner(self, a: Element, b: Element, k: int, r: float) -> Joint:
-        """``a`` is the lead-in, ``b`` the first fully compensated move (spec 2)."""
+        """``a`` is the lead-in, ``b`` the first fully compensated move (rule 2)."""
         P = a.end
         ti, tj = a.t_end, b.t_start
         kind = _lead_corner_kind(k, turn(ti, tj))
@@ -133,7 +134,7 @@ class PmacStyle:
         return Joint(A, B, [corner_arc(P, r, ti, tj, k, sweep)])
 
     def lead_out_corner(self, a: Element, b: Element, k: int, r: float) -> Joint:
-        """``a`` is the last compensated move, ``b`` the lead-out (spec 5)."""
+        """``a`` is the last compensated move, ``b`` the lead-out (rule 5)."""
         P = a.end
         ti, tj = a.t_end, b.t_start
         kind = _lead_corner_kind(k, turn(ti, tj))
@@ -145,7 +146,7 @@ class PmacStyle:
         return Joint(A, B, [corner_arc(P, r, ti, tj, k, sweep)])
 
     def side_change_corner(self, a: Element, b: Element) -> Joint:
-        """``CC1`` <-> ``CC2`` between two compensated moves (spec 4)."""
+        """``CC1`` <-> ``CC2`` between two compensated moves (rule 4)."""
         P = a.end
         ti, tj = a.t_end, b.t_start
         A = a.offset_point(True, a.k, a.r)
@@ -251,7 +252,7 @@ class Joints:
 
 
 def check_arc_offsets(scan: ScanResult, arr: ElementArrays, classes: list[str]) -> None:
-    """The offset of a fully compensated arc must exist (spec rule 7);
+    """The offset of a fully compensated arc must exist (rule 7);
     lead-in and lead-out arcs are spirals that only reach the offset at one
     end. Raises CompensationError at the first arc whose offset vanishes."""
     k, r = scan.k, scan.r

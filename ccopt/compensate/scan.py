@@ -4,7 +4,7 @@ The in-plane moves become :class:`~ccopt.compensate.corners.Element` objects
 with their effective side and radius (after ``radius=``/``side=`` overrides);
 moves with no in-plane component (Z only) and dwells between two in-plane
 moves are the *gap* before the next move: they are skipped when looking for
-the next move and run at the compensated corner point (spec rule 6).
+the next move and run at the compensated corner point (rule 6 of docs/compensation.md).
 Conditions no style can compensate are reported here, located.
 """
 from __future__ import annotations
