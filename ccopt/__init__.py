@@ -5,6 +5,8 @@ The pipeline (see DESIGN.md)::
 
     prog = ccopt.read_program("part.pmc")
     path = ccopt.compensate(prog, style="pmac")
+    cert = ccopt.verify(path, prog)
+    ccopt.export(path, "part.nc", program=prog)
 
 Units: lengths in program units (mm or inch), time in seconds, angles in
 radians inside ccopt.
@@ -21,6 +23,11 @@ from ccopt.program.model import Block, Modal, Motion, Program, Source
 from ccopt.toolpath import PathSegment, Role, ToolPath, programmed_path
 from ccopt.verify import Certificate, verify
 
+# Bound last: the name ``ccopt.export`` is the function, as ``ccopt.verify``
+# is (the modules stay importable: ``from ccopt.export import export``,
+# ``from ccopt.export.arcfit import ...``).
+from ccopt.export import ExportResult, export
+
 try:
     __version__ = _version("ccopt")
 except PackageNotFoundError:  # running from a source tree without install
@@ -28,6 +35,7 @@ except PackageNotFoundError:  # running from a source tree without install
 
 __all__ = [
     "Certificate", "verify",
+    "ExportResult", "export",
     "AxisLimits", "plan_feed",
     "Block", "CcoptError", "CompensationError", "Modal", "Motion", "PathSegment", "Program",
     "ProgramError", "Role", "Source", "ToolPath", "compensate", "programmed_path", "read_program",

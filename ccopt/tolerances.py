@@ -104,7 +104,7 @@ CROSSING_TOL = 1e-9
 #: ``TOLERANCE_CONCAVE_CORNER`` (``interp_internal.hh``), radians: a turn toward
 #: or away from the tool side by at most this is "straight on" in
 #: ``convert_straight_comp2``/``convert_arc_comp2``: no corner arc, no
-#: pull-back (decisions.LINUXCNC_SLIGHT_TURN_IS_STRAIGHT_ON).
+#: pull-back (docs/compensation.md, LinuxCNC: a slight turn is straight on).
 LINUXCNC_CONCAVE_CORNER = 0.05
 
 #: ``TOLERANCE_EQUAL`` (``interp_internal.hh``), unitless here: in
@@ -119,3 +119,8 @@ LINUXCNC_TOLERANCE_EQUAL = 1e-4
 #: the LinuxCNC source this style was derived from; some later LinuxCNC
 #: versions compare against ``.0254`` for mm programs (``.001`` inch) instead.
 LINUXCNC_ARC_GROWTH = 0.001
+
+#: A compensated arc whose two ends lie at distances from its centre that
+#: differ by at most this (relative to max(1, r)) is an arc of that radius, not
+#: a spiral (ccopt.compensate: corners.tool_geometry and batch.tool_segments).
+TOOL_ARC_SAME_RADIUS_REL_TOL = 1e-12

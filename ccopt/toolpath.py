@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 from typing import Any, Iterator
 
 from ccopt.geometry import Arc, Line, Spiral
-from ccopt.program.model import PLANE_AXES, Block, Motion, Program
+from ccopt.program.model import Block, Motion, Program
 from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL
 
 
@@ -168,7 +168,9 @@ def block_geometry(block: Block, start_uv=None, end_uv=None):
 
     ``start_uv``/``end_uv`` override the block's own in-plane points (used by
     compensation for gradual changes about the programmed centre). A CIRCLE
-    move whose end radius differs from its start radius is a :class:`Spiral`.
+    move whose end radius differs from its start radius is a :class:`Spiral`:
+    radius linear in swept angle (an Archimedean spiral, the only spiral
+    ccopt has; docs/compensation.md, "spiral radius linear in angle").
     """
     s = block.start_uv if start_uv is None else start_uv
     e = block.end_uv if end_uv is None else end_uv
@@ -203,10 +205,3 @@ def programmed_path(program: Program) -> ToolPath:
     return ToolPath(tuple(segs), plane=plane, style="programmed", radius=0.0,
                     dwells=tuple(dwells), units=program.units)
 
-
-def plane_point(plane: str, u: float, v: float, w: float) -> tuple[float, float, float]:
-    """Back from plane coordinates to machine ``(x, y, z)``."""
-    i, j, k = PLANE_AXES[plane]
-    out = [0.0, 0.0, 0.0]
-    out[i], out[j], out[k] = u, v, w
-    return (out[0], out[1], out[2])

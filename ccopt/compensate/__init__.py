@@ -1,42 +1,30 @@
 """Cutter radius compensation: ``Program`` -> ``ToolPath`` as a controller does it.
 
-Styles register in :data:`STYLES` (name -> factory taking the style's options);
+Styles register in :data:`STYLES` (name -> class taking the style's options);
 a new style is one module plus one line here. The shared geometry of corners
-lives in :mod:`.corners`, the program scan in :mod:`.scan`, and every decision
-the manuals leave open in :mod:`.decisions`.
+lives in :mod:`.corners`, the program scan in :mod:`.scan`, and every
+switchable decision the manuals leave open in :mod:`.decisions` (the rules:
+docs/compensation.md).
 """
 from __future__ import annotations
 
 from typing import Callable
 
+from ccopt.compensate.fagor import FagorStyle
+from ccopt.compensate.linuxcnc import LinuxcncStyle
+from ccopt.compensate.pmac import PmacStyle
 from ccopt.errors import ProgramError
 from ccopt.program.model import Program
 from ccopt.toolpath import ToolPath
 
 SIDES = {"left": 1, "right": -1, None: None}
 
-
-def _pmac(**options):
-    from ccopt.compensate.pmac import PmacStyle
-    return PmacStyle(**options)
-
-
-def _linuxcnc(**options):
-    from ccopt.compensate.linuxcnc import LinuxcncStyle
-    return LinuxcncStyle(**options)
-
-
-def _fagor(**options):
-    from ccopt.compensate.fagor import FagorStyle
-    return FagorStyle(**options)
-
-
-#: style name -> factory(**options) returning an object with
-#: ``compensate(program, radius=, side=) -> ToolPath``.
+#: style name -> class taking the style's options as keywords, whose instances
+#: have ``compensate(program, radius=, side=) -> ToolPath``.
 STYLES: dict[str, Callable[..., object]] = {
-    "pmac": _pmac,
-    "linuxcnc": _linuxcnc,
-    "fagor": _fagor,
+    "pmac": PmacStyle,
+    "linuxcnc": LinuxcncStyle,
+    "fagor": FagorStyle,
 }
 
 

@@ -15,13 +15,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ccopt.compensate import decisions
+from ccopt.compensate.corners import FULL_TURN_SLACK
 from ccopt.geometry import Arc, Line, Spiral
+from ccopt.geometry.angles import TWO_PI
 from ccopt.geometry.intersect_many import circles_circles, lines_circles, lines_lines
 from ccopt.program.model import PLANE_AXES, Block, Motion
-from ccopt.tolerances import OFFSET_CIRCLE_REL_TOL, POINT_EPS, SPIRAL_RADIUS_REL_TOL, TURN_EPS
+from ccopt.tolerances import (
+    OFFSET_CIRCLE_REL_TOL, POINT_EPS, SPIRAL_RADIUS_REL_TOL, TOOL_ARC_SAME_RADIUS_REL_TOL, TURN_EPS,
+)
 
 LINE, ARC, SPIRAL = 0, 1, 2
-TWO_PI = 2.0 * math.pi
+#: An arc whose end meets its start within this length (relative to max(1, R))
+#: is a full circle: the tolerance of ``geometry.Arc.from_points``, which
+#: ``toolpath.block_geometry`` builds the same moves with.
+FULL_CIRCLE_GAP = 1e-9
 
 
 def _perp(t: np.ndarray) -> np.ndarray:
@@ -79,11 +87,11 @@ class ElementArrays:
         th0 = np.arctan2(S[:, 1] - C[:, 1], S[:, 0] - C[:, 0])
         th1 = np.arctan2(E[:, 1] - C[:, 1], E[:, 0] - C[:, 0])
         # geometry.angles.sweep_between, elementwise (full circle when the gap
-        # is within the Arc.from_points tolerance 1e-9*max(1, R) as a length).
+        # is within FULL_CIRCLE_GAP*max(1, R) as a length).
         gap = np.fmod(np.where(ccw, th1 - th0, th0 - th1), TWO_PI)
         gap = np.where(gap < 0.0, gap + TWO_PI, gap)
         with np.errstate(invalid="ignore", divide="ignore"):
-            full_if_below = 1e-9 * np.maximum(1.0, R0) / R0
+            full_if_below = FULL_CIRCLE_GAP * np.maximum(1.0, R0) / R0
         full = (gap <= full_if_below) | (TWO_PI - gap <= full_if_below) | (gap >= TWO_PI)
         gap = np.where(full, TWO_PI, gap) + TWO_PI * turns
         sweep = np.where(motion_arc, np.where(ccw, gap, -gap), 0.0)
@@ -169,6 +177,17 @@ def classify_turn(k: np.ndarray, c: np.ndarray, d: np.ndarray, eps: float = TURN
     return np.where(kc > eps, 0, np.where(kc < -eps, 1, np.where(d > 0, 2, 3)))
 
 
+def tool_arc_sweeps(theta0, sweep, th_s, th_e) -> np.ndarray:
+    """:func:`corners.tool_arc_sweep`, elementwise (same rule, same decision)."""
+    if decisions.ARC_SWEEP_CONTINUOUS:
+        return sweep + wrap_pi(th_e - (theta0 + sweep)) - wrap_pi(th_s - theta0)
+    ccw = sweep > 0
+    gap = np.fmod(np.where(ccw, th_e - th_s, th_s - th_e), TWO_PI)
+    gap = np.where(gap <= 0.0, gap + TWO_PI, gap)          # (0, 2 pi]
+    extra = np.maximum(np.ceil(np.abs(sweep) / TWO_PI - FULL_TURN_SLACK) - 1.0, 0.0)
+    return np.where(ccw, 1.0, -1.0) * (gap + TWO_PI * extra)
+
+
 def tool_segments(arr: ElementArrays, idx: np.ndarray, starts: np.ndarray, ends: np.ndarray):
     """Exact tool geometry of line and arc elements ``idx`` between corner
     points, as :func:`corners.tool_geometry` builds it one at a time.
@@ -185,8 +204,8 @@ def tool_segments(arr: ElementArrays, idx: np.ndarray, starts: np.ndarray, ends:
     th_s = np.arctan2(s[:, 1] - C[:, 1], s[:, 0] - C[:, 0])
     th_e = np.arctan2(e[:, 1] - C[:, 1], e[:, 0] - C[:, 0])
     th0, sw = arr.theta0[idx], arr.sweep[idx]
-    sweep = sw + wrap_pi(th_e - (th0 + sw)) - wrap_pi(th_s - th0)
-    same_r = np.abs(re - rs) <= 1e-12 * np.maximum(1.0, rs)
+    sweep = tool_arc_sweeps(th0, sw, th_s, th_e)
+    same_r = np.abs(re - rs) <= TOOL_ARC_SAME_RADIUS_REL_TOL * np.maximum(1.0, rs)
     # corners.tool_geometry: both ends on the offset circle -> exactly that arc
     on = arr.offset_radius(idx, arr.k[idx], arr.r[idx])
     tol = OFFSET_CIRCLE_REL_TOL * np.maximum(1.0, on)

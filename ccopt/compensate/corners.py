@@ -1,11 +1,11 @@
 """Shared corner machinery of every compensation style.
 
-Notation (spec, "Notation"): ``t`` unit tangent, ``k = +1`` left / ``-1``
-right, offset direction ``o(t) = k * (-t_y, t_x)``, corner turn
-``c = t_in x t_out``, ``d = t_in . t_out``. An :class:`Element` is one
-programmed in-plane move with its exact geometry; its *carrier* is the curve
-its offset lies on (an infinite line or a full circle), which is what corner
-intersections are computed on.
+Notation (docs/compensation.md, 1.3 "Symbols and signs"): ``t`` unit
+tangent, ``k = +1`` left / ``-1`` right, offset direction
+``o(t) = k * (-t_y, t_x)``, corner turn ``c = t_in x t_out``,
+``d = t_in . t_out``. An :class:`Element` is one programmed in-plane move with
+its exact geometry; its *carrier* is the curve its offset lies on (an infinite
+line or a full circle), which is what corner intersections are computed on.
 """
 from __future__ import annotations
 
@@ -15,13 +15,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ccopt.compensate import decisions
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral, intersect
-from ccopt.program.model import Block, Motion
-from ccopt.tolerances import OFFSET_CIRCLE_REL_TOL, POINT_EPS, TURN_EPS
+from ccopt.geometry.angles import TWO_PI, sweep_between
+from ccopt.program.model import Block
+from ccopt.tolerances import (
+    OFFSET_CIRCLE_REL_TOL, POINT_EPS, TOOL_ARC_SAME_RADIUS_REL_TOL, TURN_EPS,
+)
 from ccopt.toolpath import block_geometry
 
-TWO_PI = 2.0 * math.pi
+
+
+#: Rounding allowance when counting a sweep's full turns: a sweep of n full
+#: turns up to rounding is n turns, not n + 1.
+FULL_TURN_SLACK = 1e-9
 
 
 def perp(t) -> np.ndarray:
@@ -131,7 +139,7 @@ class Element:
         ``("circle", centre, radius)``.
 
         An arc's offset radius is ``R - k*r`` counter-clockwise and ``R + k*r``
-        clockwise (spec: "Arc offset"); a radius at or below zero has no tool
+        clockwise (docs/compensation.md, 1.4); a radius at or below zero has no tool
         path: CompensationError naming the block.
         """
         if self.is_line:
@@ -140,8 +148,10 @@ class Element:
         p = self.offset_point(at_end, k, r)
         if isinstance(self.geom, Arc):
             rad = self.geom.radius - k * r * (1.0 if self.ccw else -1.0)
-        else:  # decisions.SPIRAL_CORNER_CARRIER
+        elif decisions.SPIRAL_CORNER_CARRIER == "circle-through-offset-end":
             rad = float(np.hypot(*(p - self.center)))
+        else:  # "tangent-line": the offset's tangent there (parallel to the spiral's)
+            return ("line", p, self.t_end if at_end else self.t_start)
         if rad <= POINT_EPS:
             raise concave_error(self, r)
         return ("circle", self.center, rad)
@@ -186,6 +196,20 @@ def carrier_intersections(a, b) -> list[np.ndarray]:
     return [np.asarray(h[0], float) for h in intersect.circle_circle(a[1], a[2], b[1], b[2])]
 
 
+def corner_side(candidates, P, t_in, behind: bool) -> list[np.ndarray]:
+    """The candidates strictly behind the corner ``P`` along the incoming
+    tangent, ``(x - P) . t_in < 0`` (``behind``), or strictly ahead of it.
+
+    The two candidates of a line/arc or arc/arc reversal mirror each other
+    across the normal at ``P``, on which both nominal offset points lie, so
+    the nearest-root rule alone ties; the side decides
+    (decisions.REVERSAL_INTERSECTION_BEHIND_CORNER).
+    """
+    P, t_in = np.asarray(P, float), np.asarray(t_in, float)
+    sign = -1.0 if behind else 1.0
+    return [x for x in candidates if sign * float((np.asarray(x, float) - P) @ t_in) > 0.0]
+
+
 def corner_arc(p, r: float, t_in, t_out, k: int, sweep: float | None = None) -> Arc:
     """Arc of radius ``r`` about the programmed corner ``p`` from ``p + r*o(t_in)``
     turning the same way as the path (by the turn angle, or ``sweep``)."""
@@ -201,14 +225,34 @@ def reversal_sweep(k: int) -> float:
     return -k * math.pi
 
 
+def extra_turns(sweep: float) -> int:
+    """Full turns of a programmed sweep beyond its first (radians -> count)."""
+    return max(math.ceil(abs(sweep) / TWO_PI - FULL_TURN_SLACK) - 1, 0)
+
+
+def tool_arc_sweep(theta0: float, sweep: float, th_s: float, th_e: float) -> float:
+    """Signed sweep (radians, > 0 counter-clockwise) of a compensated arc from
+    polar angle ``th_s`` to ``th_e`` about its programmed centre, the
+    programmed arc starting at ``theta0`` and sweeping ``sweep``.
+
+    decisions.ARC_SWEEP_CONTINUOUS: the programmed sweep plus the signed angle
+    changes at both ends, each in (-pi, pi] (an arc cut back past its start
+    runs backwards). Otherwise from start to end the way the arc turns, in
+    (0, 2 pi], plus the programmed extra full turns (G-code's reading of end
+    points, which skips a full circle whose start passes its end).
+    """
+    if decisions.ARC_SWEEP_CONTINUOUS:
+        return sweep + wrap_pi(th_e - (theta0 + sweep)) - wrap_pi(th_s - theta0)
+    return sweep_between(th_s, th_e, sweep > 0, extra_turns(sweep))
+
+
 def tool_geometry(el: Element, s, e):
     """The exact tool segment of element ``el`` from tool point ``s`` to ``e``.
 
     A line gives the straight move ``s -> e`` (a diagonal when they are not on
     one offset line). An arc gives an arc about the programmed centre, or a
     spiral when ``s`` and ``e`` lie at different distances from it; its sweep
-    is the programmed sweep plus the signed angle changes at both ends
-    (decisions.ARC_SWEEP_CONTINUOUS).
+    is :func:`tool_arc_sweep`.
     """
     s = np.asarray(s, float)
     e = np.asarray(e, float)
@@ -225,19 +269,14 @@ def tool_geometry(el: Element, s, e):
     g = el.geom
     th_s = math.atan2(s[1] - c[1], s[0] - c[0])
     th_e = math.atan2(e[1] - c[1], e[0] - c[0])
-    prog_start = g.theta0
-    prog_end = g.theta0 + g.sweep
-    sweep = g.sweep + wrap_pi(th_e - prog_end) - wrap_pi(th_s - prog_start)
+    sweep = tool_arc_sweep(g.theta0, g.sweep, th_s, th_e)
     cc = (float(c[0]), float(c[1]))
     if isinstance(g, Arc):
         on = g.radius - el.k * el.r * (1.0 if g.sweep > 0 else -1.0)
         tol = OFFSET_CIRCLE_REL_TOL * max(1.0, on)
         if on > 0 and abs(rs - on) <= tol and abs(re - on) <= tol:
             return Arc(cc, on, th_s, sweep)
-    if abs(re - rs) <= 1e-12 * max(1.0, rs):
+    if abs(re - rs) <= TOOL_ARC_SAME_RADIUS_REL_TOL * max(1.0, rs):
         return Arc(cc, rs, th_s, sweep)
     return Spiral(cc, rs, re, th_s, sweep)
 
-
-def is_rapid(block: Block) -> bool:
-    return block.motion is Motion.RAPID

@@ -1,9 +1,16 @@
-"""Every decision the controller manuals leave open, in one place.
+"""Every switchable decision the controller manuals leave open, in one place.
 
-Each entry names the spec rule it settles (``shared/spec/compensation.md``)
-and is used by name in the styles, so changing a decision is changing this
-file. Entries marked *[spec decision]* are decided by the spec; entries marked
-*[ccopt decision]* are decided here where even the spec is silent.
+Each entry names the rule of ``docs/compensation.md`` it settles and is read
+by the code that applies that rule, which branches on it: changing a decision
+is changing this file. Where a string value is used, the alternatives are
+listed. Entries marked *[spec decision]* are the documented rules' reading;
+*[ccopt decision]* ones are decided here where the rules are silent.
+
+Decisions the code can take no other way (a negative radius flips the side,
+spirals are Archimedean, a radius change is introduced over the next move,
+Fagor changes while on follow PMAC, and the LinuxCNC style's facts of
+LinuxCNC's own code) are documented in ``docs/compensation.md`` and at the
+place that applies them, not switched here.
 """
 from __future__ import annotations
 
@@ -11,40 +18,30 @@ import math
 
 import numpy as np
 
-#: [spec decision] A negative radius flips the side (LinuxCNC does this). The
-#: readers apply it; the engines see ``radius >= 0`` and the effective side.
-NEGATIVE_RADIUS_FLIPS_SIDE = True
-
 #: [spec decision] PMAC ``RAPID`` moves while compensation is on are offset
 #: like ``LINEAR`` moves (they keep feed ``None``: they run at axis limits).
+#: ``False``: a rapid runs uncompensated, to its programmed point (the move
+#: before it ends as for a lead-out, the move after it is a lead-in).
 PMAC_OFFSET_RAPIDS = True
-
-#: [spec decision] A CIRCLE move whose start and end radii differ is an
-#: Archimedean spiral: radius linear in swept angle.
-SPIRAL_RADIUS_LINEAR_IN_ANGLE = True
 
 #: [spec decision] Outside corners with ``t_in . t_out >= break_cos`` (Isx99)
 #: are "shallow": the offset elements are extended to their intersection.
 #: [ccopt decision] When a shallow outside corner's extended offsets do not
 #: intersect (possible with an arc), the sharp rule (added arc) is used.
+#: Alternative ``"gradual"``: as an inside corner without intersection, the
+#: change is introduced over the next move (no arc).
 SHALLOW_WITHOUT_INTERSECTION = "arc"
 
 
-#: [ccopt decision] In a reversal with an arc (spec rule 3, Turbo p.299) the
+#: [ccopt decision] In a reversal with an arc (rule 3, Turbo p.299) the
 #: "inside intersection" is one *behind* the corner along the incoming
 #: direction, ``(x - P) . t_in < 0``: the tool stops short on the incoming
 #: element and leaves on the outgoing one, which runs back over it. The two
 #: candidates of a line/arc or arc/arc reversal mirror each other across the
 #: normal at ``P``, on which both nominal offset points lie, so
-#: :func:`nearest_root` alone ties and cannot choose.
+#: :func:`nearest_root` alone ties and cannot choose. ``False``: the one
+#: ahead of the corner (the tool runs past it on the incoming element).
 REVERSAL_INTERSECTION_BEHIND_CORNER = True
-
-
-def behind_corner(candidates, P, t_in):
-    """The candidates strictly behind the corner ``P`` along ``t_in``
-    (:data:`REVERSAL_INTERSECTION_BEHIND_CORNER`)."""
-    P, t_in = np.asarray(P, float), np.asarray(t_in, float)
-    return [x for x in candidates if float((np.asarray(x, float) - P) @ t_in) < 0.0]
 
 
 def nearest_root(candidates, a_nominal, b_nominal):
@@ -67,33 +64,30 @@ def nearest_root(candidates, a_nominal, b_nominal):
     return best
 
 
-#: [spec decision] A radius change (``CCR``) while on is introduced linearly
-#: over the next move: the corner before it uses the old radius on both sides,
-#: the move runs from its old-radius start point to its new-radius end point
-#: (a diagonal for a line, a spiral about the programmed centre for an arc,
-#: whose radius is linear in swept angle: ``r(u) = r_old + u*(r_new - r_old)``
-#: with ``u`` the fraction of the swept angle).
-RADIUS_CHANGE_OVER_NEXT_MOVE = True
-
 #: [spec decision] Side change in a reversal (``CC1`` <-> ``CC2`` where the
 #: path turns back on itself): an arc of radius ``r`` about ``P`` (180 degrees,
 #: old side, as a line-line reversal) then the change is introduced linearly
-#: over the next move.
+#: over the next move. Alternative ``"gradual"``: no arc, the change alone
+#: (the offsets of a reversed move on the other side lie on one line).
 SIDE_CHANGE_REVERSAL = "arc-then-gradual"
 
 #: [ccopt decision] A lead-in or lead-out whose corner is a full reversal
 #: (``|c| <= eps`` and ``d < 0``) is treated as outside: the 180-degree arc.
+#: ``False``: as inside, no arc.
 LEAD_REVERSAL_IS_OUTSIDE = True
 
 #: [ccopt decision] Z-only moves and dwells between two in-plane moves run at
 #: the compensated corner point *after* any added corner arc (Turbo PMAC
 #: completes the added arc before a full stop, User Manual p.299).
+#: ``False``: they run where the incoming move ends, before the corner arc.
 GAP_MOVES_AFTER_CORNER_ARC = True
 
 #: [ccopt decision] Compensated corners involving a programmed spiral use, for
 #: the intersection, the circle about the spiral's centre through its offset
 #: end point (the manuals do not describe compensated spirals). The spiral
 #: itself is then run exactly from corner point to corner point.
+#: Alternative ``"tangent-line"``: the line through the offset point along
+#: the spiral's tangent there (the offset curve's tangent).
 SPIRAL_CORNER_CARRIER = "circle-through-offset-end"
 
 #: [ccopt decision] The sweep of a compensated arc is the programmed sweep
@@ -107,39 +101,19 @@ ARC_SWEEP_CONTINUOUS = True
 #: [spec decision] ``CC0`` with no following in-plane move, or program end
 #: while on: the last move ends at its offset end point and a straight
 #: lead-out returns to the programmed point, before the first trailing block
-#: that has compensation off (or at the very end).
+#: that has compensation off (or at the very end). ``False``: the path stays
+#: at the offset end point (as LinuxCNC).
 AUTOMATIC_ZERO_DISTANCE_LEADOUT = True
 
 
 # -- LinuxCNC style (ccopt/compensate/linuxcnc.py) ---------------------------------
 
-#: [ccopt decision] The spec's LinuxCNC rule 2 says "corners within 0.05 rad of
-#: straight are concave"; LinuxCNC's code (and its crazy-paths test) treat a
-#: turn of at most 0.05 rad either way as *straight on*: no corner arc and no
-#: pull-back; the queued move keeps its offset end and the next move starts
-#: there (a tiny diagonal step for a slight turn). ccopt follows the code.
-LINUXCNC_SLIGHT_TURN_IS_STRAIGHT_ON = True
-
-#: [ccopt decision] Program end while LinuxCNC compensation is still on: the
-#: queued move is sent with its offset end point and the path ends there (no
-#: return move: LinuxCNC has no automatic lead-out).
-LINUXCNC_PROGRAM_END_WHILE_ON = "stay-at-offset"
-
-#: [ccopt decision] LinuxCNC locates the arc-to-line pull-back point with the
-#: previous arc's *programmed* radius (compensated radius +- r); ccopt uses the
-#: equivalent geometric statement (the intersection of the queued arc's tool
-#: circle with the new offset line, LinuxCNC's root). The two agree whenever
-#: the queued arc's centre lies at its tool radius +- r from the programmed
-#: corner: for every fully compensated arc, and for an entry arc unless its
-#: re-centred circle's centre falls on the far side of the programmed end
-#: point (then LinuxCNC's point is off the new offset line).
-LINUXCNC_ARC_LINE_PULLBACK = "geometric"
-
 #: [ccopt decision] Gouge errors found while the queued move is sent (a
 #: straight that would run backwards, an arc that would sweep further than
 #: programmed) are located at the block being converted, as LinuxCNC reports
 #: them; G40 on a line of its own is located at the next motion block (the
-#: program model has no block for a line without motion).
+#: program model has no block for a line without motion). Alternative
+#: ``"queued-block"``: at the block of the queued move that gouges.
 LINUXCNC_ERROR_LOCATION = "converting-block"
 
 
@@ -154,33 +128,36 @@ LINUXCNC_ERROR_LOCATION = "converting-block"
 #: segments are LIN-LIN 0/1, LIN-ARC 1/2, ARC-ARC 2/3 (up to / beyond 90
 #: degrees): the ISG/Beckhoff G25 block counts. Activation and cancellation
 #: moves are not along their offsets: their piece stays a separate segment.
+#: Alternative ``"tangent-lines"``: the same points, every piece a corner
+#: segment of its own.
 FAGOR_G137_LINEAR_TRANSITION = "tangent-lines-isg-g25"
 
 #: [ccopt decision] G136/G137 in force at a corner is the outgoing block's
 #: (the cancellation block's at the end); G138/G139 is the activation block's
-#: at the start and the cancellation block's at the end.
+#: at the start and the cancellation block's at the end. Alternative
+#: ``"incoming-block"`` for G136/G137.
 FAGOR_MODAL_OF_CORNER = "outgoing-block"
 
 #: [ccopt decision] A reversal (the path turns back on itself) while Fagor
 #: compensation is on is an outside corner of 180 degrees: a half-turn arc
-#: (G136) or the G137 construction beyond 90 degrees.
+#: (G136) or the G137 construction beyond 90 degrees. ``False``: as an inside
+#: corner (the offsets' intersection, or the change over the next move).
 FAGOR_REVERSAL_IS_OUTSIDE = True
-
-#: [ccopt decision] Fagor inside corners whose offsets do not intersect, side
-#: changes (G41 <-> G42) and radius changes (new D) while on follow the PMAC
-#: rules (the change is introduced over the next move).
-FAGOR_CHANGES_WHILE_ON = "as-pmac"
 
 #: [ccopt decision] The manual describes activation by a straight move only:
 #: an arc as the first move in the plane after G41/G42 is an error, like an
 #: arc as the cancellation move after G40 (which the manual forbids).
+#: ``False``: an arc activates like a straight move (its tool path is then
+#: a spiral from the programmed start to the offset end, as a PMAC lead-in).
 FAGOR_ARC_ACTIVATION_IS_AN_ERROR = True
 
 #: [ccopt decision] Program end while Fagor compensation is on behaves as a
-#: cancellation without motion in the plane (spec Fagor rule 4): the last move
+#: cancellation without motion in the plane (Fagor rule 4): the last move
 #: ends at its offset end and the tool goes straight to its programmed end.
+#: Alternative ``"stay-at-offset"``: the path ends at the offset end.
 FAGOR_PROGRAM_END_WHILE_ON = "cancel-in-place"
 
 #: [ccopt decision] Moves with no in-plane component between two compensated
 #: moves run after the corner transition (as PMAC, GAP_MOVES_AFTER_CORNER_ARC).
+#: ``False``: before it, where the incoming move ends.
 FAGOR_GAP_MOVES_AFTER_TRANSITION = True

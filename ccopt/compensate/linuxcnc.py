@@ -1,10 +1,10 @@
 """LinuxCNC cutter radius compensation (``G41``/``G42``/``G41.1``/``G42.1``, ``G40``).
 
-Rules: spec "LinuxCNC style", re-derived from LinuxCNC's interpreter
-(``src/emc/rs274ngc/interp_convert.cc``: ``convert_straight_comp1/2``,
+Rules: docs/compensation.md, section 5 "LinuxCNC style", re-derived from
+LinuxCNC's interpreter (``src/emc/rs274ngc/interp_convert.cc``: ``convert_straight_comp1/2``,
 ``convert_arc_comp1/2``, ``convert_cutter_compensation_off``; and
 ``interp_queue.cc``: ``move_endpoint_and_flush``) and checked against its own
-test suite (``shared/conformance/linuxcnc/crazy-paths``).
+test suite (``tests/conformance/linuxcnc/crazy-paths``).
 
 How LinuxCNC works, and therefore how this module works
 -------------------------------------------------------
@@ -58,10 +58,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ccopt.compensate import decisions
 from ccopt.compensate.corners import offset_dir, perp
 from ccopt.compensate.scan import effective_side_radius
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral
+from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import Block, Motion, Program
 from ccopt.tolerances import (
     LINUXCNC_ARC_GROWTH,
@@ -71,7 +73,6 @@ from ccopt.tolerances import (
 )
 from ccopt.toolpath import PathSegment, Role, ToolPath
 
-TWO_PI = 2.0 * math.pi
 
 #: The style's "straight on" turn tolerance (radians), exported under its old
 #: name; the value lives in :data:`ccopt.tolerances.LINUXCNC_CONCAVE_CORNER`.
@@ -232,20 +233,23 @@ class _Interpreter:
     def move_endpoint_and_flush(self, x, block: Block) -> None:
         """Move the end of every queued move to ``x``, check it, send them.
 
-        A gouge is reported at ``block``, the block being converted
-        (decisions.LINUXCNC_ERROR_LOCATION).
+        A gouge is reported at ``block``, the block being converted, as
+        LinuxCNC does (decisions.LINUXCNC_ERROR_LOCATION ``"converting-block"``),
+        or at the queued move's own block (``"queued-block"``).
         """
         x = np.asarray(x, float)
         if not self.queue:
             return
+        at_converting = decisions.LINUXCNC_ERROR_LOCATION == "converting-block"
         for item in self.queue:
             if isinstance(item, _Dwell):
                 continue
+            where = block if at_converting else item.block
             if item.kind == "arc":
                 sweep = find_turn(self.endpoint, item.centre, item.turn, x)
                 if (item.programmed_sweep and self.endpoint_valid
                         and abs(sweep) > abs(item.programmed_sweep) + LINUXCNC_ARC_GROWTH):
-                    raise _err(block, f"arc move of line {item.block.source.line} in a concave "
+                    raise _err(where, f"arc move of line {item.block.source.line} in a concave "
                                       "corner cannot be reached by the tool without gouging "
                                       "(the pulled-back arc would sweep further than "
                                       "programmed): use a smaller cutter or a longer arc")
@@ -253,7 +257,7 @@ class _Interpreter:
                 new_dir = x - self.endpoint
                 if self.endpoint_valid and float(np.dot(item.direction, new_dir)) < 0.0:
                     what = "straight traverse" if item.rapid else "straight feed"
-                    raise _err(block, f"{what} of line {item.block.source.line} in a concave "
+                    raise _err(where, f"{what} of line {item.block.source.line} in a concave "
                                       "corner cannot be reached by the tool without gouging "
                                       "(it is shorter than the corner's pull-back): use a "
                                       "smaller cutter or a longer move")
@@ -278,8 +282,9 @@ class _Interpreter:
                 self.enqueue(_Dwell(blk.dwell, blk))
                 continue
             self.move(blk)
-        # decisions.LINUXCNC_PROGRAM_END_WHILE_ON: whatever is queued is sent
-        # as it is; the path ends at the last offset point.
+        # Program end while on: whatever is queued is sent as it is and the
+        # path ends at the last offset point; LinuxCNC has no automatic
+        # lead-out (docs/compensation.md, LinuxCNC program end while on).
         self.dequeue()
         return ToolPath(tuple(self.segs), plane=self.plane, style=LinuxcncStyle.name,
                         radius=self.used_radius, dwells=tuple(self.dwells),
@@ -463,8 +468,9 @@ class _Interpreter:
                 x = self._pull_back_arc_line(blk, front, t_new)
             self.move_endpoint_and_flush(x, blk)
         else:
-            # Within the tolerance of straight on: nothing to adjust
-            # (decisions.LINUXCNC_SLIGHT_TURN_IS_STRAIGHT_ON).
+            # Within the tolerance of straight on: nothing to adjust. LinuxCNC's
+            # code (and its crazy-paths output) treat a slight turn either way
+            # as straight on (docs/compensation.md, LinuxCNC slight turn).
             self.dequeue()
             self.set_endpoint(c)
         self.enqueue(_Move("line", end, w, blk, Role.COMPENSATED, rapid=rapid,
@@ -486,8 +492,11 @@ class _Interpreter:
 
         Of the two intersections LinuxCNC takes, measured along ``t_new`` from
         the circle centre's foot on that line, the one behind it when the tool
-        is inside the queued arc and the one ahead of it when outside
-        (decisions.LINUXCNC_ARC_LINE_PULLBACK).
+        is inside the queued arc and the one ahead of it when outside. This is
+        the geometric statement of LinuxCNC's point, which it computes from the
+        queued arc's programmed radius +- r; the two differ only for an entry
+        arc whose re-centred centre falls beyond the programmed end
+        (docs/compensation.md, LinuxCNC arc-to-line pull-back).
         """
         k, r = self.k, self.r
         Cp = front.centre

@@ -1,11 +1,12 @@
 """PMAC / Turbo PMAC cutter radius compensation — the reference style.
 
-Rules: spec "PMAC / Turbo PMAC style", from the PMAC User Manual pp.184-194
-and the Turbo PMAC User Manual pp.294-302. The engine walks the in-plane
-moves once; at each boundary between two of them it decides a *joint*: where
-the incoming move's tool path ends, which corner segments are added, and
-where the outgoing move's tool path starts. Each move's exact tool segment is
-then its geometry between those two points (:func:`corners.tool_geometry`).
+Rules: docs/compensation.md, section 4 "PMAC / Turbo PMAC style", from the
+PMAC User Manual pp.184-194 and the Turbo PMAC User Manual pp.294-302. The
+engine walks the in-plane moves once; at each boundary between two of them it
+decides a *joint*: where the incoming move's tool path ends, which corner
+segments are added, and where the outgoing move's tool path starts. Each
+move's exact tool segment is then its geometry between those two points
+(:func:`corners.tool_geometry`).
 
 Move classes (by the side in force before and for the move):
 ``uncompensated`` (off, off), ``lead-in`` (off, on), ``compensated`` (on, on),
@@ -20,8 +21,8 @@ import numpy as np
 
 from ccopt.compensate import decisions
 from ccopt.compensate.corners import (
-    Corner, Element, carrier_intersections, classify, corner_arc, reversal_sweep, tool_geometry,
-    turn,
+    Corner, Element, carrier_intersections, classify, corner_arc, corner_side, reversal_sweep,
+    tool_geometry, turn,
 )
 from ccopt.compensate.batch import (
     ARC, SPIRAL, ElementArrays, classify_turn, corner_turn, nearest_corner_points,
@@ -51,6 +52,16 @@ def _pt(p) -> tuple[float, float]:
     return (float(p[0]), float(p[1]))
 
 
+def _lead_corner_kind(k: int, tr) -> Corner:
+    """The corner class at the end of a lead-in or the start of a lead-out: a
+    full reversal counts as outside (the 180-degree arc) or, without
+    :data:`decisions.LEAD_REVERSAL_IS_OUTSIDE`, as inside (no arc)."""
+    kind = classify(k, tr)
+    if kind is Corner.REVERSAL and not decisions.LEAD_REVERSAL_IS_OUTSIDE:
+        return Corner.INSIDE
+    return kind
+
+
 class PmacStyle:
     """The PMAC rules. ``break_cos`` is Isx99; ``ccbuf`` Turbo's ``DEFINE CCBUF``
     (``None``: unlimited look-ahead through non-plane moves)."""
@@ -76,14 +87,15 @@ class PmacStyle:
         kind = classify(k, tr)
         if not look_ahead_ok:
             # Turbo CCBUF exhausted: the controller could not see the next
-            # move in time and treats the corner as outside (spec rule 6).
+            # move in time and treats the corner as outside (rule 6).
             return Joint(A, B, [corner_arc(P, r, ti, tj, k)] if kind is not Corner.TANGENT else [])
         if kind is Corner.TANGENT:
             return Joint(A, A)
         if kind is Corner.REVERSAL:
             if not (a.is_line and b.is_line):
                 hits = carrier_intersections(a.carrier(True, k, r), b.carrier(False, k, r))
-                x = decisions.nearest_root(decisions.behind_corner(hits, P, ti), A, B)
+                near = corner_side(hits, P, ti, decisions.REVERSAL_INTERSECTION_BEHIND_CORNER)
+                x = decisions.nearest_root(near, A, B)
                 if x is not None:
                     return Joint(x, x)
             return Joint(A, B, [corner_arc(P, r, ti, tj, k, reversal_sweep(k))])
@@ -98,8 +110,10 @@ class PmacStyle:
         if tr.d < self.break_cos:
             return Joint(A, B, [corner_arc(P, r, ti, tj, k)])
         x = self._intersection(a, b, k, k, r, r, A, B)
-        if x is None and decisions.SHALLOW_WITHOUT_INTERSECTION == "arc":
-            return Joint(A, B, [corner_arc(P, r, ti, tj, k)])
+        if x is None:
+            if decisions.SHALLOW_WITHOUT_INTERSECTION == "arc":
+                return Joint(A, B, [corner_arc(P, r, ti, tj, k)])
+            return Joint(A, A)      # "gradual": as an inside corner without one
         return Joint(x, x)
 
     @staticmethod
@@ -108,10 +122,10 @@ class PmacStyle:
         return decisions.nearest_root(hits, A, B)
 
     def lead_in_corner(self, a: Element, b: Element, k: int, r: float) -> Joint:
-        """``a`` is the lead-in, ``b`` the first fully compensated move (spec 2)."""
+        """``a`` is the lead-in, ``b`` the first fully compensated move (rule 2)."""
         P = a.end
         ti, tj = a.t_end, b.t_start
-        kind = classify(k, turn(ti, tj))
+        kind = _lead_corner_kind(k, turn(ti, tj))
         B = b.offset_point(False, k, r)
         if kind in (Corner.INSIDE, Corner.TANGENT):
             return Joint(B, B)
@@ -120,10 +134,10 @@ class PmacStyle:
         return Joint(A, B, [corner_arc(P, r, ti, tj, k, sweep)])
 
     def lead_out_corner(self, a: Element, b: Element, k: int, r: float) -> Joint:
-        """``a`` is the last compensated move, ``b`` the lead-out (spec 5)."""
+        """``a`` is the last compensated move, ``b`` the lead-out (rule 5)."""
         P = a.end
         ti, tj = a.t_end, b.t_start
-        kind = classify(k, turn(ti, tj))
+        kind = _lead_corner_kind(k, turn(ti, tj))
         A = a.offset_point(True, k, r)
         if kind in (Corner.INSIDE, Corner.TANGENT):
             return Joint(A, A)
@@ -132,15 +146,16 @@ class PmacStyle:
         return Joint(A, B, [corner_arc(P, r, ti, tj, k, sweep)])
 
     def side_change_corner(self, a: Element, b: Element) -> Joint:
-        """``CC1`` <-> ``CC2`` between two compensated moves (spec 4)."""
+        """``CC1`` <-> ``CC2`` between two compensated moves (rule 4)."""
         P = a.end
         ti, tj = a.t_end, b.t_start
         A = a.offset_point(True, a.k, a.r)
         B = b.offset_point(False, b.k, b.r)
         tr = turn(ti, tj)
-        if classify(a.k, tr) is Corner.REVERSAL:
-            # decisions.SIDE_CHANGE_REVERSAL: 180-degree arc on the old side,
-            # then the gradual change over the next move.
+        if (classify(a.k, tr) is Corner.REVERSAL
+                and decisions.SIDE_CHANGE_REVERSAL == "arc-then-gradual"):
+            # 180-degree arc on the old side, then the gradual change over the
+            # next move (otherwise, "gradual": the change alone, from A).
             arc = corner_arc(P, a.r, ti, tj, a.k, reversal_sweep(a.k))
             return Joint(A, np.asarray(arc.end, float), [arc])
         x = self._intersection(a, b, a.k, b.k, a.r, b.r, A, B)
@@ -159,7 +174,8 @@ class PmacStyle:
             r_here = a.r
         elif ca == LEAD_IN:
             # the lead-in's own radius: a change (e.g. from CCR0) made after
-            # it is introduced over b (decisions.RADIUS_CHANGE_OVER_NEXT_MOVE)
+            # it is introduced over b (a radius change is introduced linearly
+            # over the next move: docs/compensation.md, rule 4)
             r_here = a.r
         elif a.k != b.k:
             r_here = max(a.r, b.r)
@@ -176,7 +192,7 @@ class PmacStyle:
             return self.side_change_corner(a, b)
         look_ahead_ok = self.ccbuf is None or gap <= self.ccbuf
         # A radius change is introduced over b: the corner uses the old radius
-        # (decisions.RADIUS_CHANGE_OVER_NEXT_MOVE).
+        # (docs/compensation.md, rule 4: radius change over the next move).
         return self.full_corner(a, b, a.k, a.r, look_ahead_ok)
 
     def batch_corners(self, arr: ElementArrays, ia: np.ndarray):
@@ -222,6 +238,173 @@ def classes_of(k: np.ndarray) -> list[str]:
     return [names[c] for c in codes]
 
 
+@dataclass
+class Joints:
+    """Every joint of a program decided: tool point where each move starts and
+    ends, the corner geometries added after move ``i`` (``corners[i]``), and
+    the automatic lead-out ``(from, to)`` at the end (``None`` when there is
+    none)."""
+
+    starts: np.ndarray
+    ends: np.ndarray
+    corners: dict[int, list] = field(default_factory=dict)
+    tail_return: tuple | None = None
+
+
+def check_arc_offsets(scan: ScanResult, arr: ElementArrays, classes: list[str]) -> None:
+    """The offset of a fully compensated arc must exist (rule 7);
+    lead-in and lead-out arcs are spirals that only reach the offset at one
+    end. Raises CompensationError at the first arc whose offset vanishes."""
+    k, r = scan.k, scan.r
+    comp = np.array([c == COMP for c in classes], bool)
+    vanishes = (comp & (arr.kind == ARC) & (k != 0)
+                & (arr.offset_radius(np.arange(len(scan)), k, r) <= POINT_EPS))
+    for i in np.flatnonzero(comp & ((arr.kind == SPIRAL) | vanishes)):
+        scan.element(i).check_offset(int(k[i]), float(r[i]))
+
+
+def _batch_joints(style, scan: ScanResult, arr: ElementArrays, classes: list[str],
+                  joints: Joints) -> np.ndarray:
+    """Decide the ordinary joints in bulk (``style.batch_corners``: both moves
+    compensated on one side, no gap, no spiral); the joints left to
+    ``style.joint`` one at a time."""
+    n, k = len(scan), scan.k
+    comp = np.array([c == COMP for c in classes], bool)
+    gap_counts = np.array([len(g) for g in scan.gaps[1:n]], int)
+    ia = np.flatnonzero(comp[:-1] & comp[1:] & (k[:-1] == k[1:]) & (gap_counts == 0)
+                        & (arr.kind[:-1] != SPIRAL) & (arr.kind[1:] != SPIRAL))
+    if not len(ia):
+        return np.arange(n - 1)
+    done, e_prev, s_next, arcs = style.batch_corners(arr, ia)
+    joints.ends[ia[done]] = e_prev[done]
+    joints.starts[ia[done] + 1] = s_next[done]
+    for q in np.flatnonzero(done & arcs["has"]):
+        joints.corners[int(ia[q])] = [Arc(_pt(arr.E[ia[q]]), float(scan.r[ia[q]]),
+                                          float(arcs["theta0"][q]), float(arcs["sweep"][q]))]
+    handled = np.zeros(n - 1, bool)
+    handled[ia[done]] = True
+    return np.flatnonzero(~handled)
+
+
+def decide_joints(style, scan: ScanResult, arr: ElementArrays, classes: list[str],
+                  vectorised: bool) -> Joints:
+    """Every joint of the program, and where the last move ends."""
+    n, k = len(scan), scan.k
+    joints = Joints(np.full((n, 2), np.nan), np.full((n, 2), np.nan))
+    joints.starts[0] = arr.S[0]
+    todo = np.arange(n - 1)
+    if vectorised and n > 1 and hasattr(style, "batch_corners"):
+        todo = _batch_joints(style, scan, arr, classes, joints)
+    for i in todo:
+        j = style.joint(scan.element(i), classes[i], scan.element(i + 1), classes[i + 1],
+                        len(scan.gaps[i + 1]))
+        joints.ends[i] = j.end_prev
+        joints.starts[i + 1] = j.start_next
+        if j.corner:
+            joints.corners[int(i)] = j.corner
+    if k[-1] != 0:
+        # Still on at the end of the in-plane moves: the last move ends at its
+        # offset end, and PMAC's automatic zero-distance lead-out returns to
+        # the programmed point (decisions.AUTOMATIC_ZERO_DISTANCE_LEADOUT;
+        # without it the path stays at the offset).
+        last = scan.element(n - 1)
+        joints.ends[-1] = last.offset_point(True, last.k, last.r)
+        if decisions.AUTOMATIC_ZERO_DISTANCE_LEADOUT:
+            joints.tail_return = (joints.ends[-1], last.end)
+    else:
+        joints.ends[-1] = arr.E[-1]
+    return joints
+
+
+def tool_geometries(scan: ScanResult, arr: ElementArrays, joints: Joints,
+                    vectorised: bool) -> list:
+    """The exact tool geometry of every move between its joints: lines and
+    arcs in bulk (:func:`batch.tool_segments`) when ``vectorised``, spirals
+    and whatever the bulk route leaves through :func:`corners.tool_geometry`."""
+    n = len(scan)
+    geoms: list = [None] * n
+    fast = np.flatnonzero(arr.kind != SPIRAL) if vectorised else np.zeros(0, int)
+    for i, g in zip(fast, tool_segments(arr, fast, joints.starts, joints.ends)):
+        geoms[i] = g
+    for i in range(n):
+        if geoms[i] is None:
+            geoms[i] = tool_geometry(scan.element(i), joints.starts[i], joints.ends[i])
+    return geoms
+
+
+class SegmentList:
+    """The tool path's segments and dwells, in the order the machine runs them."""
+
+    def __init__(self) -> None:
+        self.segs: list[PathSegment] = []
+        self.dwells: list[tuple[int, float, Block]] = []
+
+    def gap(self, blocks: list[Block], at, comp_on: bool) -> None:
+        """Blocks with no in-plane motion (Z moves, dwells) at tool point ``at``."""
+        for blk in blocks:
+            if blk.motion is Motion.DWELL:
+                self.dwells.append((len(self.segs), blk.dwell, blk))
+                continue
+            w0 = blk.uvw(blk.start)[2]
+            w1 = blk.uvw(blk.end)[2]
+            role = Role.RAPID if blk.motion is Motion.RAPID and blk.modal.side == 0 else (
+                Role.COMPENSATED if comp_on else Role.UNCOMPENSATED)
+            self.segs.append(PathSegment(Line(_pt(at), _pt(at)), role, blk, w0, w1, blk.feed))
+
+    def add(self, geom, role: Role, blk: Block, w0: float, w1: float) -> None:
+        self.segs.append(PathSegment(geom, role, blk, w0, w1, blk.feed))
+
+
+def emit_moves(out: SegmentList, scan: ScanResult, classes: list[str], geoms: list,
+               joints: Joints) -> None:
+    """Each move's tool segment, its corner segments and the gaps between moves.
+
+    A gap (moves with no in-plane component, dwells) between two moves runs at
+    the compensated corner point after the added corner segments
+    (decisions.GAP_MOVES_AFTER_CORNER_ARC), or else before them, where the
+    incoming move ends.
+    """
+    n, k = len(scan), scan.k
+    plane_w = PLANE_AXES[scan.plane][2]
+    gaps_after = decisions.GAP_MOVES_AFTER_CORNER_ARC
+
+    def comp_on(i: int) -> bool:     # gap before move i runs compensated
+        return k[i] != 0 and classes[i] != LEAD_IN
+
+    for i, blk in enumerate(scan.blocks):
+        if scan.gaps[i] and (gaps_after or i == 0):
+            out.gap(scan.gaps[i], joints.starts[i], comp_on(i))
+        role = ROLE_OF[classes[i]]
+        if classes[i] == UNCOMP and blk.motion is Motion.RAPID:
+            role = Role.RAPID
+        w0, w1 = blk.start[plane_w], blk.end[plane_w]
+        if geoms[i].length > POINT_EPS or w0 != w1:
+            out.add(geoms[i], role, blk, w0, w1)
+        if not gaps_after and i + 1 < n and scan.gaps[i + 1]:
+            out.gap(scan.gaps[i + 1], joints.ends[i], comp_on(i + 1))
+        for cg in joints.corners.get(i, ()):
+            out.add(cg, Role.CORNER, blk, w1, w1)
+
+
+def emit_tail(out: SegmentList, scan: ScanResult, joints: Joints) -> None:
+    """The blocks after the last in-plane move, and the automatic lead-out:
+    it happens before the first trailing block with compensation off, or at
+    the very end."""
+    trailing = scan.gaps[len(scan)]
+    if joints.tail_return is None and scan.k[-1] == 0:
+        out.gap(trailing, joints.ends[-1], False)
+        return
+    last_blk = scan.blocks[-1]
+    w_last = last_blk.end[PLANE_AXES[scan.plane][2]]
+    split = next((q for q, blk in enumerate(trailing) if blk.modal.side == 0), len(trailing))
+    out.gap(trailing[:split], joints.ends[-1], True)
+    end = joints.ends[-1]
+    if joints.tail_return is not None:
+        start, end = joints.tail_return
+        out.add(Line(_pt(start), _pt(end)), Role.LEAD_OUT, last_blk, w_last, w_last)
+    out.gap(trailing[split:], end, False)
+
+
 def assemble(style, scan: ScanResult, program: Program, vectorised: bool = True) -> ToolPath:
     """Turn the scanned moves into a ToolPath using ``style.joint``.
 
@@ -230,109 +413,19 @@ def assemble(style, scan: ScanResult, program: Program, vectorised: bool = True)
     go through :mod:`.batch`; every other joint and segment through the
     one-at-a-time reference. Both routes give the same path (tested).
     """
-    n = len(scan)
-    k, r = scan.k, scan.r
-    classes = classes_of(k)
-    comp = np.array([c == COMP for c in classes], bool)
-    arr = ElementArrays.from_blocks(scan.blocks, scan.plane, k, r) if n else None
-    # The offset of a fully compensated arc must exist (spec rule 7); lead-in
-    # and lead-out arcs are spirals that only reach the offset at one end.
-    if n:
-        bad = comp & (arr.kind == ARC) & (arr.offset_radius(np.arange(n), k, r) <= POINT_EPS) & (k != 0)
-        for i in np.flatnonzero(comp & ((arr.kind == SPIRAL) | bad)):
-            scan.element(i).check_offset(int(k[i]), float(r[i]))
-    starts = np.full((n, 2), np.nan)
-    ends = np.full((n, 2), np.nan)
-    corners: dict[int, list] = {}
-    if n:
-        starts[0] = arr.S[0]
-    todo = np.arange(max(n - 1, 0))
-    if vectorised and n > 1 and hasattr(style, "batch_corners"):
-        gap_counts = np.array([len(g) for g in scan.gaps[1:n]], int)
-        ia = np.flatnonzero(comp[:-1] & comp[1:] & (k[:-1] == k[1:]) & (gap_counts == 0)
-                            & (arr.kind[:-1] != SPIRAL) & (arr.kind[1:] != SPIRAL))
-        if len(ia):
-            done, e_prev, s_next, arcs = style.batch_corners(arr, ia)
-            ends[ia[done]] = e_prev[done]
-            starts[ia[done] + 1] = s_next[done]
-            for q in np.flatnonzero(done & arcs["has"]):
-                corners[int(ia[q])] = [Arc(_pt(arr.E[ia[q]]), float(r[ia[q]]),
-                                           float(arcs["theta0"][q]), float(arcs["sweep"][q]))]
-            handled = np.zeros(n - 1, bool)
-            handled[ia[done]] = True
-            todo = np.flatnonzero(~handled)
-    for i in todo:
-        j = style.joint(scan.element(i), classes[i], scan.element(i + 1), classes[i + 1],
-                        len(scan.gaps[i + 1]))
-        ends[i] = j.end_prev
-        starts[i + 1] = j.start_next
-        if j.corner:
-            corners[int(i)] = j.corner
-    tail_return = None
-    if n:
-        if k[-1] != 0:
-            # Still on at the end of the in-plane moves: PMAC's automatic
-            # zero-distance lead-out (decisions.AUTOMATIC_ZERO_DISTANCE_LEADOUT).
-            last = scan.element(n - 1)
-            ends[-1] = last.offset_point(True, last.k, last.r)
-            tail_return = (ends[-1], last.end)
-        else:
-            ends[-1] = arr.E[-1]
-
-    # exact tool geometry of every move
-    geoms: list = [None] * n
-    if n:
-        fast = np.flatnonzero(arr.kind != SPIRAL) if vectorised else np.zeros(0, int)
-        for i, g in zip(fast, tool_segments(arr, fast, starts, ends)):
-            geoms[i] = g
-        for i in range(n):
-            if geoms[i] is None:
-                geoms[i] = tool_geometry(scan.element(i), starts[i], ends[i])
-
-    segs: list[PathSegment] = []
-    dwells: list[tuple[int, float, Block]] = []
-
-    def emit_gap(blocks: list[Block], at: np.ndarray, comp_on: bool) -> None:
-        for blk in blocks:
-            if blk.motion is Motion.DWELL:
-                dwells.append((len(segs), blk.dwell, blk))
-                continue
-            w0 = blk.uvw(blk.start)[2]
-            w1 = blk.uvw(blk.end)[2]
-            role = Role.RAPID if blk.motion is Motion.RAPID and blk.modal.side == 0 else (
-                Role.COMPENSATED if comp_on else Role.UNCOMPENSATED)
-            segs.append(PathSegment(Line(_pt(at), _pt(at)), role, blk, w0, w1, blk.feed))
-
+    n, k, r = len(scan), scan.k, scan.r
+    out = SegmentList()
     if n == 0:
-        emit_gap(scan.gaps[0], np.asarray(scan.start_uv, float), False)
-    plane_w = PLANE_AXES[scan.plane][2]
-    for i, blk in enumerate(scan.blocks):
-        if scan.gaps[i]:
-            emit_gap(scan.gaps[i], starts[i], k[i] != 0 and classes[i] != LEAD_IN)
-        geom = geoms[i]
-        role = ROLE_OF[classes[i]]
-        if classes[i] == UNCOMP and blk.motion is Motion.RAPID:
-            role = Role.RAPID
-        w0, w1 = blk.start[plane_w], blk.end[plane_w]
-        if geom.length > POINT_EPS or w0 != w1:
-            segs.append(PathSegment(geom, role, blk, w0, w1, blk.feed))
-        for cg in corners.get(i, ()):
-            segs.append(PathSegment(cg, Role.CORNER, blk, w1, w1, blk.feed))
-    if n:
-        trailing = scan.gaps[n]
-        last_blk = scan.blocks[-1]
-        w_last = last_blk.end[plane_w]
-        if tail_return is not None:
-            # The return happens before the first trailing block with
-            # compensation off, or at the very end.
-            split = next((q for q, blk in enumerate(trailing) if blk.modal.side == 0), len(trailing))
-            emit_gap(trailing[:split], tail_return[0], True)
-            segs.append(PathSegment(Line(_pt(tail_return[0]), _pt(tail_return[1])), Role.LEAD_OUT,
-                                    last_blk, w_last, w_last, last_blk.feed))
-            emit_gap(trailing[split:], tail_return[1], False)
-        else:
-            emit_gap(trailing, ends[-1], False)
+        out.gap(scan.gaps[0], np.asarray(scan.start_uv, float), False)
+    else:
+        classes = classes_of(k)
+        arr = ElementArrays.from_blocks(scan.blocks, scan.plane, k, r)
+        check_arc_offsets(scan, arr, classes)
+        joints = decide_joints(style, scan, arr, classes, vectorised)
+        geoms = tool_geometries(scan, arr, joints, vectorised)
+        emit_moves(out, scan, classes, geoms, joints)
+        emit_tail(out, scan, joints)
     radius = float(r[k != 0].max()) if n and (k != 0).any() else 0.0
-    return ToolPath(tuple(segs), plane=scan.plane, style=style.name, radius=radius,
-                    dwells=tuple(dwells), units=program.units,
+    return ToolPath(tuple(out.segs), plane=scan.plane, style=style.name, radius=radius,
+                    dwells=tuple(out.dwells), units=program.units,
                     meta={"break_cos": getattr(style, "break_cos", None)})

@@ -4,7 +4,7 @@ The in-plane moves become :class:`~ccopt.compensate.corners.Element` objects
 with their effective side and radius (after ``radius=``/``side=`` overrides);
 moves with no in-plane component (Z only) and dwells between two in-plane
 moves are the *gap* before the next move: they are skipped when looking for
-the next move and run at the compensated corner point (spec rule 6).
+the next move and run at the compensated corner point (rule 6 of docs/compensation.md).
 Conditions no style can compensate are reported here, located.
 """
 from __future__ import annotations
@@ -13,9 +13,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ccopt.compensate import decisions
 from ccopt.compensate.corners import Element, element_of
 from ccopt.errors import CompensationError
-from ccopt.program.model import Block, Program
+from ccopt.program.model import Block, Motion, Program
 
 
 @dataclass
@@ -92,6 +93,10 @@ def scan_program(program: Program, radius: float | None = None, side: int | None
                             "while cutter compensation is on")
         prev_side = k
         if blk.motion.is_move and blk.in_plane:
+            if style == "pmac" and blk.motion is Motion.RAPID and not decisions.PMAC_OFFSET_RAPIDS:
+                # A rapid runs uncompensated: the move before it ends as for
+                # a lead-out, the move after it is a lead-in.
+                k, r = 0, 0.0
             moves.append(blk)
             ks.append(k)
             rs.append(r)

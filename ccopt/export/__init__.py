@@ -6,7 +6,7 @@ one (rounding of the written numbers plus the certified error of the arcs
 and lines fitted to spirals and Bezier blend curves, :mod:`.arcfit`), and,
 when the programmed contour is given, it is verified against it. The verdict
 goes into the file's header comments and into the returned
-:class:`ExportResult`. Writes are atomic (:mod:`.atomic`): a failure
+:class:`ExportResult`. Writes are atomic (:mod:`ccopt.atomic`): a failure
 leaves no partial file and never replaces a good one.
 """
 from __future__ import annotations
@@ -15,11 +15,12 @@ import json
 import math
 import os
 from dataclasses import dataclass, field
+from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
+from ccopt.atomic import write_text_atomic
 from ccopt.errors import ProgramError
 from ccopt.export.arcfit import DEFAULT_TOL
-from ccopt.export.atomic import write_text_atomic
 from ccopt.export.gcode import write_gcode
 from ccopt.export.pmacprog import write_pmac
 from ccopt.export.svg import write_svg
@@ -28,6 +29,7 @@ from ccopt.program import read_text
 from ccopt.program.model import Program
 from ccopt.tolerances import EXPORT_REFIT_MIN_TOL, EXPORT_REFIT_ROUNDS, EXPORT_REFIT_SHRINK
 from ccopt.toolpath import FITTED_PIECES, PathSegment, Role, ToolPath, programmed_path
+from ccopt.verify import verify
 
 FORMATS = {".nc": "gcode", ".ngc": "gcode", ".gcode": "gcode", ".tap": "gcode",
            ".pmc": "pmac", ".pmac": "pmac", ".svg": "svg", ".json": "json"}
@@ -143,8 +145,120 @@ def _verify(path: ToolPath, program: Program | None):
     """Certificate of ``path`` against ``program``'s contour, or ``None``."""
     if program is None:
         return None
-    from ccopt.verify import verify  # verify consumes ToolPath; export calls it
     return verify(path, program)
+
+
+@dataclass
+class _ProgramExport:
+    """One G-code or PMAC export: write, read back with ccopt's reader, verify.
+
+    ``seg_tol`` maps a tool-path segment index to a fit tolerance tighter than
+    ``tol`` (program units) for the spiral or curve it holds.
+    """
+
+    path: ToolPath
+    fmt: str
+    tol: float
+    out: Path
+    program: Program | None
+    header: list[str]
+
+    def write(self, header: list[str], seg_tol: dict[int, float]) -> tuple[str, list]:
+        """Program text and its moves ``(source segment, meant geometry, fit bound)``."""
+        if self.fmt == "gcode":
+            return write_gcode(self.path, self.tol, header, seg_tol=seg_tol)[:2]
+        return write_pmac(self.path, header, tol=self.tol, seg_tol=seg_tol)
+
+    def attempt(self, seg_tol: dict[int, float]):
+        """Write, read back, verify: ``(moves, round-trip error, certificate)``."""
+        text, moves = self.write(self.header, seg_tol)
+        back = readback_path(text, self.fmt, self.path, moves, str(self.out))
+        return moves, roundtrip_error(back, moves), _verify(back, self.program)
+
+    def refit(self, seg_tol, moves, roundtrip, cert):
+        """Tighten the fits whose read-back gouges, at most
+        :data:`~ccopt.tolerances.EXPORT_REFIT_ROUNDS` times.
+
+        A fit is tightened only where the read-back fails and the computed
+        path itself does not; every round that is kept was read back and
+        verified, and the file is written from the last one. Returns the
+        kept ``(seg_tol, moves, roundtrip, cert)``.
+        """
+        if cert is None or cert.ok or not _verify(self.path, self.program).ok:
+            return seg_tol, moves, roundtrip, cert
+        for _ in range(EXPORT_REFIT_ROUNDS):
+            tighter = _tighter_fits(cert, moves, seg_tol, self.tol)
+            if tighter == seg_tol:
+                break
+            try:
+                moves_t, rt_t, cert_t = self.attempt(tighter)
+            except ValueError:      # the tighter fit needs too many pieces
+                break
+            seg_tol, moves, roundtrip, cert = tighter, moves_t, rt_t, cert_t
+            if cert.ok:
+                break
+        return seg_tol, moves, roundtrip, cert
+
+
+def _fit_summary(res: ExportResult, path: ToolPath, moves: list,
+                 seg_tol: dict[int, float]) -> str:
+    """Record the fitted moves in ``res``; their one-line description."""
+    fitted = [bound for src, geom, bound in moves
+              if src >= 0 and type(geom) is not type(path.segments[src].geom)]
+    res.fit_error = max(fitted, default=0.0)
+    res.fitted_moves = len(fitted)
+    fit = (f"spirals and blend curves as {res.fitted_moves} arcs/lines certified within "
+           f"{res.fit_error:.3g}" if res.fitted_moves else "no spirals or blend curves to fit")
+    if seg_tol:
+        fit += (f"; fitted within {min(seg_tol.values()):.3g} on {len(seg_tol)} segment(s) "
+                f"running at the clearance limit")
+        res.notes.append(f"fit tightened on segments {sorted(seg_tol)}: the read-back at "
+                         f"the default fit came inside the clearance")
+    return fit
+
+
+def _verdict(res: ExportResult, path: ToolPath, fit: str, cert) -> list[str]:
+    """Header lines saying how the file was checked; records the verdict in ``res``."""
+    lines = [f"read back with ccopt: within {res.roundtrip_error:.3g} {path.units} of the "
+             f"computed path (tolerance {res.tolerance:g}; {fit})"]
+    if cert is not None:
+        res.verified = bool(cert.ok)
+        res.certificate = cert.to_json()
+        lines.append(f"verified against the programmed contour: "
+                     f"{'OK' if cert.ok else 'FAILED'}, minimum clearance "
+                     f"{cert.min_clearance:.6g} for radius {path.radius:g}")
+    else:
+        lines.append("not verified: no programmed contour given")
+    return lines
+
+
+def _export_program(res: ExportResult, path: ToolPath, out: Path, program: Program | None,
+                    title: str) -> None:
+    """G-code or PMAC: checked by read-back (and verification) before it is written."""
+    header = [f"ccopt {_version()} export: style {path.style}, cutter radius {path.radius:g} "
+              f"{path.units}, tool-centre path (no compensation words)"]
+    if title:
+        header.insert(0, title)
+    job = _ProgramExport(path, res.format, res.tolerance, out, program, header)
+    seg_tol: dict[int, float] = {}
+    moves, roundtrip, cert = job.attempt(seg_tol)
+    if roundtrip > res.tolerance:
+        raise ProgramError(f"read-back deviates {roundtrip:.3g} from the computed path, more "
+                           f"than the tolerance {res.tolerance:g}; nothing written", str(out))
+    seg_tol, moves, res.roundtrip_error, cert = job.refit(seg_tol, moves, roundtrip, cert)
+    fit = _fit_summary(res, path, moves, seg_tol)
+    text = job.write(header + _verdict(res, path, fit, cert), seg_tol)[0]
+    write_text_atomic(out, text)
+
+
+def _export_json(res: ExportResult, path: ToolPath, out: Path, program: Program | None) -> None:
+    """The tool path and, given the program, its certificate."""
+    cert = _verify(path, program)
+    doc = {"toolpath": path.to_json(), "certificate": cert.to_json() if cert else None}
+    write_text_atomic(out, json.dumps(doc) + "\n")
+    if cert is not None:
+        res.verified = bool(cert.ok)
+        res.certificate = doc["certificate"]
 
 
 def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = None,
@@ -153,6 +267,8 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
 
     Program formats are read back and checked first (see module docstring);
     ``program`` is the programmed contour to verify the read-back against.
+    ``tol`` is the export tolerance in program units (default
+    :data:`~ccopt.export.arcfit.DEFAULT_TOL` for the path's units).
     Raises :class:`ProgramError` (nothing written) when the read-back does not
     reproduce the path within ``tol``.
     """
@@ -166,81 +282,16 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
         raise ProgramError("export tolerance must be > 0", str(out))
     res = ExportResult(str(out), fmt, tol)
     if fmt in ("gcode", "pmac"):
-        header = [f"ccopt {_version()} export: style {path.style}, cutter radius {path.radius:g} "
-                  f"{path.units}, tool-centre path (no compensation words)"]
-        if title:
-            header.insert(0, title)
-
-        def write(hdr, seg_tol):
-            if fmt == "gcode":
-                return write_gcode(path, tol, hdr, seg_tol=seg_tol)[:2]
-            return write_pmac(path, hdr, tol=tol, seg_tol=seg_tol)
-
-        def attempt(seg_tol):
-            """Write, read back, verify: ``(moves, round-trip error, certificate)``."""
-            text, moves = write(header, seg_tol)
-            back = readback_path(text, fmt, path, moves, str(out))
-            return moves, roundtrip_error(back, moves), _verify(back, program)
-
-        seg_tol: dict[int, float] = {}
-        moves, res.roundtrip_error, cert = attempt(seg_tol)
-        if res.roundtrip_error > tol:
-            raise ProgramError(f"read-back deviates {res.roundtrip_error:.3g} from the "
-                               f"computed path, more than the tolerance {tol:g}; nothing "
-                               f"written", str(out))
-        # A fit is tightened only where the read-back fails and the computed
-        # path itself does not; every round that is kept was read back and
-        # verified, and the file is written from the last one.
-        if cert is not None and not cert.ok and _verify(path, program).ok:
-            for _ in range(EXPORT_REFIT_ROUNDS):
-                tighter = _tighter_fits(cert, moves, seg_tol, tol)
-                if tighter == seg_tol:
-                    break
-                try:
-                    moves_t, rt_t, cert_t = attempt(tighter)
-                except ValueError:      # the tighter fit needs too many pieces
-                    break
-                seg_tol, moves, res.roundtrip_error, cert = tighter, moves_t, rt_t, cert_t
-                if cert.ok:
-                    break
-        fitted = [bound for src, geom, bound in moves
-                  if src >= 0 and type(geom) is not type(path.segments[src].geom)]
-        res.fit_error = max(fitted, default=0.0)
-        res.fitted_moves = len(fitted)
-        fit = (f"spirals and blend curves as {res.fitted_moves} arcs/lines certified within "
-               f"{res.fit_error:.3g}" if res.fitted_moves else "no spirals or blend curves to fit")
-        if seg_tol:
-            fit += (f"; fitted within {min(seg_tol.values()):.3g} on {len(seg_tol)} segment(s) "
-                    f"running at the clearance limit")
-            res.notes.append(f"fit tightened on segments {sorted(seg_tol)}: the read-back at "
-                             f"the default fit came inside the clearance")
-        verdict = [f"read back with ccopt: within {res.roundtrip_error:.3g} {path.units} of the "
-                   f"computed path (tolerance {tol:g}; {fit})"]
-        if cert is not None:
-            res.verified = bool(cert.ok)
-            res.certificate = cert.to_json()
-            verdict.append(f"verified against the programmed contour: "
-                           f"{'OK' if cert.ok else 'FAILED'}, minimum clearance "
-                           f"{cert.min_clearance:.6g} for radius {path.radius:g}")
-        else:
-            verdict.append("not verified: no programmed contour given")
-        text = write(header + verdict, seg_tol)[0]
-        write_text_atomic(out, text)
+        _export_program(res, path, out, program, title)
     elif fmt == "svg":
         contour = programmed_path(program) if program is not None else None
         write_text_atomic(out, write_svg(path, contour, title))
-    else:  # json
-        cert = _verify(path, program)
-        doc = {"toolpath": path.to_json(), "certificate": cert.to_json() if cert else None}
-        write_text_atomic(out, json.dumps(doc) + "\n")
-        if cert is not None:
-            res.verified = bool(cert.ok)
-            res.certificate = doc["certificate"]
+    else:
+        _export_json(res, path, out, program)
     return res
 
 
 def _version() -> str:
-    from importlib.metadata import PackageNotFoundError, version
     try:
         return version("ccopt")
     except PackageNotFoundError:

@@ -54,6 +54,7 @@ from functools import lru_cache
 import numpy as np
 
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
+from ccopt.geometry.angles import TWO_PI
 from ccopt.geometry.curve import (
     bernstein,
     cross_bernstein,
@@ -83,6 +84,24 @@ DEFAULT_TOL = {"mm": 1e-3, "inch": 1e-3 / 25.4}
 #: not cut at a lobe.)
 _SIGN_SLACK = 1e-9
 
+#: Floor of a squared coordinate scale: keeps the collinearity test of
+#: :func:`circle_through` and the sign test of a Bezier piece defined when all
+#: values are zero (the smallest normal-ish float, far below any real length).
+_SCALE_FLOOR = 1e-300
+
+#: Three points whose doubled triangle area is at most this fraction of their
+#: squared spread are collinear: no circle through them (a few ulps of the
+#: products, so that the centre is not pure rounding).
+_COLLINEAR_REL = 1e-14
+
+#: A chord whose distance from the tangent line is at most this fraction of its
+#: length lies along the tangent: no tangent circle through both ends.
+_CHORD_ALONG_TANGENT_REL = 1e-12
+
+#: Angular slack (radians) when testing that a sample's polar angle lies in an
+#: arc's sweep: the ends themselves come back from atan2 a few ulps off.
+_SWEEP_SLACK = 1e-12
+
 
 def fit_tolerance(tol: float, digits: int) -> float:
     """The fit's share of the export tolerance ``tol`` when numbers are written
@@ -110,8 +129,8 @@ def circle_through(p0, p1, p2):
     bx, by = p1[0] - p0[0], p1[1] - p0[1]
     cx, cy = p2[0] - p0[0], p2[1] - p0[1]
     d = 2.0 * (bx * cy - by * cx)
-    scale = max(abs(bx), abs(by), abs(cx), abs(cy), 1e-300) ** 2
-    if abs(d) <= 1e-14 * scale:
+    scale = max(abs(bx), abs(by), abs(cx), abs(cy), _SCALE_FLOOR) ** 2
+    if abs(d) <= _COLLINEAR_REL * scale:
         return None
     b2, c2 = bx * bx + by * by, cx * cx + cy * cy
     ux = (cy * b2 - by * c2) / d
@@ -137,8 +156,8 @@ def _fit_piece(sp: Spiral) -> FittedArc | None:
     thm = math.atan2(pm[1] - c[1], pm[0] - c[0])
     # The arc turns the way the spiral does; its sweep passes through the middle.
     ccw = sp.sweep > 0
-    sweep = (th1 - th0) % (2 * math.pi) if ccw else -((th0 - th1) % (2 * math.pi))
-    mid_along = (thm - th0) % (2 * math.pi) if ccw else (th0 - thm) % (2 * math.pi)
+    sweep = (th1 - th0) % TWO_PI if ccw else -((th0 - th1) % TWO_PI)
+    mid_along = (thm - th0) % TWO_PI if ccw else (th0 - thm) % TWO_PI
     if mid_along > abs(sweep):
         return None
     s = np.linspace(0.0, L, SAMPLES + 1)
@@ -150,8 +169,8 @@ def _fit_piece(sp: Spiral) -> FittedArc | None:
     # The radial distance is the distance to the arc (not just its circle)
     # when every point projects inside the arc's sweep.
     ang = np.arctan2(pts[:, 1] - c[1], pts[:, 0] - c[0])
-    along = np.mod((ang - th0) * (1.0 if ccw else -1.0), 2 * math.pi)
-    inside = (along <= abs(sweep) + 1e-12) | (along >= 2 * math.pi - 1e-12)
+    along = np.mod((ang - th0) * (1.0 if ccw else -1.0), TWO_PI)
+    inside = (along <= abs(sweep) + _SWEEP_SLACK) | (along >= TWO_PI - _SWEEP_SLACK)
     if not inside.all():
         return None
     h = L / SAMPLES
@@ -245,7 +264,7 @@ def _tangent_circle(Q: np.ndarray, D1: np.ndarray, at_start: bool):
     nrm = np.array([-T[1], T[0]])
     side = float(d @ nrm)
     dd = float(d @ d)
-    if abs(side) <= 1e-12 * math.sqrt(dd):
+    if abs(side) <= _CHORD_ALONG_TANGENT_REL * math.sqrt(dd):
         return None
     rho = dd / (2.0 * side)                      # signed: > 0 centre to the left of T
     c = A + rho * nrm
@@ -281,7 +300,7 @@ def _arc_piece(Q: np.ndarray, D1: np.ndarray, D2: np.ndarray, kappa: float,
         c, R, ccw = circ
     sg = 1.0 if ccw else -1.0
     turn = cross_bernstein(D1, D2) * sg
-    if turn.min() < -_SIGN_SLACK * max(float(np.abs(turn).max()), 1e-300):
+    if turn.min() < -_SIGN_SLACK * max(float(np.abs(turn).max()), _SCALE_FLOOR):
         return None                      # the curve turns the other way somewhere
     if not np.all(cross_bernstein(Q - c, D1) * sg > 0.0):
         return None                      # not monotone about c
@@ -293,7 +312,7 @@ def _arc_piece(Q: np.ndarray, D1: np.ndarray, D2: np.ndarray, kappa: float,
     vmax = float(np.max(np.hypot(D1[:, 0], D1[:, 1])))
     # Monotone about c, the piece turns through less than its length over
     # rho_min; below 2 pi that is the arc's sweep, not the sweep plus turns.
-    if vmax >= 2.0 * math.pi * rho_min:
+    if vmax >= TWO_PI * rho_min:
         return None
     pts = _sample_basis(n) @ Q
     f = float(np.max(np.abs(np.hypot(pts[:, 0] - c[0], pts[:, 1] - c[1]) - R)))
@@ -301,7 +320,7 @@ def _arc_piece(Q: np.ndarray, D1: np.ndarray, D2: np.ndarray, kappa: float,
     bound = f + (kappa + 1.0 / rho_min) * h * h / 8.0
     th0 = math.atan2(Q[0, 1] - c[1], Q[0, 0] - c[0])
     th1 = math.atan2(Q[-1, 1] - c[1], Q[-1, 0] - c[0])
-    sweep = (th1 - th0) % (2 * math.pi) if ccw else -((th0 - th1) % (2 * math.pi))
+    sweep = (th1 - th0) % TWO_PI if ccw else -((th0 - th1) % TWO_PI)
     arc = Arc(tuple(c), R, th0, sweep)
     ang = max(_angle(D1[0], arc.start_tangent), _angle(D1[-1], arc.end_tangent))
     return arc, bound, ang

@@ -11,12 +11,17 @@ import math
 
 from ccopt.export.arcfit import fit_arcs, fit_bezier, fit_tolerance
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
+from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import PLANE_AXES
 from ccopt.toolpath import ToolPath
 
 PLANE_WORD = {"XY": "G17", "ZX": "G18", "YZ": "G19"}
 AXES = "XYZ"
 CENTRE = "IJK"
+
+#: Rounding allowance when counting an arc's full turns: a sweep of exactly
+#: n full turns (up to rounding) is n turns, written P<n>, not n + 1.
+_TURNS_SLACK = 1e-12
 
 
 def fmt(x: float, digits: int = 6) -> str:
@@ -65,7 +70,7 @@ class _Writer:
         # start and end radii consistent after rounding.
         su, sv = round(s[0], self.digits), round(s[1], self.digits)
         i, j = arc.center[0] - su, arc.center[1] - sv
-        turns = max(int(math.ceil(abs(arc.sweep) / (2 * math.pi) - 1e-12)) - 1, 0)
+        turns = max(int(math.ceil(abs(arc.sweep) / TWO_PI - _TURNS_SLACK)) - 1, 0)
         p = f" P{turns + 1}" if turns else ""
         self.move(idx, f"{word} {self.coords(e, w1)} {self.ci}{fmt(i, self.digits)} "
                        f"{self.cj}{fmt(j, self.digits)}{p}{self.feed_word(feed)}", arc, bound)

@@ -11,11 +11,10 @@ compensation words (the program is the tool-centre path itself).
 """
 from __future__ import annotations
 
-import math
-
 from ccopt.export.arcfit import DEFAULT_TOL, fit_tolerance
 from ccopt.export.gcode import bezier_pieces, fmt
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
+from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import PLANE_AXES
 from ccopt.toolpath import ToolPath
 
@@ -26,7 +25,7 @@ CENTRE = "IJK"
 
 def _pieces(g):
     """PMAC cannot sweep more than one turn in a CIRCLE move: halve until it fits."""
-    if abs(g.sweep) <= 2 * math.pi:
+    if abs(g.sweep) <= TWO_PI:
         return [g]
     a, b = g.split(g.length / 2)
     return _pieces(a) + _pieces(b)

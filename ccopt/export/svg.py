@@ -13,7 +13,13 @@ from xml.sax.saxutils import escape
 import numpy as np
 
 from ccopt.geometry import Arc, Line
+from ccopt.geometry.angles import TWO_PI
+from ccopt.tolerances import POINT_EPS
 from ccopt.toolpath import Role, ToolPath
+
+#: An arc within this of a full turn (radians) is drawn as a polyline: SVG's
+#: arc command cannot draw a circle whose start and end coincide.
+FULL_CIRCLE_SLACK = 1e-9
 
 ROLE_COLOUR = {
     Role.RAPID: "#999999",
@@ -32,7 +38,7 @@ def _d(seg, step: float) -> str:
     if isinstance(g, Line):
         x1, y1 = g.end
         out.append(f"L {x1:.6f} {-y1:.6f}")
-    elif isinstance(g, Arc) and abs(g.sweep) < 2 * math.pi - 1e-9:
+    elif isinstance(g, Arc) and abs(g.sweep) < TWO_PI - FULL_CIRCLE_SLACK:
         x1, y1 = g.end
         large = 1 if abs(g.sweep) > math.pi else 0
         # y is flipped, so counter-clockwise in the plane is clockwise in SVG
@@ -54,7 +60,7 @@ def write_svg(path: ToolPath, contour: ToolPath | None = None, title: str = "",
     boxes = np.array([s.geom.bbox() for s in segs])
     xmin, ymin = boxes[:, 0].min(), boxes[:, 1].min()
     xmax, ymax = boxes[:, 2].max(), boxes[:, 3].max()
-    span = max(xmax - xmin, ymax - ymin, 1e-9)
+    span = max(xmax - xmin, ymax - ymin, POINT_EPS)
     pad = 0.05 * span
     step = spiral_step or span / 400
     stroke = span / 400

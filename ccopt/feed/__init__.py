@@ -13,7 +13,8 @@ One concept per module, after toppra's layout:
 - :mod:`.toppra_planner`: the time-optimal planner (TOPPRA);
 - :mod:`.baselines`: stop-per-block and grbl-style junction planners;
 - :mod:`.bounds`: :func:`feed_limited_time`, the time no planner can beat;
-- :mod:`.profile`: :class:`FeedProfile`, its samples and CSV.
+- :mod:`.profile`: :class:`FeedProfile`, its samples and CSV;
+- :mod:`.planners`: the planner registry; :mod:`.plan`: :func:`plan_feed` itself.
 
 Example::
 
@@ -27,19 +28,13 @@ from typing import TYPE_CHECKING
 
 from ccopt.feed.errors import FeedError
 from ccopt.feed.limits import AxisLimits
+from ccopt.feed.planners import PLANNERS, planner_function
 
 if TYPE_CHECKING:  # pragma: no cover
     from ccopt.feed.grid import GridOptions
     from ccopt.feed.path import ExactPath
     from ccopt.feed.profile import FeedProfile
     from ccopt.toolpath import ToolPath
-
-#: planner name -> "module:function"; each takes (path, limits, junction_deviation=..., grid=...)
-PLANNERS: dict[str, str] = {
-    "toppra": "ccopt.feed.toppra_planner:plan_toppra",
-    "stop": "ccopt.feed.baselines:plan_stop_per_block",
-    "junction": "ccopt.feed.baselines:plan_junction",
-}
 
 # Names importing toppra (which imports scipy.interpolate and matplotlib, ~2 s)
 # load on first use, so ``import ccopt`` stays fast.
@@ -59,14 +54,6 @@ def __getattr__(name):
     if name in _LAZY:
         return getattr(importlib.import_module(_LAZY[name]), name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def planner_function(name: str):
-    """The planner function registered as ``name`` in :data:`PLANNERS`."""
-    if name not in PLANNERS:
-        raise ValueError(f"unknown planner {name!r}; choose one of {', '.join(PLANNERS)}")
-    module, func = PLANNERS[name].split(":")
-    return getattr(importlib.import_module(module), func)
 
 
 def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: str = "toppra",
@@ -90,23 +77,11 @@ def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: st
     Raises :class:`FeedError` (a located :class:`~ccopt.errors.ProgramError`)
     when the limits do not fit the path or TOPPRA fails.
     """
-    from ccopt.feed.grid import GridOptions
-    from ccopt.feed.path import ExactPath
-
-    func = planner_function(planner)
-    if not isinstance(limits, AxisLimits):
-        raise TypeError("limits must be an AxisLimits")
-    if junction_deviation is not None and not junction_deviation >= 0:
-        raise ValueError(f"junction_deviation must be >= 0, got {junction_deviation!r}")
-    path = toolpath if isinstance(toolpath, ExactPath) else ExactPath(toolpath)
-    try:
-        limits.in_plane(path.toolpath.plane, path.dof)
-    except ValueError as exc:
-        raise FeedError(str(exc), path.source_file) from None
-    kwargs: dict = {"junction_deviation": junction_deviation}
-    if planner == "toppra":
-        kwargs["grid"] = grid if grid is not None else GridOptions()
-    return func(path, limits, **kwargs)
+    # The planners import toppra (~2 s with scipy.interpolate and matplotlib):
+    # ccopt.feed.plan loads on the first plan, as the names in _LAZY do.
+    plan = importlib.import_module("ccopt.feed.plan").plan_feed
+    return plan(toolpath, limits, planner=planner, junction_deviation=junction_deviation,
+                grid=grid)
 
 
 __all__ = [

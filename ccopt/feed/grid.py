@@ -100,6 +100,10 @@ import numpy as np
 
 from ccopt.feed.path import ExactPath
 
+#: Default of :attr:`GridOptions.min_spacing` (program units): extra gridpoints
+#: closer than this to one already there add an interval TOPPRA cannot resolve.
+MIN_GRID_SPACING = 1e-7
+
 
 @dataclass(frozen=True)
 class GridOptions:
@@ -121,7 +125,7 @@ class GridOptions:
     #: add the baselines' switch points (see ccopt.feed.baselines.baseline_knot_positions)
     baseline_knots: bool = True
     #: extra points closer than this to a gridpoint are dropped (units)
-    min_spacing: float = 1e-7
+    min_spacing: float = MIN_GRID_SPACING
     #: curves other than lines and arcs: equal pieces sampled first, and the share of
     #: one interval's budget a sampled piece may take
     curve_samples: int = 32

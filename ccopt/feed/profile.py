@@ -22,10 +22,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ccopt.atomic import write_text_atomic
 from ccopt.feed.errors import FeedError
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.tolerances import ACTIVE_RATIO, MAX_FEED_SAMPLES
+
+#: Rounding allowance in ``duration / dt`` when counting sample times, so a
+#: duration of exactly n steps gives n + 1 samples, not a short extra step.
+_SAMPLE_COUNT_SLACK = 1e-9
 
 
 @dataclass(frozen=True, eq=False)
@@ -254,7 +259,7 @@ class FeedProfile:
             raise FeedError(f"sampling {T:.6g} s every {dt:g} s takes {T / dt:.3g} samples, more "
                             f"than {MAX_FEED_SAMPLES:g}: use a larger dt (at least "
                             f"{self.affordable_dt(dt):.3g} s)", self.path.source_file)
-        n = int(np.floor(T / dt + 1e-9)) + 1
+        n = int(np.floor(T / dt + _SAMPLE_COUNT_SLACK)) + 1
         times = np.arange(n) * dt
         if times[-1] < T:
             times = np.append(times, T)
@@ -325,5 +330,4 @@ class FeedProfile:
 
     def to_csv(self, file, dt: float = 1e-3) -> None:
         """Write :meth:`sample` ``(dt)`` as CSV, atomically."""
-        from ccopt.export.atomic import write_text_atomic
         write_text_atomic(file, self.sample(dt).to_csv_text())

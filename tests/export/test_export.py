@@ -11,7 +11,7 @@ import ccopt
 from ccopt.cases import bundled_cases
 from ccopt.export import export, write_gcode
 from ccopt.export.arcfit import fit_arcs
-from ccopt.export import atomic
+from ccopt import atomic
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.distance import point_arc, point_segment
 from ccopt.program import read_program
