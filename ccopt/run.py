@@ -19,7 +19,7 @@ from ccopt.cases import Job
 from ccopt.compare import compare
 from ccopt.errors import CcoptError, ProgramError
 from ccopt.export import export
-from ccopt.export.atomic import write_text_atomic
+from ccopt.atomic import write_text_atomic
 from ccopt import feed as feed_planning
 from ccopt.feed import AxisLimits, plan_feed
 from ccopt.program.model import Program

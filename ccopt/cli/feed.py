@@ -10,7 +10,7 @@ from ccopt.cli.inputs import job
 from ccopt.cli.options import (add_limit_options, add_program, add_reading_options,
                                add_style_options, positive_float)
 from ccopt.cli.output import EXIT_OK, emit_json
-from ccopt.export.atomic import write_text_atomic
+from ccopt.atomic import write_text_atomic
 from ccopt.feed import AxisLimits, plan_feed
 from ccopt.toolpath import ToolPath
 
