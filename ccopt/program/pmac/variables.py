@@ -24,11 +24,9 @@ from ccopt.program.pmac.lexer import (ASSIGN_RE, HEX_RE, INDIRECT_RE, NUMBER_RE,
 MAX_VARIABLE = 8191
 #: Bits after the binary point used for the bit-by-bit operators.
 _FRACTION_BITS = 48
-#: |cos| below this makes TAN infinite: the cosine of 90 degrees computed in
-#: floating point is ~6e-17, never exactly 0.
+#: |cos| below this makes TAN infinite (cos of 90 degrees in floating point is ~6e-17, not 0).
 _TAN_COS_EPS = 1e-15
-#: An indirect variable number P(expr) this close to an integer is that
-#: integer (expressions like P(10/3*3) round).
+#: An indirect variable number P(expr) this close to an integer is it (P(10/3*3) rounds).
 _INTEGER_EPS = 1e-9
 #: ``I15``: 1 = trigonometry in radians, 0 = degrees.
 I_RADIANS = 15
