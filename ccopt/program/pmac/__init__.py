@@ -21,6 +21,6 @@ circle centres), :mod:`.statements` (modal state and statement execution),
 from __future__ import annotations
 
 from ccopt.program.pmac.reader import read_pmac
-from ccopt.program.pmac.variables import MAX_VARIABLE
+from ccopt.program.pmac.variables import MAX_VARIABLE  # noqa: F401 - was pmac.MAX_VARIABLE
 
 __all__ = ["read_pmac"]
