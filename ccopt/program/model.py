@@ -202,7 +202,8 @@ class Block:
         r = radius if radius is not None else self.modal.radius
         return int(k), (None if r is None else float(r))
 
-    def side_radius(self, radius: float | None = None, side: int | None = None) -> tuple[int, float]:
+    def side_radius(self, radius: float | None = None,
+                    side: int | None = None) -> tuple[int, float]:
         """:meth:`compensation_in_force`, refusing a missing or negative radius.
 
         Raises :class:`~ccopt.errors.CompensationError` (located) when
