@@ -11,7 +11,10 @@ import os
 from pathlib import Path
 
 from ccopt.errors import ProgramError
+from ccopt.program.gcode import read_gcode
 from ccopt.program.model import Block, Modal, Motion, PLANE_AXES, Program, Source
+from ccopt.program.pmac import read_pmac
+from ccopt.program.tooltable import read_tool_table
 
 PMAC_SUFFIXES = {".pmc", ".pmac", ".prg"}
 GCODE_SUFFIXES = {".nc", ".ngc", ".gcode", ".tap", ".cnc", ".mpf", ".iso", ".g"}
@@ -35,10 +38,8 @@ def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
               tool_table: dict[int, float] | None = None) -> Program:
     """Read program text of the given dialect."""
     if dialect == "gcode":
-        from ccopt.program.gcode import read_gcode
         return read_gcode(text, file, tool_table=tool_table)
     if dialect == "pmac":
-        from ccopt.program.pmac import read_pmac
         return read_pmac(text, file)
     raise ProgramError(f"unknown dialect {dialect!r}; choose one of {', '.join(DIALECTS)}", file)
 
@@ -67,7 +68,6 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
         raise ProgramError("not UTF-8/ASCII text (a binary file?)", file, line) from None
     table = tool_table
     if tool_table is not None and not isinstance(tool_table, dict):
-        from ccopt.program.tooltable import read_tool_table
         table = read_tool_table(tool_table)
     return read_text(text, file, dialect, tool_table=table)
 

@@ -90,8 +90,12 @@ def _exp(x: float) -> float:
         raise ValueError(f"EXP[{x:g}] overflows") from None
 
 
+#: TAN is infinite this close (degrees) to an odd multiple of 90 (math.tan gives ~1e16 there).
+_TAN_POLE_DEG = 1e-12
+
+
 def _tan(x: float) -> float:
-    if math.isclose(math.fmod(abs(x), 180.0), 90.0, abs_tol=1e-12):
+    if math.isclose(math.fmod(abs(x), 180.0), 90.0, abs_tol=_TAN_POLE_DEG):
         raise ValueError(f"TAN of {x:g} degrees is infinite")
     return math.tan(math.radians(x))
 

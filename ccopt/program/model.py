@@ -30,6 +30,7 @@ from dataclasses import dataclass, field, replace
 from typing import Iterator
 
 from ccopt.errors import CompensationError
+from ccopt.tolerances import POINT_EPS
 
 Vec3 = tuple[float, float, float]
 
@@ -172,22 +173,26 @@ class Block:
         (u0, v0), (u1, v1) = self.start_uv, self.end_uv
         return math.hypot(u1 - u0, v1 - v0) > 0.0
 
-    def is_spiral(self, tol: float = 1e-9) -> bool:
-        """An arc whose end radius differs from its start radius by more than ``tol``."""
+    def is_spiral(self, tol: float = POINT_EPS) -> bool:
+        """An arc whose end radius differs from its start radius by more than
+        ``tol`` (program units; default: the end is off the start's circle)."""
         if not self.motion.is_arc or self.center is None:
             return False
         (cu, cv) = self.center_uv
         (u0, v0), (u1, v1) = self.start_uv, self.end_uv
         return abs(math.hypot(u1 - cu, v1 - cv) - math.hypot(u0 - cu, v0 - cv)) > tol
 
-    def side_radius(self, radius: float | None = None, side: int | None = None) -> tuple[int, float]:
+    def compensation_in_force(self, radius: float | None = None,
+                              side: int | None = None) -> tuple[int, float | None]:
         """Side ``k`` and cutter radius ``r`` in force for this block, after
         the overrides every style and the verifier apply: ``side`` (+1 left,
         -1 right) replaces the programmed side wherever compensation is on,
         ``radius`` replaces every programmed radius. ``(0, 0.0)`` when off.
 
-        Raises :class:`~ccopt.errors.CompensationError` (located) when
-        compensation is on with no radius from either, or a negative one.
+        ``r`` is ``None`` when compensation is on and neither the program nor
+        ``radius`` gives one. Whether that (or a negative ``radius``) is an
+        error is the caller's business: the program itself is valid, only
+        compensating it needs a radius (``ccopt.compensate.scan``).
         """
         k = self.modal.side
         if k == 0:
@@ -195,6 +200,19 @@ class Block:
         if side is not None:
             k = side
         r = radius if radius is not None else self.modal.radius
+        return int(k), (None if r is None else float(r))
+
+    def side_radius(self, radius: float | None = None,
+                    side: int | None = None) -> tuple[int, float]:
+        """:meth:`compensation_in_force`, refusing a missing or negative radius.
+
+        Raises :class:`~ccopt.errors.CompensationError` (located) when
+        compensation is on with no radius from either, or a negative one.
+        Transitional (issue 14): this check is compensation's, not the
+        program's; it moves to ``ccopt.compensate.scan.effective_side_radius``
+        and this method goes away.
+        """
+        k, r = self.compensation_in_force(radius, side)
         s = self.source
         if r is None:
             if self.modal.tool is not None:
@@ -208,7 +226,7 @@ class Block:
                 "or a tool D word (G-code), or pass --radius", s.file, s.line, s.col)
         if r < 0:
             raise CompensationError(f"cutter radius {r:g} is negative", s.file, s.line, s.col)
-        return int(k), float(r)
+        return k, r
 
     def with_modal(self, **changes) -> "Block":
         return replace(self, modal=replace(self.modal, **changes))

@@ -1,0 +1,112 @@
+"""Lexing PMAC text: lines without comments, command words, constants.
+
+PMAC is case-insensitive and ignores spaces; a comment runs from ``;`` to the
+end of the line. The reader works on upper-case lines without comments and
+looks words up here: the keyword tables (longest spelling first, so that
+``CIRCLE1`` wins over ``CIR1`` and ``CC1`` over ``CC``), the axis letters and
+the constant forms (decimal ``10``, ``.5``, hexadecimal ``$1F``).
+"""
+from __future__ import annotations
+
+import math
+import re
+
+from ccopt.errors import ProgramError
+from ccopt.program.expr import ExprError
+
+#: Axes ccopt carries, in (x, y, z) order.
+AXES = "XYZ"
+#: Axes PMAC knows that ccopt does not carry (an error on a move).
+OTHER_AXES = "ABCUVW"
+#: Components of a circle's centre vector, in (x, y, z) order.
+VECTORS = "IJK"
+
+#: Move-mode spellings -> the mode.
+MOVE_MODES = {
+    "LINEAR": "LINEAR", "LIN": "LINEAR",
+    "CIRCLE1": "CIRCLE1", "CIR1": "CIRCLE1",
+    "CIRCLE2": "CIRCLE2", "CIR2": "CIRCLE2",
+    "RAPID": "RAPID", "RPD": "RAPID",
+}
+#: Move modes ccopt does not read.
+UNSUPPORTED_MODES = {"SPLINE1", "SPLINE2", "SPL1", "SPL2", "PVT"}
+#: Commands ccopt does not read (ProgramError naming them).
+UNSUPPORTED = {
+    # flow and subroutines
+    "GOTO", "GOSUB", "CALL", "IF", "WHILE", "ELSE", "ENDIF", "ENDI", "ENDWHILE", "ENDW",
+    "AND", "OR", "STOP", "WAIT", "PRELUDE",
+    # I/O and misc
+    "READ", "PSET", "HOME", "HOMEZ", "CMD", "COMMAND", "SEND", "SENDS", "SENDP", "SENDC",
+    "DISPLAY", "DISP", "ENABLE", "DISABLE", "LOCK", "UNLOCK", "SETPHASE",
+    "BLOCKSTART", "BSTART", "BLOCKSTOP", "BSTOP", "NOFRAX", "ADDRESS",
+    # transformations, 3-D compensation
+    "TSEL", "TINIT", "ADIS", "IDIS", "AROT", "IROT", "NX", "NY", "NZ", "TR", "TX", "TY", "TZ",
+}
+#: Every multi-letter command word, longest first (a word is matched by prefix).
+KEYWORDS = sorted(
+    set(MOVE_MODES) | UNSUPPORTED_MODES | UNSUPPORTED | {
+        "ABS", "INC", "DWELL", "DWE", "DELAY", "DLY", "NORMAL", "NRM", "FRAX",
+        "RETURN", "RET", "CCR", "CC0", "CC1", "CC2", "CC3", "CC4", "TA", "TS", "TM",
+        "OPEN", "CLOSE", "CLEAR", "DEFINE", "DELETE", "UNDEFINE",
+    },
+    key=len, reverse=True)
+UNSUPPORTED_WHY = ("ccopt reads straight-line motion programs: no jumps, loops, "
+                   "conditions, subroutine calls, I/O or coordinate transformations")
+
+#: ``P1=``, ``I15=``, ``M1==``, ``M1->``: a variable assignment or definition.
+ASSIGN_RE = re.compile(r"([PQIM])(\d+)[ \t]*(==|=|->)")
+#: ``P(`` / ``Q(``: an indirect variable reference.
+INDIRECT_RE = re.compile(r"([PQ])[ \t]*\(")
+#: ``P12``, ``Q3``, ``I15``, ``M7``: a variable read.
+VAR_RE = re.compile(r"([PQIM])(\d+)")
+LETTERS_RE = re.compile(r"[A-Z]+")
+HEX_RE = re.compile(r"\$([0-9A-F]+)")
+NUMBER_RE = re.compile(r"(\d+\.?\d*|\.\d+)")
+_WORD_RE = re.compile(r"[A-Z][A-Z0-9]*")
+
+
+def split_lines(text: str, file: str) -> list[tuple[int, str]]:
+    """``(1-based line number, upper-case text without its comment)`` for every line."""
+    if not isinstance(text, str):
+        raise ProgramError("program text must be a str", file, None)
+    out = []
+    for n, raw in enumerate(text.split("\n"), start=1):
+        if raw.endswith("\r"):
+            raw = raw[:-1]
+        cut = raw.find(";")
+        if cut >= 0:
+            raw = raw[:cut]
+        out.append((n, raw.upper()))
+    return out
+
+
+def skip(text: str, pos: int) -> int:
+    """The first position at or after ``pos`` that is not a blank."""
+    while pos < len(text) and text[pos] in " \t":
+        pos += 1
+    return pos
+
+
+def word(text: str, pos: int) -> str:
+    """The word (a letter, then letters and digits) at ``pos``, for messages."""
+    m = _WORD_RE.match(text, pos)
+    return m.group(0) if m else ""
+
+
+def keyword_at(text: str, pos: int) -> str | None:
+    """The longest command word of :data:`KEYWORDS` that starts at ``pos``."""
+    for kw in KEYWORDS:
+        if text.startswith(kw, pos):
+            return kw
+    return None
+
+
+def hex_value(digits: str, pos: int) -> float:
+    """Value of the hexadecimal constant ``$digits``; :class:`ExprError` at ``pos``."""
+    try:
+        value = float(int(digits, 16))
+    except OverflowError:
+        raise ExprError(f"${digits}: hexadecimal constant too large", pos) from None
+    if not math.isfinite(value):  # pragma: no cover - float(int) raises instead
+        raise ExprError(f"${digits}: hexadecimal constant too large", pos)
+    return value

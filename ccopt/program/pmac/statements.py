@@ -1,0 +1,398 @@
+"""Executing PMAC motion-program statements: modal state, moves, dwells.
+
+:class:`Interpreter` runs the lines of the selected program buffer one by
+one and appends a :class:`~ccopt.program.model.Block` per executed move or
+dwell. It carries PMAC's modal state: move mode, ``ABS``/``INC`` per axis and
+for the centre vector, ``NORMAL`` plane, feed or move-time mode, ``TA``/``TS``,
+cutter compensation ``CC0``/``CC1``/``CC2`` and its radius ``CCR``. Lengths
+are program units, times seconds (the program writes milliseconds), feeds
+units per second. The rules and decisions are in ``docs/pmac.md``.
+"""
+from __future__ import annotations
+
+import re
+
+from ccopt.errors import ProgramError
+from ccopt.program.model import Block, Modal, Motion, Source, Vec3
+from ccopt.program.pmac.lexer import (AXES, LETTERS_RE, MOVE_MODES, OTHER_AXES,
+                                      UNSUPPORTED, UNSUPPORTED_MODES, UNSUPPORTED_WHY, VECTORS,
+                                      keyword_at, skip, word)
+from ccopt.program.pmac.moves import CircleMode, PendingMove, circle_centre, finite_point
+from ccopt.program.pmac.variables import Variables
+
+_LABEL_RE = re.compile(r"[NO][ \t]*\d+")
+_FRAX_RE = re.compile(r"FRAX([ \t]*\([ \t]*([A-Z ,\t]*)\))?")
+#: Milliseconds per second: the program writes times in ms.
+_MS = 1000.0
+#: CC0/CC1/CC2 -> programmed side (+1 left, -1 right, 0 off).
+_CC_SIDES = {"CC0": 0, "CC1": 1, "CC2": -1}
+#: NORMAL's one negative component -> plane.
+_NORMAL_PLANES = {"K": "XY", "J": "ZX", "I": "YZ"}
+#: I-variable number of Isx<offset> for coordinate system s: 5000 + 100 s + offset.
+_ISX_BASE, _ISX_STEP = 5000, 100
+_ISX_ACCEL, _ISX_SCURVE, _ISX_FEED, _ISX_FEED_UNIT, _ISX_BREAK = 87, 88, 89, 90, 99
+
+
+class Interpreter:
+    """Modal state of a PMAC coordinate system and the blocks it has run.
+
+    ``start`` is the position ``(x, y, z)`` before the first move; ``meta``
+    the program's ``meta`` dict (see ``docs/pmac.md``).
+    """
+
+    def __init__(self, file: str, start: Vec3, meta: dict):
+        self.file = file
+        self.pos: list[float] = list(start)
+        self.meta = meta
+        self.vars = Variables(file, meta)
+        # modal state (power-on defaults)
+        self.mode = "LINEAR"
+        self.incremental = {a: False for a in AXES}
+        self.vector_absolute = False
+        self.plane = "XY"
+        self.feed: float | None = None        # units/s, feed mode
+        self.move_time: float | None = None   # s, time mode
+        self.time_mode = False
+        self.accel_time: float | None = None  # s
+        self.scurve_time: float | None = None  # s
+        self.programmed_side = 0
+        self.radius_sign = 1
+        self.radius: float | None = None
+        self.coord_system = 1
+        self.feed_unit_ms = 1000.0            # Isx90: F is units per this many ms
+        # output
+        self.blocks: list[Block] = []
+        self.pending: PendingMove | None = None
+        self.line_mcodes: list[int] = []
+        self.in_body = False
+        self.finished = False
+
+    def error(self, message: str, line: int | None, col: int | None = None) -> ProgramError:
+        return ProgramError(message, self.file, line, col)
+
+    def nonnegative(self, value: float, what: str, line: int | None, col: int | None) -> float:
+        if value < 0:
+            raise self.error(f"{what}{value:g}: must not be negative", line, col)
+        return value
+
+    # -- variables and coordinate-system set-up --------------------------------
+    def isx(self, offset: int) -> int:
+        """Number of the I-variable Isx<offset> of the selected coordinate system."""
+        return _ISX_BASE + _ISX_STEP * self.coord_system + offset
+
+    def assignment(self, line: int, text: str, pos: int) -> int | None:
+        """Execute a variable assignment at ``pos`` (with what an I-variable
+        changes); the position after it, or ``None`` when there is none."""
+        done = self.vars.assignment(line, text, pos)
+        if done is None:
+            return None
+        if done.kind == "I" and self.in_body:
+            number = done.number
+            if self.isx(_ISX_ACCEL) <= number <= self.isx(_ISX_FEED_UNIT):
+                if self.blocks:
+                    raise self.error(
+                        f"I{number} changed after the first move: ccopt does not model changing "
+                        f"Isx87..Isx90 while the program runs; set it before OPEN PROG",
+                        line, pos + 1)
+                self.apply_coordinate_system_defaults()
+            elif number == self.isx(_ISX_BREAK):
+                self.meta["break_cos"] = self.vars.i[number]
+        return done.end
+
+    def apply_coordinate_system_defaults(self) -> None:
+        """Honour Isx87/88/89/90/99 of the selected coordinate system, if the file set them."""
+        i, i_line = self.vars.i, self.vars.i_line
+        self.meta["coordinate_system"] = self.coord_system
+        n = self.isx(_ISX_FEED_UNIT)
+        if n in i:
+            if not i[n] > 0:
+                raise self.error(f"I{n}={i[n]:g}: the feedrate time unit must be > 0 ms",
+                                 i_line[n])
+            self.feed_unit_ms = i[n]
+        n = self.isx(_ISX_ACCEL)
+        if n in i:
+            self.accel_time = self.nonnegative(i[n], f"I{n}=", i_line[n], None) / _MS
+        n = self.isx(_ISX_SCURVE)
+        if n in i:
+            self.scurve_time = self.nonnegative(i[n], f"I{n}=", i_line[n], None) / _MS
+        n = self.isx(_ISX_FEED)
+        if n in i:
+            if not i[n] > 0:
+                raise self.error(f"I{n}={i[n]:g}: the default feedrate must be > 0", i_line[n])
+            self.feed = i[n] * _MS / self.feed_unit_ms
+        n = self.isx(_ISX_BREAK)
+        if n in i:
+            self.meta["break_cos"] = i[n]
+
+    # -- program body -----------------------------------------------------------
+    def program_line(self, line: int, text: str) -> None:
+        """Execute one line of the program buffer."""
+        self.pending = None
+        self.line_mcodes = []
+        pos = 0
+        while not self.finished:
+            pos = skip(text, pos)
+            if pos >= len(text):
+                break
+            pos = self.statement(line, text, pos)
+        self.flush()
+        if self.line_mcodes:
+            self.meta["ignored"].append({"line": line, "text": " ".join(
+                f"M{c}" for c in self.line_mcodes), "why": "M-code call without a move"})
+        self.line_mcodes = []
+
+    def statement(self, line: int, text: str, pos: int) -> int:
+        """Execute the statement at ``pos``; the position after it."""
+        ch = text[pos]
+        col = pos + 1
+        if not ("A" <= ch <= "Z"):
+            raise self.error(f"unexpected {ch!r}: expected a command", line, col)
+        end = self.assignment(line, text, pos)
+        if end is not None:
+            return end
+        kw = keyword_at(text, pos)
+        if kw is not None:
+            return self.keyword(kw, line, text, pos)
+        if len(LETTERS_RE.match(text, pos).group(0)) > 1:
+            name = word(text, pos)
+            hint = ""
+            if name.startswith("CIR"):
+                hint = ": write CIRCLE1 (clockwise) or CIRCLE2 (counter-clockwise)"
+            elif name.startswith("CC"):
+                hint = ": ccopt knows CC0, CC1, CC2 and CCR"
+            raise self.error(f"unknown command {name!r}{hint}", line, col)
+        return self.letter(ch, line, text, pos)
+
+    def letter(self, ch: str, line: int, text: str, pos: int) -> int:
+        """Execute the single-letter word ``ch`` at ``pos`` (axis, F, label, M-code)."""
+        col = pos + 1
+        if ch in AXES or ch in VECTORS or ch == "R":
+            return self.axis_word(ch, line, text, pos)
+        if ch in OTHER_AXES:
+            raise self.error(f"axis {ch} is not supported: ccopt carries X, Y and Z only",
+                             line, col)
+        if ch == "F":
+            value, end = self.vars.data(line, text, pos + 1, "F")
+            if not value > 0:
+                raise self.error(f"F{value:g}: the feedrate must be positive", line, col)
+            self.feed = value * _MS / self.feed_unit_ms
+            self.time_mode = False
+            return end
+        if ch in "NO":
+            m = _LABEL_RE.match(text, pos)
+            if not m:
+                raise self.error(f"label {ch} needs a number", line, col)
+            return m.end()
+        if ch in "PQ":
+            raise self.error(f"{word(text, pos) or ch}: a {ch}-variable on its own is not a "
+                             "program statement; write {var}={expression}", line, col)
+        if ch == "M":
+            value, end = self.vars.data(line, text, pos + 1, "M")
+            if value != int(value) or value < 0:
+                raise self.error(f"M{value:g}: an M-code must be a non-negative integer",
+                                 line, col)
+            self.line_mcodes.append(int(value))
+            return end
+        if ch in "GTD":
+            raise self.error(f"{ch}-codes are not supported: PMAC runs them as calls into PROG "
+                             f"10x0-10x3 subroutines that ccopt cannot see", line, col)
+        raise self.error(f"unknown command {word(text, pos)!r}", line, col)
+
+    def keyword(self, kw: str, line: int, text: str, pos: int) -> int:
+        """Execute the command word ``kw`` at ``pos``; the position after it.
+
+        A statement that changes the modal state of moves first executes the
+        move written before it on the line (``flush``)."""
+        col = pos + 1
+        end = pos + len(kw)
+        if kw in UNSUPPORTED_MODES:
+            raise self.error(f"unsupported move mode {kw}: ccopt reads LINEAR, CIRCLE1, CIRCLE2 "
+                             "and RAPID moves", line, col)
+        if kw in UNSUPPORTED:
+            raise self.error(f"unsupported command {kw}: {UNSUPPORTED_WHY}", line, col)
+        if kw in ("CC3", "CC4"):
+            raise self.error(f"{kw} is not supported: ccopt does 2-D compensation with CC0, CC1 "
+                             "and CC2", line, col)
+        if kw in ("OPEN", "CLOSE", "CLEAR"):
+            raise self.error(f"{kw} must stand alone on its line", line, col)
+        if kw in ("DEFINE", "DELETE", "UNDEFINE"):
+            raise self.error(f"{kw} is an on-line command: put it outside OPEN PROG ... CLOSE",
+                             line, col)
+        if kw in ("TA", "TS", "TM"):
+            return self.timing(kw, line, text, end)
+        if kw == "FRAX":
+            return self.frax(line, text, pos)
+        self.flush()
+        if kw in MOVE_MODES:
+            self.mode = MOVE_MODES[kw]
+            return end
+        if kw in ("ABS", "INC"):
+            return self.abs_inc(kw == "INC", line, text, end)
+        if kw in ("DWELL", "DWE", "DELAY", "DLY"):
+            return self.dwell(kw, line, text, pos)
+        if kw in _CC_SIDES:
+            self.programmed_side = _CC_SIDES[kw]
+            return end
+        if kw == "CCR":
+            value, end = self.vars.data(line, text, end, "CCR")
+            self.radius = abs(value)
+            self.radius_sign = -1 if value < 0 else 1
+            return end
+        if kw in ("NORMAL", "NRM"):
+            return self.normal(line, text, end, col)
+        if kw in ("RETURN", "RET"):
+            self.finished = True
+            return len(text)
+        raise AssertionError(kw)  # pragma: no cover - every keyword is handled above
+
+    def timing(self, kw: str, line: int, text: str, pos: int) -> int:
+        """``TA``/``TS``/``TM{ms}``; ``TM`` switches to move-time mode. They
+        apply to the move being written on the line (no flush)."""
+        value, end = self.vars.data(line, text, pos, kw)
+        value = self.nonnegative(value, kw, line, pos - len(kw) + 1) / _MS
+        if kw == "TA":
+            self.accel_time = value
+        elif kw == "TS":
+            self.scurve_time = value
+        else:
+            self.move_time = value
+            self.time_mode = True
+        return end
+
+    def frax(self, line: int, text: str, pos: int) -> int:
+        """``FRAX`` or ``FRAX(X,Y,Z)``: the default feedrate axes, the only set read."""
+        m = _FRAX_RE.match(text, pos)
+        axes = set(re.findall(r"[A-Z]", m.group(2) or "")) if m.group(1) else set()
+        if m.group(1) and axes != set(AXES):
+            raise self.error("FRAX with other feedrate axes than X, Y, Z is not supported "
+                             "(ccopt's feed is the X-Y-Z vector speed)", line, pos + 1)
+        return m.end()
+
+    def dwell(self, kw: str, line: int, text: str, pos: int) -> int:
+        """``DWELL{ms}``/``DELAY{ms}``: a dwell block at the current point."""
+        col = pos + 1
+        value, end = self.vars.data(line, text, pos + len(kw), kw)
+        value = self.nonnegative(value, kw, line, col)
+        p = (self.pos[0], self.pos[1], self.pos[2])
+        if kw in ("DELAY", "DLY"):
+            self.meta["delay_blocks"].append(len(self.blocks))
+        self.blocks.append(self.block(Source(self.file, line, col), Motion.DWELL, p, p,
+                                      dwell=value / _MS))
+        return end
+
+    def abs_inc(self, incremental: bool, line: int, text: str, pos: int) -> int:
+        """``ABS``/``INC`` for all axes, or ``ABS(X,Y,R)``/``INC(...)`` for the
+        listed axes and ``R`` (the centre vector)."""
+        p = skip(text, pos)
+        if not (p < len(text) and text[p] == "("):
+            for a in AXES:
+                self.incremental[a] = incremental
+            return pos
+        close = text.find(")", p)
+        if close < 0:
+            raise self.error("unterminated axis list: missing ')'", line, p + 1)
+        for name in (s.strip() for s in text[p + 1:close].split(",")):
+            if name == "R":
+                self.vector_absolute = not incremental
+            elif name in AXES:
+                self.incremental[name] = incremental
+            elif name in OTHER_AXES:
+                pass  # other axes never move in a ccopt program
+            else:
+                raise self.error(f"{'INC' if incremental else 'ABS'}(...): expected axis "
+                                 f"letters or R, found {name!r}", line, p + 2)
+        return close + 1
+
+    def normal(self, line: int, text: str, pos: int, col: int) -> int:
+        """``NORMAL I.. J.. K..``: the plane; only one negative component is read."""
+        comps = {"I": 0.0, "J": 0.0, "K": 0.0}
+        seen = False
+        while True:
+            p = skip(text, pos)
+            if not (p < len(text) and text[p] in comps and not text.startswith("INC", p)):
+                break
+            comps[text[p]], pos = self.vars.data(line, text, p + 1, f"NORMAL {text[p]}")
+            seen = True
+        if not seen:
+            raise self.error("NORMAL needs a vector, e.g. NORMAL K-1", line, col)
+        nonzero = [k for k, v in comps.items() if v != 0.0]
+        if len(nonzero) == 1 and comps[nonzero[0]] < 0:
+            self.plane = _NORMAL_PLANES[nonzero[0]]
+            return pos
+        vec = " ".join(f"{k}{v:g}" for k, v in comps.items())
+        raise self.error(f"unsupported NORMAL {vec}: ccopt supports NORMAL K-1 (XY plane), "
+                         "J-1 (ZX) and I-1 (YZ)", line, col)
+
+    # -- moves ------------------------------------------------------------------
+    def axis_word(self, letter: str, line: int, text: str, pos: int) -> int:
+        """Add ``X``/``Y``/``Z``, ``I``/``J``/``K`` or ``R`` to the line's move."""
+        value, end = self.vars.data(line, text, pos + 1, letter)
+        if self.pending is None:
+            self.pending = PendingMove(line, pos + 1)
+        pend = self.pending
+        if letter in pend.words:
+            raise self.error(f"{letter} is written twice in one move", line, pos + 1)
+        pend.words.add(letter)
+        if letter in AXES:
+            pend.axes[letter] = (value, self.incremental[letter])
+        elif letter in VECTORS:
+            pend.vector[letter] = value
+        else:
+            pend.radius = value
+        return end
+
+    def flush(self) -> None:
+        """Execute the move written so far on this line, if any."""
+        pend, self.pending = self.pending, None
+        if pend is None:
+            return
+        line, col = pend.line, pend.col
+        if not pend.axes:
+            raise self.error("a centre vector or radius without an end point: write the end "
+                             "point (X, Y, Z) on the same line", line, col)
+        start = (self.pos[0], self.pos[1], self.pos[2])
+        end = list(start)
+        for i, a in enumerate(AXES):
+            if a in pend.axes:
+                value, inc = pend.axes[a]
+                end[i] = start[i] + value if inc else value
+        end_t = finite_point(end, self.file, line, col, "end point")
+        has_centre = bool(pend.vector) or pend.radius is not None
+        mcodes = tuple(self.line_mcodes)
+        self.line_mcodes = []
+        kw = dict(mcodes=mcodes)
+        if self.mode == "RAPID":
+            if has_centre:
+                raise self.error("I/J/K or R on a RAPID move: only CIRCLE moves take a centre",
+                                 line, col)
+            motion = Motion.RAPID
+        else:
+            kw["feed"], kw["move_time"] = self.feed_or_time(line, col)
+            if self.mode == "LINEAR":
+                if has_centre:
+                    raise self.error("I/J/K or R on a LINEAR move: put CIRCLE1 or CIRCLE2 "
+                                     "before it", line, col)
+                motion = Motion.LINE
+            else:
+                cm = CircleMode(self.mode, self.plane, self.vector_absolute, self.file)
+                end_t, kw["center"] = circle_centre(pend, start, end_t, cm)
+                motion = Motion.ARC_CW if self.mode == "CIRCLE1" else Motion.ARC_CCW
+        self.blocks.append(self.block(Source(self.file, line, col), motion, start, end_t, **kw))
+        self.pos = list(end_t)
+
+    def feed_or_time(self, line: int, col: int) -> tuple[float | None, float | None]:
+        """``(feed, move_time)`` of a LINEAR/CIRCLE move: one of them is None."""
+        if self.time_mode:
+            return None, self.move_time
+        if self.feed is None:
+            raise self.error(f"{self.mode} move without a speed: give F (units per second) or "
+                             "TM (move time in ms) before it", line, col)
+        return self.feed, None
+
+    def block(self, source: Source, motion: Motion, start: Vec3, end: Vec3, **kw) -> Block:
+        """A block with the modal state in force (effective side: CC1/CC2 times sign of CCR)."""
+        modal = Modal(plane=self.plane, units="mm",
+                      side=self.programmed_side * self.radius_sign,
+                      radius=self.radius, accel_time=self.accel_time,
+                      scurve_time=self.scurve_time)
+        return Block(source=source, motion=motion, start=start, end=end, modal=modal, **kw)
