@@ -312,8 +312,7 @@ class _Interpreter:
         if m.plane == "YZ":
             raise _err(blk, "LinuxCNC compensates in the XY (G17) and XZ (G18) planes only, "
                             "not in G19: change the plane or remove the compensation")
-        self.k, self.r = effective_side_radius(blk, self.radius_override, self.side_override,
-                                               LinuxcncStyle.name)
+        self.k, self.r = effective_side_radius(blk, self.radius_override, self.side_override)
         self.first = True
 
     def compensation_off(self, blk: Block) -> None:

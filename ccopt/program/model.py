@@ -29,7 +29,6 @@ import math
 from dataclasses import dataclass, field, replace
 from typing import Iterator
 
-from ccopt.errors import CompensationError
 from ccopt.tolerances import POINT_EPS
 
 Vec3 = tuple[float, float, float]
@@ -201,32 +200,6 @@ class Block:
             k = side
         r = radius if radius is not None else self.modal.radius
         return int(k), (None if r is None else float(r))
-
-    def side_radius(self, radius: float | None = None,
-                    side: int | None = None) -> tuple[int, float]:
-        """:meth:`compensation_in_force`, refusing a missing or negative radius.
-
-        Raises :class:`~ccopt.errors.CompensationError` (located) when
-        compensation is on with no radius from either, or a negative one.
-        Transitional (issue 14): this check is compensation's, not the
-        program's; it moves to ``ccopt.compensate.scan.effective_side_radius``
-        and this method goes away.
-        """
-        k, r = self.compensation_in_force(radius, side)
-        s = self.source
-        if r is None:
-            if self.modal.tool is not None:
-                # G41/G42 D<n> names a tool: its diameter is in a tool table
-                raise CompensationError(
-                    f"no cutter radius: compensation is on with tool {self.modal.tool}, whose "
-                    f"diameter is not known: give a LinuxCNC tool table (--tool-table FILE) "
-                    f"with tool {self.modal.tool}, or pass --radius", s.file, s.line, s.col)
-            raise CompensationError(
-                "cutter compensation is on but no cutter radius is set: program CCR{r} (PMAC) "
-                "or a tool D word (G-code), or pass --radius", s.file, s.line, s.col)
-        if r < 0:
-            raise CompensationError(f"cutter radius {r:g} is negative", s.file, s.line, s.col)
-        return k, r
 
     def with_modal(self, **changes) -> "Block":
         return replace(self, modal=replace(self.modal, **changes))

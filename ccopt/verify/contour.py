@@ -19,6 +19,7 @@ from operator import attrgetter
 
 import numpy as np
 
+from ccopt.compensate.scan import effective_side_radius as compensation_side_radius
 from ccopt.geometry import KIND_ARC, KIND_LINE, KIND_SPIRAL, SegmentArray
 from ccopt.geometry.angles import TWO_PI
 from ccopt.geometry.arclength import END_POINT_REL_TOL
@@ -124,8 +125,9 @@ class Contour:
 
 def effective_side_radius(block: Block, radius: float | None, side: int | None) -> tuple[int, float]:
     """Side and radius in force for ``block`` after ``radius=``/``side=`` overrides:
-    :meth:`Block.side_radius`, the rule compensation applies (``(0, 0.0)`` when off)."""
-    return block.side_radius(radius, side)
+    the rule compensation applies (``(0, 0.0)`` when off), and its located
+    CompensationError when there is no radius or a negative one."""
+    return compensation_side_radius(block, radius, side)
 
 
 def element_geometry(blocks: list[Block], plane: str, st=None, en=None, ce=None, is_arc=None,
