@@ -24,9 +24,6 @@ rows ``G . p >= h`` for convex models: ``LINE`` is exact, ``CONVEX`` and
 ``END`` become the tangent half-plane at the iterate (it lies inside the
 feasible set, so it is safe), ``CONCAVE`` is kept as a cone, ``EXEMPT`` is
 void.
-
-:func:`contour_samples` samples the whole contour instead, with the margin a
-distance to the nearest sample may exceed the distance to the contour by.
 """
 from __future__ import annotations
 
@@ -37,7 +34,6 @@ import numpy as np
 
 from ccopt.geometry import Arc, Line, angle_in_sweep, distance, point_arc, point_segment
 from ccopt.geometry.bezier import DIVISION_FLOOR
-from ccopt.tolerances import POINT_EPS
 
 LINE, CONCAVE, CONVEX, END, EXEMPT = 0, 1, 2, 3, 4
 
@@ -195,52 +191,3 @@ def linear_rows(el: Element, p: np.ndarray):
             G[m] = u
             h[m] = np.einsum("ij,ij->i", u, vec[m]) + scal[m]
     return G, h, kind == CONCAVE, vec, scal
-
-
-# --------------------------------------------------------------------------- contour samples
-
-
-@dataclass(frozen=True)
-class ContourSamples:
-    """Points of the contour every ``h`` (element ends included): ``points``
-    ``(M, 2)``, ``element`` ``(M,)``, ``clearance`` ``(M,)`` (the element's),
-    and ``margin``: how much a distance to the nearest sample may exceed the
-    distance to the contour (added to every sampled clearance constraint)."""
-
-    points: np.ndarray
-    element: np.ndarray
-    clearance: np.ndarray
-    margin: float
-    h: float
-
-
-def contour_samples(contour, h: float) -> ContourSamples:
-    """Sample every contour element every ``h`` (at most).
-
-    The margin: a point at distance ``D >= r`` from an element is within
-    ``sqrt(D^2 + (1 + D/R) (h/2)^2)`` of a sample (``R`` the smallest radius
-    of a convex arc, infinite for lines), so ``(1 + r/R) h^2 / (8 r)`` covers
-    the sampling for distances near ``r``.
-    """
-    pts, elem, clr = [], [], []
-    rmin = math.inf
-    for j in range(len(contour)):
-        g = contour.elements.geom(j)
-        L = float(g.length)
-        n = max(2, int(math.ceil(L / h)) + 1)
-        s = np.linspace(0.0, L, n)
-        pts.append(np.asarray(g.point(s)).reshape(-1, 2))
-        elem.append(np.full(n, j))
-        clr.append(np.full(n, float(contour.clearance[j])))
-        if isinstance(g, Arc):
-            rmin = min(rmin, g.radius)
-        elif not hasattr(g, "p0"):
-            k = float(np.max(np.abs(np.asarray(g.curvature(s)))))
-            if k > 0:
-                rmin = min(rmin, 1.0 / k)
-    if not pts:
-        return ContourSamples(np.zeros((0, 2)), np.zeros(0, int), np.zeros(0), 0.0, h)
-    clr_all = np.concatenate(clr)
-    r = float(clr_all.max()) if clr_all.size else 1.0
-    margin = (1.0 + (r / rmin if math.isfinite(rmin) else 0.0)) * h * h / (8.0 * max(r, POINT_EPS))
-    return ContourSamples(np.vstack(pts), np.concatenate(elem), clr_all, margin, h)

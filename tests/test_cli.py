@@ -205,6 +205,7 @@ def test_no_traceback_in_a_real_process(tmp_path):
     assert "Traceback" not in proc.stderr and len(proc.stderr.strip().splitlines()) == 1
 
 
+@pytest.mark.slow
 def test_run_compares_with_the_case_radius(capsys, tmp_path):
     # The Fagor cases program "G41 D1" with no tool table: the radius (2) comes
     # from case.toml. The comparison must use it too, as compensation does,

@@ -14,9 +14,6 @@ Bezier curve ``r(t)``, ``t`` in [0, 1]. The Bernstein basics they build on
 - :func:`bernstein_gram`, :func:`derivative_gram`, :func:`energy_root`,
   :func:`bezier_energy`: ``integral_0^1 |d^k r/dt^k|^2 dt`` as a quadratic form
   of the control points (:func:`jerk_gram`: ``k = 3``, a jerk proxy);
-- :func:`time_proxy`: ``integral ds * sqrt(1/F^2 + |kappa|/a)``, the time to run
-  a curve at the feed ``F`` or at the speed the acceleration ``a`` allows on
-  its curvature, whichever is lower (within a factor sqrt 2);
 - :func:`speed_profile_time`: the time of TOPP's discrete model on the curve
   under axis acceleration limits (what the optimised blends minimise).
 """
@@ -134,26 +131,6 @@ def path_frame(P: np.ndarray, t: np.ndarray):
 
 
 # --------------------------------------------------------------------------- time models
-
-
-def simpson_weights(m: int) -> np.ndarray:
-    """Composite Simpson weights on ``m`` (odd) equally spaced points of [0, 1]."""
-    if m < 3 or m % 2 == 0:
-        raise ValueError("Simpson needs an odd number >= 3 of points")
-    w = np.ones(m)
-    w[1:-1:2] = 4.0
-    w[2:-1:2] = 2.0
-    return w / (3.0 * (m - 1))
-
-
-def time_proxy(P: np.ndarray, feed: float, acc: float, m: int = 65, eps_k: float = 1e-3) -> float:
-    """``integral sqrt(1/F^2 + sqrt(kappa^2 + eps_k^2)/a) ds`` over the Bezier ``P``
-    (seconds; ``feed`` in units/s, ``acc`` in units/s^2), by Simpson on ``m``
-    points of ``t``."""
-    t = np.linspace(0.0, 1.0, m)
-    _, sp, k = curve_samples(np.asarray(P, float), t)
-    f = sp * np.sqrt(1.0 / feed ** 2 + np.sqrt(k * k + eps_k * eps_k) / acc)
-    return float(simpson_weights(m) @ f)
 
 
 def path_acceleration_interval(T, K, b, acc):

@@ -26,7 +26,7 @@ from __future__ import annotations
 
 import enum
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from typing import Iterator
 
 from ccopt.tolerances import POINT_EPS
@@ -200,9 +200,6 @@ class Block:
             k = side
         r = radius if radius is not None else self.modal.radius
         return int(k), (None if r is None else float(r))
-
-    def with_modal(self, **changes) -> "Block":
-        return replace(self, modal=replace(self.modal, **changes))
 
 
 @dataclass(frozen=True)

@@ -114,15 +114,6 @@ class Contour:
                 out[q] = by_val.get(blocks[q], -1)
         return out
 
-    def lookup(self, block: Block | None):
-        """``(status, k, r, element index or -1)`` of a tool segment's block, or ``None``."""
-        q = int(self.move_indices([block])[0])
-        if q < 0:
-            return None
-        return (STATUS_NAMES[self.move_status[q]], int(self.move_k[q]), float(self.move_r[q]),
-                int(self.move_element[q]))
-
-
 def effective_side_radius(block: Block, radius: float | None, side: int | None) -> tuple[int, float]:
     """Side and radius in force for ``block`` after ``radius=``/``side=`` overrides:
     the rule compensation applies (``(0, 0.0)`` when off), and its located

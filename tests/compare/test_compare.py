@@ -28,6 +28,7 @@ def profile():
     return _run("profile")
 
 
+@pytest.mark.slow
 def test_every_variant_listed_with_every_figure(pocket, profile):
     for _, cmp in (pocket, profile):
         doc = cmp.to_json()

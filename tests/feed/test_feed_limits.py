@@ -119,6 +119,7 @@ def test_bundled_case(case):
     check_toppra_fastest(profiles)
 
 
+@pytest.mark.slow
 @settings(max_examples=12, deadline=None)
 @given(st.integers(0, 2 ** 32 - 1))
 def test_random_compensated_contours(seed):

@@ -9,6 +9,8 @@ import ccopt
 from ccopt.cases import find_case
 from ccopt.compare import FIGURES, available, compare
 
+pytestmark = pytest.mark.slow  # the quick tier (-m "not slow") leaves these out
+
 OPTIMISED = ("opt-casadi", "opt-cvxpy", "smooth")
 
 

@@ -59,6 +59,7 @@ def test_model_is_built_then_solved():
     assert uv[0] == pytest.approx([0.5, 1.0], abs=1e-7)
 
 
+@pytest.mark.slow
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(contours(), st.data())
 def test_search_never_deeper_on_random_contours(data, draw):

@@ -87,6 +87,7 @@ def test_blends_keep_the_contour(runs):
             assert cmp[name].figures["max_deviation"] == 0.0
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("name", OPT)
 def test_leads_stay_local_on_the_fagor_episodes(name):
     # fagor-g136-g139: six activation/cancellation episodes at 60, 120 and 170

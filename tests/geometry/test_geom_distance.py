@@ -223,6 +223,7 @@ def test_point_arc_hand_worked():
     assert math.isclose(d[0], math.sqrt(2) - 1)
 
 
+@pytest.mark.slow
 def test_segment_segment_brute_force():
     rng = np.random.default_rng(4)
     a0, a1 = random_segments(rng, N)
@@ -256,6 +257,7 @@ def test_segment_segment_crossing_agrees_with_shapely():
     assert np.array_equal(d <= 1e-12, shapely.intersects(ga, gb))
 
 
+@pytest.mark.slow
 def test_segment_arc_brute_force():
     rng = np.random.default_rng(6)
     a0, a1 = random_segments(rng, N)
@@ -276,6 +278,7 @@ def test_segment_arc_brute_force():
     check_against_brute_force(d, seg_curve(a0, a1), arc_curve(c, R, th0, sw), ha, hb, M, M)
 
 
+@pytest.mark.slow
 def test_arc_arc_brute_force():
     rng = np.random.default_rng(7)
     c1, R1, t1, s1 = random_arcs(rng, N)

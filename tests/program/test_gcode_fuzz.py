@@ -6,6 +6,7 @@ import math
 import re
 from unittest import mock
 
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -186,6 +187,7 @@ def test_seeds_are_valid():
         check(seed)
 
 
+@pytest.mark.slow
 @SETTINGS
 @given(st.data())
 def test_mutated_valid_programs(data):

@@ -10,6 +10,8 @@ import pytest
 
 from ccopt.cli import main
 
+pytestmark = pytest.mark.slow  # the quick tier (-m "not slow") leaves these out
+
 CASES = Path(__file__).resolve().parents[2] / "cases"
 
 

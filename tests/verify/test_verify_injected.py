@@ -59,6 +59,7 @@ def with_segment(path: ToolPath, i: int, seg) -> ToolPath:
     return replace(path, segments=tuple(segs))
 
 
+@pytest.mark.slow
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(contours())
 def test_injected_faults_are_caught(data):

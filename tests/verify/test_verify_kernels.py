@@ -124,6 +124,7 @@ def test_certified_spiral_to_arc(seed):
     assert b.lb <= true + 1e-12 and b.ub <= true + 1e-7 and b.ub - b.lb <= 1e-7
 
 
+@pytest.mark.slow
 def test_certified_bezier_to_line_and_spiral_to_spiral():
     bz = BezierCurve(((0, 0), (2, 3), (5, -1), (7, 2)))
     ln = Line((0, 3), (8, 2.5))
