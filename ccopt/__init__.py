@@ -13,7 +13,6 @@ radians inside ccopt.
 """
 from __future__ import annotations
 
-from importlib.metadata import PackageNotFoundError, version as _version
 
 from ccopt.compensate import compensate
 from ccopt.errors import CcoptError, CompensationError, ProgramError
@@ -22,16 +21,13 @@ from ccopt.program import read_program, read_text
 from ccopt.program.model import Block, Modal, Motion, Program, Source
 from ccopt.toolpath import PathSegment, Role, ToolPath, programmed_path
 from ccopt.verify import Certificate, verify
+from ccopt.version import __version__
 
 # Bound last: the name ``ccopt.export`` is the function, as ``ccopt.verify``
 # is (the modules stay importable: ``from ccopt.export import export``,
 # ``from ccopt.export.arcfit import ...``).
 from ccopt.export import ExportResult, export
 
-try:
-    __version__ = _version("ccopt")
-except PackageNotFoundError:  # running from a source tree without install
-    __version__ = "0.0.0+unknown"
 
 __all__ = [
     "Certificate", "verify",

@@ -18,13 +18,13 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from importlib.metadata import PackageNotFoundError, version
 from typing import Callable, Sequence
 
 from ccopt.cli import compare, export, feed, run, show, verify
 from ccopt.cli.options import Parser
 from ccopt.cli.output import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_OK
 from ccopt.errors import CcoptError
+from ccopt.version import __version__
 
 Command = Callable[[argparse.Namespace], int]
 
@@ -32,21 +32,12 @@ Command = Callable[[argparse.Namespace], int]
 EXIT_INTERRUPTED = 130
 
 
-def _version() -> str:
-    """The installed distribution's version (as ``ccopt.__version__``, without
-    importing the package root, which sits above the CLI)."""
-    try:
-        return version("ccopt")
-    except PackageNotFoundError:  # running from a source tree without install
-        return "0.0.0+unknown"
-
-
 def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
     """The ``ccopt`` parser and each command's function by name."""
     parser = Parser(prog="ccopt", description=(
         "Cutter radius compensation as a controller does it (PMAC reference), "
         "time-optimal feed, verification, blend comparison and export."))
-    parser.add_argument("--version", action="version", version=f"ccopt {_version()}")
+    parser.add_argument("--version", action="version", version=f"ccopt {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
     commands: dict[str, Command] = {}
     for group in (show, feed, verify, export, run, compare):

@@ -15,7 +15,6 @@ import json
 import math
 import os
 from dataclasses import dataclass, field
-from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 
 from ccopt.atomic import write_text_atomic
@@ -30,6 +29,7 @@ from ccopt.program.model import Program
 from ccopt.tolerances import EXPORT_REFIT_MIN_TOL, EXPORT_REFIT_ROUNDS, EXPORT_REFIT_SHRINK
 from ccopt.toolpath import FITTED_PIECES, PathSegment, Role, ToolPath, programmed_path
 from ccopt.verify import verify
+from ccopt.version import __version__
 
 FORMATS = {".nc": "gcode", ".ngc": "gcode", ".gcode": "gcode", ".tap": "gcode",
            ".pmc": "pmac", ".pmac": "pmac", ".svg": "svg", ".json": "json"}
@@ -235,7 +235,7 @@ def _verdict(res: ExportResult, path: ToolPath, fit: str, cert) -> list[str]:
 def _export_program(res: ExportResult, path: ToolPath, out: Path, program: Program | None,
                     title: str) -> None:
     """G-code or PMAC: checked by read-back (and verification) before it is written."""
-    header = [f"ccopt {_version()} export: style {path.style}, cutter radius {path.radius:g} "
+    header = [f"ccopt {__version__} export: style {path.style}, cutter radius {path.radius:g} "
               f"{path.units}, tool-centre path (no compensation words)"]
     if title:
         header.insert(0, title)
@@ -289,13 +289,6 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
     else:
         _export_json(res, path, out, program)
     return res
-
-
-def _version() -> str:
-    try:
-        return version("ccopt")
-    except PackageNotFoundError:
-        return "(source)"
 
 
 __all__ = ["DEFAULT_TOL", "ExportResult", "FORMATS", "export", "readback_path", "roundtrip_error",
