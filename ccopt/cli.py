@@ -21,6 +21,8 @@ from ccopt.cases import Case, bundled_cases, find_case
 from ccopt.errors import CcoptError, ProgramError
 from ccopt.program import read_program
 from ccopt.program.model import Program
+from ccopt.sweep.command import add_arguments as add_sweep_arguments
+from ccopt.sweep.command import run_command as run_sweep_command
 from ccopt.toolpath import ToolPath, programmed_path
 
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
@@ -432,6 +434,10 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
 
     from ccopt.compare.cli import add_commands as add_compare_commands
     add_compare_commands(sub, commands, program_args, _axis_values, _nonneg_float, _positive_float)
+    p = sub.add_parser("sweep", help="programs x settings (styles, radii, limits, variants) "
+                                     "on Dask, as a resumable table")
+    add_sweep_arguments(p)
+    commands["sweep"] = run_sweep_command
     return parser, commands
 
 
