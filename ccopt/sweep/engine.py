@@ -31,12 +31,13 @@ class Session:
     client: object
     owned: bool
     cluster: object | None = None
+    has_dashboard: bool = True
 
     @property
     def dashboard(self) -> str | None:
         """The dashboard's address, when the cluster serves one."""
         info = getattr(self.client, "scheduler_info", lambda: {})()
-        if not info.get("services", {}).get("dashboard"):
+        if not (self.has_dashboard and info.get("services", {}).get("dashboard")):
             return None
         return getattr(self.client, "dashboard_link", None)
 
@@ -59,11 +60,12 @@ def open_client(client=None, scheduler: str | None = None, workers: int | None =
             return Session(Client(scheduler, timeout=CONNECT_TIMEOUT), owned=True)
         except (OSError, TimeoutError, ValueError) as exc:
             raise ProgramError(f"cannot connect to the Dask scheduler: {exc}", scheduler) from None
-    # The dashboard needs bokeh; without it, ask for none rather than a warning.
-    dashboard = ":0" if importlib.util.find_spec("bokeh") else None
+    # The dashboard's pages need bokeh; without it, ask for none (its bare
+    # HTTP server still answers, so do not print its address either).
+    bokeh = importlib.util.find_spec("bokeh") is not None
     cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
-                           processes=True, dashboard_address=dashboard)
-    return Session(Client(cluster), owned=True, cluster=cluster)
+                           processes=True, dashboard_address=":0" if bokeh else None)
+    return Session(Client(cluster), owned=True, cluster=cluster, has_dashboard=bokeh)
 
 
 class Progress:

@@ -290,6 +290,8 @@ def load_spec(source) -> Spec:
     except tomllib.TOMLDecodeError as exc:
         m = re.search(r"\(at line (\d+), column (\d+)\)", str(exc))
         msg = re.sub(r"\s*\(at line \d+, column \d+\)", "", str(exc))
-        raise ProgramError(f"invalid TOML: {msg}", str(path),
-                           int(m.group(1)) if m else None) from None
+        line = int(m.group(1)) if m else None
+        if line is None and "end of document" in str(exc):
+            line = max(1, len(text.splitlines()))
+        raise ProgramError(f"invalid TOML: {msg}", str(path), line) from None
     return parse_spec(data, str(path), text, path.resolve().parent)
