@@ -3,7 +3,7 @@
 ::
 
     import ccopt
-    table = ccopt.sweep("sweeps/styles-radii.toml")              # local cluster, one worker per core
+    table = ccopt.sweep("sweeps/styles-radii.toml")   # a local cluster, one worker per core
     table = ccopt.sweep(spec, client=my_dask_client, out="sweep-out")
 
 The spec (:mod:`.spec`) names programs and axes; the sweep is the product
@@ -21,6 +21,7 @@ from __future__ import annotations
 import os
 import sys
 import time
+from datetime import datetime, timezone
 from importlib.metadata import PackageNotFoundError, version
 from pathlib import Path
 from typing import Callable
@@ -114,7 +115,8 @@ def sweep(spec, client=None, *, out: str | os.PathLike | None = None,
     done = load_done(folder) if folder is not None else None
     have = set(done["task_id"]) if done is not None else set()
     todo = [t for t in tasks if t.id not in have]
-    run = int(done["run"].max()) + 1 if done is not None and len(done) else 1
+    last = int(done["run"].max()) if done is not None and len(done) else 0
+    run = last + 1 if todo else last  # a run that computes nothing is no new run
     flusher = Flusher(folder, done, [t.id for t in tasks], columns(spec))
     options = {"client": client, "scheduler": scheduler, "workers": workers,
                "task_timeout": task_timeout, "progress": progress, "serial": serial}
@@ -127,7 +129,8 @@ def sweep(spec, client=None, *, out: str | os.PathLike | None = None,
     meta = {"ccopt_version": _version("ccopt"), "dask_version": _version("distributed"),
             "python": sys.version.split()[0], "title": spec.title, "tasks": len(tasks),
             "computed": len(todo), "failed": int(table["error"].notna().sum()), "run": run,
-            "started": started, "seconds": time.time() - started}
+            "started": datetime.fromtimestamp(started, timezone.utc).isoformat(timespec="seconds"),
+            "seconds": round(time.time() - started, 3)}
     _finish(folder, spec, table, meta)
     table.attrs.update(computed=len(todo), total=len(tasks),
                        out=str(folder) if folder is not None else None)

@@ -16,7 +16,8 @@ Row figures (units: program units, seconds): ``cycle_time`` (the first
 planner's duration) and ``cycle_time_<planner>``, ``min_clearance``
 (certified), ``ok`` (every check), ``geometry_ok`` (every check but
 ``limits``), ``limits_ok`` (the feed limits check on the first planner's
-profile), ``cutter_radius``, ``path_length``, ``max_curvature`` (1/units,
+profile) and ``limits_ratio`` (its figure: the largest |value| / limit
+sampled), ``cutter_radius``, ``path_length``, ``max_curvature`` (1/units,
 largest |curvature| of the moves that cut, rapids excluded), ``deviation``,
 ``solve_time`` (building the path), ``feed_time`` (every planner),
 ``verify_time``, ``task_time`` (the whole task), ``error``.
@@ -41,9 +42,9 @@ from ccopt.verify import verify
 CURVATURE_SAMPLES = 257
 
 #: Result columns every row has, in table order (``cycle_time_<planner>`` follow ``cycle_time``).
-FIGURES = ("error", "ok", "geometry_ok", "limits_ok", "cycle_time", "min_clearance",
-           "cutter_radius", "path_length", "max_curvature", "deviation", "solve_time",
-           "feed_time", "verify_time", "task_time")
+FIGURES = ("error", "ok", "geometry_ok", "limits_ok", "limits_ratio", "cycle_time",
+           "min_clearance", "cutter_radius", "path_length", "max_curvature", "deviation",
+           "solve_time", "feed_time", "verify_time", "task_time")
 
 
 class TaskTimeout(Exception):
@@ -89,11 +90,11 @@ def build_path(program: Program, s: Setting):
 def _verdicts(cert) -> dict:
     limits = [c for c in cert.checks if c.name == "limits"]
     geometry = [c for c in cert.checks if c.name != "limits"]
-    limits_ok = None
+    limits_ok = ratio = None
     if limits and limits[0].basis != "not-run":
-        limits_ok = bool(limits[0].ok)
+        limits_ok, ratio = bool(limits[0].ok), limits[0].figure
     return {"ok": bool(cert.ok), "geometry_ok": all(bool(c.ok) for c in geometry),
-            "limits_ok": limits_ok, "min_clearance": cert.min_clearance}
+            "limits_ok": limits_ok, "limits_ratio": ratio, "min_clearance": cert.min_clearance}
 
 
 def pipeline(program: Program, s: Setting, deadline: float | None = None) -> dict:

@@ -3,9 +3,10 @@
 One panel per swept axis (and per program when there are several): the
 cycle time of each task that ran, divided by its program's mean over the
 sweep (so programs of different lengths share a scale), averaged per axis
-value, one line per style or variant (against the program itself: seconds). A last panel counts, per style or
-variant, the tasks that failed (``error``) and those that ran but were not
-certified (``ok`` false: a gouge, a side or limits violation). The page
+value, one line per style or variant (against the program itself: seconds).
+A last panel counts, per style or variant, the tasks that failed
+(``error``) and those that ran but were not certified (``ok`` false: a
+gouge, a side or limits violation). The page
 lists the failed tasks with their errors. The figure is also written as
 ``summary.png``.
 """
@@ -58,7 +59,9 @@ def _axis_panel(ax, ran, axis: str, group: str | None) -> None:
         means = part.groupby(axis)[column].mean()
         xs = [x_of[v] for v in values if v in means.index]
         ys = [means[v] for v in values if v in means.index]
-        ax.plot(xs, ys, marker="o", label=str(name) if name is not None else "all")
+        # programs are not ordered: points, no line between them
+        ax.plot(xs, ys, marker="o", linestyle="none" if axis == "program" else "-",
+                label=str(name) if name is not None else "all")
     if not numeric:
         ax.set_xticks(range(len(values)))
         ax.set_xticklabels([str(v) for v in values], rotation=30, ha="right", fontsize=7)
@@ -73,8 +76,8 @@ def _failure_panel(ax, table, group: str | None) -> None:
     key = group or "program"
     names = list(dict.fromkeys(table[key].astype(str).tolist()))
     errors = table[table["error"].notna()][key].astype(str).value_counts()
-    ok = table["ok"].astype("boolean")
-    not_ok = table[table["error"].isna() & (ok == False)][key].astype(str).value_counts()  # noqa: E712
+    uncertified = table["error"].isna() & table["ok"].astype("boolean").eq(False)
+    not_ok = table[uncertified.fillna(False)][key].astype(str).value_counts()
     xs = range(len(names))
     ax.bar([x - 0.2 for x in xs], [int(errors.get(n, 0)) for n in names], 0.4, label="error")
     ax.bar([x + 0.2 for x in xs], [int(not_ok.get(n, 0)) for n in names], 0.4,
