@@ -8,21 +8,26 @@ counted):
 - serial: ``ccopt.sweep(spec, serial=True)``, every task in this process;
 - direct: the same tasks as plain calls of the task function
   (``ccopt.sweep.execute.run_task``), the floor of any runner;
-- 1 worker: ``ccopt.sweep(spec, client=...)`` on a 1-worker LocalCluster,
-  whose excess over ``direct``, per task, is Dask's per-task overhead
-  (scatter, submit, pickling, result, table);
+- 1 worker: ``ccopt.sweep(spec, client=...)`` on a 1-worker LocalCluster
+  (the one ``ccopt sweep`` starts), whose excess over ``direct``, per task,
+  is the per-task overhead (scatter, submit, pickling, result, table);
+  its wall time minus the task time the worker measured is the same
+  overhead, less sensitive to load from elsewhere on the machine;
 - 2 workers: the same on a 2-worker LocalCluster; speed-up = serial / 2 workers
   (issue 19's target: at least 1.7 on 2 cores).
 
-Prints the times, the speed-up and the overhead per task. The figures of
-every run are checked equal to the serial ones.
+Prints the times, the speed-up and the overhead per task, and for 2 workers
+the tasks and busy seconds per worker: ``busy / (2 x wall)`` near 1 says
+Dask keeps both workers busy, and ``task time on the workers / serially``
+above 1 says the tasks themselves ran slower side by side (cores or memory
+shared with other load). The figures of every run are checked equal to the
+serial ones.
 
     python bench/sweep.py [--spec sweeps/limits-planners.toml] [--repeat 1]
 """
 from __future__ import annotations
 
 import argparse
-import logging
 import statistics
 import sys
 import time
@@ -32,6 +37,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import ccopt  # noqa: E402
 from ccopt.sweep import load_spec  # noqa: E402
+from ccopt.sweep.engine import open_client  # noqa: E402
 from ccopt.sweep.execute import run_task  # noqa: E402
 from ccopt.sweep.tasks import expand, resolve_programs  # noqa: E402
 
@@ -56,15 +62,16 @@ def _warm_worker(spec) -> None:
 
 
 def _on_cluster(spec, workers: int, repeat: int):
-    from distributed import Client, LocalCluster  # only the benchmark's cluster needs it here
-    with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                      dashboard_address=None, silence_logs=logging.CRITICAL) as cluster, Client(cluster) as client:
-        client.run(_warm_worker, spec)
+    session = open_client(workers=workers)  # the local cluster ccopt sweep starts
+    try:
+        session.client.run(_warm_worker, spec)
         times, table = [], None
         for _ in range(repeat):
             t0 = time.perf_counter()
-            table = ccopt.sweep(spec, client=client, progress=False)
+            table = ccopt.sweep(spec, client=session.client, progress=False)
             times.append(time.perf_counter() - t0)
+    finally:
+        session.close()
     return statistics.median(times), table
 
 
@@ -92,9 +99,15 @@ def main() -> None:
     print(f"direct calls          {t_direct:8.2f} s   {t_direct / n * 1e3:7.1f} ms/task")
     print(f"serial (ccopt.sweep)  {t_serial:8.2f} s   {t_serial / n * 1e3:7.1f} ms/task")
     print(f"LocalCluster 1 worker {t_one:8.2f} s   overhead vs direct "
-          f"{(t_one - t_direct) / n * 1e3:7.1f} ms/task")
+          f"{(t_one - t_direct) / n * 1e3:7.1f} ms/task; wall minus the worker's task time "
+          f"{(t_one - one['task_time'].sum()) / n * 1e3:6.1f} ms/task")
     print(f"LocalCluster 2 workers{t_two:8.2f} s   speed-up vs serial {t_serial / t_two:5.2f}x "
           f"(vs direct {t_direct / t_two:5.2f}x)")
+    busy = two.groupby("worker")["task_time"].agg(["count", "sum"])
+    print("2 workers: tasks and busy seconds per worker: "
+          + ", ".join(f"{int(r['count'])} / {r['sum']:.2f} s" for _, r in busy.iterrows())
+          + f"; busy / (2 x wall) = {busy['sum'].sum() / (2 * t_two):.2f}; "
+          f"task time on the workers / serially = {two['task_time'].sum() / ref['task_time'].sum():.2f}")
 
 
 if __name__ == "__main__":

@@ -4,7 +4,7 @@ With no scheduler address, :func:`open_client` starts a ``LocalCluster`` of
 worker processes, one per core by default, one thread each (the planners and
 the verifier hold the GIL, so processes, not threads, run in parallel).
 With ``tcp://host:8786``, it connects to that cluster; its workers need
-ccopt installed. Programs are read once on the client and scattered, so
+ccopt installed. Programs are read once on the client and broadcast, so
 each worker receives a program once, not once per task.
 """
 from __future__ import annotations
@@ -22,6 +22,12 @@ from ccopt.sweep.tasks import Task
 
 #: Seconds to wait for a scheduler given by address before giving up.
 CONNECT_TIMEOUT = 30
+
+#: Dask's nannies start workers with MALLOC_TRIM_THRESHOLD_=65536, which turns
+#: off glibc's dynamic mmap threshold: every numpy temporary over 128 KiB is
+#: then mapped and unmapped again, and a task runs 20-30 % slower (measured on
+#: sweeps/variants.toml). The local cluster's workers keep glibc's default.
+UNTRIMMED = "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_"
 
 
 @dataclass
@@ -50,8 +56,9 @@ class Session:
 
 def open_client(client=None, scheduler: str | None = None, workers: int | None = None) -> Session:
     """The user's ``client``, a client of ``scheduler``, or a new local cluster."""
-    # Deferred: distributed (tornado, msgpack, ...) takes a second to import,
-    # and only a sweep needs it.
+    # Deferred: dask and distributed (tornado, msgpack, ...) take a second to
+    # import, and only a sweep needs them.
+    import dask
     from distributed import Client, LocalCluster
     if client is not None:
         return Session(client, owned=False)
@@ -63,8 +70,9 @@ def open_client(client=None, scheduler: str | None = None, workers: int | None =
     # The dashboard's pages need bokeh; without it, ask for none (its bare
     # HTTP server still answers, so do not print its address either).
     bokeh = importlib.util.find_spec("bokeh") is not None
-    cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
-                           processes=True, dashboard_address=":0" if bokeh else None)
+    with dask.config.set({UNTRIMMED: None}):
+        cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
+                               processes=True, dashboard_address=":0" if bokeh else None)
     return Session(Client(cluster), owned=True, cluster=cluster, has_dashboard=bokeh)
 
 
@@ -109,7 +117,10 @@ def run_tasks(session: Session, programs: dict, tasks: list[Task], run: int,
     from distributed import as_completed
     client = session.client
     needed = sorted({t.program for t in tasks})
-    shipped = {label: client.scatter(programs[label], hash=False) for label in needed}
+    # Every worker gets every program (a few kB each): scattered to one worker
+    # only, the tasks of a program would queue there for data locality.
+    shipped = {label: client.scatter(programs[label], hash=False, broadcast=True)
+               for label in needed}
     token = uuid.uuid4().hex[:8]  # keys unique per call, named for the dashboard
     futures = {}
     for t in tasks:

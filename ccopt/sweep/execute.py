@@ -20,10 +20,13 @@ profile) and ``limits_ratio`` (its figure: the largest |value| / limit
 sampled), ``cutter_radius``, ``path_length``, ``max_curvature`` (1/units,
 largest |curvature| of the moves that cut, rapids excluded), ``deviation``,
 ``solve_time`` (building the path), ``feed_time`` (every planner),
-``verify_time``, ``task_time`` (the whole task), ``error``.
+``verify_time``, ``task_time`` (the whole task), ``worker`` (host:pid
+that ran it), ``error``.
 """
 from __future__ import annotations
 
+import os
+import socket
 import threading
 import time
 
@@ -44,7 +47,7 @@ CURVATURE_SAMPLES = 257
 #: Result columns every row has, in table order (``cycle_time_<planner>`` follow ``cycle_time``).
 FIGURES = ("error", "ok", "geometry_ok", "limits_ok", "limits_ratio", "cycle_time",
            "min_clearance", "cutter_radius", "path_length", "max_curvature", "deviation",
-           "solve_time", "feed_time", "verify_time", "task_time")
+           "solve_time", "feed_time", "verify_time", "task_time", "worker")
 
 
 class TaskTimeout(Exception):
@@ -155,4 +158,5 @@ def run_task(program, s: Setting, timeout: float | None = None) -> dict:
         row = dict(box) if not worker.is_alive() else {
             "error": f"timeout: still running after {timeout:g} s"}
     row["task_time"] = time.perf_counter() - t0
+    row["worker"] = f"{socket.gethostname()}:{os.getpid()}"
     return row
