@@ -43,7 +43,9 @@ def _positive_seconds(text: str) -> float:
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """The arguments of ``ccopt sweep``."""
-    parser.add_argument("spec", metavar="SPEC.toml", help="the sweep spec (see docs/sweep.md)")
+    parser.add_argument("spec", metavar="SPEC.toml",
+                        help="the sweep spec (TOML), or a bundled one by name: styles-radii, "
+                             "limits-planners, variants")
     parser.add_argument("-o", "--out", metavar="DIR",
                         help="results folder; run again with the same DIR to compute only "
                              "the missing tasks (default: sweep-<spec name>)")

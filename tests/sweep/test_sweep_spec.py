@@ -11,6 +11,7 @@ import pytest
 
 import ccopt
 from ccopt.cli import main
+from ccopt.compare import compare
 from ccopt.sweep import load_spec
 from ccopt.sweep.execute import run_task
 from ccopt.sweep.spec import bundled_sweeps_dir
@@ -103,7 +104,7 @@ def test_one_task_equals_the_public_api():
     limits = ccopt.AxisLimits(**task.setting.limits)
     prof = ccopt.plan_feed(path, limits)
     cert = ccopt.verify(path, prog, profile=prof, radius=1.5)
-    assert row["error"] is None if "error" in row else True
+    assert row.get("error") is None
     assert row["cycle_time"] == row["cycle_time_toppra"] == prof.duration
     assert row["cycle_time_stop"] == ccopt.plan_feed(path, limits, planner="stop").duration
     assert row["min_clearance"] == cert.min_clearance
@@ -145,3 +146,19 @@ def test_import_ccopt_does_not_import_dask_pandas_pyarrow():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=True, cwd=ROOT).stdout
     assert out.strip() == "[]"
+
+
+def test_a_variant_task_has_the_compare_figures():
+    spec = load_spec({"programs": ["leadin-inside-line"], "axes": {"variant": "tangent-arc"}})
+    (inp,) = resolve_programs(spec)
+    (task,) = expand(spec, [inp])
+    prog = ccopt.read_program(inp.file)
+    row = run_task(prog, task.setting)
+    limits = ccopt.AxisLimits(v=list(inp.case.vmax), a=list(inp.case.amax))
+    want = compare(prog, ["tangent-arc"], limits=limits, radius=inp.case.radius)["tangent-arc"]
+    assert row.get("error") is None
+    assert row["cycle_time"] == want.figures["duration"]
+    assert row["deviation"] == want.figures["max_deviation"]
+    assert row["path_length"] == want.figures["length"]
+    assert row["ok"] is want.figures["certified"]
+    assert row["min_clearance"] == want.figures["min_clearance"]
