@@ -19,6 +19,8 @@ from ccopt.errors import CcoptError, CompensationError, ProgramError
 from ccopt.feed import AxisLimits, plan_feed
 from ccopt.program import read_program, read_text
 from ccopt.program.model import Block, Modal, Motion, Program, Source
+# ccopt.sweep imports Dask, pandas and pyarrow only when a sweep runs.
+from ccopt.sweep import sweep
 from ccopt.toolpath import PathSegment, Role, ToolPath, programmed_path
 from ccopt.verify import Certificate, verify
 from ccopt.version import __version__
@@ -35,5 +37,5 @@ __all__ = [
     "AxisLimits", "plan_feed",
     "Block", "CcoptError", "CompensationError", "Modal", "Motion", "PathSegment", "Program",
     "ProgramError", "Role", "Source", "ToolPath", "compensate", "programmed_path", "read_program",
-    "read_text", "__version__",
+    "read_text", "sweep", "__version__",
 ]

@@ -20,7 +20,7 @@ import os
 import sys
 from typing import Callable, Sequence
 
-from ccopt.cli import compare, export, feed, run, show, verify
+from ccopt.cli import compare, export, feed, run, show, sweep, verify
 from ccopt.cli.options import Parser
 from ccopt.cli.output import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_OK
 from ccopt.errors import CcoptError
@@ -40,7 +40,7 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
     parser.add_argument("--version", action="version", version=f"ccopt {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
     commands: dict[str, Command] = {}
-    for group in (show, feed, verify, export, run, compare):
+    for group in (show, feed, verify, export, run, compare, sweep):
         group.add_commands(sub, commands)
     return parser, commands
 

@@ -45,6 +45,10 @@ def nonneg_int(text: str) -> int:
     return _checked(text, int, lambda n: n >= 0, "a whole number >= 0")
 
 
+def positive_int(text: str) -> int:
+    return _checked(text, int, lambda n: n >= 1, "a whole number >= 1")
+
+
 def cosine(text: str) -> float:
     return _checked(text, float, lambda x: -1.0 <= x <= 1.0, "a cosine, between -1 and 1")
 
@@ -73,14 +77,19 @@ def add_program(p: argparse.ArgumentParser) -> None:
     p.add_argument("program", metavar="PROGRAM", help="program file, case folder or case name")
 
 
+def add_json_option(p: argparse.ArgumentParser) -> None:
+    """``--json`` (every command has it)."""
+    p.add_argument("--json", action="store_true", help="machine-readable output on stdout")
+
+
 def add_reading_options(p: argparse.ArgumentParser) -> None:
-    """How to read the program, and ``--json`` (every command has both)."""
+    """How to read the program, and ``--json``."""
     p.add_argument("--dialect", choices=["gcode", "pmac"],
                    help="program dialect (default: from the file suffix)")
     # a Path, so the reader takes it as a file name, never as table text
     p.add_argument("--tool-table", metavar="FILE", type=Path,
                    help="LinuxCNC tool table for G41/G42 D<tool number>")
-    p.add_argument("--json", action="store_true", help="machine-readable output on stdout")
+    add_json_option(p)
 
 
 def add_output_option(p: argparse.ArgumentParser, dest: str, metavar: str, help: str,

@@ -1,0 +1,78 @@
+"""``ccopt sweep SPEC.toml [-o DIR] [--scheduler ADDRESS] [--workers N]
+[--task-timeout S] [--json]``: programs x settings on Dask, as a resumable table.
+
+Exit codes: 0 when the sweep ran (failed tasks are rows of the table, with
+their errors: data, not a failure of the command), 2 for a bad spec or input
+(one line ``file:line: message`` on stderr).
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from pathlib import Path
+
+from ccopt.cli.options import add_json_option, add_output_option, positive_float, positive_int
+from ccopt.cli.output import EXIT_BAD_INPUT, EXIT_OK
+from ccopt.errors import CcoptError
+from ccopt.sweep import sweep
+from ccopt.sweep.results import CSV, PARQUET
+
+
+def _report(table, out: Path, as_json: bool) -> None:
+    computed, total = table.attrs["computed"], table.attrs["total"]
+    failed = int(table["error"].notna().sum())
+    files = {"parquet": str(out / PARQUET), "csv": str(out / CSV),
+             "summary": str(out / "summary.html")}
+    if as_json:
+        json.dump({"out": str(out), "tasks": total, "computed": computed, "failed": failed,
+                   "files": files, "rows": json.loads(table.to_json(orient="records"))},
+                  sys.stdout)
+        sys.stdout.write("\n")
+        return
+    print(f"{total} tasks ({computed} computed now, {total - computed} from before), "
+          f"{failed} failed")
+    ran = table[table["error"].isna()]
+    if len(ran):
+        print(f"cycle time {ran['cycle_time'].min():.4f} .. {ran['cycle_time'].max():.4f} s; "
+              f"certified {int(ran['ok'].astype(bool).sum())} of {len(ran)}")
+    print(f"results: {files['parquet']}, {files['csv']}; summary: {files['summary']}")
+
+
+def cmd_sweep(args: argparse.Namespace) -> int:
+    """Run the sweep a spec describes; returns the exit code."""
+    out = Path(args.out) if args.out else Path(f"sweep-{Path(args.spec).stem}")
+    if args.scheduler and args.workers:
+        print("ccopt sweep: --workers sets the local cluster's size; a cluster given by "
+              "--scheduler has its own workers", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    try:
+        table = sweep(args.spec, out=out, scheduler=args.scheduler, workers=args.workers,
+                      task_timeout=args.task_timeout,
+                      log=lambda msg: print(msg, file=sys.stderr))
+    except CcoptError as exc:
+        print(str(exc), file=sys.stderr)
+        return EXIT_BAD_INPUT
+    _report(table, out, args.json)
+    return EXIT_OK
+
+
+def add_commands(sub, commands: dict) -> None:
+    """Register ``sweep`` on ``sub`` (argparse subparsers)."""
+    p = sub.add_parser("sweep", help="programs x settings (styles, radii, limits, variants) "
+                                     "on Dask, as a resumable table")
+    p.add_argument("spec", metavar="SPEC.toml",
+                   help="the sweep spec (TOML), or a bundled one by name: styles-radii, "
+                        "limits-planners, variants")
+    add_output_option(p, "out", "DIR",
+                      help="results folder; run again with the same DIR to compute only "
+                           "the missing tasks (default: sweep-<spec name>)")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="a running Dask scheduler, e.g. tcp://host:8786 (default: a "
+                        "local cluster)")
+    p.add_argument("--workers", type=positive_int, metavar="N",
+                   help="worker processes of the local cluster (default: one per core)")
+    p.add_argument("--task-timeout", type=positive_float, metavar="S",
+                   help="seconds per task; a task past it is a row with a timeout error")
+    add_json_option(p)
+    commands["sweep"] = cmd_sweep
