@@ -11,7 +11,7 @@ of the axes (:mod:`.tasks`); each task runs compensate -> feed -> verify
 (-> compare) on one program (:mod:`.execute`) on a Dask worker
 (:mod:`.engine`); the rows land in a resumable results folder
 (:mod:`.results`) with a summary page (:mod:`.summary`). ``ccopt sweep`` is
-:mod:`.command`.
+:mod:`ccopt.cli.sweep`.
 
 Importing this package imports neither Dask nor pandas nor pyarrow: they
 load when a sweep runs, so ``import ccopt`` stays light.
@@ -34,6 +34,7 @@ from ccopt.sweep.results import (Flusher, columns, load_done, make_folder, write
 from ccopt.sweep.spec import Spec, load_spec
 from ccopt.sweep.summary import write_summary
 from ccopt.sweep.tasks import ProgramInput, Task, expand, resolve_programs
+from ccopt.version import __version__
 
 
 def _version(dist: str) -> str | None:
@@ -126,7 +127,7 @@ def sweep(spec, client=None, *, out: str | os.PathLike | None = None,
             _execute(todo, loaded, run, flusher, options, log or (lambda _msg: None))
     finally:
         table = flusher.flush()
-    meta = {"ccopt_version": _version("ccopt"), "dask_version": _version("distributed"),
+    meta = {"ccopt_version": __version__, "dask_version": _version("distributed"),
             "python": sys.version.split()[0], "title": spec.title, "tasks": len(tasks),
             "computed": len(todo), "failed": int(table["error"].notna().sum()), "run": run,
             "started": datetime.fromtimestamp(started, timezone.utc).isoformat(timespec="seconds"),
