@@ -412,6 +412,17 @@ def test_g41_uses_loaded_tool_and_negative_table_diameter_flips():
     assert (b.modal.side, b.modal.radius, b.modal.tool) == (1, None, None)
 
 
+def test_tool_zero_is_no_tool_radius_zero():
+    # LinuxCNC: T0 is "no tool"; its ccomp/mill-zchanges test compensates
+    # with G41 D0 and a table that lists no T0: the offset is 0.
+    b, = moves("G41 D0 G1 X1 F60")
+    assert (b.modal.side, b.modal.radius, b.modal.tool) == (1, 0.0, 0)
+    b, = moves("G42 D0 G1 X1 F60", tool_table={1: 6.0})
+    assert (b.modal.side, b.modal.radius, b.modal.tool) == (-1, 0.0, 0)
+    b, = moves("T0 M6\nG41 G1 X1 F60", tool_table={1: 6.0})
+    assert (b.modal.side, b.modal.radius, b.modal.tool) == (1, 0.0, 0)
+
+
 def test_g41_1_diameter_and_negative_flip():
     b = moves("G41.1 D6 G1 X1 F60\nG41.1 D-4 X2\nG42.1 D-4 X3\nG42.1 D0 X4\n")
     assert [(m.modal.side, m.modal.radius) for m in b] == [(1, 3.0), (-1, 2.0), (1, 2.0), (-1, 0.0)]

@@ -21,6 +21,8 @@ from ccopt.program.model import Block, Motion, Source
 _AXES = "XYZ"
 _PLANES = {170: "XY", 180: "ZX", 190: "YZ"}
 _TOOL_NUMBER_LIMIT = 2**31  # tool numbers are C ints in LinuxCNC
+#: Tool number 0 is LinuxCNC's "no tool": diameter 0 whatever the table says.
+NO_TOOL = 0
 
 
 def execute_words(state: GCodeState, words: Words) -> None:
@@ -209,7 +211,11 @@ def _compensation(state: GCodeState, comp: tuple[int, int], L: dict) -> None:
     state.tool = tool
     state.side = side
     diameter = None
-    if tool is not None and state.tool_table is not None:
+    if tool == NO_TOOL:
+        # T0 is "no tool" in LinuxCNC: compensating with it offsets by 0
+        # (its mill-zchanges test runs G41 D0 with no T0 in the table).
+        diameter = 0.0
+    elif tool is not None and state.tool_table is not None:
         diameter = state.tool_table.get(tool)
     if diameter is None:
         state.radius = None
