@@ -5,10 +5,14 @@ A missing copy is a test failure, never a skip.
 """
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 
 import pytest
+
+from ccopt.geometry import Line
+from ccopt.program.model import Motion
 
 CONFORMANCE = Path(__file__).resolve().parent / "conformance" / "linuxcnc"
 DATA = CONFORMANCE / "crazy-paths"
@@ -52,3 +56,37 @@ def expected_calls(comments: bool = False) -> list[list[tuple[str, object]]]:
         else:
             items.append((kind, [float(a) for a in args.split(",")]))
     return split_calls(items)
+
+
+def canonical_moves(path):
+    """The tool path as LinuxCNC canonical moves.
+
+    A line of a ``G0`` block is a STRAIGHT_TRAVERSE ``[x, y, z]``, any other
+    line a STRAIGHT_FEED; an arc (or spiral) is ARC_FEED ``[end x, end y,
+    centre x, centre y, turn, z]`` with ``turn = sign(sweep) * (number of
+    started turns)`` (in-plane coordinates first, as LinuxCNC prints them in G17).
+    """
+    out = []
+    for seg in path.segments:
+        g = seg.geom
+        if isinstance(g, Line):
+            kind = "STRAIGHT_TRAVERSE" if seg.block.motion is Motion.RAPID else "STRAIGHT_FEED"
+            out.append((kind, [g.end[0], g.end[1], seg.w1]))
+        else:
+            turns = math.floor(abs(g.sweep) / (2 * math.pi) - 1e-9) + 1
+            out.append(("ARC_FEED", [g.end[0], g.end[1], g.center[0], g.center[1],
+                                     math.copysign(turns, g.sweep), seg.w1]))
+    return out
+
+
+def expected_moves(folder: str) -> list[tuple[str, list[float]]]:
+    """The canonical moves of ``CONFORMANCE/folder/expected``, in order."""
+    path = CONFORMANCE / folder / "expected"
+    if not path.is_file():
+        pytest.fail(f"LinuxCNC conformance data missing: {path}")
+    items = []
+    for line in path.read_text().splitlines():
+        m = _CANON.search(line)
+        if m and m.group(1) != "COMMENT":
+            items.append((m.group(1), [float(a) for a in m.group(2).split(",")]))
+    return items

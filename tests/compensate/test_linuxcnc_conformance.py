@@ -19,34 +19,12 @@ from pathlib import Path
 import pytest
 
 from ccopt.compensate import compensate
-from ccopt.geometry import Line
 from ccopt.program.gcode import read_gcode
-from ccopt.program.model import Motion
-from linuxcnc_data import N_CALLS, TOL, data_file, expected_calls, split_calls
+from linuxcnc_data import N_CALLS, TOL, canonical_moves, data_file, expected_calls, split_calls
 
 
 def _data(name: str) -> Path:
     return data_file(name)
-
-
-def canonical_moves(path):
-    """The tool path as LinuxCNC canonical moves.
-
-    A line of a ``G0`` block is a STRAIGHT_TRAVERSE, any other line a
-    STRAIGHT_FEED; an arc (or spiral) is ARC_FEED(end, centre, turn) with
-    ``turn = sign(sweep) * (number of started turns)``.
-    """
-    out = []
-    for seg in path.segments:
-        g = seg.geom
-        if isinstance(g, Line):
-            kind = "STRAIGHT_TRAVERSE" if seg.block.motion is Motion.RAPID else "STRAIGHT_FEED"
-            out.append((kind, [g.end[0], g.end[1]]))
-        else:
-            turns = math.floor(abs(g.sweep) / (2 * math.pi) - 1e-9) + 1
-            out.append(("ARC_FEED", [g.end[0], g.end[1], g.center[0], g.center[1],
-                                     math.copysign(turns, g.sweep)]))
-    return out
 
 
 @pytest.fixture(scope="module")

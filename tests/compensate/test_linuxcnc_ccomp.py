@@ -1,0 +1,71 @@
+"""LinuxCNC's own cutter-compensation tests beyond crazy-paths, run through
+the ``linuxcnc`` style with their own tool tables: the tool path is the
+sequence of canonical moves LinuxCNC's interpreter prints in ``expected``,
+move for move, every end point, centre and Z within 5e-5 (``expected``
+prints 4 decimals); the programs LinuxCNC refuses are refused (exit 2) for
+the same reason. Data and licence: tests/conformance/linuxcnc/README.md.
+"""
+from __future__ import annotations
+
+import pytest
+
+from ccopt.cli import main
+from ccopt.compensate import compensate
+from ccopt.program.gcode import read_gcode
+from ccopt.program.tooltable import read_tool_table
+from linuxcnc_data import CONFORMANCE, TOL, canonical_moves, expected_moves
+
+# G17 mill tests: G20 programs whose tables are in inches (LinuxCNC's
+# stand-alone interpreter runs in inches).
+MILL_TESTS = ("mill-line-arc-entry", "mill-zchanges")
+
+
+def _ours(folder: str):
+    d = CONFORMANCE / folder
+    table = read_tool_table(d / "test.tbl")
+    prog = read_gcode((d / "test.ngc").read_text(), str(d / "test.ngc"), tool_table=table)
+    return canonical_moves(compensate(prog, style="linuxcnc"))
+
+
+@pytest.mark.parametrize("folder", MILL_TESTS)
+def test_mill_program_matches_linuxcnc_move_for_move(folder):
+    got, want = _ours(folder), expected_moves(folder)
+    assert [k for k, _ in got] == [k for k, _ in want]
+    problems = []
+    for i, ((kind, a), (_, b)) in enumerate(zip(got, want)):
+        # straight: x, y, z; arc: end, centre, turn, z (index 5)
+        fields = (0, 1, 2) if kind != "ARC_FEED" else (0, 1, 2, 3, 5)
+        problems += [f"move {i} ({kind}) field {q}: ccopt {a[q]:.6f}, LinuxCNC {b[q]:.4f}"
+                     for q in fields if not abs(a[q] - b[q]) <= TOL]
+        if kind == "ARC_FEED" and int(a[4]) != int(b[4]):
+            problems.append(f"move {i} turn: ccopt {a[4]}, LinuxCNC {b[4]}")
+    assert not problems, "\n".join(problems)
+
+
+def test_zchanges_arc_entry_with_z_move_is_linuxcncs_arc():
+    """mill-zchanges, second pass: G41 G2 D2 (tool 2, D0.125, r 0.0625) from
+    (0.25, 0.5) to (0.5, 0.75) about (0.5, 0.5): LinuxCNC's entry arc ends at
+    the offset end (0.5, 0.75 + r) = (0.5, 0.8125) about a centre on the
+    perpendicular bisector of its chord, (0.5, 0.5562)."""
+    kind, a = _ours("mill-zchanges")[8]
+    assert kind == "ARC_FEED"
+    assert a[:2] == pytest.approx([0.5, 0.75 + 0.0625], abs=TOL)
+    # the centre is equidistant from both ends
+    (x0, y0), (x1, y1), (cx, cy) = (0.25, 0.5), a[:2], a[2:4]
+    assert (x0 - cx) ** 2 + (y0 - cy) ** 2 == pytest.approx((x1 - cx) ** 2 + (y1 - cy) ** 2)
+    assert (cx, cy) == pytest.approx((0.5, 0.5562), abs=TOL)
+
+
+@pytest.mark.parametrize("name, reason", [
+    ("ccomp-arcexit", "must be straight, not an arc"),
+    ("ccomp-gouging", "cannot be reached by the tool without gouging"),
+])
+def test_programs_linuxcnc_refuses_are_refused(name, reason, capsys):
+    program = CONFORMANCE / "bad" / f"{name}.ngc"
+    theirs = (CONFORMANCE / "bad" / f"{name}.expected-error").read_text()
+    assert reason in theirs  # the reason below is LinuxCNC's own
+    code = main(["compensate", str(program), "--style", "linuxcnc"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err.startswith(f"{program}:") and reason in err
+    assert len(err.strip().splitlines()) == 1
