@@ -164,7 +164,7 @@ def _print_smoothed(doc: dict, prog: Program, exported: ExportResult | None) -> 
         verdict = {True: "verified OK", False: "verification FAILED",
                    None: "not verified"}[exported.verified]
         print(f"  exported {exported.file}: read back within "
-              f"{exported.roundtrip_error:.3g} {prog.units}, {verdict}")
+              f"{exported.roundtrip_error:.3g} {prog.units}, {verdict}{exported.where_written()}")
 
 
 def _add_blend_options(p: argparse.ArgumentParser) -> None:

@@ -12,7 +12,9 @@ from ccopt.export import export
 
 def cmd_export(args: argparse.Namespace) -> int:
     """Compensate, then write the tool-centre path (read back and verified
-    first, see :mod:`ccopt.export`). Exit 1 when the verification fails."""
+    first, see :mod:`ccopt.export`). Exit 1 when the verification fails; the
+    failing file is then written as ``NAME.failed.EXT`` if ``NAME.EXT`` exists,
+    and the message says so."""
     work = job(args.program, args)
     prog = work.read()
     path = work.compensate(prog)
@@ -22,7 +24,8 @@ def cmd_export(args: argparse.Namespace) -> int:
     else:
         verdict = {True: "verified OK", False: "verification FAILED", None: "not verified"}
         print(f"{res.file}: {res.format}, read back within {res.roundtrip_error:.3g} "
-              f"{path.units} (tolerance {res.tolerance:g}), {verdict[res.verified]}")
+              f"{path.units} (tolerance {res.tolerance:g}), {verdict[res.verified]}"
+              f"{res.where_written()}")
     return EXIT_FAILED if res.verified is False else EXIT_OK
 
 

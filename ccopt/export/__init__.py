@@ -7,7 +7,12 @@ and lines fitted to spirals and Bezier blend curves, :mod:`.arcfit`), and,
 when the programmed contour is given, it is verified against it. The verdict
 goes into the file's header comments and into the returned
 :class:`ExportResult`. Writes are atomic (:mod:`ccopt.atomic`): a failure
-leaves no partial file and never replaces a good one.
+leaves no partial file and never replaces a good one. An export whose
+verification fails is written, but never over an existing file: when
+``NAME.EXT`` exists it goes to ``NAME.failed.EXT`` beside it
+(:func:`failed_name`) and the result says so (:attr:`ExportResult.kept_existing`).
+Every text the writers put in a file (titles, headers) passes through
+:mod:`ccopt.export.text`, so the file's commands are the path's alone.
 """
 from __future__ import annotations
 
@@ -48,6 +53,8 @@ class ExportResult:
     fitted_moves: how many moves replace spirals and blend curves.
     verified: verdict of the verifier on the read-back path (``None`` when no
         program was given to verify against).
+    kept_existing: the existing file a failing export was not written over
+        (then ``file`` is its ``NAME.failed.EXT``); ``None`` otherwise.
     """
 
     file: str
@@ -59,11 +66,40 @@ class ExportResult:
     verified: bool | None = None
     certificate: dict | None = None
     notes: list[str] = field(default_factory=list)
+    kept_existing: str | None = None
 
     def to_json(self) -> dict:
         return {"file": self.file, "format": self.format, "tolerance": self.tolerance,
                 "roundtrip_error": self.roundtrip_error, "fit_error": self.fit_error,
-                "fitted_moves": self.fitted_moves, "verified": self.verified, "certificate": self.certificate, "notes": self.notes}
+                "fitted_moves": self.fitted_moves, "verified": self.verified,
+                "certificate": self.certificate, "notes": self.notes,
+                "kept_existing": self.kept_existing}
+
+    def where_written(self) -> str:
+        """For messages: ``""``, or where a failing export went instead of the
+        existing file."""
+        if self.kept_existing is None:
+            return ""
+        return (f"; written as {self.file}, not over the existing {self.kept_existing} "
+                f"(left as it was)")
+
+
+def failed_name(out: Path) -> Path:
+    """``NAME.failed.EXT`` beside ``out`` (``NAME.EXT``): where a failing export
+    goes when ``out`` exists."""
+    return out.with_name(f"{out.stem}.failed{out.suffix}")
+
+
+def _write_checked(res: ExportResult, out: Path, text: str) -> None:
+    """Write ``text`` to ``out``, or to :func:`failed_name` when the export
+    failed its verification and ``out`` exists (recorded in ``res``)."""
+    if res.verified is False and (out.exists() or out.is_symlink()):
+        res.kept_existing = str(out)
+        out = failed_name(out)
+        res.file = str(out)
+        res.notes.append(f"verification failed: written as {out.name}, the existing "
+                         f"{res.kept_existing} left as it was")
+    write_text_atomic(out, text)
 
 
 def readback_path(text: str, dialect: str, original: ToolPath, moves: list, file: str) -> ToolPath:
@@ -248,17 +284,17 @@ def _export_program(res: ExportResult, path: ToolPath, out: Path, program: Progr
     seg_tol, moves, res.roundtrip_error, cert = job.refit(seg_tol, moves, roundtrip, cert)
     fit = _fit_summary(res, path, moves, seg_tol)
     text = job.write(header + _verdict(res, path, fit, cert), seg_tol)[0]
-    write_text_atomic(out, text)
+    _write_checked(res, out, text)
 
 
 def _export_json(res: ExportResult, path: ToolPath, out: Path, program: Program | None) -> None:
     """The tool path and, given the program, its certificate."""
     cert = _verify(path, program)
     doc = {"toolpath": path.to_json(), "certificate": cert.to_json() if cert else None}
-    write_text_atomic(out, json.dumps(doc) + "\n")
     if cert is not None:
         res.verified = bool(cert.ok)
         res.certificate = doc["certificate"]
+    _write_checked(res, out, json.dumps(doc) + "\n")
 
 
 def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = None,
@@ -270,7 +306,9 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
     ``tol`` is the export tolerance in program units (default
     :data:`~ccopt.export.arcfit.DEFAULT_TOL` for the path's units).
     Raises :class:`ProgramError` (nothing written) when the read-back does not
-    reproduce the path within ``tol``.
+    reproduce the path within ``tol``. A program or JSON export whose
+    verification fails is written to ``NAME.failed.EXT`` when ``out`` exists
+    (``res.file`` then names it, ``res.kept_existing`` the file left alone).
     """
     out = Path(out)
     fmt = fmt or FORMATS.get(out.suffix.lower())
@@ -291,5 +329,5 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
     return res
 
 
-__all__ = ["DEFAULT_TOL", "ExportResult", "FORMATS", "export", "readback_path", "roundtrip_error",
-           "write_gcode", "write_pmac", "write_svg"]
+__all__ = ["DEFAULT_TOL", "ExportResult", "FORMATS", "export", "failed_name", "readback_path",
+           "roundtrip_error", "write_gcode", "write_pmac", "write_svg"]

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 
 from ccopt.export.arcfit import fit_arcs, fit_bezier, fit_tolerance
+from ccopt.export.text import gcode_comment
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import PLANE_AXES
@@ -112,7 +113,7 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
     seg_tol = seg_tol or {}
     out = ["%"]
     for h in header or []:
-        out.append(f"({h.replace('(', '[').replace(')', ']')})")
+        out.append(gcode_comment(h))
     out.append(f"G21 {PLANE_WORD[path.plane]} G90 G94" if path.units == "mm"
                else f"G20 {PLANE_WORD[path.plane]} G90 G94")
     max_err = 0.0

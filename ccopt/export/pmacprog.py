@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from ccopt.export.arcfit import DEFAULT_TOL, fit_tolerance
 from ccopt.export.gcode import bezier_pieces, fmt
+from ccopt.export.text import pmac_comment
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import PLANE_AXES
@@ -47,7 +48,7 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
     iu, iv, iw = PLANE_AXES[path.plane]
     U, V, W = AXES[iu], AXES[iv], AXES[iw]
     CI, CJ = CENTRE[iu], CENTRE[iv]
-    lines = [f"; {h}" for h in header or []]
+    lines = [pmac_comment(h) for h in header or []]
     lines += ["CLOSE", f"OPEN PROG {program_number} CLEAR", NORMAL[path.plane], "ABS"]
     moves: list = []
     mode = None

@@ -8,10 +8,9 @@ the machine's XY plane. Colours by role.
 from __future__ import annotations
 
 import math
-from xml.sax.saxutils import escape
-
 import numpy as np
 
+from ccopt.export.text import xml_text
 from ccopt.geometry import Arc, Line
 from ccopt.geometry.angles import TWO_PI
 from ccopt.tolerances import POINT_EPS
@@ -67,7 +66,7 @@ def write_svg(path: ToolPath, contour: ToolPath | None = None, title: str = "",
     vb = f"{xmin - pad:.6f} {-(ymax + pad):.6f} {xmax - xmin + 2 * pad:.6f} {ymax - ymin + 2 * pad:.6f}"
     parts = [f'<svg xmlns="http://www.w3.org/2000/svg" viewBox="{vb}" width="800" '
              f'height="{800 * (ymax - ymin + 2 * pad) / (xmax - xmin + 2 * pad):.0f}">',
-             f"<title>{escape(title or path.style)}</title>"]
+             f"<title>{xml_text(title or path.style)}</title>"]
     if contour is not None:
         parts.append(f'<g fill="none" stroke="#000" stroke-width="{stroke:.6g}" '
                      f'stroke-dasharray="{4 * stroke:.6g} {2 * stroke:.6g}">')

@@ -5,13 +5,18 @@ circles along it, violations marked), the feed along the path coloured by
 speed, speed against time for each planner, the blend comparison table, the
 certificate (every check with its figure and whether it is exact or a
 certified bound), and links to the exported files.
+
+Every text on the page (titles, sources, messages, names) is escaped by
+:func:`ccopt.export.text.html_text` and every link made by
+:func:`~ccopt.export.text.html_href`: a case's text stays text.
 """
 from __future__ import annotations
 
 import base64
-import html
 import json
 from typing import Any
+
+from ccopt.export.text import html_href, html_text
 
 CSS = """
 body{font-family:system-ui,Segoe UI,Helvetica,Arial,sans-serif;margin:2em;max-width:1200px;color:#222}
@@ -26,7 +31,7 @@ code{background:#f6f6f6;padding:0 .2em}
 
 
 def _e(x: Any) -> str:
-    return html.escape(str(x))
+    return html_text(x)
 
 
 def _img(png: bytes, alt: str) -> str:
@@ -128,7 +133,7 @@ def render(results: list[dict], title: str = "ccopt run") -> str:
                           for k, v in c.items()} for c in cert["violations"]]
                 parts.append(_table(viols))
         if r.get("files"):
-            links = " ".join(f'<a href="{_e(path)}">{_e(label)}</a>'
+            links = " ".join(f'<a href="{html_href(path)}">{_e(label)}</a>'
                              for label, path in r["files"].items())
             parts.append(f"<p>files: {links}</p>")
     parts.append("</body></html>")

@@ -1,7 +1,8 @@
 """Plots of a case (matplotlib, Agg), returned as PNG bytes for embedding.
 
 Drawing samples the exact segments finely; that is for the eye only — every
-figure ccopt reports comes from the exact geometry.
+figure ccopt reports comes from the exact geometry. Titles pass through
+:func:`ccopt.export.text.plot_text` (one line, no mathtext).
 """
 from __future__ import annotations
 
@@ -9,6 +10,7 @@ import io
 
 import numpy as np
 
+from ccopt.export.text import plot_text
 from ccopt.tolerances import POINT_EPS
 from ccopt.toolpath import Role, ToolPath
 
@@ -103,7 +105,7 @@ def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
         if w:
             ax.plot([w[0]], [w[1]], "x", color="red", ms=10, mew=2)
     ax.set_aspect("equal")
-    ax.set_title(title)
+    ax.set_title(plot_text(title))
     ax.legend(fontsize=7, loc="best")
     ax.grid(alpha=0.3)
     return _png(plt, fig)
@@ -126,7 +128,7 @@ def feed_plot(profile, title: str = "") -> bytes:
     else:
         plt, fig, ax = _figure()
     ax.set_aspect("equal")
-    ax.set_title(title)
+    ax.set_title(plot_text(title))
     ax.grid(alpha=0.3)
     return _png(plt, fig)
 
@@ -141,7 +143,7 @@ def speed_time_plot(profiles: dict, title: str = "") -> bytes:
         ax.plot(smp.t, smp.feed, label=f"{name} ({prof.duration:.3f} s)", lw=1.2)
     ax.set_xlabel("time (s)")
     ax.set_ylabel("feed (units/s)")
-    ax.set_title(title)
+    ax.set_title(plot_text(title))
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
     return _png(plt, fig)

@@ -12,6 +12,13 @@ Resumable: :func:`load_done` reads the rows already there, and only the
 tasks without a row run again. The table is rewritten whole (atomically)
 every few seconds while the sweep runs, so an interrupted sweep keeps what
 it finished. Rows whose task the current spec no longer has are dropped.
+
+Every file is replaced atomically through :mod:`ccopt.atomic` (the umask's
+permissions; a killed run's temporary file is removed by the next). The CSV
+is for spreadsheets: its text cells are written by
+:func:`ccopt.export.text.csv_cell` (one line; a cell starting with ``=``,
+``+``, ``-`` or ``@`` gets a leading ``'`` so it is never run as a formula).
+The Parquet table keeps the values as they are.
 """
 from __future__ import annotations
 
@@ -20,7 +27,9 @@ import os
 import time
 from pathlib import Path
 
+from ccopt.atomic import write_with_atomic
 from ccopt.errors import ProgramError
+from ccopt.export.text import csv_cell
 from ccopt.sweep.execute import FIGURES
 from ccopt.sweep.spec import AXES, Spec
 
@@ -94,15 +103,24 @@ def merge(done, new, order: list[str], cols: list[str]):
 
 
 def _replace(path: Path, write) -> None:
-    tmp = path.with_name(f".{path.name}.tmp")
-    write(tmp)
-    os.replace(tmp, path)
+    write_with_atomic(path, write)
+
+
+def spreadsheet_safe(table):
+    """A copy of ``table`` whose text cells (and column names) are
+    :func:`~ccopt.export.text.csv_cell`: for the CSV only."""
+    safe = table.copy()
+    for c in safe.columns:
+        if safe[c].dtype.kind not in "biufcmM":     # text (object or string) columns
+            safe[c] = safe[c].map(csv_cell)
+    safe.columns = [csv_cell(str(c)) for c in safe.columns]
+    return safe
 
 
 def write_table(out: Path, table) -> None:
     """``results.parquet`` and ``results.csv``, each replaced atomically."""
     _replace(out / PARQUET, lambda p: table.to_parquet(p, engine="pyarrow", index=False))
-    _replace(out / CSV, lambda p: table.to_csv(p, index=False))
+    _replace(out / CSV, lambda p: spreadsheet_safe(table).to_csv(p, index=False))
 
 
 def write_spec_copy(out: Path, spec: Spec) -> str:

@@ -8,16 +8,20 @@ A last panel counts, per style or variant, the tasks that failed
 (``error``) and those that ran but were not certified (``ok`` false: a
 gouge, a side or limits violation). The page
 lists the failed tasks with their errors. The figure is also written as
-``summary.png``.
+``summary.png``. Texts from the spec and the tasks (title, program names,
+errors) are escaped for the page (:func:`ccopt.export.text.html_text`) and
+for the figure (:func:`~ccopt.export.text.plot_text`); both files are
+written atomically (:mod:`ccopt.atomic`).
 """
 from __future__ import annotations
 
 import base64
-import html
 import io
 import math
 from pathlib import Path
 
+from ccopt.atomic import write_text_atomic, write_with_atomic
+from ccopt.export.text import html_text, plot_text
 from ccopt.sweep.spec import AXES
 
 #: At most this many failed tasks are listed on the page.
@@ -61,15 +65,15 @@ def _axis_panel(ax, ran, axis: str, group: str | None) -> None:
         ys = [means[v] for v in values if v in means.index]
         # programs are not ordered: points, no line between them
         ax.plot(xs, ys, marker="o", linestyle="none" if axis == "program" else "-",
-                label=str(name) if name is not None else "all")
+                label=plot_text(name) if name is not None else "all")
     if not numeric:
         ax.set_xticks(range(len(values)))
-        ax.set_xticklabels([str(v) for v in values], rotation=30, ha="right", fontsize=7)
+        ax.set_xticklabels([plot_text(v) for v in values], rotation=30, ha="right", fontsize=7)
     ax.set_xlabel(axis)
     ax.set_ylabel("cycle time, s" if axis == "program" else "cycle time / program mean")
     ax.grid(True, alpha=0.3)
     if group is not None and group != axis:
-        ax.legend(fontsize=7, title=group, title_fontsize=7)
+        ax.legend(fontsize=7, title=plot_text(group), title_fontsize=7)
 
 
 def _failure_panel(ax, table, group: str | None) -> None:
@@ -83,7 +87,7 @@ def _failure_panel(ax, table, group: str | None) -> None:
     ax.bar([x + 0.2 for x in xs], [int(not_ok.get(n, 0)) for n in names], 0.4,
            label="not certified")
     ax.set_xticks(list(xs))
-    ax.set_xticklabels(names, rotation=30, ha="right", fontsize=7)
+    ax.set_xticklabels([plot_text(n) for n in names], rotation=30, ha="right", fontsize=7)
     ax.set_ylabel("tasks")
     ax.set_title(f"failures per {key} (of {len(table)} tasks)", fontsize=9)
     ax.legend(fontsize=7)
@@ -106,7 +110,7 @@ def figure(table, title: str = ""):
             _axis_panel(ax, ran, axis, group)
         ax.set_title(f"cycle time against {axis}", fontsize=9)
     _failure_panel(fig.add_subplot(rows, cols, n), table, group)
-    fig.suptitle(title or "ccopt sweep")
+    fig.suptitle(plot_text(title or "ccopt sweep"))
     return fig
 
 
@@ -115,8 +119,8 @@ def _failed_rows(table) -> str:
     if not len(failed):
         return "<p>No task failed.</p>"
     cols = [c for c in ("program", *AXES, "error") if c in failed]
-    head = "".join(f"<th>{html.escape(c)}</th>" for c in cols)
-    body = "".join("<tr>" + "".join(f"<td>{html.escape(str(r[c]))}</td>" for c in cols) + "</tr>"
+    head = "".join(f"<th>{html_text(c)}</th>" for c in cols)
+    body = "".join("<tr>" + "".join(f"<td>{html_text(r[c])}</td>" for c in cols) + "</tr>"
                    for _, r in failed.head(MAX_LISTED).iterrows())
     more = f"<p>... and {len(failed) - MAX_LISTED} more.</p>" if len(failed) > MAX_LISTED else ""
     return f"<table><tr>{head}</tr>{body}</table>{more}"
@@ -125,18 +129,19 @@ def _failed_rows(table) -> str:
 def write_summary(out: Path, table, title: str = "") -> Path:
     """``out/summary.html`` and ``out/summary.png``; returns the HTML file."""
     fig = figure(table, title)
-    fig.savefig(out / "summary.png", dpi=110)
+    # the temporary file's suffix is not .png: name the format
+    write_with_atomic(out / "summary.png", lambda p: fig.savefig(p, format="png", dpi=110))
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=110)
     img = base64.b64encode(buf.getvalue()).decode("ascii")
     n_err = int(table["error"].notna().sum())
-    page = (f"<!doctype html><html><head><meta charset='utf-8'><title>{html.escape(title)}"
+    page = (f"<!doctype html><html><head><meta charset='utf-8'><title>{html_text(title)}"
             "</title><style>body{font-family:sans-serif;margin:2em}table{border-collapse:"
             "collapse;font-size:small}td,th{border:1px solid #ccc;padding:2px 6px}</style>"
-            f"</head><body><h1>{html.escape(title or 'ccopt sweep')}</h1>"
+            f"</head><body><h1>{html_text(title or 'ccopt sweep')}</h1>"
             f"<p>{len(table)} tasks, {n_err} failed. Table: results.parquet, results.csv.</p>"
             f"<img alt='summary plots' src='data:image/png;base64,{img}'>"
             f"<h2>Failed tasks</h2>{_failed_rows(table)}</body></html>\n")
     path = out / "summary.html"
-    path.write_text(page, encoding="utf-8")
+    write_text_atomic(path, page)
     return path
