@@ -12,6 +12,7 @@ from pathlib import Path
 
 from ccopt.errors import ProgramError
 from ccopt.program.gcode import read_gcode
+from ccopt.program.gcode.coordinates import read_var_file
 from ccopt.program.model import Block, Modal, Motion, PLANE_AXES, Program, Source
 from ccopt.program.pmac import read_pmac
 from ccopt.program.tooltable import read_tool_table
@@ -35,17 +36,19 @@ def dialect_of(path: str | os.PathLike) -> str:
 
 
 def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
-              tool_table: dict[int, float] | None = None) -> Program:
-    """Read program text of the given dialect."""
+              tool_table: dict[int, float] | None = None,
+              parameters: dict[int, float] | None = None) -> Program:
+    """Read program text of the given dialect (``parameters``: G-code only)."""
     if dialect == "gcode":
-        return read_gcode(text, file, tool_table=tool_table)
+        return read_gcode(text, file, tool_table=tool_table, parameters=parameters)
     if dialect == "pmac":
         return read_pmac(text, file)
     raise ProgramError(f"unknown dialect {dialect!r}; choose one of {', '.join(DIALECTS)}", file)
 
 
 def read_program(path: str | os.PathLike, dialect: str | None = None, *,
-                 tool_table: str | os.PathLike | dict[int, float] | None = None) -> Program:
+                 tool_table: str | os.PathLike | dict[int, float] | None = None,
+                 var_file: str | os.PathLike | None = None) -> Program:
     """Read a part program file.
 
     Parameters
@@ -54,6 +57,8 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     dialect: ``"gcode"`` or ``"pmac"``; default from the suffix.
     tool_table: LinuxCNC tool table (path or ``{tool: diameter}``) for G-code
         ``G41 D<tool>``.
+    var_file: LinuxCNC parameter file (``linuxcnc.var``) whose values are in
+        force at the start of a G-code program (coordinate system origins).
     """
     file = str(path)
     dialect = dialect or dialect_of(path)
@@ -69,7 +74,11 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     table = tool_table
     if tool_table is not None and not isinstance(tool_table, dict):
         table = read_tool_table(tool_table)
-    return read_text(text, file, dialect, tool_table=table)
+    parameters = read_var_file(var_file) if var_file is not None else None
+    if parameters is not None and dialect != "gcode":
+        raise ProgramError("a LinuxCNC parameter file (--var-file) applies to G-code "
+                           "programs only", file)
+    return read_text(text, file, dialect, tool_table=table, parameters=parameters)
 
 
 __all__ = ["Block", "Modal", "Motion", "PLANE_AXES", "Program", "ProgramError", "Source",

@@ -22,7 +22,7 @@ CASES = [
     # words and numbers
     ("G1 X1 E5 F60", 1, 7, "unknown word E"),
     ("G1 X1 F60\nG7 X2", 2, 1, "unknown G-code G7"),
-    ("G55", 1, 1, "G55"),
+    ("G59.4", 1, 1, "G59.4"),  # G55 is read since issue 15 (coordinate systems)
     ("G1 X1 F60\nG1.5 X2", 2, 1, "unknown G-code G1.5"),
     ("G1 A10 F60", 1, 4, "axis A is not supported"),
     ("G1 X1.2.3 F60", 1, 8, "two decimal points"),
@@ -43,7 +43,7 @@ CASES = [
     ("/G1 X1 F60", 1, 1, "block delete"),
     ("M98 P100", 1, 1, "M98"),
     ("G1 X1 F60 M2.5", 1, 11, "whole number"),
-    ("G1 X1 L2 F60", 1, 7, "unknown word L"),
+    ("G1 X1 L2 F60", 1, 7, "L word with no G10"),  # L is G10's word since issue 15
     ("X1", 1, 1, "no motion mode"),
     ("G80 X1", 1, 5, "G80"),
     # comments
@@ -86,7 +86,7 @@ CASES = [
     ("G2 X10 R5 P0 F60", 1, 11, "number of turns"),
     ("G90.1 G2 X10 I5 F60", 1, 7, "needs both I and J"),
     ("G1 X1 I1 F60", 1, 7, "I word with no G2 or G3"),
-    ("G1 X1 R1 F60", 1, 7, "R word with no G2 or G3"),
+    ("G1 X1 R1 F60", 1, 7, "R word with no G2, G3 or G10"),
     ("G1 X1 P1 F60", 1, 7, "P word with no"),
     ("G1 X1 Q1 F60", 1, 7, "Q word with no G64"),
     ("G4", 1, 1, "G4 needs the dwell time"),

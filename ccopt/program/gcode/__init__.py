@@ -31,7 +31,7 @@ __all__ = ["read_gcode", "MAX_EXECUTED_LINES", "MAX_CALL_DEPTH"]
 
 
 def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float] | None = None,
-               start=(0.0, 0.0, 0.0)) -> Program:
+               start=(0.0, 0.0, 0.0), parameters: dict[int, float] | None = None) -> Program:
     """Read RS274NGC/LinuxCNC G-code into a :class:`Program` (dialect ``"gcode"``).
 
     Parameters
@@ -46,6 +46,11 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
         with ``D<tool>`` or a loaded tool (``T<n> M6``).
     start:
         Machine position ``(x, y, z)`` before the first block, program units.
+    parameters:
+        Numbered parameters in force at the start (e.g. from a LinuxCNC
+        parameter file, :func:`~ccopt.program.gcode.coordinates.read_var_file`):
+        the coordinate system origins ``#5221``..., the active system
+        ``#5220`` and the G92 offset ``#5210``-``#5213`` among them.
 
     The runaway guards are this module's :data:`MAX_EXECUTED_LINES` and
     :data:`MAX_CALL_DEPTH`, read at each call.
@@ -61,7 +66,7 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
     state = None
     try:
         state = open_program(text, file, table, s, max_executed_lines=MAX_EXECUTED_LINES,
-                             max_call_depth=MAX_CALL_DEPTH)
+                             max_call_depth=MAX_CALL_DEPTH, parameters=parameters)
         return run(state)
     except ProgramError:
         raise

@@ -16,6 +16,7 @@ from ccopt import tolerances
 from ccopt.geometry.angles import TWO_PI
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.words import fmt
+from ccopt.program.gcode.coordinates import work_offset
 from ccopt.program.model import PLANE_AXES
 
 #: Largest G2/G3 P (number of turns), LinuxCNC keeps it in an int.
@@ -134,7 +135,10 @@ def _word_centre(state: GCodeState, L: dict, start_uv, end_uv, tol: float, gname
             missing = wu if wu not in L else wv
             raise state.error(f"G90.1 absolute arc centre needs both {wu} and {wv} "
                               f"({missing} is missing)", gcol)
-        cu, cv = L[wu][0], L[wv][0]
+        # absolute centres are programmed in work coordinates
+        offset = work_offset(state)
+        iu, iv, _ = PLANE_AXES[state.plane]
+        cu, cv = L[wu][0] + offset[iu], L[wv][0] + offset[iv]
     r0 = math.hypot(u0 - cu, v0 - cv)
     r1 = math.hypot(u1 - cu, v1 - cv)
     zero = _ZERO_RADIUS_FRACTION * tol

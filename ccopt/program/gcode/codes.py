@@ -29,7 +29,12 @@ G_GROUPS: dict[int, str] = {
     200: "units", 210: "units",
     400: "comp", 410: "comp", 420: "comp", 411: "comp", 421: "comp",
     430: "length", 490: "length",
-    540: "coord",
+    540: "coord", 550: "coord", 560: "coord", 570: "coord", 580: "coord", 590: "coord",
+    591: "coord", 592: "coord", 593: "coord",
+    # non-modal codes that take the line's axis words (LinuxCNC group 0)
+    100: "axis_setting", 520: "axis_setting", 920: "axis_setting", 921: "axis_setting",
+    922: "axis_setting", 923: "axis_setting",
+    530: "machine_coords",
     610: "path", 611: "path", 640: "path",
     900: "distance", 910: "distance",
     901: "arc_distance", 911: "arc_distance",
@@ -37,18 +42,18 @@ G_GROUPS: dict[int, str] = {
     1360: "corner", 1370: "corner",
     1380: "start_end", 1390: "start_end",
 }
-_KNOWN_G = ("G0 G1 G2 G3 G4 G17 G18 G19 G20 G21 G40 G41 G42 G41.1 G42.1 G43 G49 "
-            "G54 G61 G61.1 G64 G80 G90 G91 G90.1 G91.1 G93 G94 G136 G137 G138 G139")
+_KNOWN_G = ("G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G40 G41 G42 G41.1 G42.1 G43 G49 "
+            "G52 G53 G54-G59.3 G61 G61.1 G64 G80 G90 G91 G90.1 G91.1 G92 G92.1 G92.2 G92.3 "
+            "G93 G94 G136 G137 G138 G139")
 _G_UNSUPPORTED_HINT: dict[int, str] = {
-    **{t: "work offsets other than G54 would move the path; ccopt works in program "
-          "coordinates: remove it or use G54" for t in (550, 560, 570, 580, 590, 591, 592, 593)},
     950: "feed per revolution is not supported: use G94 (units per minute) or G93",
-    100: "G10 (setting offsets/tool data) is not supported: give the tool table to ccopt instead",
     280: "homing moves are not supported", 300: "homing moves are not supported",
-    530: "machine-coordinate moves are not supported",
-    920: "coordinate offsets (G92) are not supported",
-    921: "coordinate offsets are not supported", 922: "coordinate offsets are not supported",
-    923: "coordinate offsets are not supported",
+    **{t: "canned cycles (lathe G70-G72, G73 drilling, G74 tapping, G76 threading, "
+          "G81-G89) are not supported: write the moves out"
+       for t in (700, 710, 711, 720, 721, 730, 740, 760, 810, 820, 830, 840, 841, 850, 860,
+                 870, 880, 890)},
+    70: "G7 (lathe diameter mode) is not supported: program radii (G8)",
+    80: "G8 (lathe radius mode) is not supported yet",
 }
 # M-code modal groups that may not appear twice on a line.
 _M_GROUPS: dict[int, str] = {0: "stop", 1: "stop", 2: "stop", 30: "stop", 60: "stop",
@@ -56,7 +61,7 @@ _M_GROUPS: dict[int, str] = {0: "stop", 1: "stop", 2: "stop", 30: "stop", 60: "s
                              7: "coolant", 8: "coolant", 9: "coolant"}
 _M_LIMIT = 1000  # M-codes run from M0 to M999
 
-_WORD_LETTERS = set("GMXYZIJKRFPDHTSQ")
+_WORD_LETTERS = set("GMXYZIJKRFPDHTSQL")
 _UNSUPPORTED_AXES = set("ABCUVW")
 
 
@@ -126,7 +131,7 @@ def _not_a_word(ch: str, p: int) -> ExprError:
         return ExprError("block delete '/' is not supported: ccopt cannot know the "
                          "switch; remove the '/' or the line", p)
     if "A" <= up <= "Z":
-        return ExprError(f"unknown word {up}: ccopt reads G M X Y Z I J K R F P D H T S "
+        return ExprError(f"unknown word {up}: ccopt reads G M X Y Z I J K R F P D H T S L "
                          "N Q words, #parameters and O-words", p)
     return ExprError(f"unexpected character {ch!r}: expected a word such as G1 or X10", p)
 

@@ -14,6 +14,8 @@ import math
 
 from ccopt.program.gcode.arcs import arc_geometry, is_modal_arc_without_plane_motion
 from ccopt.program.gcode.codes import Words, classify
+from ccopt.program.gcode.coordinates import (select_origin, set_axis_offset, set_origin,
+                                             work_offset)
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, gname
 from ccopt.program.model import Block, Motion, Source
@@ -42,11 +44,15 @@ def execute_words(state: GCodeState, words: Words) -> None:
     if dwell is not None:
         _dwell(state, dwell, L, mcodes, first_col)
     _set_modes(state, gc, L)
+    _set_coordinates(state, gc, L)
+    if "machine_coords" in gc:
+        _check_machine_coords(state, gc, motion)
     motion_g = gc.get("motion")
     if motion_g is not None:
         state.motion_mode = None if motion_g[0] == 800 else motion_g[0]
     if motion is not None and (any(a in L for a in _AXES) or is_arc):
-        _move(state, motion, L, mcodes, first_col, motion_g[1] if motion_g else first_col)
+        _move(state, motion, L, mcodes, first_col, motion_g[1] if motion_g else first_col,
+              machine="machine_coords" in gc)
     if any(m in (2, 30) for m in mcodes):
         raise ProgramEnd()
 
@@ -60,6 +66,13 @@ def _motion_of(state: GCodeState, gc: dict, L: dict) -> int | None:
     """
     axis = any(a in L for a in _AXES)
     motion_g = gc.get("motion")
+    setting = gc.get("axis_setting")
+    if setting is not None:
+        # G10, G52 and G92 take the line's axis words: nothing moves
+        if motion_g is not None and motion_g[0] != 800:
+            raise state.error(f"{gname(setting[0])} and {gname(motion_g[0])} both use the "
+                              "axis words: put them on separate lines", motion_g[1])
+        return None
     if motion_g is not None:
         if motion_g[0] != 800:
             return motion_g[0]
@@ -89,12 +102,15 @@ def _check_word_usage(state: GCodeState, gc: dict, L: dict, is_arc: bool) -> Non
     for w in "IJK":
         if w in L and not is_arc:
             raise state.error(f"{w} word with no G2 or G3 to use it", L[w][1])
-    if "R" in L and not is_arc:
-        raise state.error("R word with no G2 or G3 to use it", L["R"][1])
+    if "R" in L and not (is_arc or gc.get("axis_setting", (None,))[0] == 100):
+        raise state.error("R word with no G2, G3 or G10 to use it", L["R"][1])
     dwell = gc.get("dwell")
     path = gc.get("path")
-    if "P" in L and not (is_arc or dwell or (path and path[0] == 640)):
-        raise state.error("P word with no G2, G3, G4 or G64 to use it", L["P"][1])
+    g10 = gc.get("axis_setting", (None,))[0] == 100
+    if "P" in L and not (is_arc or dwell or g10 or (path and path[0] == 640)):
+        raise state.error("P word with no G2, G3, G4, G10 or G64 to use it", L["P"][1])
+    if "L" in L and not g10:
+        raise state.error("L word with no G10 to use it", L["L"][1])
     if "Q" in L and not (path and path[0] == 640):
         raise state.error("Q word with no G64 to use it", L["Q"][1])
     if dwell and is_arc:
@@ -236,15 +252,18 @@ def _emit(state: GCodeState, block: Block) -> None:
 
 
 def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int,
-          gcol: int) -> None:
+          gcol: int, machine: bool = False) -> None:
     """The move of ``motion`` (tenths) to the axis words' end point (absolute
-    or, under ``G91``, incremental); ``gcol`` locates errors of the move."""
+    in work coordinates, under ``G53`` in machine coordinates, or under
+    ``G91`` incremental); ``gcol`` locates errors of the move. Blocks hold
+    machine coordinates."""
     cur = state.pos
     end = list(cur)
+    offset = (0.0, 0.0, 0.0) if machine else work_offset(state)
     for k, a in enumerate(_AXES):
         if a in L:
             v = L[a][0]
-            end[k] = cur[k] + v if state.incremental else v
+            end[k] = cur[k] + v if state.incremental else v + offset[k]
     end_t = (end[0], end[1], end[2])
     src = Source(state.file, state.line_no + 1, first_col + 1)
     if motion == 0:
@@ -260,6 +279,32 @@ def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int
     _emit(state, block)
     state.moved = True
     state.pos = end_t
+
+
+def _set_coordinates(state: GCodeState, gc: dict, L: dict) -> None:
+    """``G54``-``G59.3``, then ``G10``/``G52``/``G92``*, in RS274NGC order."""
+    coord = gc.get("coord")
+    if coord is not None:
+        select_origin(state, coord[0], coord[1])
+    setting = gc.get("axis_setting")
+    if setting is None:
+        return
+    if setting[0] == 100:
+        set_origin(state, L, setting[1])
+    else:
+        set_axis_offset(state, setting[0], L, setting[1])
+
+
+def _check_machine_coords(state: GCodeState, gc: dict, motion: int | None) -> None:
+    """``G53`` moves in machine coordinates for its line: with ``G0``/``G1``,
+    absolute, compensation off (as LinuxCNC requires)."""
+    col = gc["machine_coords"][1]
+    if motion not in (0, 10):
+        raise state.error("G53 needs G0 or G1 (a straight move in machine coordinates)", col)
+    if state.incremental:
+        raise state.error("G53 is absolute: it cannot be used under G91", col)
+    if state.side != 0:
+        raise state.error("G53 cannot be used with cutter radius compensation on", col)
 
 
 def _feed(state: GCodeState, L: dict, length: float, col: int) -> float:

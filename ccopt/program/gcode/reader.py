@@ -12,9 +12,10 @@ import math
 from ccopt.errors import ProgramError
 from ccopt.program.expr import ExprError
 from ccopt.program.gcode.codes import read_words
+from ccopt.program.gcode.coordinates import init_coordinates
 from ccopt.program.gcode.execute import execute_words
 from ccopt.program.gcode.oword import exec_oword
-from ccopt.program.gcode.parameters import attach_grammar, set_parameter
+from ccopt.program.gcode.parameters import MAX_PARAMETER, attach_grammar, set_parameter
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.words import Lexed, lex, olabel, program_span
 from ccopt.program.model import Program
@@ -45,10 +46,18 @@ def check_inputs(file, tool_table, start) -> tuple[str, dict[int, float] | None,
 
 def open_program(text: str, file: str, tool_table: dict[int, float] | None,
                  start: tuple[float, float, float], *, max_executed_lines: int,
-                 max_call_depth: int) -> GCodeState:
-    """The state to run ``text`` with (its ``%`` span already found)."""
+                 max_call_depth: int, parameters: dict[int, float] | None = None) -> GCodeState:
+    """The state to run ``text`` with (its ``%`` span already found), its
+    numbered parameters and coordinate systems set from ``parameters``."""
     state = GCodeState(text, file, tool_table, start, max_executed_lines=max_executed_lines,
                        max_call_depth=max_call_depth)
+    for number, value in (parameters or {}).items():
+        if not (isinstance(number, int) and 1 <= number <= MAX_PARAMETER
+                and math.isfinite(float(value))):
+            raise ProgramError(f"parameter #{number} = {value!r}: numbers run from 1 to "
+                               f"{MAX_PARAMETER} and values must be finite", file)
+        state.params[number] = float(value)
+    init_coordinates(state)
     attach_grammar(state)
     state.first_line, state.end_line = program_span(state)
     return state

@@ -88,6 +88,10 @@ class GCodeState:
         self.units: str | None = None
         self.incremental = False
         self.arc_incremental = True
+        # coordinate systems (see coordinates.py): active origin 1..9 (G54..G59.3)
+        # and the G92/G52 axis offset, program units
+        self.origin_index = 1
+        self.axis_offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
         self.feed_mode = "per_minute"
         self.feed: float | None = None       # G94 F, units per minute
         self.motion_mode: int | None = None  # tenths (G1 -> 10); None = G80
