@@ -126,6 +126,6 @@ def check_limits(profile, rel_tol: float = LIMITS_TOL):
                                           "value": float(value[k]), "limit": float(limit[k]),
                                           "samples": int(b - a)}))
     return Check("limits", not viol, worst, rel_tol, SAMPLED, "ratio",
-                 "axis |velocity|, |acceleration| and feed at most their limits at every sample "
-                 "(figure: largest |value| / limit)", int(t.size), len(viol),
+                 "axis |velocity|, |acceleration| and feed at most their limits at every sample, "
+                 f"within {rel_tol:g} relative (figure: largest |value| / limit)", int(t.size), len(viol),
                  {"largest": worst_name}), viol
