@@ -91,6 +91,13 @@ plane (``kappa_p``, as arcs do): the 3-D tangent changes by no more than that.
 
 :func:`refine` adds further points (the TOPPRA planner adds the baselines'
 switch points).
+
+The planner does not rely on these bounds to keep the limits: it checks the
+axis accelerations at interior points of every interval too and shrinks them
+by the residual between checks (:func:`residual_margins`), and it bounds the
+axis velocities by each interval's largest ``|q_j'|``
+(:func:`interval_speed_peaks`); see the comment above them. The budgets above
+keep that margin small (about 1e-4 on arcs).
 """
 from __future__ import annotations
 

@@ -9,6 +9,13 @@ The output is parametrised with constant acceleration between gridpoints
 (toppra's ``ParametrizeConstAccel``; its default ``ParametrizeSpline``
 overshoots the limits between gridpoints).
 
+The axis limits hold all along the path, not only at the gridpoints:
+accelerations are checked at the ends and three interior points of every
+interval, against limits shrunk on curved intervals by the residual defect
+between checks (:class:`IntervalAxisAccelerationConstraint`), and velocities
+against each interval's largest ``|q_j'|`` (:class:`IntervalAxisVelocityConstraint`);
+the derivation is in :mod:`ccopt.feed.grid`. On lines both are exact.
+
 The gridpoints include the switch points of both baseline planners
 (:func:`ccopt.feed.baselines.baseline_knot_positions`): every baseline
 profile is then feasible for the discretised problem, so the TOPPRA profile,
