@@ -204,5 +204,5 @@ class Certificate:
         if any(c.name == LIMITS_CHECK and c.basis == NOT_RUN for c in self.checks):
             lim = "not run"
         elif self.limits_tol is not None:
-            lim += f" within {self.limits_tol:g}"
+            lim += f" at tolerance {self.limits_tol:g}"
         return f"geometry {'ok' if self.geometry_ok else 'FAIL'}, limits {lim}"

@@ -62,7 +62,7 @@ def test_a_tighter_tolerance_fails_the_limits_only():
     assert (data["ok"], data["geometry_ok"], data["limits_ok"], data["limits_tol"]) == \
         (False, True, False, 1e-4)
     first = cert.summary().splitlines()[0]
-    assert first.startswith("verification FAILED (geometry ok, limits FAIL within 0.0001)")
+    assert first.startswith("verification FAILED (geometry ok, limits FAIL at tolerance 0.0001)")
 
 
 def test_a_gouge_fails_the_geometry_only():
@@ -98,7 +98,7 @@ def test_cli_feed_and_limits_tol(capsys):
     assert lim["basis"] == "sampled" and lim["figure"] == pytest.approx(1.0, abs=1e-6)
     code = main(["verify", "leadin-outside-line", "--feed", "--limits-tol", "0.01"])
     out = capsys.readouterr().out
-    assert code == 0 and "(geometry ok, limits ok within 0.01)" in out
+    assert code == 0 and "(geometry ok, limits ok at tolerance 0.01)" in out
     # half the case's limits on the command line: the profile is planned under them
     code = main(["verify", "leadin-outside-line", "--feed", "--vmax", "25,25,10", "--json"])
     assert code == 0 and json.loads(capsys.readouterr().out)["limits_ok"]
