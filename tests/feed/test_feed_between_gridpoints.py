@@ -99,3 +99,17 @@ def test_margin_on_an_arc_is_the_derived_second_order_figure(theta):
     assert np.all(m.max(axis=1) >= lower)
     # and of that order (the bound is reached where u and the axis align)
     assert m.max() == pytest.approx(upper.max(), rel=0.5)
+
+
+def test_circle_at_its_axis_velocity_limits():
+    """A circle whose speed the axis velocities limit (accelerations far away):
+    ``v_j = s' |t_j|`` peaks where the tangent is along axis ``j``, which a
+    gridpoint seldom hits; ``x`` is linear between gridpoints, so holding it at
+    ``V_j^2 / max |t_j|^2`` over each interval keeps ``v_j <= V_j`` all along,
+    and at the axis directions the speed is then ``V_j`` within the interval's
+    turning: ``cos(theta/2)`` at worst, ``theta = 0.05``."""
+    tp = ToolPath((PathSegment(Arc((0.0, 0.0), 5.0, 0.3, 2 * math.pi), Role.COMPENSATED, None,
+                               0.0, 0.0, 500.0),))
+    acc, vel = ratios(tp, AxisLimits((100.0, 100.0), (1e6, 1e6)))
+    assert vel <= 1.0 + ROUNDING and acc <= 1.0 + ROUNDING
+    assert vel >= math.cos(0.025) ** 2 - 1e-9
