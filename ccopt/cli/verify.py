@@ -4,20 +4,28 @@ from __future__ import annotations
 import argparse
 
 from ccopt.cli.inputs import job
-from ccopt.cli.options import (add_program, add_reading_options, add_style_options,
-                               positive_float)
+from ccopt.cli.options import (add_limit_options, add_program, add_reading_options,
+                               add_style_options, nonneg_float, positive_float)
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, emit_json
+from ccopt.feed import plan_feed
 from ccopt.tolerances import VERIFY_EPS
+from ccopt.toolpath_json import read_toolpath_json
 from ccopt.verify import verify
 from ccopt.verify.crosschecks import run_crosschecks
+from ccopt.verify.limits import LIMITS_TOL
 
 
 def cmd_verify(args: argparse.Namespace) -> int:
-    """Compensate, then certify the radius offset (exit 1 when a check fails)."""
+    """Compensate (or read ``--toolpath``), then certify the radius offset and,
+    with ``--feed``, the feed limits of TOPPRA's profile (exit 1 when a check fails)."""
     work = job(args.program, args)
     prog = work.read()
-    path = work.compensate(prog)
-    cert = verify(path, prog, eps=args.eps, radius=work.radius, side=work.side)
+    path = read_toolpath_json(args.toolpath, prog) if args.toolpath else work.compensate(prog)
+    profile = None
+    if args.feed:
+        profile = plan_feed(path, work.limits(), planner="toppra")
+    cert = verify(path, prog, profile, eps=args.eps, radius=work.radius, side=work.side,
+                  limits_tol=args.limits_tol)
     report = cert.to_json()
     agree = True
     if args.crosscheck:
@@ -26,7 +34,8 @@ def cmd_verify(args: argparse.Namespace) -> int:
     if args.json:
         emit_json(report)
     else:
-        print(f"{prog.file}: style {path.style}, {len(path.segments)} tool segments")
+        made = f"tool path {args.toolpath}" if args.toolpath else f"style {path.style}"
+        print(f"{prog.file}: {made}, {len(path.segments)} tool segments")
         print(cert.summary())
         for x in report.get("crosschecks", ()):
             print(f"  cross-check {x['name']}: {'agrees' if x['agree'] else 'DISAGREES'} - "
@@ -44,6 +53,15 @@ def add_commands(sub, commands: dict) -> None:
     add_style_options(p)
     p.add_argument("--eps", type=positive_float, default=VERIFY_EPS, metavar="E",
                    help="tolerance in program units (default 1e-6)")
+    p.add_argument("--toolpath", metavar="FILE.json",
+                   help="verify this tool path (ccopt's JSON schema, as `ccopt compensate --json` "
+                        "prints it) against PROGRAM's contour instead of compensating")
+    p.add_argument("--feed", action="store_true",
+                   help="also plan TOPPRA's feed under the axis limits and check them")
+    add_limit_options(p)
+    p.add_argument("--limits-tol", type=nonneg_float, default=LIMITS_TOL, metavar="T",
+                   help="relative tolerance of the limits check: a sample may exceed its limit "
+                        "by this fraction (default 1e-3)")
     p.add_argument("--crosscheck", action="store_true",
                    help="also run the registered cross-check formulations (CVXPY, CasADi)")
     commands["verify"] = cmd_verify

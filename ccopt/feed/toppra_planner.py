@@ -9,6 +9,13 @@ The output is parametrised with constant acceleration between gridpoints
 (toppra's ``ParametrizeConstAccel``; its default ``ParametrizeSpline``
 overshoots the limits between gridpoints).
 
+The axis limits hold all along the path, not only at the gridpoints:
+accelerations are checked at the ends and three interior points of every
+interval, against limits shrunk on curved intervals by the residual defect
+between checks (:class:`IntervalAxisAccelerationConstraint`), and velocities
+against each interval's largest ``|q_j'|`` (:class:`IntervalAxisVelocityConstraint`);
+the derivation is in :mod:`ccopt.feed.grid`. On lines both are exact.
+
 The gridpoints include the switch points of both baseline planners
 (:func:`ccopt.feed.baselines.baseline_knot_positions`): every baseline
 profile is then feasible for the discretised problem, so the TOPPRA profile,
@@ -37,7 +44,8 @@ from ccopt.feed.constraints import (
     TangentialAccelerationConstraint,
 )
 from ccopt.feed.errors import FeedError
-from ccopt.feed.grid import GridOptions, refine
+from ccopt.feed.grid import (GridOptions, interval_samples, interval_speed_peaks, refine,
+                             residual_margins)
 from ccopt.feed.grid import gridpoints as make_gridpoints
 from ccopt.feed.junction import boundary_speed_caps
 from ccopt.feed.limits import AxisLimits
@@ -110,6 +118,66 @@ class StoppingTOPPRA(TOPPRA):
         return res
 
 
+class IntervalAxisVelocityConstraint(AxisVelocityConstraint):
+    """Per-axis velocity limits ``v`` held all along each grid interval, not
+    only at its ends: ``x`` at a gridpoint at most ``v_j^2 / G_j^2`` with
+    ``G_j`` the largest ``|q_j'|`` of both intervals around it
+    (:func:`ccopt.feed.grid.interval_speed_peaks`; ``x`` is linear between
+    gridpoints). On lines the same as :class:`AxisVelocityConstraint`."""
+
+    def compute_constraint_params(self, path, gridpoints, *args, **kwargs):
+        out = list(super().compute_constraint_params(path, gridpoints, *args, **kwargs))
+        peak = interval_speed_peaks(interval_samples(path, gridpoints))
+        with np.errstate(divide="ignore"):
+            x = np.where(peak > 0, (self.v / np.where(peak > 0, peak, 1.0)) ** 2, np.inf).min(axis=1)
+        upper = out[6][:, 1].copy()
+        upper[:-1] = np.minimum(upper[:-1], x)
+        upper[1:] = np.minimum(upper[1:], x)
+        out[6] = np.column_stack([np.zeros_like(upper), upper])
+        return tuple(out)
+
+
+class IntervalAxisAccelerationConstraint(AxisAccelerationConstraint):
+    """Per-axis acceleration limits ``a`` held all along each grid interval.
+
+    For stage ``i`` the rows are ``|P(tau) u_i + Q(tau) x_i| <= a (1 - m_i)``
+    at both ends and at :data:`ccopt.feed.grid.INTERIOR_CHECKS` of the
+    interval (``P``, ``Q``: :attr:`ccopt.feed.grid.IntervalSamples.accel_rows`),
+    ``m_i`` the residual margin of :func:`ccopt.feed.grid.residual_margins`
+    (0 on lines), which bounds the excess between the checks. ``x_cap``: the
+    squared speed caps at the gridpoints (programmed feed), in the
+    constraint's units, which with the axis velocities bound ``x_i`` there.
+    """
+
+    def __init__(self, a, v, cap):
+        super().__init__(a)
+        self.v = np.asarray(v, dtype=float)
+        self.cap = np.asarray(cap, dtype=float)
+
+    def compute_constraint_params(self, path, gridpoints, *args, **kwargs):
+        gridpoints = np.asarray(gridpoints, dtype=float)
+        smp = interval_samples(path, gridpoints)
+        q1 = path.eval_sided(gridpoints, 1, "right")
+        with np.errstate(divide="ignore"):
+            x_vel = np.where(np.abs(q1) > 0, (self.v / np.where(np.abs(q1) > 0, np.abs(q1), 1.0))
+                             ** 2, np.inf).min(axis=1)
+        margin = residual_margins(smp, self.a, np.minimum(np.square(self.cap), x_vel))
+        P, Q = smp.accel_rows
+        scale = (1.0 / (1.0 - margin))[:, None, :]
+        n, d, k = gridpoints.size, self.dof, smp.checks.size
+        a = np.empty((n, k * d))
+        b = np.empty((n, k * d))
+        a[:-1] = (P[:, smp.checks] * scale).reshape(n - 1, k * d)
+        b[:-1] = (Q[:, smp.checks] * scale).reshape(n - 1, k * d)
+        # the last gridpoint has no stage: its rows repeat its own point
+        a[-1] = np.tile(path.eval_sided(gridpoints[-1:], 1, "left")[0], k)
+        b[-1] = np.tile(path.eval_sided(gridpoints[-1:], 2, "left")[0], k)
+        eye = np.eye(k * d)
+        F = np.vstack([eye, -eye])
+        g = np.tile(self.a, 2 * k)
+        return a, b, np.zeros_like(a), F, g, None, None
+
+
 def speed_caps(path: ExactPath, gridpoints: np.ndarray, a_axis,
                junction_deviation: float | None = None) -> np.ndarray:
     """Path speed cap (units/s) at each gridpoint: the programmed feed of both
@@ -153,7 +221,8 @@ def build_constraints(path: ExactPath, limits: AxisLimits, cap: np.ndarray,
     """
     v, a = limits.in_plane(path.toolpath.plane, path.dof)
     s2 = scale * scale
-    out = [AxisVelocityConstraint(v / scale), AxisAccelerationConstraint(a / s2),
+    out = [IntervalAxisVelocityConstraint(v / scale),
+           IntervalAxisAccelerationConstraint(a / s2, v / scale, cap / scale),
            PathSpeedConstraint(cap / scale, path.dof)]
     if limits.tangential_acc is not None:
         out.append(TangentialAccelerationConstraint(limits.tangential_acc / s2, path.dof))

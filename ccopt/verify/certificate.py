@@ -2,7 +2,8 @@
 
 JSON (DESIGN.md)::
 
-    {"ok": bool, "min_clearance": float|null, "radius": float,
+    {"ok": bool, "geometry_ok": bool, "limits_ok": bool, "limits_tol": float|null,
+     "min_clearance": float|null, "radius": float,
      "checks": [Check...], "violations": [Violation...], ...}
 
 Every figure says how it was obtained (``basis``):
@@ -21,6 +22,9 @@ from dataclasses import dataclass, field
 from typing import Any
 
 EXACT, CERTIFIED, SAMPLED, NOT_RUN = "exact", "certified-bound", "sampled", "not-run"
+
+#: The check of the feed limits; every other check is about the geometry.
+LIMITS_CHECK = "limits"
 
 
 def _num(x):
@@ -98,7 +102,12 @@ class Check:
 
 @dataclass(frozen=True, eq=False)
 class Certificate:
-    """The verifier's answer. ``ok`` is True when every check holds.
+    """The verifier's answer. ``ok`` is True when every check holds:
+    ``geometry_ok`` (gouge, contact, side, continuity and any other check of
+    the path) and ``limits_ok`` (the feed profile's axis velocity,
+    acceleration and feed within ``limits_tol``, relative) are the two
+    verdicts it joins, so a path that is right but fed too fast is told from
+    a wrong path.
 
     ``min_clearance``: the smallest distance from the tool centre to the
     contour (program units; ``None`` when the program has no contour or the
@@ -125,12 +134,35 @@ class Certificate:
                 return c
         raise KeyError(name)
 
+    @property
+    def limits_ok(self) -> bool:
+        """The feed limits check holds (within its stated relative tolerance);
+        True when no profile was given (the check did not run)."""
+        return all(c.ok for c in self.checks if c.name == LIMITS_CHECK)
+
+    @property
+    def geometry_ok(self) -> bool:
+        """Every check but the feed limits holds: the path itself is right,
+        whatever a feed profile does along it."""
+        return all(c.ok for c in self.checks if c.name != LIMITS_CHECK)
+
+    @property
+    def limits_tol(self) -> float | None:
+        """The relative tolerance the limits check allowed (``None`` without one)."""
+        for c in self.checks:
+            if c.name == LIMITS_CHECK:
+                return c.tolerance
+        return None
+
     def violations_of(self, kind: str) -> list[Violation]:
         return [v for v in self.violations if v.kind == kind]
 
     def to_json(self) -> dict:
         return {
             "ok": self.ok,
+            "geometry_ok": self.geometry_ok,
+            "limits_ok": self.limits_ok,
+            "limits_tol": self.limits_tol,
             "min_clearance": _num(self.min_clearance),
             "min_clearance_basis": self.min_clearance_basis,
             "radius": self.radius,
@@ -143,7 +175,8 @@ class Certificate:
 
     def summary(self) -> str:
         """A few human lines: one per check, then the violations (first 20)."""
-        lines = [f"verification {'PASSED' if self.ok else 'FAILED'}: cutter radius {self.radius:g} "
+        lines = [f"verification {'PASSED' if self.ok else 'FAILED'} ({self._verdicts()}): "
+                 f"cutter radius {self.radius:g} "
                  f"{self.units}, eps {self.eps:g}, min clearance "
                  + ("n/a" if self.min_clearance is None else
                     f"{self.min_clearance:.9g} ({self.min_clearance_basis})")]
@@ -164,3 +197,12 @@ class Certificate:
         for n in self.notes:
             lines.append(f"  note: {n}")
         return "\n".join(lines)
+
+    def _verdicts(self) -> str:
+        """``geometry ok, limits FAIL`` and the like: the two verdicts ``ok`` joins."""
+        lim = "ok" if self.limits_ok else "FAIL"
+        if any(c.name == LIMITS_CHECK and c.basis == NOT_RUN for c in self.checks):
+            lim = "not run"
+        elif self.limits_tol is not None:
+            lim += f" at tolerance {self.limits_tol:g}"
+        return f"geometry {'ok' if self.geometry_ok else 'FAIL'}, limits {lim}"

@@ -12,7 +12,15 @@ on anything shaped like its samples (duck typing, so other planners plug in):
   ``(n,)`` source lines, ``tangential_acc`` with ``tangential_limit``,
   ``curvature`` with ``centripetal_limit``.
 
-A sample fails when ``|value| > limit * (1 + VERIFY_LIMIT_REL_TOL)``. The
+A sample fails when ``|value| > limit * (1 + limits_tol)``, a stated relative
+tolerance: :data:`LIMITS_TOL` (0.1 %) by default, the certificate's
+``limits_tol``. Why not zero: the samples are exact values of the planned
+profile, but a profile planned on a grid is only held to its limits at the
+gridpoints and within the grid's margin between them (TOPPRA's planner shrinks
+its limits by that margin; another planner, a controller's log, or a profile
+rounded to a servo period may ride a limit by a few 1e-4), and a machine's
+limits are not known to that precision: a 0.015 % excess is no reason to
+refuse a path whose geometry is right. The
 figure is the largest ratio ``|value| / limit`` over everything checked; the
 basis is ``sampled`` (a check at the samples, not between them). Consecutive
 failing samples of one quantity are one violation (its worst sample).
@@ -21,11 +29,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from ccopt.tolerances import VERIFY_LIMIT_REL_TOL
 from ccopt.verify.certificate import NOT_RUN, SAMPLED, Check, Violation
 
 #: Sampling step (s) when a profile with ``sample(dt)`` is given.
 SAMPLE_DT = 1e-3
+
+#: Default relative tolerance of the limits check: a sample may exceed its limit
+#: by this fraction (0.1 %) before it fails (see the module docstring).
+LIMITS_TOL = 1e-3
 
 #: At most this many limit violations are listed.
 MAX_LISTED = 200
@@ -47,7 +58,9 @@ def samples_of(profile):
     return profile
 
 
-def check_limits(profile, rel_tol: float = VERIFY_LIMIT_REL_TOL):
+def check_limits(profile, rel_tol: float = LIMITS_TOL):
+    """The ``limits`` check of ``profile`` (see the module docstring) and its
+    violations; ``rel_tol``: the relative tolerance (dimensionless, >= 0)."""
     if profile is None:
         return Check("limits", True, None, rel_tol, NOT_RUN, "ratio",
                      "no feed profile given"), []
@@ -113,6 +126,6 @@ def check_limits(profile, rel_tol: float = VERIFY_LIMIT_REL_TOL):
                                           "value": float(value[k]), "limit": float(limit[k]),
                                           "samples": int(b - a)}))
     return Check("limits", not viol, worst, rel_tol, SAMPLED, "ratio",
-                 "axis |velocity|, |acceleration| and feed at most their limits at every sample "
-                 "(figure: largest |value| / limit)", int(t.size), len(viol),
+                 "axis |velocity|, |acceleration| and feed at most their limits at every sample, "
+                 f"within {rel_tol:g} relative (figure: largest |value| / limit)", int(t.size), len(viol),
                  {"largest": worst_name}), viol

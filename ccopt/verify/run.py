@@ -17,7 +17,7 @@ from ccopt.verify.clearance import PairDistances, pair_distances
 from ccopt.verify.contact import check_contact
 from ccopt.verify.continuity import check_continuity
 from ccopt.verify.contour import STATUS_NAMES, STATUS_STEADY, Contour, contour_of
-from ccopt.verify.limits import check_limits
+from ccopt.verify.limits import LIMITS_TOL, check_limits
 from ccopt.verify.segments import Packed, lengths, pack
 from ccopt.verify.side import check_side
 
@@ -133,7 +133,8 @@ def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info):
 
 
 def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = VERIFY_EPS,
-           radius: float | None = None, side=None) -> Certificate:
+           radius: float | None = None, side=None,
+           limits_tol: float = LIMITS_TOL) -> Certificate:
     """Certify that ``toolpath`` keeps the radius offset of ``program``'s contour.
 
     Parameters
@@ -146,6 +147,10 @@ def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = V
     eps: tolerance in program units (default ``VERIFY_EPS`` = 1e-6).
     radius, side: the overrides the path was compensated with, if any
         (``side``: ``"left"``/``"right"`` or +1/-1).
+    limits_tol: relative tolerance of the limits check (default
+        :data:`~ccopt.verify.limits.LIMITS_TOL` = 1e-3: a sample may exceed
+        its limit by 0.1 %); the certificate's ``limits_ok`` and
+        ``geometry_ok`` tell the two verdicts apart.
 
     Returns a :class:`~ccopt.verify.certificate.Certificate`: checks ``gouge``,
     ``contact``, ``side``, ``continuity`` and ``limits``, each with its figure.
@@ -157,15 +162,18 @@ def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = V
     paused = gc.isenabled()
     gc.disable()
     try:
-        return _verify(toolpath, program, profile, eps, radius, side)
+        return _verify(toolpath, program, profile, eps, radius, side, limits_tol)
     finally:
         if paused:
             gc.enable()
 
 
-def _verify(toolpath, program, profile, eps, radius, side) -> Certificate:
+def _verify(toolpath, program, profile, eps, radius, side, limits_tol) -> Certificate:
     if not (eps > 0.0):
         raise ProgramError(f"eps must be > 0, got {eps!r}", program.file)
+    if not (0.0 <= limits_tol < np.inf):
+        raise ProgramError(f"limits_tol must be a finite number >= 0, got {limits_tol!r}",
+                           program.file)
     if side not in SIDES:
         raise ProgramError(f"side must be left or right, not {side!r}", program.file)
     contour = contour_of(program, radius=radius, side=SIDES[side],
@@ -193,7 +201,7 @@ def _verify(toolpath, program, profile, eps, radius, side) -> Certificate:
                check_contact(tool, toolpath, contour, eps, seg_len, info, table),
                check_side(tool, contour, eps, seg_len, info, table),
                check_continuity(tool, w0, w1, eps, seg_len, info),
-               check_limits(profile)]
+               check_limits(profile, limits_tol)]
     checks = tuple(c for c, _ in results)
     violations = tuple(v for _, vs in results for v in vs)
     c = np.flatnonzero(pairs.counted)
