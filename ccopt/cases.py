@@ -159,7 +159,8 @@ class Overrides:
     style: controller style; radius: cutter radius, program units (>= 0);
     side: ``"left"``/``"right"``; vmax, amax: axis limits ``(X, Y[, Z])`` in
     units/s and units/s^2; delta: the smoother's tolerance band, program units;
-    dialect, tool_table: how to read the program; style_options: the style's
+    dialect, tool_table, var_file: how to read the program (``var_file``: a
+    LinuxCNC parameter file, G-code only); style_options: the style's
     own options (``break_cos``, ``ccbuf``), passed to compensation as given.
     """
 
@@ -171,6 +172,7 @@ class Overrides:
     delta: float | None = None
     dialect: str | None = None
     tool_table: str | os.PathLike | None = None
+    var_file: str | os.PathLike | None = None
     style_options: dict = field(default_factory=dict)
 
 
@@ -194,6 +196,7 @@ class Job:
     delta: float | None = None
     dialect: str | None = None
     tool_table: str | os.PathLike | None = None
+    var_file: str | os.PathLike | None = None
     style_options: dict = field(default_factory=dict)
 
     @property
@@ -210,8 +213,9 @@ class Job:
         return self.case.expect if self.case else "ok"
 
     def read(self) -> Program:
-        """The program, read with the job's dialect and tool table."""
-        return read_program(self.program, self.dialect, tool_table=self.tool_table)
+        """The program, read with the job's dialect, tool table and parameter file."""
+        return read_program(self.program, self.dialect, tool_table=self.tool_table,
+                            var_file=self.var_file)
 
     def compensate(self, prog: Program) -> ToolPath:
         """``prog`` compensated with the job's style, radius, side and style options."""
@@ -266,4 +270,4 @@ def resolve_input(what: str | Case, overrides: Overrides = Overrides(),
         vmax=overrides.vmax or (case.vmax if case else None) or default_limits.get("v"),
         amax=overrides.amax or (case.amax if case else None) or default_limits.get("a"),
         delta=overrides.delta, dialect=overrides.dialect, tool_table=overrides.tool_table,
-        style_options=dict(overrides.style_options))
+        var_file=overrides.var_file, style_options=dict(overrides.style_options))

@@ -33,11 +33,6 @@ VERIFY_EPS = 1e-6
 #: lose ~1e-10 to rounding; without this they would read as tiny spirals.
 OFFSET_CIRCLE_REL_TOL = 1e-9
 
-#: Verifier: a tool-path limit sample may exceed its limit by this fraction
-#: before the limits check fails (planners work to ~1e-9; samples of a
-#: constant-acceleration profile are exact, so this only absorbs rounding).
-VERIFY_LIMIT_REL_TOL = 1e-6
-
 #: Verifier: two consecutive tool segments whose tangents differ by more than
 #: this angle (radians) are listed as a tangent break (informative, not a fault).
 VERIFY_TANGENT_BREAK = 1e-6

@@ -89,6 +89,9 @@ def add_reading_options(p: argparse.ArgumentParser) -> None:
     # a Path, so the reader takes it as a file name, never as table text
     p.add_argument("--tool-table", metavar="FILE", type=Path,
                    help="LinuxCNC tool table for G41/G42 D<tool number>")
+    p.add_argument("--var-file", metavar="FILE", type=Path,
+                   help="LinuxCNC parameter file (linuxcnc.var): coordinate system origins "
+                        "and offsets in force at the start of a G-code program")
     add_json_option(p)
 
 

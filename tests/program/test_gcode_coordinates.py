@@ -119,3 +119,17 @@ def test_var_file_errors_are_located(tmp_path, line, where):
     with pytest.raises(ProgramError) as err:
         read_var_file(var)
     assert err.value.line == where and err.value.file == str(var)
+
+
+def test_var_file_on_the_command_line(tmp_path, capsys):
+    from ccopt.cli import main
+    (tmp_path / "p.ngc").write_text("G21 F600\nG0 X0 Y0\nG41.1 D2 G1 X10\nG40 G1 X20\n")
+    (tmp_path / "linuxcnc.var").write_text("5220 2\n5241 10\n")   # G55 at X 10
+    code = main(["show", str(tmp_path / "p.ngc"), "--var-file", str(tmp_path / "linuxcnc.var"),
+                 "--json"])
+    import json
+    doc = json.loads(capsys.readouterr().out)
+    assert code == 0
+    assert [s["end"] for s in doc["segments"]] == [[10, 0], [20, 0], [30, 0]]
+    assert main(["show", str(tmp_path / "p.ngc"), "--var-file", str(tmp_path / "no.var")]) == 2
+    assert capsys.readouterr().err.startswith(f"{tmp_path / 'no.var'}: cannot read")
