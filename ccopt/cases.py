@@ -159,8 +159,9 @@ class Overrides:
     style: controller style; radius: cutter radius, program units (>= 0);
     side: ``"left"``/``"right"``; vmax, amax: axis limits ``(X, Y[, Z])`` in
     units/s and units/s^2; delta: the smoother's tolerance band, program units;
-    dialect, tool_table, var_file: how to read the program (``var_file``: a
-    LinuxCNC parameter file, G-code only); style_options: the style's
+    dialect, tool_table, var_file, units, table_units: how to read the program
+    (the last three G-code only: a LinuxCNC parameter file, the unit every
+    length is converted to, the tool table's units); style_options: the style's
     own options (``break_cos``, ``ccbuf``), passed to compensation as given.
     """
 
@@ -173,6 +174,8 @@ class Overrides:
     dialect: str | None = None
     tool_table: str | os.PathLike | None = None
     var_file: str | os.PathLike | None = None
+    units: str | None = None
+    table_units: str | None = None
     style_options: dict = field(default_factory=dict)
 
 
@@ -197,6 +200,8 @@ class Job:
     dialect: str | None = None
     tool_table: str | os.PathLike | None = None
     var_file: str | os.PathLike | None = None
+    units: str | None = None
+    table_units: str | None = None
     style_options: dict = field(default_factory=dict)
 
     @property
@@ -215,7 +220,8 @@ class Job:
     def read(self) -> Program:
         """The program, read with the job's dialect, tool table and parameter file."""
         return read_program(self.program, self.dialect, tool_table=self.tool_table,
-                            var_file=self.var_file)
+                            var_file=self.var_file, units=self.units,
+                            table_units=self.table_units)
 
     def compensate(self, prog: Program) -> ToolPath:
         """``prog`` compensated with the job's style, radius, side and style options."""
@@ -270,4 +276,5 @@ def resolve_input(what: str | Case, overrides: Overrides = Overrides(),
         vmax=overrides.vmax or (case.vmax if case else None) or default_limits.get("v"),
         amax=overrides.amax or (case.amax if case else None) or default_limits.get("a"),
         delta=overrides.delta, dialect=overrides.dialect, tool_table=overrides.tool_table,
-        var_file=overrides.var_file, style_options=dict(overrides.style_options))
+        var_file=overrides.var_file, units=overrides.units, table_units=overrides.table_units,
+        style_options=dict(overrides.style_options))

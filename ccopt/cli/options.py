@@ -92,6 +92,12 @@ def add_reading_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--var-file", metavar="FILE", type=Path,
                    help="LinuxCNC parameter file (linuxcnc.var): coordinate system origins "
                         "and offsets in force at the start of a G-code program")
+    p.add_argument("--units", choices=["mm", "inch"],
+                   help="G-code: convert every length to this unit (default: the program's "
+                        "first G20/G21; they may change anywhere)")
+    p.add_argument("--table-units", choices=["mm", "inch"],
+                   help="the tool table's units (LinuxCNC's are the machine's; default: "
+                        "the program's output unit)")
     add_json_option(p)
 
 

@@ -37,10 +37,13 @@ def dialect_of(path: str | os.PathLike) -> str:
 
 def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
               tool_table: dict[int, float] | None = None,
-              parameters: dict[int, float] | None = None) -> Program:
-    """Read program text of the given dialect (``parameters``: G-code only)."""
+              parameters: dict[int, float] | None = None, units: str | None = None,
+              table_units: str | None = None) -> Program:
+    """Read program text of the given dialect (``parameters``, ``units`` and
+    ``table_units``: G-code only, see :func:`read_gcode`)."""
     if dialect == "gcode":
-        return read_gcode(text, file, tool_table=tool_table, parameters=parameters)
+        return read_gcode(text, file, tool_table=tool_table, parameters=parameters,
+                          units=units, table_units=table_units)
     if dialect == "pmac":
         return read_pmac(text, file)
     raise ProgramError(f"unknown dialect {dialect!r}; choose one of {', '.join(DIALECTS)}", file)
@@ -48,7 +51,8 @@ def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
 
 def read_program(path: str | os.PathLike, dialect: str | None = None, *,
                  tool_table: str | os.PathLike | dict[int, float] | None = None,
-                 var_file: str | os.PathLike | None = None) -> Program:
+                 var_file: str | os.PathLike | None = None, units: str | None = None,
+                 table_units: str | None = None) -> Program:
     """Read a part program file.
 
     Parameters
@@ -59,6 +63,8 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
         ``G41 D<tool>``.
     var_file: LinuxCNC parameter file (``linuxcnc.var``) whose values are in
         force at the start of a G-code program (coordinate system origins).
+    units, table_units: G-code only: the unit every length is converted to,
+        and the tool table's (see :func:`~ccopt.program.gcode.read_gcode`).
     """
     file = str(path)
     dialect = dialect or dialect_of(path)
@@ -75,10 +81,13 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     if tool_table is not None and not isinstance(tool_table, dict):
         table = read_tool_table(tool_table)
     parameters = read_var_file(var_file) if var_file is not None else None
-    if parameters is not None and dialect != "gcode":
-        raise ProgramError("a LinuxCNC parameter file (--var-file) applies to G-code "
-                           "programs only", file)
-    return read_text(text, file, dialect, tool_table=table, parameters=parameters)
+    if dialect != "gcode":
+        for given, what in ((parameters, "a LinuxCNC parameter file (--var-file)"),
+                            (units, "--units"), (table_units, "--table-units")):
+            if given is not None:
+                raise ProgramError(f"{what} applies to G-code programs only", file)
+    return read_text(text, file, dialect, tool_table=table, parameters=parameters, units=units,
+                     table_units=table_units)
 
 
 __all__ = ["Block", "Modal", "Motion", "PLANE_AXES", "Program", "ProgramError", "Source",

@@ -69,7 +69,6 @@ CASES = [
     ("G1 X1 F-5", 1, 7, "negative feed rate"),
     ("G1 X1 F60\nG93 G1 X2", 2, 5, "G93 inverse time"),
     ("G93 G1 X1 F2\nX2", 2, 1, "needs its own F"),
-    ("G21 G1 X1 F60\nG20", 2, 1, "changes units after the first move"),
     ("G2 X10 F60", 1, 1, "no centre"),
     ("G2 X10 Y0", 1, 1, "no centre"),
     ("G2 X10 R5 I5 F60", 1, 8, "both R and I/J"),

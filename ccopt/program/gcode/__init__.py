@@ -19,19 +19,21 @@ from __future__ import annotations
 
 from ccopt.errors import ProgramError
 # The limits the single-module reader exposed stay importable from here.
-from ccopt.program.gcode.arcs import MAX_ARC_TURNS, MM_PER_INCH  # noqa: F401
+from ccopt.program.gcode.arcs import MAX_ARC_TURNS  # noqa: F401
 from ccopt.program.gcode.parameters import MAX_PARAMETER, SUB_PARAMS  # noqa: F401
 from ccopt.program.gcode.reader import check_inputs, open_program, run
 # read_gcode reads these two at each call, so setting them here (as the
 # runaway tests do) changes the guards.
 from ccopt.program.gcode.state import MAX_CALL_DEPTH, MAX_EXECUTED_LINES
+from ccopt.program.gcode.units import MM_PER_INCH, UNITS  # noqa: F401
 from ccopt.program.model import Program
 
 __all__ = ["read_gcode", "MAX_EXECUTED_LINES", "MAX_CALL_DEPTH"]
 
 
 def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float] | None = None,
-               start=(0.0, 0.0, 0.0), parameters: dict[int, float] | None = None) -> Program:
+               start=(0.0, 0.0, 0.0), parameters: dict[int, float] | None = None,
+               units: str | None = None, table_units: str | None = None) -> Program:
     """Read RS274NGC/LinuxCNC G-code into a :class:`Program` (dialect ``"gcode"``).
 
     Parameters
@@ -50,7 +52,15 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
         Numbered parameters in force at the start (e.g. from a LinuxCNC
         parameter file, :func:`~ccopt.program.gcode.coordinates.read_var_file`):
         the coordinate system origins ``#5221``..., the active system
-        ``#5220`` and the G92 offset ``#5210``-``#5213`` among them.
+        ``#5220`` and the G92 offset ``#5210``-``#5213`` among them, in the
+        output units.
+    units:
+        ``"mm"`` or ``"inch"``: every length of the program is converted to
+        it; default the program's first ``G20``/``G21`` (mm if it moves
+        before saying). ``G20``/``G21`` may change anywhere.
+    table_units:
+        The tool table's units (LinuxCNC's are the machine's); default the
+        output units.
 
     The runaway guards are this module's :data:`MAX_EXECUTED_LINES` and
     :data:`MAX_CALL_DEPTH`, read at each call.
@@ -61,12 +71,16 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
         For anything wrong with the text, located by file, line and column.
     """
     file, table, s = check_inputs(file, tool_table, start)
+    for name, value in (("units", units), ("table_units", table_units)):
+        if value is not None and value not in UNITS:
+            raise ProgramError(f"{name} must be one of {', '.join(UNITS)}, not {value!r}", file)
     if not isinstance(text, str):
         raise ProgramError(f"program text must be a string, not {type(text).__name__}", file)
     state = None
     try:
         state = open_program(text, file, table, s, max_executed_lines=MAX_EXECUTED_LINES,
                              max_call_depth=MAX_CALL_DEPTH, parameters=parameters)
+        state.out_units, state.table_units = units, table_units
         return run(state)
     except ProgramError:
         raise

@@ -14,14 +14,14 @@ import math
 
 from ccopt import tolerances
 from ccopt.geometry.angles import TWO_PI
-from ccopt.program.gcode.state import GCodeState
-from ccopt.program.gcode.words import fmt
 from ccopt.program.gcode.coordinates import work_offset
+from ccopt.program.gcode.state import GCodeState
+from ccopt.program.gcode.units import MM_PER_INCH, output_units
+from ccopt.program.gcode.words import fmt
 from ccopt.program.model import PLANE_AXES
 
 #: Largest G2/G3 P (number of turns), LinuxCNC keeps it in an int.
 MAX_ARC_TURNS = 2**31 - 1
-MM_PER_INCH = 25.4
 #: A P word within this of a whole number is that number of turns.
 _TURNS_WHOLE_TOL = 1e-3
 #: Radii below this fraction of the arc tolerance are zero (LinuxCNC).
@@ -39,7 +39,7 @@ _PLANE_G = {"XY": "G17", "ZX": "G18", "YZ": "G19"}
 def arc_tolerance(state: GCodeState) -> float:
     """Absolute arc radius tolerance in program units."""
     tol = tolerances.ARC_RADIUS_ABS_TOL_MM
-    return tol / MM_PER_INCH if state.units == "inch" else tol
+    return tol / MM_PER_INCH if output_units(state) == "inch" else tol
 
 
 def is_modal_arc_without_plane_motion(state: GCodeState, L: dict, cur, end) -> bool:

@@ -17,6 +17,8 @@ from ccopt.program.gcode.codes import Words, classify
 from ccopt.program.gcode.coordinates import (select_origin, set_axis_offset, set_origin,
                                              work_offset)
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
+from ccopt.program.gcode.units import (feed_factor, length_factor, output_units,
+                                       scale_lengths, set_units)
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, gname
 from ccopt.program.model import Block, Motion, Source
 
@@ -39,10 +41,18 @@ def execute_words(state: GCodeState, words: Words) -> None:
     _check_word_usage(state, gc, L, is_arc)
     mcodes = tuple(words.mcodes)
     first_col = words.first if words.first is not None else 0
+    units = gc.get("units")
+    if units is not None and state.units is None:
+        # the program's first G20/G21 applies to its whole line, F included
+        _set_units(state, units)
     _set_feed_and_tool(state, gc, L, mcodes)
     dwell = gc.get("dwell")
     if dwell is not None:
         _dwell(state, dwell, L, mcodes, first_col)
+    if units is not None:
+        # later changes in RS274NGC's order: after F (which keeps its speed)
+        _set_units(state, units)
+    L = scale_lengths(state, L, gc)
     _set_modes(state, gc, L)
     _set_coordinates(state, gc, L)
     if "machine_coords" in gc:
@@ -137,7 +147,7 @@ def _set_feed_and_tool(state: GCodeState, gc: dict, L: dict, mcodes: tuple) -> N
         if f < 0:
             raise state.error(f"negative feed rate F{fmt(f)}: F must be >= 0", col)
         if state.feed_mode == "per_minute":
-            state.feed = f
+            state.feed = f * feed_factor(state)
     if "T" in L:
         t, col = L["T"]
         if not _whole(t):
@@ -159,20 +169,16 @@ def _dwell(state: GCodeState, dwell: tuple[int, int], L: dict, mcodes: tuple,
                        state.pos, state.pos, state.modal(), dwell=secs, mcodes=mcodes))
 
 
+def _set_units(state: GCodeState, units: tuple[int, int]) -> None:
+    set_units(state, "inch" if units[0] == 200 else "mm")
+    state.modal_changed()
+
+
 def _set_modes(state: GCodeState, gc: dict, L: dict) -> None:
-    """Plane, units, compensation, tool length, distance and Fagor modes."""
+    """Plane, compensation, tool length, distance and Fagor modes."""
     plane = gc.get("plane")
     if plane is not None:
         state.plane = _PLANES[plane[0]]
-        state.modal_changed()
-    units = gc.get("units")
-    if units is not None:
-        new = "inch" if units[0] == 200 else "mm"
-        if state.moved and new != (state.units or "mm"):
-            raise state.error(f"{gname(units[0])} changes units after the first move: ccopt "
-                              "keeps one unit per program; put G20/G21 before any motion",
-                              units[1])
-        state.units = new
         state.modal_changed()
     comp = gc.get("comp")
     if comp is not None:
@@ -233,6 +239,8 @@ def _compensation(state: GCodeState, comp: tuple[int, int], L: dict) -> None:
         diameter = 0.0
     elif tool is not None and state.tool_table is not None:
         diameter = state.tool_table.get(tool)
+    if diameter is not None and tool != NO_TOOL:
+        diameter *= length_factor(state.table_units or output_units(state), output_units(state))
     if diameter is None:
         state.radius = None
     else:

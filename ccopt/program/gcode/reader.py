@@ -17,6 +17,7 @@ from ccopt.program.gcode.execute import execute_words
 from ccopt.program.gcode.oword import exec_oword
 from ccopt.program.gcode.parameters import MAX_PARAMETER, attach_grammar, set_parameter
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
+from ccopt.program.gcode.units import output_units
 from ccopt.program.gcode.words import Lexed, lex, olabel, program_span
 from ccopt.program.model import Program
 
@@ -78,7 +79,7 @@ def run(state: GCodeState) -> Program:
             exc.message += (f" (in subroutine {olabel(f.name)} called from line "
                             f"{f.call_line + 1})")
         raise
-    units = state.units or "mm"
+    units = output_units(state)
     return Program(tuple(state.blocks), file=state.file, dialect="gcode", units=units,
                    start=state.start, meta=state.meta)
 

@@ -85,7 +85,9 @@ class GCodeState:
         self.blocks: list[Block] = []
         self.moved = False
         self.plane = "XY"
-        self.units: str | None = None
+        self.units: str | None = None      # the words' units as written now (G20/G21)
+        self.out_units: str | None = None  # every length is converted to this (units.py)
+        self.table_units: str | None = None  # the tool table's units (None: out_units)
         self.incremental = False
         self.arc_incremental = True
         # coordinate systems (see coordinates.py): active origin 1..9 (G54..G59.3)
@@ -124,7 +126,8 @@ class GCodeState:
     def modal(self) -> Modal:
         """The modal state blocks carry (one shared object until a mode changes)."""
         if self._modal is None:
-            self._modal = Modal(plane=self.plane, units=self.units or "mm", side=self.side,
+            self._modal = Modal(plane=self.plane, units=self.out_units or self.units or "mm",
+                                side=self.side,
                                 radius=self.radius, tool=self.tool, corner=self.corner,
                                 start_end=self.start_end)
         return self._modal
