@@ -159,9 +159,10 @@ class Overrides:
     style: controller style; radius: cutter radius, program units (>= 0);
     side: ``"left"``/``"right"``; vmax, amax: axis limits ``(X, Y[, Z])`` in
     units/s and units/s^2; delta: the smoother's tolerance band, program units;
-    dialect, tool_table, var_file, units, table_units: how to read the program
-    (the last three G-code only: a LinuxCNC parameter file, the unit every
-    length is converted to, the tool table's units); style_options: the style's
+    dialect, tool_table, var_file, units, table_units, sub_path: how to read the program
+    (G-code only: a LinuxCNC parameter file, the unit every length is
+    converted to, the tool table's units); sub_path: folders of subroutine
+    files (G-code, LinuxCNC's SUBROUTINE_PATH); style_options: the style's
     own options (``break_cos``, ``ccbuf``), passed to compensation as given.
     """
 
@@ -176,6 +177,7 @@ class Overrides:
     var_file: str | os.PathLike | None = None
     units: str | None = None
     table_units: str | None = None
+    sub_path: tuple[str, ...] = ()
     style_options: dict = field(default_factory=dict)
 
 
@@ -202,6 +204,7 @@ class Job:
     var_file: str | os.PathLike | None = None
     units: str | None = None
     table_units: str | None = None
+    sub_path: tuple[str, ...] = ()
     style_options: dict = field(default_factory=dict)
 
     @property
@@ -221,7 +224,7 @@ class Job:
         """The program, read with the job's dialect, tool table and parameter file."""
         return read_program(self.program, self.dialect, tool_table=self.tool_table,
                             var_file=self.var_file, units=self.units,
-                            table_units=self.table_units)
+                            table_units=self.table_units, sub_path=self.sub_path)
 
     def compensate(self, prog: Program) -> ToolPath:
         """``prog`` compensated with the job's style, radius, side and style options."""
@@ -277,4 +280,4 @@ def resolve_input(what: str | Case, overrides: Overrides = Overrides(),
         amax=overrides.amax or (case.amax if case else None) or default_limits.get("a"),
         delta=overrides.delta, dialect=overrides.dialect, tool_table=overrides.tool_table,
         var_file=overrides.var_file, units=overrides.units, table_units=overrides.table_units,
-        style_options=dict(overrides.style_options))
+        sub_path=overrides.sub_path, style_options=dict(overrides.style_options))

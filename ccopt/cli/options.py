@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import os
 from pathlib import Path
 
 from ccopt.cli.output import EXIT_BAD_INPUT
@@ -61,6 +62,15 @@ def axis_values(text: str) -> tuple[float, ...]:
     return tuple(positive_float(x) for x in parts)
 
 
+def folder_list(text: str) -> tuple[str, ...]:
+    """``DIR[:DIR...]`` (the platform's path separator) -> folders, each existing."""
+    folders = tuple(f for f in text.split(os.pathsep) if f)
+    missing = [f for f in folders if not os.path.isdir(f)]
+    if not folders or missing:
+        raise argparse.ArgumentTypeError(f"no such folder: {', '.join(missing) or text!r}")
+    return folders
+
+
 def variant_names(text: str) -> list[str]:
     """``A,B`` -> ``["A", "B"]`` (argparse type of ``--variants``)."""
     return [n.strip() for n in text.split(",") if n.strip()]
@@ -98,6 +108,9 @@ def add_reading_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--table-units", choices=["mm", "inch"],
                    help="the tool table's units (LinuxCNC's are the machine's; default: "
                         "the program's output unit)")
+    p.add_argument("--sub-path", metavar="DIR[:DIR...]", type=folder_list,
+                   help="G-code: folders where o<name> call finds name.ngc when the program "
+                        "does not define it (LinuxCNC's SUBROUTINE_PATH), and nowhere else")
     add_json_option(p)
 
 

@@ -38,12 +38,12 @@ def dialect_of(path: str | os.PathLike) -> str:
 def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
               tool_table: dict[int, float] | None = None,
               parameters: dict[int, float] | None = None, units: str | None = None,
-              table_units: str | None = None) -> Program:
-    """Read program text of the given dialect (``parameters``, ``units`` and
-    ``table_units``: G-code only, see :func:`read_gcode`)."""
+              table_units: str | None = None, sub_path=()) -> Program:
+    """Read program text of the given dialect (``parameters``, ``units``,
+    ``table_units`` and ``sub_path``: G-code only, see :func:`read_gcode`)."""
     if dialect == "gcode":
         return read_gcode(text, file, tool_table=tool_table, parameters=parameters,
-                          units=units, table_units=table_units)
+                          units=units, table_units=table_units, sub_path=sub_path)
     if dialect == "pmac":
         return read_pmac(text, file)
     raise ProgramError(f"unknown dialect {dialect!r}; choose one of {', '.join(DIALECTS)}", file)
@@ -52,7 +52,7 @@ def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
 def read_program(path: str | os.PathLike, dialect: str | None = None, *,
                  tool_table: str | os.PathLike | dict[int, float] | None = None,
                  var_file: str | os.PathLike | None = None, units: str | None = None,
-                 table_units: str | None = None) -> Program:
+                 table_units: str | None = None, sub_path=()) -> Program:
     """Read a part program file.
 
     Parameters
@@ -63,8 +63,9 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
         ``G41 D<tool>``.
     var_file: LinuxCNC parameter file (``linuxcnc.var``) whose values are in
         force at the start of a G-code program (coordinate system origins).
-    units, table_units: G-code only: the unit every length is converted to,
-        and the tool table's (see :func:`~ccopt.program.gcode.read_gcode`).
+    units, table_units, sub_path: G-code only: the unit every length is
+        converted to, the tool table's, and the folders of subroutine files
+        (see :func:`~ccopt.program.gcode.read_gcode`).
     """
     file = str(path)
     dialect = dialect or dialect_of(path)
@@ -83,11 +84,12 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     parameters = read_var_file(var_file) if var_file is not None else None
     if dialect != "gcode":
         for given, what in ((parameters, "a LinuxCNC parameter file (--var-file)"),
-                            (units, "--units"), (table_units, "--table-units")):
+                            (units, "--units"), (table_units, "--table-units"),
+                            (sub_path or None, "--sub-path")):
             if given is not None:
                 raise ProgramError(f"{what} applies to G-code programs only", file)
     return read_text(text, file, dialect, tool_table=table, parameters=parameters, units=units,
-                     table_units=table_units)
+                     table_units=table_units, sub_path=sub_path)
 
 
 __all__ = ["Block", "Modal", "Motion", "PLANE_AXES", "Program", "ProgramError", "Source",

@@ -33,7 +33,8 @@ __all__ = ["read_gcode", "MAX_EXECUTED_LINES", "MAX_CALL_DEPTH"]
 
 def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float] | None = None,
                start=(0.0, 0.0, 0.0), parameters: dict[int, float] | None = None,
-               units: str | None = None, table_units: str | None = None) -> Program:
+               units: str | None = None, table_units: str | None = None,
+               sub_path=()) -> Program:
     """Read RS274NGC/LinuxCNC G-code into a :class:`Program` (dialect ``"gcode"``).
 
     Parameters
@@ -61,6 +62,10 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
     table_units:
         The tool table's units (LinuxCNC's are the machine's); default the
         output units.
+    sub_path:
+        Folders, in order, where ``o<name> call`` of a subroutine the program
+        does not define finds ``name.ngc`` (LinuxCNC's SUBROUTINE_PATH);
+        nowhere else. A name holding a path is refused.
 
     The runaway guards are this module's :data:`MAX_EXECUTED_LINES` and
     :data:`MAX_CALL_DEPTH`, read at each call.
@@ -81,6 +86,7 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
         state = open_program(text, file, table, s, max_executed_lines=MAX_EXECUTED_LINES,
                              max_call_depth=MAX_CALL_DEPTH, parameters=parameters)
         state.out_units, state.table_units = units, table_units
+        state.sub_path = tuple(str(p) for p in sub_path)
         return run(state)
     except ProgramError:
         raise

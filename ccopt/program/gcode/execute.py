@@ -165,7 +165,7 @@ def _dwell(state: GCodeState, dwell: tuple[int, int], L: dict, mcodes: tuple,
     secs = L["P"][0]
     if secs < 0:
         raise state.error(f"negative dwell time P{fmt(secs)}", L["P"][1])
-    _emit(state, Block(Source(state.file, state.line_no + 1, first_col + 1), Motion.DWELL,
+    _emit(state, Block(Source(*state.where(state.line_no), first_col + 1), Motion.DWELL,
                        state.pos, state.pos, state.modal(), dwell=secs, mcodes=mcodes))
 
 
@@ -273,7 +273,7 @@ def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int
             v = L[a][0]
             end[k] = cur[k] + v if state.incremental else v + offset[k]
     end_t = (end[0], end[1], end[2])
-    src = Source(state.file, state.line_no + 1, first_col + 1)
+    src = Source(*state.where(state.line_no), first_col + 1)
     if motion == 0:
         block = Block(src, Motion.RAPID, cur, end_t, state.modal(), mcodes=mcodes)
     elif motion == 10 or is_modal_arc_without_plane_motion(state, L, cur, end_t):

@@ -10,6 +10,8 @@ of the O-word and returns the line to execute next.
 from __future__ import annotations
 
 import math
+import os
+from pathlib import Path
 
 from ccopt.program.expr import ExprError, parse_bracketed
 from ccopt.program.gcode.parameters import (
@@ -17,7 +19,7 @@ from ccopt.program.gcode.parameters import (
     bind_call_arguments,
     restore_after_call,
 )
-from ccopt.program.gcode.state import Ctrl, Frame, GCodeState
+from ccopt.program.gcode.state import LINE_SPLIT, Ctrl, Frame, GCodeState
 from ccopt.program.gcode.words import Lexed, lex, olabel, skip_blanks
 
 _OPENERS = {"sub": "endsub", "if": "endif", "do": "while", "while": "endwhile",
@@ -89,7 +91,7 @@ def structure(state: GCodeState, i: int) -> tuple:
     kind, label = ow.keyword, ow.label
     stack: list[tuple[str, str, int]] = []
     branches: list[int] = []
-    for j in range(i + 1, state.end_line):
+    for j in range(i + 1, state.region_end(i)):
         if not state.lines[j] or ("o" not in state.lines[j] and "O" not in state.lines[j]):
             continue
         o = lex(state, j).oword
@@ -202,7 +204,20 @@ def _call(state: GCodeState, pc: int, lx: Lexed) -> int:
 
 def _define_ahead(state: GCodeState, pc: int, label: str, col: int) -> tuple[int, int]:
     """A sub not seen yet: LinuxCNC skips forward from the call to find it."""
-    for j in range(pc + 1, state.end_line):
+    found = _find_sub(state, label, pc + 1, state.region_end(pc))
+    if found is not None:
+        return found
+    if state.sub_path and not label.isdigit():
+        return load_sub_file(state, label, col)
+    raise state.error(f"{olabel(label)} call: no subroutine {olabel(label)} is "
+                      f"defined; define it with {olabel(label)} sub ... "
+                      f"{olabel(label)} endsub, or give the folder of {label}.ngc with "
+                      "--sub-path", col)
+
+
+def _find_sub(state: GCodeState, label: str, first: int, end: int) -> tuple[int, int] | None:
+    """Define ``label``'s sub from its ``sub`` line in ``lines[first:end]``."""
+    for j in range(first, end):
         if "o" not in state.lines[j] and "O" not in state.lines[j]:
             continue
         o = lex(state, j).oword
@@ -210,9 +225,36 @@ def _define_ahead(state: GCodeState, pc: int, label: str, col: int) -> tuple[int
             end, _ = structure(state, j)
             _define(state, label, j, end, o.col)
             return state.subs[label]
-    raise state.error(f"{olabel(label)} call: no subroutine {olabel(label)} is "
-                      f"defined; define it with {olabel(label)} sub ... "
-                      f"{olabel(label)} endsub", col)
+    return None
+
+
+def load_sub_file(state: GCodeState, label: str, col: int) -> tuple[int, int]:
+    """``o<name> call`` of a sub the program does not define: ``name.ngc`` from
+    the first folder of the sub path that has it (LinuxCNC's SUBROUTINE_PATH),
+    read after the program's lines; it must define ``o<name> sub``."""
+    if any(sep in label for sep in ("/", "\\", os.sep)) or label in (".", ".."):
+        raise state.error(f"{olabel(label)} call: a subroutine name cannot hold a path; "
+                          "put its folder in the sub path instead", col)
+    for folder in state.sub_path:
+        path = Path(folder) / f"{label}.ngc"
+        if path.is_file():
+            break
+    else:
+        raise state.error(f"{olabel(label)} call: no subroutine {olabel(label)} in the program "
+                          f"and no {label}.ngc in the sub path ({', '.join(state.sub_path)})",
+                          col)
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise state.error(f"{olabel(label)} call: cannot read {path}: {exc}", col) from None
+    first = len(state.lines)
+    state.lines.extend(LINE_SPLIT.split(text))
+    state.sub_files.append((first, len(state.lines), str(path)))
+    found = _find_sub(state, label, first, len(state.lines))
+    if found is None:
+        raise state.error(f"{path} does not define {olabel(label)} sub ... {olabel(label)} "
+                          "endsub", col)
+    return found
 
 
 def _define(state: GCodeState, label: str, line: int, end: int, col: int) -> None:

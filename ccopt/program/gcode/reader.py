@@ -88,7 +88,9 @@ def _run_lines(state: GCodeState) -> None:
     """The line loop, with the runaway guard; expression errors are located
     on the line being executed."""
     pc = state.first_line
-    while pc < state.end_line:
+    # the program's lines, or a sub file's while a call runs there
+    while (pc < state.end_line and not state.in_sub_file(pc)) or (
+            len(state.frames) > 1 and state.in_sub_file(pc)):
         state.line_no = pc
         state.executed += 1
         if state.executed > state.max_executed_lines:

@@ -22,7 +22,7 @@ MAX_EXECUTED_LINES = 1_000_000
 #: Deepest subroutine call nesting accepted.
 MAX_CALL_DEPTH = 100
 
-_LINE_SPLIT = re.compile(r"\r\n|\r|\n")
+LINE_SPLIT = re.compile(r"\r\n|\r|\n")
 
 
 class ProgramEnd(Exception):
@@ -67,7 +67,7 @@ class GCodeState:
                  max_executed_lines: int = MAX_EXECUTED_LINES,
                  max_call_depth: int = MAX_CALL_DEPTH):
         self.file = file
-        self.lines = _LINE_SPLIT.split(text)
+        self.lines = LINE_SPLIT.split(text)
         if self.lines and self.lines[-1] == "":
             self.lines.pop()
         # caches, per 0-based line: lexed text, matched O-word structure,
@@ -116,12 +116,33 @@ class GCodeState:
         self.executed = 0
         self.first_line = 0       # program lines are [first_line, end_line)
         self.end_line = len(self.lines)
+        self.main_lines = len(self.lines)
+        # subroutine files read into ``lines`` after the program: (first, end, file)
+        self.sub_files: list[tuple[int, int, str]] = []
+        self.sub_path: tuple[str, ...] = ()
+
+    def where(self, ln: int) -> tuple[str, int]:
+        """``(file, 1-based line)`` of 0-based line ``ln`` of ``lines``."""
+        for first, end, file in self.sub_files:
+            if first <= ln < end:
+                return file, ln - first + 1
+        return self.file, ln + 1
+
+    def region_end(self, ln: int) -> int:
+        """End of the text line ``ln`` belongs to: the program's or a sub file's."""
+        for first, end, _ in self.sub_files:
+            if first <= ln < end:
+                return end
+        return self.end_line
+
+    def in_sub_file(self, ln: int) -> bool:
+        return any(first <= ln < end for first, end, _ in self.sub_files)
 
     def error(self, message: str, col: int | None = None, line: int | None = None) -> ProgramError:
         """A located error; ``col`` is 0-based (None: unknown), ``line`` 0-based
         (None: the line being executed)."""
-        ln = self.line_no if line is None else line
-        return ProgramError(message, self.file, ln + 1, None if col is None else col + 1)
+        file, line1 = self.where(self.line_no if line is None else line)
+        return ProgramError(message, file, line1, None if col is None else col + 1)
 
     def modal(self) -> Modal:
         """The modal state blocks carry (one shared object until a mode changes)."""
