@@ -7,7 +7,7 @@ Format (LinuxCNC's ``tool.tbl``, one tool per line)::
 
 Words are separated by blanks and are case-insensitive: ``T`` tool number
 (required, a non-negative integer), ``P`` pocket and ``Q`` orientation
-(integers), ``D`` diameter, offsets ``X Y Z A B C U V W`` and lathe angles
+(whole numbers, also written with decimals such as ``Q0.0``), ``D`` diameter, offsets ``X Y Z A B C U V W`` and lathe angles
 ``I J`` (numbers). Only ``T`` and ``D`` matter to ccopt; the rest are checked
 and ignored. ``;`` starts a comment; blank and comment-only lines are skipped.
 
@@ -91,10 +91,12 @@ def read_tool_table(path_or_text, file: str | None = None) -> dict[int, float]:
                 raise ProgramError(f"two {letter} words on one tool line", name, lineno, col)
             seen.add(letter)
             if letter in _INT_WORDS:
-                if not _INTEGER.match(value):
+                # LinuxCNC writes whole numbers, other tools "Q0.0": both are read
+                if not (_INTEGER.match(value) or (_NUMBER.match(value)
+                                                  and float(value).is_integer())):
                     raise ProgramError(f"{letter} needs a whole number, got {value!r}",
                                        name, lineno, col)
-                number = int(value)
+                number = int(float(value))
                 if letter == "T":
                     if number < 0:
                         raise ProgramError(f"tool number T{number} must not be negative",

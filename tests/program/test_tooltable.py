@@ -55,3 +55,11 @@ def test_bad_lines_are_located(text, line, col, words):
         read_tool_table(text, file="tool.tbl")
     e = info.value
     assert words in e.message and (e.file, e.line, e.col) == ("tool.tbl", line, col), str(e)
+
+
+def test_whole_words_written_with_decimals_and_every_word():
+    # every word LinuxCNC's tool table has; Q0.0 and P2.0 as other tools write them
+    text = "T5 P2.0 X0.1 Y0 Z-1 A0 B0 C0 U0 V0 W0 D3.0 I95.0 J155.0 Q0.0 ; all words\n"
+    assert read_tool_table(text) == {5: 3.0}
+    with pytest.raises(ProgramError, match="Q needs a whole number"):
+        read_tool_table("T5 P2 D3 Q0.5")
