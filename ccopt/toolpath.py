@@ -17,7 +17,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Iterator
 
-from ccopt.geometry import Arc, Line, Spiral
+from ccopt.geometry import Arc, Line, Spiral, translated
 from ccopt.program.model import Block, Motion, Program
 from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL
 
@@ -38,6 +38,11 @@ class Role(str, enum.Enum):
 #: controller itself makes: e.g. a fitted arc with role ``corner`` is a piece
 #: of a blend, not an added corner arc about a programmed corner.
 FITTED_PIECES = "fitted_pieces"
+#: ``ToolPath.meta`` key of a lathe path's controlled-point moves
+#: (:mod:`ccopt.compensate.lathe`): ``(segment index, how, du, dv)`` with how
+#: ``"whole"``, ``"end"`` (entry), ``"start"`` (exit) or ``"added"`` (the
+#: straight move LinuxCNC sends before an entry arc).
+TOOL_TIP = "tool_tip"
 
 
 def segment_kind(geom: Any) -> str:
@@ -205,3 +210,28 @@ def programmed_path(program: Program) -> ToolPath:
     return ToolPath(tuple(segs), plane=plane, style="programmed", radius=0.0,
                     dwells=tuple(dwells), units=program.units)
 
+
+
+def tool_centre_path(path: ToolPath) -> ToolPath:
+    """The nose-centre path of a lathe path whose segments carry the
+    controlled point (``meta[TOOL_TIP]``); ``path`` itself otherwise. What the
+    verifier checks against the part: the nose radius is what cuts."""
+    moved = path.meta.get(TOOL_TIP)
+    if not moved:
+        return path
+    segments = list(path.segments)
+    for i, how, du, dv in moved:
+        seg = segments[i]
+        g = seg.geom
+        if how == "whole":
+            g = translated(g, -du, -dv)
+        elif how == "end":
+            g = Line(g.p0, (g.p1[0] - du, g.p1[1] - dv))
+        elif how == "start":
+            g = Line((g.p0[0] - du, g.p0[1] - dv), g.p1)
+        else:  # "added": the centre does not move
+            g = Line(g.p0, g.p0)
+        segments[i] = PathSegment(g, seg.role, seg.block, seg.w0, seg.w1, seg.feed)
+    meta = {k: v for k, v in path.meta.items() if k != TOOL_TIP}
+    return ToolPath(tuple(segments), plane=path.plane, style=path.style, radius=path.radius,
+                    dwells=path.dwells, units=path.units, meta=meta)

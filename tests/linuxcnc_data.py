@@ -64,14 +64,18 @@ def canonical_moves(path):
     A line of a ``G0`` block is a STRAIGHT_TRAVERSE ``[x, y, z]``, any other
     line a STRAIGHT_FEED; an arc (or spiral) is ARC_FEED ``[end x, end y,
     centre x, centre y, turn, z]`` with ``turn = sign(sweep) * (number of
-    started turns)`` (in-plane coordinates first, as LinuxCNC prints them in G17).
+    started turns)`` (in-plane coordinates first, as LinuxCNC prints them: in
+    G18 an arc's are (Z, X), and a straight move's are always (X, Y, Z)).
     """
     out = []
     for seg in path.segments:
         g = seg.geom
         if isinstance(g, Line):
             kind = "STRAIGHT_TRAVERSE" if seg.block.motion is Motion.RAPID else "STRAIGHT_FEED"
-            out.append((kind, [g.end[0], g.end[1], seg.w1]))
+            if path.plane == "ZX":      # in-plane (u, v) = (Z, X), w = Y
+                out.append((kind, [g.end[1], seg.w1, g.end[0]]))
+            else:
+                out.append((kind, [g.end[0], g.end[1], seg.w1]))
         else:
             turns = math.floor(abs(g.sweep) / (2 * math.pi) - 1e-9) + 1
             out.append(("ARC_FEED", [g.end[0], g.end[1], g.center[0], g.center[1],

@@ -60,6 +60,7 @@ import numpy as np
 
 from ccopt.compensate import decisions
 from ccopt.compensate.corners import offset_dir, perp
+from ccopt.compensate.lathe import controlled_point_path
 from ccopt.compensate.scan import effective_side_radius
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral
@@ -152,7 +153,8 @@ class LinuxcncStyle:
                    side: int | None = None) -> ToolPath:
         if radius is not None and radius < 0:
             raise CompensationError(f"--radius {radius:g} must be >= 0", program.file)
-        return _Interpreter(program, radius, side).run()
+        # the controlled point of a lathe tool is its imaginary tip (lathe.py)
+        return controlled_point_path(_Interpreter(program, radius, side).run(), radius)
 
 
 class _Interpreter:

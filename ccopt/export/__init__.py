@@ -32,7 +32,8 @@ from ccopt.geometry import Arc, Line
 from ccopt.program import read_text
 from ccopt.program.model import Program
 from ccopt.tolerances import EXPORT_REFIT_MIN_TOL, EXPORT_REFIT_ROUNDS, EXPORT_REFIT_SHRINK
-from ccopt.toolpath import FITTED_PIECES, PathSegment, Role, ToolPath, programmed_path
+from ccopt.toolpath import (FITTED_PIECES, TOOL_TIP, PathSegment, Role, ToolPath,
+                            programmed_path)
 from ccopt.verify import verify
 from ccopt.version import __version__
 
@@ -119,9 +120,17 @@ def readback_path(text: str, dialect: str, original: ToolPath, moves: list, file
             segs.append(PathSegment(seg.geom, o.role, o.block, seg.w0, seg.w1, seg.feed))
             if not isinstance(o.geom, (Line, Arc)):
                 pieces.append(m)      # an arc or line fitted to a spiral or blend curve
+    meta = {"readback_of": file, FITTED_PIECES: tuple(pieces)}
+    if original.meta.get(TOOL_TIP):
+        # a lathe path: the read-back moves carry the tool tip as the computed ones
+        written = {}
+        for m, (src, _, _) in enumerate(moves):
+            written.setdefault(src, []).append(m)
+        meta[TOOL_TIP] = tuple((m, how, du, dv) for i, how, du, dv in original.meta[TOOL_TIP]
+                               for m in written.get(i, ()))
     return ToolPath(tuple(segs), plane=original.plane, style=original.style,
                     radius=original.radius, dwells=back.dwells, units=original.units,
-                    meta={"readback_of": file, FITTED_PIECES: tuple(pieces)})
+                    meta=meta)
 
 
 def displacement(meant, got) -> float:

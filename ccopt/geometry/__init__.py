@@ -24,9 +24,10 @@ from ccopt.geometry.distance import (
 from ccopt.geometry.intersect import circle_circle, intersections, line_circle, line_line
 from ccopt.geometry.curve import BezierCurve
 from ccopt.geometry.offset import offset
-from ccopt.geometry.primitives import Arc, Line, Point, Primitive, Spiral
+from ccopt.geometry.primitives import Arc, Line, Point, Primitive, Spiral, translated
 
 __all__ = [
+    "translated",
     "TWO_PI", "angle_along", "angle_in_sweep", "sweep_between", "sweep_sign",
     "Arc", "BezierCurve", "Line", "Point", "Primitive", "Spiral",
     "offset",

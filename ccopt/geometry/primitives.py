@@ -31,7 +31,7 @@ Angles are radians; a signed ``sweep`` is counter-clockwise when positive
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -312,3 +312,11 @@ class Arc:
 
 
 Primitive = Line | Arc | Spiral
+
+
+def translated(prim: Primitive, du: float, dv: float) -> Primitive:
+    """``prim`` moved rigidly by ``(du, dv)`` (lines by their ends, arcs and
+    spirals by their centre): the same shape, sweep and length."""
+    if isinstance(prim, Line):
+        return Line((prim.p0[0] + du, prim.p0[1] + dv), (prim.p1[0] + du, prim.p1[1] + dv))
+    return replace(prim, center=(prim.center[0] + du, prim.center[1] + dv))

@@ -91,6 +91,8 @@ class Modal:
     start_end: Fagor activation/cancellation, ``"contour"`` (G139, default)
         or ``"direct"`` (G138).
     accel_time, scurve_time: PMAC ``TA``/``TS`` in seconds (``None`` unset).
+    orientation: lathe tool orientation ``Q`` 1..9 (LinuxCNC, in ``G18``) of the
+        tool compensating, 0 for a mill tool; kept after ``G40`` as ``radius``.
     """
 
     plane: str = "XY"
@@ -102,6 +104,7 @@ class Modal:
     start_end: str = "contour"
     accel_time: float | None = None
     scurve_time: float | None = None
+    orientation: int = 0
 
 
 @dataclass(frozen=True, slots=True)

@@ -27,7 +27,17 @@ from pathlib import Path
 
 from ccopt.errors import ProgramError
 
-__all__ = ["read_tool_table"]
+__all__ = ["ToolTable", "read_tool_table"]
+
+
+class ToolTable(dict):
+    """``{tool number: diameter}`` (the table's units), plus ``orientation``:
+    ``{tool number: Q}``, the lathe tool orientation 1..9 of the tools that
+    give one (0 or absent: a mill tool)."""
+
+    def __init__(self, diameters=(), orientation=None):
+        super().__init__(diameters)
+        self.orientation: dict[int, int] = dict(orientation or {})
 
 _NUMBER = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?\Z")
 _INTEGER = re.compile(r"[+-]?\d+\Z")
@@ -56,8 +66,9 @@ def _load(path_or_text) -> tuple[str, str]:
         raise ProgramError(f"cannot read tool table: {exc.strerror or exc}", str(path)) from None
 
 
-def read_tool_table(path_or_text, file: str | None = None) -> dict[int, float]:
-    """Read a LinuxCNC tool table; return ``{tool number: diameter}``.
+def read_tool_table(path_or_text, file: str | None = None) -> ToolTable:
+    """Read a LinuxCNC tool table; return ``{tool number: diameter}`` (a
+    :class:`ToolTable`, which also holds each tool's orientation ``Q``).
 
     ``path_or_text`` is a path (``str`` naming an existing file or
     ``os.PathLike``) or the table text. ``file`` overrides the name used in
@@ -66,12 +77,13 @@ def read_tool_table(path_or_text, file: str | None = None) -> dict[int, float]:
     text, name = _load(path_or_text)
     if file is not None:
         name = file
-    table: dict[int, float] = {}
+    table = ToolTable()
     where: dict[int, int] = {}
     for lineno, line in enumerate(re.split(r"\r\n|\r|\n", text), start=1):
         code = line.split(";", 1)[0]
         tool = None
         diameter = 0.0
+        orientation = 0
         seen: set[str] = set()
         first_col = None
         for m in re.finditer(r"\S+", code):
@@ -97,6 +109,11 @@ def read_tool_table(path_or_text, file: str | None = None) -> dict[int, float]:
                     raise ProgramError(f"{letter} needs a whole number, got {value!r}",
                                        name, lineno, col)
                 number = int(float(value))
+                if letter == "Q":
+                    if not 0 <= number <= 9:
+                        raise ProgramError(f"tool orientation Q{number} must be 0 to 9",
+                                           name, lineno, col)
+                    orientation = number
                 if letter == "T":
                     if number < 0:
                         raise ProgramError(f"tool number T{number} must not be negative",
@@ -118,5 +135,7 @@ def read_tool_table(path_or_text, file: str | None = None) -> dict[int, float]:
             raise ProgramError(f"tool T{tool} is listed twice (lines {where[tool]} and {lineno})",
                                name, lineno, first_col)
         table[tool] = diameter
+        if orientation:
+            table.orientation[tool] = orientation
         where[tool] = lineno
     return table

@@ -10,7 +10,7 @@ import numpy as np
 from ccopt.errors import ProgramError
 from ccopt.program.model import Program
 from ccopt.tolerances import VERIFY_EPS
-from ccopt.toolpath import Role, ToolPath
+from ccopt.toolpath import Role, ToolPath, tool_centre_path
 from ccopt.verify import decisions
 from ccopt.verify.certificate import CERTIFIED, EXACT, Certificate, Check, Violation
 from ccopt.verify.clearance import PairDistances, pair_distances
@@ -169,6 +169,8 @@ def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = V
 
 
 def _verify(toolpath, program, profile, eps, radius, side, limits_tol) -> Certificate:
+    # a lathe path carries the imaginary tool tip; the nose centre is what cuts
+    toolpath = tool_centre_path(toolpath)
     if not (eps > 0.0):
         raise ProgramError(f"eps must be > 0, got {eps!r}", program.file)
     if not (0.0 <= limits_tol < np.inf):

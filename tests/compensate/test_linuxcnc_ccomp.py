@@ -15,9 +15,10 @@ from ccopt.program.gcode import read_gcode
 from ccopt.program.tooltable import read_tool_table
 from linuxcnc_data import CONFORMANCE, TOL, canonical_moves, expected_moves
 
-# G17 mill tests: G20 programs whose tables are in inches (LinuxCNC's
-# stand-alone interpreter runs in inches).
-MILL_TESTS = ("mill-line-arc-entry", "mill-zchanges")
+# G20 programs whose tables are in inches (LinuxCNC's stand-alone
+# interpreter runs in inches): two G17 mill tests and the G18 lathe test,
+# whose tools Q2 and Q7 put the controlled point at the imaginary tip.
+MILL_TESTS = ("mill-line-arc-entry", "mill-zchanges", "lathe-comp")
 
 
 def _ours(folder: str):
@@ -28,7 +29,7 @@ def _ours(folder: str):
 
 
 @pytest.mark.parametrize("folder", MILL_TESTS)
-def test_mill_program_matches_linuxcnc_move_for_move(folder):
+def test_program_matches_linuxcnc_move_for_move(folder):
     got, want = _ours(folder), expected_moves(folder)
     assert [k for k, _ in got] == [k for k, _ in want]
     problems = []
@@ -69,3 +70,24 @@ def test_programs_linuxcnc_refuses_are_refused(name, reason, capsys):
     assert code == 2
     assert err.startswith(f"{program}:") and reason in err
     assert len(err.strip().splitlines()) == 1
+
+
+def test_lathe_tip_is_the_nose_centre_moved_by_the_orientation():
+    """lathe-comp, tool 2 (D0.1, r 0.05, Q2): the first compensated arc, G3 to
+    X0 Z0.1 about (Z0.1, X0.1) with R0.1, has its nose centre on the circle
+    of radius 0.1 - 0.05 about the same point; Q2 moves X and Z by -r, so the
+    controlled point's arc is about (Z0.05, X0.05) and ends at (Z0.05, X0)."""
+    moves = _ours("lathe-comp")
+    kind, a = moves[10]
+    assert kind == "ARC_FEED"
+    assert a[:4] == pytest.approx([0.1 - 0.05 - 0.0, 0.0, 0.1 - 0.05, 0.1 - 0.05], abs=TOL)
+
+
+def test_lathe_path_verifies_and_exports(tmp_path, capsys):
+    d = CONFORMANCE / "lathe-comp"
+    args = [str(d / "test.ngc"), "--style", "linuxcnc", "--tool-table", str(d / "test.tbl")]
+    assert main(["verify", *args]) == 0        # the nose centre keeps r from the part
+    out = tmp_path / "lathe.nc"
+    assert main(["export", *args, "-o", str(out)]) == 0
+    assert "verified OK" in capsys.readouterr().out
+    assert "G18" in out.read_text()

@@ -119,8 +119,9 @@ def _check_word_usage(state: GCodeState, gc: dict, L: dict, is_arc: bool) -> Non
     g10 = gc.get("axis_setting", (None,))[0] == 100
     if "P" in L and not (is_arc or dwell or g10 or (path and path[0] == 640)):
         raise state.error("P word with no G2, G3, G4, G10 or G64 to use it", L["P"][1])
-    if "L" in L and not g10:
-        raise state.error("L word with no G10 to use it", L["L"][1])
+    lathe = comp is not None and comp[0] in (411, 421)
+    if "L" in L and not (g10 or lathe):
+        raise state.error("L word with no G10, G41.1 or G42.1 to use it", L["L"][1])
     if "Q" in L and not (path and path[0] == 640):
         raise state.error("Q word with no G64 to use it", L["Q"][1])
     if dwell and is_arc:
@@ -220,6 +221,15 @@ def _compensation(state: GCodeState, comp: tuple[int, int], L: dict) -> None:
         state.side = -side if d < 0 else side
         state.radius = abs(d) / 2.0
         state.tool = None
+        state.orientation = 0
+        if "L" in L:
+            # G41.1/G42.1 D<d> L<q>: a lathe tool of orientation q (G18 only)
+            q, qcol = L["L"]
+            if not (_whole(q) and 0 <= q <= 9):
+                raise state.error(f"{gname(code)} L{fmt(q)}: the tool orientation must be "
+                                  "0 to 9", qcol)
+            _check_lathe_plane(state, code, int(round(q)), qcol)
+            state.orientation = int(round(q))
         return
     if "D" in L:
         d, dcol = L["D"]
@@ -232,6 +242,9 @@ def _compensation(state: GCodeState, comp: tuple[int, int], L: dict) -> None:
         tool = state.loaded_tool
     state.tool = tool
     state.side = side
+    orientations = getattr(state.tool_table, "orientation", {})
+    state.orientation = orientations.get(tool, 0) if tool not in (None, NO_TOOL) else 0
+    _check_lathe_plane(state, code, state.orientation, col)
     diameter = None
     if tool == NO_TOOL:
         # T0 is "no tool" in LinuxCNC: compensating with it offsets by 0
@@ -247,6 +260,13 @@ def _compensation(state: GCodeState, comp: tuple[int, int], L: dict) -> None:
         state.radius = abs(diameter) / 2.0
         if diameter < 0:
             state.side = -side
+
+
+def _check_lathe_plane(state: GCodeState, code: int, orientation: int, col: int) -> None:
+    """A lathe tool (orientation 1..8) compensates in ``G18`` only (LinuxCNC)."""
+    if orientation not in (0, 9) and state.plane != "ZX":
+        raise state.error(f"{gname(code)} with a lathe tool (orientation {orientation}), but "
+                          "the plane is not G18", col)
 
 
 def _emit(state: GCodeState, block: Block) -> None:

@@ -20,6 +20,7 @@ from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import output_units
 from ccopt.program.gcode.words import Lexed, lex, olabel, program_span
 from ccopt.program.model import Program
+from ccopt.program.tooltable import ToolTable
 
 
 def check_inputs(file, tool_table, start) -> tuple[str, dict[int, float] | None,
@@ -36,7 +37,7 @@ def check_inputs(file, tool_table, start) -> tuple[str, dict[int, float] | None,
         raise ProgramError(f"start must be three finite numbers (x, y, z), got {start!r}", file)
     table = None
     if tool_table is not None:
-        table = {}
+        table = ToolTable(orientation=getattr(tool_table, "orientation", None))
         try:
             for k, v in dict(tool_table).items():
                 table[int(k)] = float(v)

@@ -100,6 +100,7 @@ class GCodeState:
         self.side = 0
         self.radius: float | None = None
         self.tool: int | None = None
+        self.orientation = 0  # lathe tool orientation Q (0: mill tool)
         self.selected_tool: int | None = None
         self.loaded_tool: int | None = None
         self.corner = "circular"
@@ -150,7 +151,7 @@ class GCodeState:
             self._modal = Modal(plane=self.plane, units=self.out_units or self.units or "mm",
                                 side=self.side,
                                 radius=self.radius, tool=self.tool, corner=self.corner,
-                                start_end=self.start_end)
+                                start_end=self.start_end, orientation=self.orientation)
         return self._modal
 
     def modal_changed(self) -> None:
