@@ -10,6 +10,15 @@ from ccopt.cli.output import EXIT_FAILED, EXIT_OK, emit_json
 from ccopt.tolerances import VERIFY_EPS
 from ccopt.verify import verify
 from ccopt.verify.crosschecks import run_crosschecks
+from ccopt.verify.surface import parse_part_lines
+
+
+def part_line_ranges(text: str) -> tuple[tuple[int, int], ...]:
+    """``--part-lines A-B[,C-D]``: program line ranges, checked."""
+    try:
+        return parse_part_lines(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def cmd_verify(args: argparse.Namespace) -> int:
@@ -17,7 +26,8 @@ def cmd_verify(args: argparse.Namespace) -> int:
     work = job(args.program, args)
     prog = work.read()
     path = work.compensate(prog)
-    cert = verify(path, prog, eps=args.eps, radius=work.radius, side=work.side)
+    cert = verify(path, prog, eps=args.eps, radius=work.radius, side=work.side,
+                  part_lines=args.part_lines)
     report = cert.to_json()
     agree = True
     if args.crosscheck:
@@ -46,4 +56,8 @@ def add_commands(sub, commands: dict) -> None:
                    help="tolerance in program units (default 1e-6)")
     p.add_argument("--crosscheck", action="store_true",
                    help="also run the registered cross-check formulations (CVXPY, CasADi)")
+    p.add_argument("--part-lines", type=part_line_ranges, metavar="A-B[,C-D]",
+                   help="program lines whose moves are part surface; the other compensated "
+                        "moves are air (default: a closed loop is the part, leads before "
+                        "and after it air; (ccopt: part|air) comments mark single moves)")
     commands["verify"] = cmd_verify

@@ -49,3 +49,15 @@ GOUGE_ONLY_WHILE_COMPENSATED = True
 #: (such a path then fails against it). Applied in
 #: :func:`ccopt.verify.contour.contour_of`.
 RADIUS_FROM_TOOLPATH_WHEN_UNIFORM = True
+
+#: [ccopt decision] The part is the closed loop. Within a run of consecutive
+#: fully compensated moves, a closed loop (moves whose end returns to the
+#: start of the first within ``eps``, enclosing an area) is the part surface
+#: and the compensated moves before, between and after the loops are leads in
+#: air (a CAM system's tangent arcs in and out): they are no contour elements
+#: (no contact or side required of them; their tool segments are checked
+#: against the part). A run without a closed loop is part throughout.
+#: ``--part-lines`` and the ``(ccopt: part)``/``(ccopt: air)`` markers override
+#: it. ``False``: every fully compensated move is part (unless marked air).
+#: Applied in :func:`ccopt.verify.surface.surface_of`.
+CLOSED_LOOP_IS_THE_PART = True

@@ -133,7 +133,7 @@ def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info):
 
 
 def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = VERIFY_EPS,
-           radius: float | None = None, side=None) -> Certificate:
+           radius: float | None = None, side=None, part_lines=None) -> Certificate:
     """Certify that ``toolpath`` keeps the radius offset of ``program``'s contour.
 
     Parameters
@@ -146,6 +146,10 @@ def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = V
     eps: tolerance in program units (default ``VERIFY_EPS`` = 1e-6).
     radius, side: the overrides the path was compensated with, if any
         (``side``: ``"left"``/``"right"`` or +1/-1).
+    part_lines: the program lines whose moves are part surface (``"A-B,C-D"``,
+        or ``[(A, B), ...]``); the others are air. Default: the markers and the
+        closed-loop rule decide (:mod:`ccopt.verify.surface`). The
+        certificate's ``surface`` says what was taken as part and why.
 
     Returns a :class:`~ccopt.verify.certificate.Certificate`: checks ``gouge``,
     ``contact``, ``side``, ``continuity`` and ``limits``, each with its figure.
@@ -157,19 +161,20 @@ def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = V
     paused = gc.isenabled()
     gc.disable()
     try:
-        return _verify(toolpath, program, profile, eps, radius, side)
+        return _verify(toolpath, program, profile, eps, radius, side, part_lines)
     finally:
         if paused:
             gc.enable()
 
 
-def _verify(toolpath, program, profile, eps, radius, side) -> Certificate:
+def _verify(toolpath, program, profile, eps, radius, side, part_lines) -> Certificate:
     if not (eps > 0.0):
         raise ProgramError(f"eps must be > 0, got {eps!r}", program.file)
     if side not in SIDES:
         raise ProgramError(f"side must be left or right, not {side!r}", program.file)
     contour = contour_of(program, radius=radius, side=SIDES[side],
-                         toolpath_radius=toolpath.radius if radius is None else None)
+                         toolpath_radius=toolpath.radius if radius is None else None,
+                         part_lines=part_lines, eps=eps)
     segs = toolpath.segments
     geoms, roles, blocks = (list(map(attrgetter(a), segs)) for a in ("geom", "role", "block"))
     w0 = np.fromiter(map(attrgetter("w0"), segs), float, len(segs))
@@ -205,4 +210,4 @@ def _verify(toolpath, program, profile, eps, radius, side) -> Certificate:
     rad = float(contour.radius.max()) if len(contour) else float(toolpath.radius)
     ctx = VerifyContext(toolpath, program, contour, tool, pairs, eps)
     return Certificate(all(c.ok for c in checks), min_clear, basis, rad, float(eps), checks,
-                       violations, toolpath.units, contour.notes, ctx)
+                       violations, toolpath.units, contour.notes, ctx, surface=contour.surface)
