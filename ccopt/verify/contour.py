@@ -28,7 +28,7 @@ from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL, VERIFY_EPS
 from ccopt.toolpath import block_geometry
 from ccopt.verify import decisions
 from ccopt.verify.segments import Packed, arc_bbox, pack
-from ccopt.verify.surface import surface_of
+from ccopt.verify.surface import WHY_LEAD_IN, WHY_LEAD_OUT, WHY_SIDE_CHANGE, surface_of
 
 #: Why a move is or is not part of the contour.
 STATUS_OFF = "off"                  # compensation off for the move (uncompensated, lead-out)
@@ -247,7 +247,15 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
     clearance = np.where(radius_change[sel], np.minimum(r[sel], prev_r[sel]), r[sel])
     return Contour(cblocks, elements, k[sel], r[sel], clearance, steady[sel], open_start,
                    open_end, mv.plane, tuple(mv.moves), status, k, r, elem_idx, tuple(notes),
-                   surf.report(mv.moves, in_contour | air))
+                   surf.report(mv.moves, in_contour | air, _approaches(k, prev_k, side_change)))
+
+
+def _approaches(k: np.ndarray, prev_k: np.ndarray, side_change: np.ndarray) -> dict[int, str]:
+    """Move index -> why, for the moves that approach or leave the contour (air)."""
+    out = {int(q): WHY_LEAD_IN for q in np.flatnonzero((k != 0) & (prev_k == 0))}
+    out.update((int(q), WHY_LEAD_OUT) for q in np.flatnonzero((k == 0) & (prev_k != 0)))
+    out.update((int(q), WHY_SIDE_CHANGE) for q in np.flatnonzero(side_change))
+    return out
 
 
 @dataclass(frozen=True, eq=False)

@@ -83,7 +83,8 @@ class VerifyContext:
     def nearest_pairs(self, count: int = 100) -> np.ndarray:
         """Indices into ``pairs`` of the ``count`` smallest margins among the pairs
         that count as gouges (most critical first)."""
-        c = np.flatnonzero(self.pairs.counted)
+        # distances only: a tapered margin past an open end is no distance to check
+        c = np.flatnonzero(self.pairs.counted & ~self.pairs.tapered)
         m = self.pairs.margin[c]
         if m.size > count:
             part = np.argpartition(m, count)[:count]
@@ -93,6 +94,15 @@ class VerifyContext:
 
 #: Uncompensated approaches listed in the gouge check's detail.
 LISTED_APPROACHES = 20
+
+
+def _gouge_detail(pairs: PairDistances, q: int, clearance: float) -> dict:
+    if pairs.tapered[q]:
+        # past an open end: the distance to the end point plus how far past it
+        return {"past_open_end": True, "tapered_distance": float(clearance + pairs.margin[q]),
+                "distance": float(np.hypot(*(pairs.wt[q] - pairs.we[q]))),
+                "clearance": clearance}
+    return {"distance": float(pairs.d[q]), "clearance": clearance}
 
 
 def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info):
@@ -106,7 +116,7 @@ def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info):
             (float(pairs.wt[q, 0]), float(pairs.wt[q, 1])),
             (float(pairs.we[q, 0]), float(pairs.we[q, 1])),
             EXACT if pairs.exact[q] else CERTIFIED,
-            {"distance": float(pairs.d[q]), "clearance": float(contour.clearance[j])}))
+            _gouge_detail(pairs, q, float(contour.clearance[j]))))
     viol.sort(key=lambda v: -v.depth)
     approaches = []
     for q in np.flatnonzero(bad & ~pairs.counted)[:LISTED_APPROACHES]:
@@ -201,7 +211,7 @@ def _verify(toolpath, program, profile, eps, radius, side, part_lines) -> Certif
                check_limits(profile)]
     checks = tuple(c for c, _ in results)
     violations = tuple(v for _, vs in results for v in vs)
-    c = np.flatnonzero(pairs.counted)
+    c = np.flatnonzero(pairs.counted & np.isfinite(pairs.d))
     if c.size:
         k = c[int(np.argmin(pairs.d[c]))]
         min_clear, basis = float(pairs.d[k]), EXACT if pairs.exact[k] else CERTIFIED

@@ -43,6 +43,9 @@ WHY_LINES = "in --part-lines"
 WHY_NOT_LINES = "not in --part-lines"
 WHY_MARK_PART = "marked (ccopt: part)"
 WHY_MARK_AIR = "marked (ccopt: air)"
+WHY_LEAD_IN = "lead-in: compensation comes on over it"
+WHY_LEAD_OUT = "lead-out: compensation goes off over it"
+WHY_SIDE_CHANGE = "side-change transition"
 
 _RANGE = re.compile(r"\s*(\d+)\s*(?:-\s*(\d+))?\s*$")
 
@@ -83,23 +86,25 @@ class Surface:
     why: tuple[str, ...]
     rule: str
 
-    def report(self, moves, compensated: np.ndarray) -> dict:
+    def report(self, moves, compensated: np.ndarray, approaches: dict[int, str]) -> dict:
         """The certificate's ``surface`` entry: the rule, the part and air program
-        lines as ranges, and runs of consecutive fully compensated moves with the
-        same verdict and reason."""
-        q = np.flatnonzero(compensated)
+        lines as ranges, and runs of consecutive moves with the same verdict and
+        reason: the fully compensated moves, and the ``approaches`` (move index ->
+        why: lead-ins, lead-outs, side-change transitions), which are air."""
+        q = sorted(set(np.flatnonzero(compensated).tolist()) | set(approaches))
         runs: list[dict] = []
         for k in q:
             line = moves[k].source.line
-            surf = SURFACE_PART if self.part[k] else SURFACE_AIR
+            part = bool(compensated[k] and self.part[k])
+            surf = SURFACE_PART if part else SURFACE_AIR
+            why = approaches.get(k, self.why[k])
             last = runs[-1] if runs else None
-            if last is not None and last["surface"] == surf and last["why"] == self.why[k] \
+            if last is not None and last["surface"] == surf and last["why"] == why \
                     and last["_next"] == k:
                 last["lines"][1] = line
                 last["_next"] = k + 1
                 continue
-            runs.append({"lines": [line, line], "surface": surf, "why": self.why[k],
-                         "_next": k + 1})
+            runs.append({"lines": [line, line], "surface": surf, "why": why, "_next": k + 1})
         for r in runs:
             del r["_next"]
         return {"rule": self.rule,
