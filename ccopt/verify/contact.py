@@ -265,9 +265,10 @@ def check_contact(tool: Packed, toolpath, contour: Contour, eps: float, lengths,
     else:
         figure, basis = None, EXACT
     check = Check("contact", not viol, figure, eps, basis, "length",
-                  "wherever a steady tool segment runs alongside its element it is within "
-                  "r + eps of it; every corner arc within r + eps of its corner point "
-                  "(figure: largest excess over r)", int(n + ci.size), len(viol))
+                  "every steady tool segment runs alongside its element (over a length, "
+                  "turning its way) and there within r + eps of it; every corner arc within "
+                  "r + eps of its corner point (figure: largest excess over r)",
+                  int(n + ci.size), len(viol))
     return check, viol
 
 
