@@ -74,6 +74,21 @@ def parse_part_lines(spec) -> tuple[tuple[int, int], ...]:
     return tuple(out)
 
 
+def _ranges_text(ranges) -> str:
+    return ",".join(str(a) if a == b else f"{a}-{b}" for a, b in ranges)
+
+
+def _runs(lines: list[int]) -> list[tuple[int, int]]:
+    """Sorted line numbers as runs of consecutive ones."""
+    out: list[list[int]] = []
+    for x in lines:
+        if out and x == out[-1][1] + 1:
+            out[-1][1] = x
+        else:
+            out.append([x, x])
+    return [(a, b) for a, b in out]
+
+
 @dataclass(frozen=True, eq=False)
 class Surface:
     """Per in-plane move: ``part`` (True: part surface; only meaningful where
@@ -132,6 +147,11 @@ def surface_of(moves, compensated: np.ndarray, start: np.ndarray, end: np.ndarra
         for a, b in ranges:
             inside |= (lines >= a) & (lines <= b)
         part = compensated & inside
+        if compensated.any() and not part.any():
+            # a mistyped range would leave no part at all, and any path would pass
+            have = sorted({int(x) for x in lines[compensated]})
+            raise ProgramError(f"part lines {_ranges_text(ranges)} hold no fully compensated "
+                               f"move (those are on lines {_ranges_text(_runs(have))})", file)
         for k in np.flatnonzero(compensated):
             why[k] = WHY_LINES if inside[k] else WHY_NOT_LINES
         return Surface(part, tuple(why), "part-lines")

@@ -170,6 +170,10 @@ def test_part_lines_and_markers_say_which_moves_are_part(tmp_path):
     assert runs[G_ARC_OUT]["surface"] == "air"
     with pytest.raises(ProgramError, match="part lines"):
         verify(path, prog, part_lines="6-x")
+    # lines with no compensated move on them would leave no part at all
+    with pytest.raises(ProgramError, match=r"part lines 1-3,12 hold no fully compensated move "
+                                           r"\(those are on lines 5-11\)"):
+        verify(path, prog, part_lines="1-3,12")
 
 
 def test_pmac_air_marker_on_an_open_profile(tmp_path):
