@@ -13,6 +13,15 @@ from ccopt.toolpath_json import read_toolpath_json
 from ccopt.verify import verify
 from ccopt.verify.crosschecks import run_crosschecks
 from ccopt.verify.limits import LIMITS_TOL
+from ccopt.verify.surface import parse_part_lines
+
+
+def part_line_ranges(text: str) -> tuple[tuple[int, int], ...]:
+    """``--part-lines A-B[,C-D]``: program line ranges, checked."""
+    try:
+        return parse_part_lines(text)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
 
 
 def cmd_verify(args: argparse.Namespace) -> int:
@@ -25,7 +34,7 @@ def cmd_verify(args: argparse.Namespace) -> int:
     if args.feed:
         profile = plan_feed(path, work.limits(), planner="toppra")
     cert = verify(path, prog, profile, eps=args.eps, radius=work.radius, side=work.side,
-                  limits_tol=args.limits_tol)
+                  limits_tol=args.limits_tol, part_lines=args.part_lines)
     report = cert.to_json()
     agree = True
     if args.crosscheck:
@@ -64,4 +73,8 @@ def add_commands(sub, commands: dict) -> None:
                         "by this fraction (default 1e-3)")
     p.add_argument("--crosscheck", action="store_true",
                    help="also run the registered cross-check formulations (CVXPY, CasADi)")
+    p.add_argument("--part-lines", type=part_line_ranges, metavar="A-B[,C-D]",
+                   help="program lines whose moves are part surface; the other compensated "
+                        "moves are air (default: a closed loop is the part, leads before "
+                        "and after it air; (ccopt: part|air) comments mark single moves)")
     commands["verify"] = cmd_verify

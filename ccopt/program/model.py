@@ -128,6 +128,9 @@ class Block:
     move_time: PMAC ``TM`` move time in seconds when the program gave one.
     modal: :class:`Modal` in force for this block.
     mcodes: M codes written on the block (recorded, otherwise ignored).
+    surface: ``"part"`` or ``"air"`` when a comment on the block's line says
+        so (``(ccopt: part)``, ``; ccopt: air``: :mod:`ccopt.program.markers`),
+        else ``None``; read by the verifier.
     """
 
     source: Source
@@ -141,6 +144,7 @@ class Block:
     dwell: float = 0.0
     move_time: float | None = None
     mcodes: tuple[int, ...] = ()
+    surface: str | None = None
 
     # -- plane helpers -------------------------------------------------
     def uvw(self, p: Vec3) -> tuple[float, float, float]:

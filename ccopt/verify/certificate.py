@@ -114,7 +114,10 @@ class Certificate:
     tool never comes within reach), ``min_clearance_basis`` how it was
     obtained; ``radius``: the largest cutter radius of the contour; ``eps``:
     the tolerance used. ``context`` holds the arrays behind the figures (for
-    cross-checks; not part of the JSON).
+    cross-checks; not part of the JSON). ``surface``: which fully compensated
+    moves were taken as part surface and which as air, and why
+    (:meth:`ccopt.verify.surface.Surface.report`: ``rule``, ``part_lines``,
+    ``air_lines`` as ``[first, last]`` program line ranges, ``moves`` runs).
     """
 
     ok: bool
@@ -127,6 +130,7 @@ class Certificate:
     units: str = "mm"
     notes: tuple[str, ...] = ()
     context: Any = field(default=None, repr=False)
+    surface: dict = field(default_factory=dict)
 
     def check(self, name: str) -> Check:
         for c in self.checks:
@@ -171,6 +175,7 @@ class Certificate:
             "checks": [c.to_json() for c in self.checks],
             "violations": [v.to_json() for v in self.violations],
             "notes": list(self.notes),
+            "surface": self.surface,
         }
 
     def summary(self) -> str:
@@ -196,6 +201,7 @@ class Certificate:
             lines.append(f"  ... {len(self.violations) - 20} more")
         for n in self.notes:
             lines.append(f"  note: {n}")
+        lines.extend(_surface_lines(self.surface))
         return "\n".join(lines)
 
     def _verdicts(self) -> str:
@@ -206,3 +212,17 @@ class Certificate:
         elif self.limits_tol is not None:
             lim += f" at tolerance {self.limits_tol:g}"
         return f"geometry {'ok' if self.geometry_ok else 'FAIL'}, limits {lim}"
+
+def _lines_text(ranges) -> str:
+    return ", ".join(str(a) if a == b else f"{a}-{b}" for a, b in ranges) or "none"
+
+
+def _surface_lines(surface: dict) -> list[str]:
+    """The part/air decision in words: the part lines, then each air run and why."""
+    if not surface or not surface.get("air_lines"):
+        return []
+    out = [f"  part surface ({surface['rule']}): lines {_lines_text(surface['part_lines'])}"]
+    for run in surface["moves"]:
+        if run["surface"] == "air":
+            out.append(f"  air: lines {_lines_text([run['lines']])} ({run['why']})")
+    return out

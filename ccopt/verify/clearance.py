@@ -31,9 +31,13 @@ import numpy as np
 from ccopt.geometry import Arc, Line, distance, pair_distance
 from ccopt.geometry.angles import TWO_PI, angle_along, sweep_sign
 from ccopt.tolerances import VERIFY_CERTIFIED_GAP
-from ccopt.verify import certified
+from ccopt.verify import certified, decisions
 from ccopt.verify.broadphase import candidate_pairs
 from ccopt.verify.contour import Contour
+
+#: Units of clearance given up per unit past an open end
+#: (:data:`ccopt.verify.decisions.OPEN_END_TAPER`).
+OPEN_END_TAPER_SLOPE = 1.0
 from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed
 
 
@@ -46,7 +50,10 @@ class PairDistances:
     ``wt``, ``we``: witness points on the tool segment and the element;
     ``exact``: True for closed-form pairs; ``margin``: ``d - clearance``;
     ``counted``: the tool segment was made with compensation in force
-    (:data:`ccopt.verify.decisions.GOUGE_ONLY_WHILE_COMPENSATED`).
+    (:data:`ccopt.verify.decisions.GOUGE_ONLY_WHILE_COMPENSATED`);
+    ``tapered``: the margin comes from the part of the tool segment past an
+    open end, by its tapered distance (:data:`ccopt.verify.decisions.OPEN_END_TAPER`),
+    not from ``d`` (which is then the distance of the rest, ``inf`` if none).
     Pairs wholly exempted at an open end are left out.
     """
 
@@ -60,6 +67,7 @@ class PairDistances:
     margin: np.ndarray
     counted: np.ndarray
     reach: np.ndarray
+    tapered: np.ndarray
 
     def __len__(self) -> int:
         return int(self.tool.size)
@@ -172,8 +180,9 @@ def _piece(g, u0: float, u1: float):
     return Arc(g.center, g.radius, g.theta0 + g.sweep * u0, g.sweep * (u1 - u0))
 
 
-def clip_pieces(g, regions) -> list:
-    """The pieces (lines/arcs) of ``g`` outside the closed ``regions``."""
+def clip_pieces(g, regions, inside: bool = False) -> list:
+    """The pieces (lines/arcs) of ``g`` outside the closed ``regions`` (with
+    ``inside``: the pieces inside them)."""
     cuts = {0.0, 1.0}
     for reg in regions:
         for n, c in reg:
@@ -185,7 +194,7 @@ def clip_pieces(g, regions) -> list:
         if u1 - u0 <= 0.0:
             continue
         mid = g.point(0.5 * (u0 + u1) * L)
-        if not in_regions(regions, mid)[0]:
+        if bool(in_regions(regions, mid)[0]) == inside:
             out.append(_piece(g, u0, u1))
     return out
 
@@ -202,6 +211,167 @@ def clipped_distance(tool_geom, elem_geom, regions):
         d, wt, we = distance(piece, elem_geom)
         if d < best[0]:
             best = (d, wt, we)
+    return best
+
+
+def tapered_pair(tool_geom, regions, tapers):
+    """``(f, wt, we)``: the smallest tapered distance (:func:`tapered_distance`)
+    of the part of ``tool_geom`` inside each region (one :class:`EndTaper`
+    per region), its tool point and the end point; ``f = inf`` when no part
+    of it is inside."""
+    if tool_geom.length == 0.0:
+        return _tapered_point(np.asarray(tool_geom.start, float), regions, tapers)
+    best = (math.inf, None, None)
+    for reg, taper in zip(regions, tapers):
+        for piece in clip_pieces(tool_geom, [reg], inside=True):
+            f, wt = tapered_distance(piece, taper)
+            if f < best[0]:
+                best = (f, wt, tuple(map(float, taper.point)))
+    return best
+
+
+# --------------------------------------------------------------------------- the taper
+
+
+@dataclass(frozen=True)
+class EndTaper:
+    """An open end with its taper (:data:`ccopt.verify.decisions.OPEN_END_TAPER`):
+    the end ``point`` P, the unit direction ``past`` leading away from the
+    element (its tangent there, continued), and the unit normal ``tool_side``
+    towards the programmed side of compensation. A tool point ``q`` past the
+    end by ``s = past . (q - P)`` counts by ``|q - P| + s`` against the
+    clearance: the clearance asked of it shrinks by one unit per unit past
+    the end, from the full clearance at the end's normal line."""
+
+    point: np.ndarray
+    past: np.ndarray
+    tool_side: np.ndarray
+
+
+def end_tapers(contour: Contour, j: int) -> list[EndTaper]:
+    """The tapers of element ``j``'s open ends, in :func:`exempt_regions`' order."""
+    A = contour.elements.arr
+    kind = int(A.kind[j])
+    ends = [e for e, is_open in ((0, contour.open_start[j]), (1, contour.open_end[j]))
+            if is_open]
+    out = []
+    for e in ends:
+        if kind == KIND_LINE:
+            d = A.p1[j] - A.p0[j]
+            t = d / math.hypot(*d)
+            P = A.p0[j] if e == 0 else A.p1[j]
+        else:
+            sw = float(A.sweep[j])
+            th = float(A.theta0[j]) + (0.0 if e == 0 else sw)
+            sg = sweep_sign(sw)
+            t = np.array([-sg * math.sin(th), sg * math.cos(th)])
+            P = A.center[j] + float(A.radius[j]) * np.array([math.cos(th), math.sin(th)])
+        left = np.array([-t[1], t[0]])
+        out.append(EndTaper(np.asarray(P, float), -t if e == 0 else t,
+                            float(contour.side[j]) * left))
+    return out
+
+
+def _on_end_normal(piece, taper: EndTaper) -> bool:
+    """A line piece running along the end's normal on the tool side (the tool
+    centre going straight back onto the end point, Fagor's cancellation in
+    place, rule 4): not tapered, as before the taper."""
+    if not isinstance(piece, Line):
+        return False
+    pts = np.array([piece.p0, piece.p1], float) - taper.point
+    slack = BOUNDARY_REL * (1.0 + float(np.abs(np.asarray(piece.p0)).max())
+                            + float(np.abs(np.asarray(piece.p1)).max()))
+    return bool((np.abs(pts @ taper.past) <= slack).all() and (pts @ taper.tool_side >= -slack).all())
+
+
+def tapered_distance(piece, taper: EndTaper):
+    """``(min over the piece of |q - P| + s(q), witness q)`` for a line or arc
+    ``piece`` lying past the open end (``inf`` for a piece along the end's
+    normal on the tool side). Exact for lines (the function is convex along a
+    line: its stationary point in closed form); for arcs a Lipschitz
+    branch-and-bound within :data:`TAPER_ARC_TOL` of the minimum, from below."""
+    if _on_end_normal(piece, taper):
+        return math.inf, None
+    if isinstance(piece, Line):
+        return _tapered_line(piece, taper)
+    return _tapered_arc(piece, taper)
+
+
+def _taper_f(q: np.ndarray, taper: EndTaper) -> np.ndarray:
+    w = np.atleast_2d(q) - taper.point
+    return np.hypot(w[:, 0], w[:, 1]) + OPEN_END_TAPER_SLOPE * (w @ taper.past)
+
+
+def _tapered_line(piece: Line, taper: EndTaper):
+    a = np.asarray(piece.p0, float)
+    d = np.asarray(piece.p1, float) - a
+    L = math.hypot(*d)
+    cands = [0.0, L]
+    if L > 0.0:
+        e = d / L
+        w0 = a - taper.point
+        p = float(w0 @ e)
+        m = math.hypot(*(w0 - p * e))
+        c = -OPEN_END_TAPER_SLOPE * float(taper.past @ e)
+        if abs(c) < 1.0:
+            # d/du (|w0 + u e| + k past.(w0 + u e)) = 0
+            cands.append(min(max(c * m / math.sqrt(1.0 - c * c) - p, 0.0), L))
+        pts = a + np.outer(np.asarray(cands) / L, d)
+    else:
+        pts = a[None, :]
+    f = _taper_f(pts, taper)
+    k = int(np.argmin(f))
+    return float(f[k]), (float(pts[k, 0]), float(pts[k, 1]))
+
+
+#: The tapered distance of an arc piece is bracketed to within this (program
+#: units) from below: far under any eps the verifier is run with.
+TAPER_ARC_TOL = 1e-10
+_TAPER_ARC_PIECES = 16
+_TAPER_ARC_ROUNDS = 60
+
+
+def _tapered_arc(piece: Arc, taper: EndTaper):
+    """Branch and bound: |q - P| + s(q) changes by at most (1 + slope) per unit
+    of arc length, so over a piece of length l it is at least the mean of its
+    end values minus (1 + slope) l / 2."""
+    lip = 1.0 + OPEN_END_TAPER_SLOPE
+    c, R = np.asarray(piece.center, float), float(piece.radius)
+
+    def at(th):
+        return c + R * np.c_[np.cos(th), np.sin(th)]
+
+    u0 = np.linspace(0.0, 1.0, _TAPER_ARC_PIECES + 1)
+    a, b = u0[:-1], u0[1:]
+    best, wit = math.inf, None
+    lb_out = math.inf
+    for _ in range(_TAPER_ARC_ROUNDS):
+        ta, tb = piece.theta0 + piece.sweep * a, piece.theta0 + piece.sweep * b
+        fa, fb = _taper_f(at(ta), taper), _taper_f(at(tb), taper)
+        k = int(np.argmin(np.r_[fa, fb]))
+        if min(fa.min(), fb.min()) < best:
+            best = float(min(fa.min(), fb.min()))
+            th = (np.r_[ta, tb])[k]
+            wit = tuple(map(float, at(np.array([th]))[0]))
+        lb = 0.5 * (fa + fb) - 0.5 * lip * R * np.abs(piece.sweep) * (b - a)
+        keep = lb < best - TAPER_ARC_TOL
+        if not keep.any():
+            break
+        a, b = a[keep], b[keep]
+        mid = 0.5 * (a + b)
+        a, b = np.r_[a, mid], np.r_[mid, b]
+    else:
+        lb_out = float(lb[keep].min())
+    return min(best, lb_out), wit
+
+
+def _tapered_point(q: np.ndarray, regions, tapers):
+    best = (math.inf, None, None)
+    for reg, taper in zip(regions, tapers):
+        if in_regions([reg], q)[0]:
+            d = float(_taper_f(q, taper)[0])
+            if d < best[0]:
+                best = (d, (float(q[0]), float(q[1])), tuple(map(float, taper.point)))
     return best
 
 
@@ -259,18 +429,27 @@ def pair_distances(tool: Packed, contour: Contour, eps: float,
         d[q], ub[q] = b.lb, b.ub
         if b.wa is not None:
             wt[q], we[q] = b.wa, b.wb
-    # open ends for exact pairs: recompute without the exempt part of the tool segment
+    # open ends for exact pairs: recompute without the exempt part of the tool
+    # segment (d), and the part past an open end by its tapered distance (f)
+    f = d.copy()
+    tapered = np.zeros(n, bool)
     for q in np.flatnonzero(exact & open_elem[je]):
         j = int(je[q])
         regions = exempt_regions(contour, j)
         if not regions:
             continue
-        dd, a, b = clipped_distance(tool.geom(it[q]), E.geom(j), regions)
-        d[q] = ub[q] = dd
+        tg = tool.geom(it[q])
+        dd, a, b = clipped_distance(tg, E.geom(j), regions)
+        d[q] = ub[q] = f[q] = dd
         if a is not None:
             wt[q], we[q] = a, b
-    keep = np.isfinite(d) & (d <= reach[je])
-    margin = d - contour.clearance[je]
+        if decisions.OPEN_END_TAPER:
+            ff, a, b = tapered_pair(tg, regions, end_tapers(contour, j))
+            if ff < dd:
+                f[q], tapered[q] = ff, True
+                wt[q], we[q] = a, b
+    keep = np.isfinite(f) & (f <= reach[je])
+    margin = f - contour.clearance[je]
     cnt = np.ones(n, bool) if counted is None else np.asarray(counted, bool)[it]
     return PairDistances(it[keep], je[keep], d[keep], ub[keep], wt[keep], we[keep],
-                         exact[keep], margin[keep], cnt[keep], reach)
+                         exact[keep], margin[keep], cnt[keep], reach, tapered[keep])

@@ -18,7 +18,10 @@ vectorised. Any other line/arc pair (a displaced segment) is cut at the band
 boundaries and measured with the exact farthest-point kernel
 (:mod:`.maxdist`); spirals and curves get a certified upper bound over the
 whole segment (:func:`.certified.max_distance`, conservative). A tool segment
-nowhere alongside its element is measured by its smallest distance to it.
+that runs alongside its element over no length at all (it only touches the
+band's edge, or it is an arc about the element's centre turning the other
+way, e.g. swept 270 degrees the long way round instead of 90) does not run
+along it: a violation of infinite depth.
 
 Where the spec says the tool cannot touch (an inside corner, where the tool
 stops short of the corner point; a shallow outside corner, where the offsets
@@ -36,7 +39,7 @@ import math
 import numpy as np
 
 from ccopt.geometry import Arc, distance
-from ccopt.geometry.angles import angle_in_sweep
+from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import PLANE_AXES
 from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
 from ccopt.toolpath import FITTED_PIECES, Role
@@ -160,6 +163,9 @@ def _line_line(T, ti, E, ej):
     dmax = np.where(first, hlo, hhi)
     u = np.where(first, lo, hi)
     q = a0 + u[:, None] * (a1 - a0)
+    # alongside over a length, not at a single point (a segment that only
+    # touches the band's edge does not run along the element)
+    along &= (hi - lo) * np.hypot(*(a1 - a0).T) > ALONGSIDE_MIN_LENGTH
     return dmax, q, along
 
 
@@ -167,6 +173,27 @@ def _line_line(T, ti, E, ej):
 #: tool segment and its element both computed about the programmed centre
 #: agree to rounding).
 CONCENTRIC_REL = 1e-12
+
+
+#: A tool segment runs alongside its element when more than this length of it
+#: (program units) lies alongside; touching the band's edge at a point does
+#: not count (an arc swept the wrong way meets the element's sector only at
+#: its two ends).
+ALONGSIDE_MIN_LENGTH = POINT_EPS
+
+
+def sweep_overlap(th1, sw1, th2, sw2) -> np.ndarray:
+    """Angle (radians) common to the arcs' sweeps ``(th1, sw1)`` and ``(th2, sw2)``
+    about one centre, whichever way each turns (vectorised)."""
+    a1 = np.where(sw1 >= 0.0, th1, th1 + sw1)
+    a2 = np.where(sw2 >= 0.0, th2, th2 + sw2)
+    L1 = np.minimum(np.abs(sw1), TWO_PI)
+    L2 = np.minimum(np.abs(sw2), TWO_PI)
+    d = np.mod(a2 - a1, TWO_PI)
+    # interval [0, L1] against [d, d + L2] and its copy one turn back
+    first = np.maximum(0.0, np.minimum(L1, d + L2) - d)
+    second = np.maximum(0.0, np.minimum(L1, d + L2 - TWO_PI))
+    return np.minimum(first + second, L1)
 
 
 def _arc_arc_concentric(T, ti, E, ej):
@@ -178,8 +205,11 @@ def _arc_arc_concentric(T, ti, E, ej):
     # to the rounding of arcs that share their end angles
     thT, swT, thE, swE = T.theta0[ti], T.sweep[ti], E.theta0[ej], E.sweep[ej]
     midT = thT + 0.5 * swT
-    along = (angle_in_sweep(midT, thE, swE) | angle_in_sweep(thE + 0.5 * swE, thT, swT)
-             | angle_in_sweep(thT, thE, swE) | angle_in_sweep(thT + swT, thE, swE))
+    # alongside: the arcs overlap over an angle, turning the same way (an arc
+    # swept the other way round its centre meets the element's sector at most
+    # at its ends)
+    along = (sweep_overlap(thT, swT, thE, swE) * T.radius[ti] > ALONGSIDE_MIN_LENGTH) \
+        & (np.sign(swT) == np.sign(swE))
     dmax = np.abs(T.radius[ti] - E.radius[ej])
     q = cT + T.radius[ti][:, None] * np.c_[np.cos(midT), np.sin(midT)]
     return dmax, q, conc, along
@@ -189,9 +219,9 @@ def _general(tg, eg, E: Packed, j):
     """Clip ``tg`` to the band of element ``j`` and take the exact farthest distance."""
     regions = end_regions(E, j, True, True)
     pieces = clip_pieces(tg, regions) if tg.length > 0.0 else []
-    if not pieces:
-        d, wt, _ = distance(tg, eg)
-        return d, wt
+    if sum(p.length for p in pieces) <= ALONGSIDE_MIN_LENGTH:
+        # nowhere alongside its element: it does not run along it at all
+        return math.inf, tuple(map(float, tg.start))
     pk = pack(pieces)
     earr = pack([eg]).arr
     dm, q, _ = max_distance(pk.arr, np.arange(len(pieces)), earr, np.zeros(len(pieces), np.intp))
@@ -218,8 +248,7 @@ def check_contact(tool: Packed, toolpath, contour: Contour, eps: float, lengths,
         line, role = info(i)
         viol.append(Violation("contact", float(gap[q]), i, line, role, j, contour.element_line(j),
                               (float(wq[q, 0]), float(wq[q, 1])), None,
-                              EXACT if exact[q] else CERTIFIED,
-                              {"max_distance": float(dmax[q]), "radius": float(contour.radius[j])}))
+                              EXACT if exact[q] else CERTIFIED, _contact_detail(dmax[q], contour, j)))
     for q in np.flatnonzero(cgap > eps):
         viol.append(_corner_violation(contour, info, int(ci[q]), float(cgap[q]), cq[q], cp[q],
                                       float(cr[q]), int(c_in[q]), int(c_out[q])))
@@ -236,9 +265,10 @@ def check_contact(tool: Packed, toolpath, contour: Contour, eps: float, lengths,
     else:
         figure, basis = None, EXACT
     check = Check("contact", not viol, figure, eps, basis, "length",
-                  "wherever a steady tool segment runs alongside its element it is within "
-                  "r + eps of it; every corner arc within r + eps of its corner point "
-                  "(figure: largest excess over r)", int(n + ci.size), len(viol))
+                  "every steady tool segment runs alongside its element (over a length, "
+                  "turning its way) and there within r + eps of it; every corner arc within "
+                  "r + eps of its corner point (figure: largest excess over r)",
+                  int(n + ci.size), len(viol))
     return check, viol
 
 
@@ -267,7 +297,10 @@ def farthest_alongside(tool: Packed, contour: Contour, si: np.ndarray, ej: np.nd
         dm, pts, conc, along = _arc_arc_concentric(T, si[q], E, ej[q])
         ok = conc & along
         dmax[q[ok]], wq[q[ok]] = dm[ok], pts[ok]
-        todo[q[~ok]] = True
+        # about the element's centre but turning the other way: not alongside
+        wrong_way = conc & (np.sign(T.sweep[si[q]]) != np.sign(E.sweep[ej[q]]))
+        dmax[q[wrong_way]], wq[q[wrong_way]] = math.inf, T.p0[si[q[wrong_way]]]
+        todo[q[~(ok | wrong_way)]] = True
     todo |= exact & ~(ll | aa)
     for q in np.flatnonzero(todo):
         dmax[q], wq[q] = _general(tool.geom(si[q]), contour.elements.geom(ej[q]),
@@ -278,6 +311,14 @@ def farthest_alongside(tool: Packed, contour: Contour, si: np.ndarray, ej: np.nd
         dmax[q] = b.ub
         wq[q] = b.wa if b.wa is not None else T.p0[si[q]]
     return dmax, wq, exact
+
+
+def _contact_detail(dmax: float, contour: Contour, j: int) -> dict:
+    if math.isinf(dmax):
+        return {"reason": "the tool segment never runs alongside its element (no part of it "
+                          "lies alongside the element's interior)",
+                "radius": float(contour.radius[j])}
+    return {"max_distance": float(dmax), "radius": float(contour.radius[j])}
 
 
 def _corner_violation(contour: Contour, info, i: int, gap: float, q, P, r: float,

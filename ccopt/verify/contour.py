@@ -24,10 +24,11 @@ from ccopt.geometry import KIND_ARC, KIND_LINE, KIND_SPIRAL, SegmentArray
 from ccopt.geometry.angles import TWO_PI
 from ccopt.geometry.arclength import END_POINT_REL_TOL
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
-from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL
+from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL, VERIFY_EPS
 from ccopt.toolpath import block_geometry
 from ccopt.verify import decisions
 from ccopt.verify.segments import Packed, arc_bbox, pack
+from ccopt.verify.surface import WHY_LEAD_IN, WHY_LEAD_OUT, WHY_SIDE_CHANGE, surface_of
 
 #: Why a move is or is not part of the contour.
 STATUS_OFF = "off"                  # compensation off for the move (uncompensated, lead-out)
@@ -35,7 +36,9 @@ STATUS_LEAD_IN = "lead-in"          # on for the move, off before it
 STATUS_STEADY = "steady"            # on before and during, same side and radius
 STATUS_RADIUS_CHANGE = "radius-change"  # on before and during, new radius introduced over it
 STATUS_SIDE_CHANGE = "side-change"  # on before and during, new side introduced over it
-STATUS_NAMES = (STATUS_OFF, STATUS_LEAD_IN, STATUS_STEADY, STATUS_RADIUS_CHANGE, STATUS_SIDE_CHANGE)
+STATUS_AIR = "air"                  # on before and during, but a lead in air (surface.py)
+STATUS_NAMES = (STATUS_OFF, STATUS_LEAD_IN, STATUS_STEADY, STATUS_RADIUS_CHANGE, STATUS_SIDE_CHANGE,
+                STATUS_AIR)
 _ARCS = frozenset((Motion.ARC_CW, Motion.ARC_CCW))
 _MOTION, _START, _END, _MODAL = (attrgetter(a) for a in ("motion", "start", "end", "modal"))
 _SIDE, _RADIUS = attrgetter("side"), attrgetter("radius")
@@ -67,6 +70,8 @@ class Contour:
         ``move_status`` (a ``STATUS_*``), ``move_k``, ``move_r`` (side and radius
         in force), ``move_element`` (its contour element, or -1).
     notes: what the verifier assumed (e.g. a radius taken from the tool path).
+    surface: which fully compensated moves were taken as part and which as
+        air, and why (:meth:`ccopt.verify.surface.Surface.report`).
     """
 
     blocks: tuple[Block, ...]
@@ -84,6 +89,7 @@ class Contour:
     move_r: np.ndarray = field(repr=False)
     move_element: np.ndarray = field(repr=False)
     notes: tuple[str, ...] = ()
+    surface: dict = field(default_factory=dict, repr=False)
 
     def __len__(self) -> int:
         return len(self.blocks)
@@ -185,13 +191,17 @@ def element_geometry(blocks: list[Block], plane: str, st=None, en=None, ce=None,
 
 
 def contour_of(program: Program, radius: float | None = None, side: int | None = None,
-               toolpath_radius: float | None = None) -> Contour:
+               toolpath_radius: float | None = None, *, part_lines=None,
+               eps: float = VERIFY_EPS) -> Contour:
     """The contour of ``program`` (docs/compensation.md section 8.1).
 
     ``radius``/``side`` override the program as in
     :func:`ccopt.compensate.compensate`. ``toolpath_radius`` is the radius the
     tool path says it was made with
     (:data:`~ccopt.verify.decisions.RADIUS_FROM_TOOLPATH_WHEN_UNIFORM`).
+    ``part_lines``: the program lines that are part surface (``"A-B,C-D"`` or
+    pairs), else the markers and the closed-loop rule decide
+    (:mod:`ccopt.verify.surface`); ``eps``: how near a loop must close.
     """
     mv = _InPlaneMoves.of(program)
     k, r, notes = _sides_and_radii(mv.moves, radius, side, toolpath_radius)
@@ -209,12 +219,19 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
     side_change = on & (k != prev_k)
     radius_change = on & ~side_change & (r != prev_r)
     steady = on & ~side_change & ~radius_change
+    # Of those, the part surface: a closed loop's moves, or what the user says
+    # (surface.py); the others are leads in air, checked against the part only.
+    surf = surface_of(mv.moves, steady | radius_change, mv.start, mv.end, mv.is_arc, eps,
+                      part_lines, program.file)
+    air = (steady | radius_change) & ~surf.part
+    steady, radius_change = steady & surf.part, radius_change & surf.part
     in_contour = steady | radius_change
     status = np.zeros(n, np.int8)
     status[(k != 0) & (prev_k == 0)] = STATUS_NAMES.index(STATUS_LEAD_IN)
     status[steady] = STATUS_NAMES.index(STATUS_STEADY)
     status[radius_change] = STATUS_NAMES.index(STATUS_RADIUS_CHANGE)
     status[side_change] = STATUS_NAMES.index(STATUS_SIDE_CHANGE)
+    status[air] = STATUS_NAMES.index(STATUS_AIR)
     elem_idx = np.where(in_contour, np.cumsum(in_contour) - 1, -1)
     sel = np.flatnonzero(in_contour)
     prev_in = np.r_[False, in_contour[:-1]] if n else in_contour
@@ -229,7 +246,16 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
     elements = mv.elements(sel, cblocks)
     clearance = np.where(radius_change[sel], np.minimum(r[sel], prev_r[sel]), r[sel])
     return Contour(cblocks, elements, k[sel], r[sel], clearance, steady[sel], open_start,
-                   open_end, mv.plane, tuple(mv.moves), status, k, r, elem_idx, tuple(notes))
+                   open_end, mv.plane, tuple(mv.moves), status, k, r, elem_idx, tuple(notes),
+                   surf.report(mv.moves, in_contour | air, _approaches(k, prev_k, side_change)))
+
+
+def _approaches(k: np.ndarray, prev_k: np.ndarray, side_change: np.ndarray) -> dict[int, str]:
+    """Move index -> why, for the moves that approach or leave the contour (air)."""
+    out = {int(q): WHY_LEAD_IN for q in np.flatnonzero((k != 0) & (prev_k == 0))}
+    out.update((int(q), WHY_LEAD_OUT) for q in np.flatnonzero((k == 0) & (prev_k != 0)))
+    out.update((int(q), WHY_SIDE_CHANGE) for q in np.flatnonzero(side_change))
+    return out
 
 
 @dataclass(frozen=True, eq=False)

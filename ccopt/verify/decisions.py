@@ -49,3 +49,31 @@ GOUGE_ONLY_WHILE_COMPENSATED = True
 #: (such a path then fails against it). Applied in
 #: :func:`ccopt.verify.contour.contour_of`.
 RADIUS_FROM_TOOLPATH_WHEN_UNIFORM = True
+
+#: [ccopt decision] The part is the closed loop. Within a run of consecutive
+#: fully compensated moves, a closed loop (moves whose end returns to the
+#: start of the first within ``eps``, enclosing an area) is the part surface
+#: and the compensated moves before, between and after the loops are leads in
+#: air (a CAM system's tangent arcs in and out): they are no contour elements
+#: (no contact or side required of them; their tool segments are checked
+#: against the part). A run without a closed loop is part throughout.
+#: ``--part-lines`` and the ``(ccopt: part)``/``(ccopt: air)`` markers override
+#: it. ``False``: every fully compensated move is part (unless marked air).
+#: Applied in :func:`ccopt.verify.surface.surface_of`.
+CLOSED_LOOP_IS_THE_PART = True
+
+#: [ccopt decision] The open-end exemption is continuous. A tool position
+#: past an open end by ``s`` (its distance beyond the end's normal line) is
+#: not dropped but held to the end point ``P`` with the clearance less ``s``:
+#: ``|q - P| + s >= clearance - eps`` (the forbidden zone past the end is the
+#: inside of the parabola with focus ``P`` whose directrix lies one clearance
+#: beyond the end; at the normal line it is the full clearance, as alongside).
+#: The controllers' own leads approach the end at a slant and pass (PMAC's
+#: diagonal lead-in gives up 0.2 of ``s`` at most on the bundled cases); a lead
+#: pushed toward the part while staying connected is caught. A line running
+#: along the end's normal on the tool side (the tool centre going straight
+#: back onto ``P``, Fagor's cancellation in place) is left exempt. Exact for
+#: line and arc tool segments; spiral and curve tool segments keep the plain
+#: exemption. ``False``: points past an open end are not checked against the
+#: element at all. Applied in :func:`ccopt.verify.clearance.pair_distances`.
+OPEN_END_TAPER = True

@@ -83,7 +83,8 @@ class VerifyContext:
     def nearest_pairs(self, count: int = 100) -> np.ndarray:
         """Indices into ``pairs`` of the ``count`` smallest margins among the pairs
         that count as gouges (most critical first)."""
-        c = np.flatnonzero(self.pairs.counted)
+        # distances only: a tapered margin past an open end is no distance to check
+        c = np.flatnonzero(self.pairs.counted & ~self.pairs.tapered)
         m = self.pairs.margin[c]
         if m.size > count:
             part = np.argpartition(m, count)[:count]
@@ -93,6 +94,15 @@ class VerifyContext:
 
 #: Uncompensated approaches listed in the gouge check's detail.
 LISTED_APPROACHES = 20
+
+
+def _gouge_detail(pairs: PairDistances, q: int, clearance: float) -> dict:
+    if pairs.tapered[q]:
+        # past an open end: the distance to the end point plus how far past it
+        return {"past_open_end": True, "tapered_distance": float(clearance + pairs.margin[q]),
+                "distance": float(np.hypot(*(pairs.wt[q] - pairs.we[q]))),
+                "clearance": clearance}
+    return {"distance": float(pairs.d[q]), "clearance": clearance}
 
 
 def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info):
@@ -106,7 +116,7 @@ def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info):
             (float(pairs.wt[q, 0]), float(pairs.wt[q, 1])),
             (float(pairs.we[q, 0]), float(pairs.we[q, 1])),
             EXACT if pairs.exact[q] else CERTIFIED,
-            {"distance": float(pairs.d[q]), "clearance": float(contour.clearance[j])}))
+            _gouge_detail(pairs, q, float(contour.clearance[j]))))
     viol.sort(key=lambda v: -v.depth)
     approaches = []
     for q in np.flatnonzero(bad & ~pairs.counted)[:LISTED_APPROACHES]:
@@ -134,7 +144,7 @@ def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info):
 
 def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = VERIFY_EPS,
            radius: float | None = None, side=None,
-           limits_tol: float = LIMITS_TOL) -> Certificate:
+           limits_tol: float = LIMITS_TOL, part_lines=None) -> Certificate:
     """Certify that ``toolpath`` keeps the radius offset of ``program``'s contour.
 
     Parameters
@@ -151,6 +161,10 @@ def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = V
         :data:`~ccopt.verify.limits.LIMITS_TOL` = 1e-3: a sample may exceed
         its limit by 0.1 %); the certificate's ``limits_ok`` and
         ``geometry_ok`` tell the two verdicts apart.
+    part_lines: the program lines whose moves are part surface (``"A-B,C-D"``,
+        or ``[(A, B), ...]``); the others are air. Default: the markers and the
+        closed-loop rule decide (:mod:`ccopt.verify.surface`). The
+        certificate's ``surface`` says what was taken as part and why.
 
     Returns a :class:`~ccopt.verify.certificate.Certificate`: checks ``gouge``,
     ``contact``, ``side``, ``continuity`` and ``limits``, each with its figure.
@@ -162,13 +176,14 @@ def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = V
     paused = gc.isenabled()
     gc.disable()
     try:
-        return _verify(toolpath, program, profile, eps, radius, side, limits_tol)
+        return _verify(toolpath, program, profile, eps, radius, side, limits_tol, part_lines)
     finally:
         if paused:
             gc.enable()
 
 
-def _verify(toolpath, program, profile, eps, radius, side, limits_tol) -> Certificate:
+def _verify(toolpath, program, profile, eps, radius, side, limits_tol,
+            part_lines) -> Certificate:
     # a lathe path carries the imaginary tool tip; the nose centre is what cuts
     toolpath = tool_centre_path(toolpath)
     if not (eps > 0.0):
@@ -179,7 +194,8 @@ def _verify(toolpath, program, profile, eps, radius, side, limits_tol) -> Certif
     if side not in SIDES:
         raise ProgramError(f"side must be left or right, not {side!r}", program.file)
     contour = contour_of(program, radius=radius, side=SIDES[side],
-                         toolpath_radius=toolpath.radius if radius is None else None)
+                         toolpath_radius=toolpath.radius if radius is None else None,
+                         part_lines=part_lines, eps=eps)
     segs = toolpath.segments
     geoms, roles, blocks = (list(map(attrgetter(a), segs)) for a in ("geom", "role", "block"))
     w0 = np.fromiter(map(attrgetter("w0"), segs), float, len(segs))
@@ -206,7 +222,7 @@ def _verify(toolpath, program, profile, eps, radius, side, limits_tol) -> Certif
                check_limits(profile, limits_tol)]
     checks = tuple(c for c, _ in results)
     violations = tuple(v for _, vs in results for v in vs)
-    c = np.flatnonzero(pairs.counted)
+    c = np.flatnonzero(pairs.counted & np.isfinite(pairs.d))
     if c.size:
         k = c[int(np.argmin(pairs.d[c]))]
         min_clear, basis = float(pairs.d[k]), EXACT if pairs.exact[k] else CERTIFIED
@@ -215,4 +231,4 @@ def _verify(toolpath, program, profile, eps, radius, side, limits_tol) -> Certif
     rad = float(contour.radius.max()) if len(contour) else float(toolpath.radius)
     ctx = VerifyContext(toolpath, program, contour, tool, pairs, eps)
     return Certificate(all(c.ok for c in checks), min_clear, basis, rad, float(eps), checks,
-                       violations, toolpath.units, contour.notes, ctx)
+                       violations, toolpath.units, contour.notes, ctx, surface=contour.surface)

@@ -11,6 +11,7 @@ become :class:`~ccopt.program.model.Block` objects in the state.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 from ccopt.program.gcode.arcs import arc_geometry, is_modal_arc_without_plane_motion
 from ccopt.program.gcode.codes import Words, classify
@@ -20,6 +21,7 @@ from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import (feed_factor, length_factor, output_units,
                                        scale_lengths, set_units)
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, gname
+from ccopt.program.markers import surface_marker
 from ccopt.program.model import Block, Motion, Source
 
 _AXES = "XYZ"
@@ -294,6 +296,7 @@ def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int
             end[k] = cur[k] + v if state.incremental else v + offset[k]
     end_t = (end[0], end[1], end[2])
     src = Source(*state.where(state.line_no), first_col + 1)
+    surface = surface_marker(state.lines[state.line_no], "gcode", src.file, src.line)
     if motion == 0:
         block = Block(src, Motion.RAPID, cur, end_t, state.modal(), mcodes=mcodes)
     elif motion == 10 or is_modal_arc_without_plane_motion(state, L, cur, end_t):
@@ -304,6 +307,8 @@ def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int
         feed = _feed(state, L, length, gcol)
         block = Block(src, Motion.ARC_CCW if motion == 30 else Motion.ARC_CW, cur, end_t,
                       state.modal(), center=center, turns=turns, feed=feed, mcodes=mcodes)
+    if surface is not None:
+        block = replace(block, surface=surface)
     _emit(state, block)
     state.moved = True
     state.pos = end_t

@@ -10,6 +10,7 @@ from __future__ import annotations
 import math
 
 from ccopt.errors import ProgramError
+from ccopt.program.markers import surface_marker
 from ccopt.program.model import Program, Vec3
 from ccopt.program.pmac import buffers
 from ccopt.program.pmac.lexer import skip, split_lines, word
@@ -53,6 +54,12 @@ def _read(text: str, file: str, start: Vec3, program: int | None) -> Program:
                   "ignored": [], "online": [], "skipped_buffers": []}
     run = Interpreter(file, start, meta)
     lines = split_lines(text, file)
+    if "ccopt" in text.lower():
+        # comments are cut by split_lines: the surface markers are read from the raw text
+        for n, raw in enumerate(text.split("\n"), start=1):
+            mark = surface_marker(raw, "pmac", file, n)
+            if mark is not None:
+                run.markers[n] = mark
     download = buffers.split_buffers(lines, file)
     meta["skipped_buffers"] = download.skipped if download else []
     meta["programs"] = download.order if download else []

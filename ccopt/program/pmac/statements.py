@@ -66,6 +66,8 @@ class Interpreter:
         self.line_mcodes: list[int] = []
         self.in_body = False
         self.finished = False
+        #: line -> "part"/"air": the surface markers in the comments (markers.py)
+        self.markers: dict[int, str] = {}
 
     def error(self, message: str, line: int | None, col: int | None = None) -> ProgramError:
         return ProgramError(message, self.file, line, col)
@@ -395,4 +397,6 @@ class Interpreter:
                       side=self.programmed_side * self.radius_sign,
                       radius=self.radius, accel_time=self.accel_time,
                       scurve_time=self.scurve_time)
-        return Block(source=source, motion=motion, start=start, end=end, modal=modal, **kw)
+        surface = self.markers.get(source.line) if self.markers else None
+        return Block(source=source, motion=motion, start=start, end=end, modal=modal,
+                     surface=surface, **kw)
