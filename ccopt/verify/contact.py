@@ -116,8 +116,7 @@ def corner_points(toolpath, contour: Contour, table, ci: np.ndarray):
 def contact_pairs(toolpath, contour: Contour, lengths: np.ndarray, table):
     """``(steady tool segments, their elements, corner arcs, corner points, corner radii,
     moves ending at the corners, moves starting there)``."""
-    steady = table.is_role(Role.COMPENSATED) & table.steady & (table.element >= 0) \
-        & (lengths > POINT_EPS)
+    steady = _runs_along(table) & table.steady & (table.element >= 0) & (lengths > POINT_EPS)
     si = np.flatnonzero(steady)
     ej = table.element[si]
     cand = np.flatnonzero(table.is_role(Role.CORNER) & (table.r > 0.0))
@@ -336,11 +335,18 @@ def _corner_violation(contour: Contour, info, i: int, gap: float, q, P, r: float
                              "corner_between_blocks": between, "radius": r})
 
 
+def _runs_along(table) -> np.ndarray:
+    """Tool segments that run along their element: compensated ones, and the
+    moves of a pass compensated with radius 0 (``G41.1 D0``, ``G41 D0``),
+    which LinuxCNC and ccopt run as the programmed moves themselves."""
+    return table.is_role(Role.COMPENSATED) | (table.is_role(Role.UNCOMPENSATED) & (table.r <= 0.0))
+
+
 def _unreached_elements(contour: Contour, table) -> np.ndarray:
     """Steady elements with no compensated tool segment at all: a path that never
     runs along an element (e.g. the programmed path itself, or a path made for
     another program) does not reach it."""
     has = np.zeros(len(contour), bool)
-    own = table.is_role(Role.COMPENSATED) & (table.element >= 0)
+    own = _runs_along(table) & (table.element >= 0)
     has[table.element[own]] = True
     return np.flatnonzero(contour.steady & ~has)

@@ -91,3 +91,12 @@ def test_lathe_path_verifies_and_exports(tmp_path, capsys):
     assert main(["export", *args, "-o", str(out)]) == 0
     assert "verified OK" in capsys.readouterr().out
     assert "G18" in out.read_text()
+
+
+@pytest.mark.parametrize("folder", MILL_TESTS)
+def test_linuxcnc_tests_verify(folder):
+    """Every pass of LinuxCNC's own tests keeps the radius offset, the radius-0
+    passes of mill-zchanges (G41 D0) included."""
+    d = CONFORMANCE / folder
+    assert main(["verify", str(d / "test.ngc"), "--style", "linuxcnc",
+                 "--tool-table", str(d / "test.tbl")]) == 0
