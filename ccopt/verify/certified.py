@@ -47,6 +47,12 @@ MAX_PIECES = 1 << 18
 
 #: Chords per curve in a certified farthest distance (contact), at most.
 MAX_CHORDS = 1 << 15
+#: Chords measured exactly for every point before the ball search for nearer ones.
+_NEAR_CHORDS = 8
+#: Up to this many chords the chord nearest each middle is found exactly.
+_KD_TREE_CHORDS = 2048
+#: Chords on each side of a seed searched for the nearest (see _near_chords).
+_NEAR_WINDOW = 4
 
 #: The first cut of a curve's parameter range: this many equal pieces ...
 FIRST_PIECES = 8
@@ -342,17 +348,77 @@ def _chords(p: Param, n: int):
     return pts[:-1], pts[1:], p.delta(u[:-1], u[1:]), u
 
 
-def _poly_dist(q, e0, e1, chunk=1 << 22):
-    """Distance from points ``q`` to the polyline of chords ``e0 e1`` (brute force, chunked)."""
-    n, m = q.shape[0], e0.shape[0]
-    out = np.empty(n)
-    step = max(1, chunk // max(m, 1))
-    for s in range(0, n, step):
-        qq = q[s:s + step]
-        d, _, _ = point_segment(np.repeat(qq, m, axis=0), np.tile(e0, (qq.shape[0], 1)),
-                                np.tile(e1, (qq.shape[0], 1)))
-        out[s:s + step] = d.reshape(qq.shape[0], m).min(axis=1)
+def _near_chords(middles, points, previous):
+    """For each point, the chord (by its middle) of ``middles`` nearest it.
+
+    Exact (k-d tree) while the chords are few; from then on the nearest among
+    the chords around the halves of the previous round's choice: both curves'
+    chords are halved each round, so that chord's halves are where the
+    nearest one went. A k-d tree over a curve offset from the points by many
+    chord lengths visits every chord within that offset: quadratic, which the
+    local search is not.
+    """
+    if previous is None or len(points) <= _KD_TREE_CHORDS:
+        # deferred: scipy.spatial is only needed when a curved element is measured
+        from scipy.spatial import cKDTree
+        return np.asarray(cKDTree(middles).query(points, 1)[1], np.intp).reshape(len(points))
+    seed = 2 * previous[np.arange(len(points)) // 2]
+    cand = np.clip(seed[:, None] + np.arange(-_NEAR_WINDOW, _NEAR_WINDOW + 2), 0,
+                   len(middles) - 1)
+    d = np.hypot(*(middles[cand] - points[:, None, :]).transpose(2, 0, 1))
+    return cand[np.arange(len(points)), np.argmin(d, axis=1)]
+
+
+def _farthest_from_polyline(q, e0, e1, upper, batch: int = 64) -> np.ndarray:
+    """``dist(q, polyline)`` where it matters for the maximum, ``-inf`` elsewhere.
+
+    ``upper`` bounds each point's distance from above; points are measured
+    exactly in decreasing order of it until the largest exact distance found
+    is at least the next bound, so the maximum of the result is the exact
+    maximum over all points.
+    """
+    out = np.full(len(q), -np.inf)
+    order = np.argsort(-upper, kind="stable")
+    best = -np.inf
+    for s in range(0, len(order), batch):
+        idx = order[s:s + batch]
+        if upper[idx[0]] <= best:
+            break
+        out[idx] = _poly_dist(q[idx], e0, e1)
+        best = max(best, float(out[idx].max()))
     return out
+
+
+def _poly_dist(q, e0, e1):
+    """Exact distance from points ``q`` to the polyline of chords ``e0 e1``.
+
+    Near chords only, found with a k-d tree of the chord middles: a chord whose
+    middle is farther from ``q`` than the best distance found plus the longest
+    half chord cannot be nearer, so the candidates within that ball give the
+    exact minimum (the brute force was quadratic in the chord count).
+    """
+    # deferred: scipy.spatial is only needed when a curved element is measured
+    from scipy.spatial import cKDTree
+    m = e0.shape[0]
+    mids = 0.5 * (e0 + e1)
+    half = 0.5 * float(np.hypot(*(e1 - e0).T).max()) if m else 0.0
+    tree = cKDTree(mids)
+    k = min(_NEAR_CHORDS, m)
+    dk, ik = tree.query(q, k)
+    dk, ik = dk.reshape(len(q), k), ik.reshape(len(q), k)
+    rows = np.repeat(np.arange(len(q)), k)
+    d = point_segment(q[rows], e0[ik.ravel()], e1[ik.ravel()])[0].reshape(len(q), k)
+    best = d.min(axis=1)
+    # points whose ball may hold a nearer chord than the k middles found
+    more = np.flatnonzero(best + half > dk[:, -1]) if k < m else np.zeros(0, np.intp)
+    if more.size:
+        balls = tree.query_ball_point(q[more], best[more] + half)
+        counts = np.fromiter((len(b) for b in balls), np.intp, more.size)
+        idx = np.fromiter((j for b in balls for j in b), np.intp, int(counts.sum()))
+        who = np.repeat(more, counts)
+        dd = point_segment(q[who], e0[idx], e1[idx])[0]
+        np.minimum.at(best, who, dd)
+    return best
 
 
 def max_distance(t, e, tol: float, max_rounds: int = 16, n0: int = 16) -> Bound:
@@ -373,6 +439,7 @@ def max_distance(t, e, tol: float, max_rounds: int = 16, n0: int = 16) -> Bound:
     lb = -math.inf
     ubv = math.inf
     witness = None
+    near = None
     for _ in range(max_rounds):
         c0, c1, dt, _ = _chords(pt, n)
         ends = np.r_[c0, c1[-1:]]
@@ -390,17 +457,15 @@ def max_distance(t, e, tol: float, max_rounds: int = 16, n0: int = 16) -> Bound:
             de = float(de_arr.max())
             mids = 0.5 * (c0 + c1)
             fm = 0.5 * (f0 + f1)
-            # chord of e nearest each middle
-            near = np.empty(n, np.intp)
-            step = max(1, (1 << 22) // n)
-            for s in range(0, n, step):
-                dd = np.hypot(mids[s:s + step, None, 0] - fm[None, :, 0],
-                              mids[s:s + step, None, 1] - fm[None, :, 1])
-                near[s:s + step] = np.argmin(dd, axis=1)
+            # a chord of e near each middle of t (any chord keeps ub an upper bound)
+            near = _near_chords(fm, mids, near)
             d0 = point_segment(c0, f0[near], f1[near])[0]
             d1 = point_segment(c1, f0[near], f1[near])[0]
             ub_n = float((np.maximum(d0, d1) + dt + de_arr[near]).max())
-            dq = _poly_dist(ends, f0, f1) - de
+            # a chord end's distance to e's polyline is at most that to the chord
+            # near it: the ends' exact distances are needed only from the top
+            upper = np.r_[np.minimum(d0, np.r_[np.inf, d1[:-1]]), d1[-1:]]
+            dq = _farthest_from_polyline(ends, f0, f1, upper) - de
         k = int(np.argmax(dq))
         if dq[k] > lb:
             lb = float(dq[k])
