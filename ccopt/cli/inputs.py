@@ -23,6 +23,7 @@ def overrides(args: argparse.Namespace) -> Overrides:
         side=getattr(args, "side", None), vmax=getattr(args, "vmax", None),
         amax=getattr(args, "amax", None), delta=getattr(args, "delta", None),
         dialect=getattr(args, "dialect", None), tool_table=getattr(args, "tool_table", None),
+        max_loop_iterations=getattr(args, "max_loop_iterations", None),
         style_options={k: v for k, v in given.items() if v is not None})
 
 

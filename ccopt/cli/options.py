@@ -11,6 +11,7 @@ from pathlib import Path
 
 from ccopt.cli.output import EXIT_BAD_INPUT
 from ccopt.compensate import STYLES
+from ccopt.program.gcode import MAX_LOOP_ITERATIONS
 
 
 class Parser(argparse.ArgumentParser):
@@ -89,6 +90,9 @@ def add_reading_options(p: argparse.ArgumentParser) -> None:
     # a Path, so the reader takes it as a file name, never as table text
     p.add_argument("--tool-table", metavar="FILE", type=Path,
                    help="LinuxCNC tool table for G41/G42 D<tool number>")
+    p.add_argument("--max-loop-iterations", type=nonneg_int, metavar="N",
+                   help="G-code: most O-word loop iterations, all loops together, before "
+                        f"a runaway loop is stopped (default {MAX_LOOP_ITERATIONS})")
     add_json_option(p)
 
 

@@ -35,17 +35,22 @@ def dialect_of(path: str | os.PathLike) -> str:
 
 
 def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
-              tool_table: dict[int, float] | None = None) -> Program:
-    """Read program text of the given dialect."""
+              tool_table: dict[int, float] | None = None,
+              max_loop_iterations: int | None = None) -> Program:
+    """Read program text of the given dialect. ``max_loop_iterations``: the
+    G-code reader's O-word loop limit (``None``: its default); PMAC programs
+    have no loops ccopt runs (``WHILE`` is refused), so it does not apply."""
     if dialect == "gcode":
-        return read_gcode(text, file, tool_table=tool_table)
+        return read_gcode(text, file, tool_table=tool_table,
+                          max_loop_iterations=max_loop_iterations)
     if dialect == "pmac":
         return read_pmac(text, file)
     raise ProgramError(f"unknown dialect {dialect!r}; choose one of {', '.join(DIALECTS)}", file)
 
 
 def read_program(path: str | os.PathLike, dialect: str | None = None, *,
-                 tool_table: str | os.PathLike | dict[int, float] | None = None) -> Program:
+                 tool_table: str | os.PathLike | dict[int, float] | None = None,
+                 max_loop_iterations: int | None = None) -> Program:
     """Read a part program file.
 
     Parameters
@@ -54,6 +59,8 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     dialect: ``"gcode"`` or ``"pmac"``; default from the suffix.
     tool_table: LinuxCNC tool table (path or ``{tool: diameter}``) for G-code
         ``G41 D<tool>``.
+    max_loop_iterations: most O-word loop iterations of a G-code program, all
+        loops together (``None``: ``ccopt.program.gcode.MAX_LOOP_ITERATIONS``).
     """
     file = str(path)
     dialect = dialect or dialect_of(path)
@@ -69,7 +76,8 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     table = tool_table
     if tool_table is not None and not isinstance(tool_table, dict):
         table = read_tool_table(tool_table)
-    return read_text(text, file, dialect, tool_table=table)
+    return read_text(text, file, dialect, tool_table=table,
+                     max_loop_iterations=max_loop_iterations)
 
 
 __all__ = ["Block", "Modal", "Motion", "PLANE_AXES", "Program", "ProgramError", "Source",

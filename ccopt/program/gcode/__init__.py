@@ -24,14 +24,14 @@ from ccopt.program.gcode.parameters import MAX_PARAMETER, SUB_PARAMS  # noqa: F4
 from ccopt.program.gcode.reader import check_inputs, open_program, run
 # read_gcode reads these two at each call, so setting them here (as the
 # runaway tests do) changes the guards.
-from ccopt.program.gcode.state import MAX_CALL_DEPTH, MAX_EXECUTED_LINES
+from ccopt.program.gcode.state import MAX_CALL_DEPTH, MAX_EXECUTED_LINES, MAX_LOOP_ITERATIONS
 from ccopt.program.model import Program
 
-__all__ = ["read_gcode", "MAX_EXECUTED_LINES", "MAX_CALL_DEPTH"]
+__all__ = ["read_gcode", "MAX_EXECUTED_LINES", "MAX_CALL_DEPTH", "MAX_LOOP_ITERATIONS"]
 
 
 def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float] | None = None,
-               start=(0.0, 0.0, 0.0)) -> Program:
+               start=(0.0, 0.0, 0.0), max_loop_iterations: int | None = None) -> Program:
     """Read RS274NGC/LinuxCNC G-code into a :class:`Program` (dialect ``"gcode"``).
 
     Parameters
@@ -46,9 +46,14 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
         with ``D<tool>`` or a loaded tool (``T<n> M6``).
     start:
         Machine position ``(x, y, z)`` before the first block, program units.
+    max_loop_iterations:
+        Most loop iterations (passes of every O-word ``do``/``while``/
+        ``repeat`` loop of the program, together) before the reader stops
+        with an error located at the loop's first line; ``None``:
+        :data:`MAX_LOOP_ITERATIONS`.
 
-    The runaway guards are this module's :data:`MAX_EXECUTED_LINES` and
-    :data:`MAX_CALL_DEPTH`, read at each call.
+    The runaway guards are this module's :data:`MAX_EXECUTED_LINES`,
+    :data:`MAX_CALL_DEPTH` and :data:`MAX_LOOP_ITERATIONS`, read at each call.
 
     Raises
     ------
@@ -58,10 +63,14 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
     file, table, s = check_inputs(file, tool_table, start)
     if not isinstance(text, str):
         raise ProgramError(f"program text must be a string, not {type(text).__name__}", file)
+    loops = MAX_LOOP_ITERATIONS if max_loop_iterations is None else max_loop_iterations
+    if isinstance(loops, bool) or not isinstance(loops, int) or loops < 0:
+        raise ProgramError(f"max_loop_iterations must be a whole number >= 0, got {loops!r}",
+                           file)
     state = None
     try:
         state = open_program(text, file, table, s, max_executed_lines=MAX_EXECUTED_LINES,
-                             max_call_depth=MAX_CALL_DEPTH)
+                             max_call_depth=MAX_CALL_DEPTH, max_loop_iterations=loops)
         return run(state)
     except ProgramError:
         raise

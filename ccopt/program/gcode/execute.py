@@ -16,7 +16,7 @@ from ccopt.program.gcode.arcs import arc_geometry, is_modal_arc_without_plane_mo
 from ccopt.program.gcode.codes import Words, classify
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, gname
-from ccopt.program.model import Block, Motion, Source
+from ccopt.program.model import MAX_COORDINATE, Block, Motion, Source, out_of_range
 
 _AXES = "XYZ"
 _PLANES = {170: "XY", 180: "ZX", 190: "YZ"}
@@ -226,6 +226,10 @@ def _emit(state: GCodeState, block: Block) -> None:
     if not all(math.isfinite(v) for v in values):
         raise state.error("coordinates or feed overflow (not finite numbers): check the "
                           "values on this line", block.source.col - 1)
+    if any(out_of_range(v) for v in values):
+        # incremental moves add up, and an R arc's centre is computed: check what they make
+        raise state.error(f"the move's end point, centre or feed is beyond +-{MAX_COORDINATE:g} "
+                          "program units: check the values on this line", block.source.col - 1)
     state.blocks.append(block)
 
 

@@ -45,10 +45,10 @@ def check_inputs(file, tool_table, start) -> tuple[str, dict[int, float] | None,
 
 def open_program(text: str, file: str, tool_table: dict[int, float] | None,
                  start: tuple[float, float, float], *, max_executed_lines: int,
-                 max_call_depth: int) -> GCodeState:
+                 max_call_depth: int, max_loop_iterations: int) -> GCodeState:
     """The state to run ``text`` with (its ``%`` span already found)."""
     state = GCodeState(text, file, tool_table, start, max_executed_lines=max_executed_lines,
-                       max_call_depth=max_call_depth)
+                       max_call_depth=max_call_depth, max_loop_iterations=max_loop_iterations)
     attach_grammar(state)
     state.first_line, state.end_line = program_span(state)
     return state

@@ -21,6 +21,13 @@ from ccopt.program.model import Block, Modal
 MAX_EXECUTED_LINES = 1_000_000
 #: Deepest subroutine call nesting accepted.
 MAX_CALL_DEPTH = 100
+#: Loop iterations (every pass of every ``do``/``while``/``repeat`` loop of
+#: the program, together) before the reader stops a runaway loop. A pass of
+#: a small loop body costs the reader 10-60 us, so a runaway stops within
+#: about a second; real programs' loops (depth passes, patterns) make far
+#: fewer. ``read_gcode(max_loop_iterations=)`` and ``--max-loop-iterations``
+#: raise it for a program that needs more.
+MAX_LOOP_ITERATIONS = 10_000
 
 _LINE_SPLIT = re.compile(r"\r\n|\r|\n")
 
@@ -65,7 +72,8 @@ class GCodeState:
     def __init__(self, text: str, file: str, tool_table: dict[int, float] | None,
                  start: tuple[float, float, float], *,
                  max_executed_lines: int = MAX_EXECUTED_LINES,
-                 max_call_depth: int = MAX_CALL_DEPTH):
+                 max_call_depth: int = MAX_CALL_DEPTH,
+                 max_loop_iterations: int = MAX_LOOP_ITERATIONS):
         self.file = file
         self.lines = _LINE_SPLIT.split(text)
         if self.lines and self.lines[-1] == "":
@@ -79,6 +87,8 @@ class GCodeState:
         self.grammar: Grammar | None = None  # set by parameters.attach_grammar
         self.max_executed_lines = max_executed_lines
         self.max_call_depth = max_call_depth
+        self.max_loop_iterations = max_loop_iterations
+        self.loop_iterations = 0  # loop passes started so far, all loops together
         # machine state
         self.pos = start
         self.start = start
