@@ -35,6 +35,7 @@ from ccopt.errors import ProgramError
 from ccopt.feed import AxisLimits
 from ccopt.program import read_program
 from ccopt.program.model import MAX_COORDINATE, Program
+from ccopt.tolerances import LIMIT_RANGE
 from ccopt.toolpath import ToolPath
 
 EXPECTS = ("ok", "gouge", "error")
@@ -159,10 +160,11 @@ def _limits(data: dict, bad) -> tuple[tuple[float, ...] | None, tuple[float, ...
         vals = limits.get(key)
         if vals is None:
             raise bad("limits", None, f"[limits] needs {key} = [X, Y[, Z]]")
+        lo, hi = LIMIT_RANGE
         if not (isinstance(vals, list) and 2 <= len(vals) <= 3
-                and all(_number_in(x, 0.0, strict=True) for x in vals)):
-            raise bad(f"limits.{key}", vals, "must be a list of 2 or 3 finite numbers > 0 "
-                      f"and at most {MAX_COORDINATE:g} (X, Y[, Z])")
+                and all(_number_in(x, lo, strict=False) and x <= hi for x in vals)):
+            raise bad(f"limits.{key}", vals, f"must be a list of 2 or 3 numbers between {lo:g} "
+                      f"and {hi:g} (X, Y[, Z])")
     return tuple(float(x) for x in limits["v"]), tuple(float(x) for x in limits["a"])
 
 

@@ -6,12 +6,13 @@ module adds the groups it takes, in the order its ``--help`` lists them.
 from __future__ import annotations
 
 import argparse
-import math
 from pathlib import Path
 
 from ccopt.cli.output import EXIT_BAD_INPUT
 from ccopt.compensate import STYLES
 from ccopt.program.gcode import MAX_LOOP_ITERATIONS
+from ccopt.program.model import MAX_COORDINATE
+from ccopt.tolerances import LIMIT_RANGE
 
 
 class Parser(argparse.ArgumentParser):
@@ -34,12 +35,24 @@ def _checked(text: str, parse, ok, need: str):
     return x
 
 
+# Lengths, times and rates on the command line are bounded as a program's
+# coordinates are (ccopt.program.model.MAX_COORDINATE): beyond, the geometry's
+# work and the doubles' precision run out.
 def positive_float(text: str) -> float:
-    return _checked(text, float, lambda x: 0 < x < math.inf, "a finite number > 0")
+    return _checked(text, float, lambda x: 0 < x <= MAX_COORDINATE,
+                    f"a finite number > 0 and at most {MAX_COORDINATE:g}")
 
 
 def nonneg_float(text: str) -> float:
-    return _checked(text, float, lambda x: 0 <= x < math.inf, "a finite number >= 0")
+    return _checked(text, float, lambda x: 0 <= x <= MAX_COORDINATE,
+                    f"a finite number >= 0 and at most {MAX_COORDINATE:g}")
+
+
+def axis_limit(text: str) -> float:
+    """One axis limit (units/s or units/s^2) within what the planners take."""
+    lo, hi = LIMIT_RANGE
+    return _checked(text, float, lambda x: lo <= x <= hi,
+                    f"a limit between {lo:g} and {hi:g}")
 
 
 def nonneg_int(text: str) -> int:
@@ -59,7 +72,7 @@ def axis_values(text: str) -> tuple[float, ...]:
     parts = text.split(",")
     if not 2 <= len(parts) <= 3:
         raise argparse.ArgumentTypeError(f"give 2 or 3 comma-separated numbers X,Y[,Z]: {text!r}")
-    return tuple(positive_float(x) for x in parts)
+    return tuple(axis_limit(x) for x in parts)
 
 
 def variant_names(text: str) -> list[str]:
