@@ -6,13 +6,13 @@ module adds the groups it takes, in the order its ``--help`` lists them.
 from __future__ import annotations
 
 import argparse
+import math
 from pathlib import Path
 
 from ccopt.cli.output import EXIT_BAD_INPUT
 from ccopt.compensate import STYLES
 from ccopt.program.gcode import MAX_LOOP_ITERATIONS
 from ccopt.program.model import MAX_COORDINATE
-from ccopt.tolerances import LIMIT_RANGE
 
 
 class Parser(argparse.ArgumentParser):
@@ -38,21 +38,22 @@ def _checked(text: str, parse, ok, need: str):
 # Lengths, times and rates on the command line are bounded as a program's
 # coordinates are (ccopt.program.model.MAX_COORDINATE): beyond, the geometry's
 # work and the doubles' precision run out.
+def _at_most_bound(x: float, text: str) -> float:
+    if x > MAX_COORDINATE:
+        raise argparse.ArgumentTypeError(f"must be at most {MAX_COORDINATE:g}: {text!r}")
+    return x
+
+
 def positive_float(text: str) -> float:
-    return _checked(text, float, lambda x: 0 < x <= MAX_COORDINATE,
-                    f"a finite number > 0 and at most {MAX_COORDINATE:g}")
+    """A finite number > 0, at most MAX_COORDINATE."""
+    return _at_most_bound(_checked(text, float, lambda x: 0 < x < math.inf,
+                                   "a finite number > 0"), text)
 
 
 def nonneg_float(text: str) -> float:
-    return _checked(text, float, lambda x: 0 <= x <= MAX_COORDINATE,
-                    f"a finite number >= 0 and at most {MAX_COORDINATE:g}")
-
-
-def axis_limit(text: str) -> float:
-    """One axis limit (units/s or units/s^2) within what the planners take."""
-    lo, hi = LIMIT_RANGE
-    return _checked(text, float, lambda x: lo <= x <= hi,
-                    f"a limit between {lo:g} and {hi:g}")
+    """A finite number >= 0, at most MAX_COORDINATE."""
+    return _at_most_bound(_checked(text, float, lambda x: 0 <= x < math.inf,
+                                   "a finite number >= 0"), text)
 
 
 def nonneg_int(text: str) -> int:
@@ -72,7 +73,9 @@ def axis_values(text: str) -> tuple[float, ...]:
     parts = text.split(",")
     if not 2 <= len(parts) <= 3:
         raise argparse.ArgumentTypeError(f"give 2 or 3 comma-separated numbers X,Y[,Z]: {text!r}")
-    return tuple(axis_limit(x) for x in parts)
+    # the range the planners take is AxisLimits' own check (LIMIT_RANGE), made there
+    return tuple(_checked(x, float, lambda v: 0 < v < math.inf, "a finite number > 0")
+                 for x in parts)
 
 
 def variant_names(text: str) -> list[str]:
