@@ -23,6 +23,7 @@ from ccopt.program import read_program, read_text
 from ccopt.program.gcode import MAX_LOOP_ITERATIONS, read_gcode
 from ccopt.program.model import MAX_COORDINATE
 from ccopt.program.pmac import read_pmac
+from ccopt.program.tooltable import read_tool_table
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
 
@@ -272,3 +273,14 @@ def test_real_programs_loops_pass_under_the_default():
     prog = read_gcode(text)
     assert len(prog.blocks) == 40 * (1 + 2 * 100)
     assert prog.blocks[-1].end == pytest.approx((0.0, 50.0, -4.0))
+
+
+def test_diameters_beyond_the_bound_are_located(tmp_path):
+    # G41.1 D<diameter> and a tool table's D are lengths as well
+    e = gcode_error("G41.1 D3000000000\n")
+    assert (e.line, e.col) == (1, 7) and "out of range" in e.message
+    table = tmp_path / "tools.tbl"
+    table.write_text("T1 P1 D3\nT2 P2 D3000000000\n")
+    with pytest.raises(ProgramError) as exc:
+        read_tool_table(table)
+    assert (exc.value.line, exc.value.col) == (2, 7) and "out of range" in exc.value.message

@@ -193,6 +193,9 @@ def _compensation(state: GCodeState, comp: tuple[int, int], L: dict) -> None:
             raise state.error(f"{gname(code)} needs the tool diameter as D, e.g. "
                               f"{gname(code)} D6", col)
         d = L["D"][0]
+        if out_of_range(d):
+            raise state.error(f"D{fmt(d)} is out of range: a diameter must lie within "
+                              f"+-{MAX_COORDINATE:g}", L["D"][1])
         state.side = -side if d < 0 else side
         state.radius = abs(d) / 2.0
         state.tool = None
