@@ -20,7 +20,7 @@ from ccopt.cases import load_case
 from ccopt.cli import main
 from ccopt.errors import ProgramError
 from ccopt.program import read_program, read_text
-from ccopt.program.gcode import MAX_LOOP_ITERATIONS, read_gcode
+from ccopt.program.gcode import LOOP_LINES_PER_ITERATION, MAX_LOOP_ITERATIONS, read_gcode
 from ccopt.program.model import MAX_COORDINATE
 from ccopt.program.pmac import read_pmac
 from ccopt.program.tooltable import read_tool_table
@@ -196,19 +196,25 @@ def test_huge_centre_offset_is_exit_2_in_verify_and_feed(capsys, tmp_path, name,
 
 # -- the O-word loop limit -----------------------------------------------------------------
 RUNAWAY = "G21 F600\n#1 = 0\no1 while [1]\n  G1 X[#1] Y0\n  G1 Y1\n  #1 = [#1 + 1]\no1 endwhile\nM2\n"
+# the same with a body of 48 moves: the line budget stops it as soon
+LONG_RUNAWAY = ("G21 F600\n#1 = 0\no1 while [1]\n"
+                + "".join(f"  G1 X[#1] Y{i}\n" for i in range(48))
+                + "  #1 = [#1 + 1]\no1 endwhile\nM2\n")
 
 
-def test_runaway_loop_stops_within_5_s_naming_the_loop(tmp_path):
+@pytest.mark.parametrize("text", [RUNAWAY, LONG_RUNAWAY], ids=["short-body", "long-body"])
+def test_runaway_loop_stops_within_5_s_naming_the_loop(tmp_path, text):
     prog = tmp_path / "runaway.nc"
-    prog.write_text(RUNAWAY)
+    prog.write_text(text)
     t0 = time.monotonic()
-    done = subprocess.run([sys.executable, "-m", "ccopt.cli", "show", str(prog)], capture_output=True,
-                          text=True, timeout=60)
+    done = subprocess.run([sys.executable, "-m", "ccopt.cli", "show", str(prog)],
+                          capture_output=True, text=True, timeout=60)
     elapsed = time.monotonic() - t0
     assert done.returncode == 2 and elapsed < 5.0, (elapsed, done.stderr)
-    # line 3 holds "o1 while [1]", its O-word in column 1
+    # line 3 holds "o1 while [1]", its O-word in column 1; a pass runs 5 lines
+    # (or 51): the loops' 3 * 10000 lines run out before the 10000 passes
     assert one_line(done.stderr).startswith(
-        f"{prog}:3:1: o1 while: more than {MAX_LOOP_ITERATIONS} loop iterations")
+        f"{prog}:3:1: o1 while: loops executed more than {3 * MAX_LOOP_ITERATIONS} lines")
     assert "--max-loop-iterations" in done.stderr
 
 
@@ -223,7 +229,7 @@ def test_every_kind_of_runaway_loop_stops(loop):
     e = gcode_error("G21\n" + loop)
     line = 1 + next(i for i, s in enumerate(loop.splitlines(), 1) if s.startswith("o1 ")
                     and s.split()[1] in ("while", "do", "repeat"))
-    assert e.line == line and "loop iterations" in e.message
+    assert e.line == line and "--max-loop-iterations" in e.message
     assert time.monotonic() - t0 < 5.0
 
 
@@ -284,3 +290,26 @@ def test_diameters_beyond_the_bound_are_located(tmp_path):
     with pytest.raises(ProgramError) as exc:
         read_tool_table(table)
     assert (exc.value.line, exc.value.col) == (2, 7) and "out of range" in exc.value.message
+
+
+def test_the_loops_line_budget_is_three_lines_per_iteration():
+    assert LOOP_LINES_PER_ITERATION == 3
+    # two passes of a 6-move body: the loop is open for 6 moves and the
+    # endrepeat of each pass, 2 * 7 = 14 lines, in 2 iterations
+    text = "G21 F60\no1 repeat [2]\n" + "G91 G1 X1\n" * 6 + "o1 endrepeat\n"
+    assert len(read_gcode(text, max_loop_iterations=5).blocks) == 12   # 15 lines allowed
+    with pytest.raises(ProgramError) as exc:
+        read_gcode(text, max_loop_iterations=4)                         # 12 lines allowed
+    assert exc.value.line == 2 and "loops executed more than 12 lines" in exc.value.message
+
+
+def test_the_line_budget_counts_the_subroutines_a_loop_calls():
+    # the loop's 3 passes each run the call, the sub's 3 lines and the
+    # endrepeat: 3 * 5 = 15 lines
+    text = ("o9 sub\nG91 G1 X1\nG91 G1 Y1\no9 endsub\nG21 F60\n"
+            "o1 repeat [3]\no9 call\no1 endrepeat\n")
+    assert len(read_gcode(text, max_loop_iterations=5).blocks) == 6
+    with pytest.raises(ProgramError) as exc:
+        read_gcode(text, max_loop_iterations=4)
+    # stopped inside the subroutine: located at the loop open in the caller
+    assert exc.value.line == 6 and "more than 12 lines" in exc.value.message

@@ -24,7 +24,12 @@ from ccopt.program.gcode.parameters import MAX_PARAMETER, SUB_PARAMS  # noqa: F4
 from ccopt.program.gcode.reader import check_inputs, open_program, run
 # read_gcode reads these two at each call, so setting them here (as the
 # runaway tests do) changes the guards.
-from ccopt.program.gcode.state import MAX_CALL_DEPTH, MAX_EXECUTED_LINES, MAX_LOOP_ITERATIONS
+from ccopt.program.gcode.state import (  # noqa: F401 - LOOP_LINES_PER_ITERATION documented here
+    LOOP_LINES_PER_ITERATION,
+    MAX_CALL_DEPTH,
+    MAX_EXECUTED_LINES,
+    MAX_LOOP_ITERATIONS,
+)
 from ccopt.program.model import Program
 
 __all__ = ["read_gcode", "MAX_EXECUTED_LINES", "MAX_CALL_DEPTH", "MAX_LOOP_ITERATIONS"]
@@ -50,7 +55,10 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
         Most loop iterations (passes of every O-word ``do``/``while``/
         ``repeat`` loop of the program, together) before the reader stops
         with an error located at the loop's first line; ``None``:
-        :data:`MAX_LOOP_ITERATIONS`.
+        :data:`MAX_LOOP_ITERATIONS`. The loops may also execute at most
+        :data:`LOOP_LINES_PER_ITERATION` times as many lines (bodies,
+        nested loops and the subroutines they call, all together), so a
+        long body stops as soon as a short one.
 
     The runaway guards are this module's :data:`MAX_EXECUTED_LINES`,
     :data:`MAX_CALL_DEPTH` and :data:`MAX_LOOP_ITERATIONS`, read at each call.

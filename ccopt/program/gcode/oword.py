@@ -17,7 +17,7 @@ from ccopt.program.gcode.parameters import (
     bind_call_arguments,
     restore_after_call,
 )
-from ccopt.program.gcode.state import Ctrl, Frame, GCodeState
+from ccopt.program.gcode.state import LOOP_LINES_PER_ITERATION, Ctrl, Frame, GCodeState
 from ccopt.program.gcode.words import Lexed, lex, olabel, skip_blanks
 
 _OPENERS = {"sub": "endsub", "if": "endif", "do": "while", "while": "endwhile",
@@ -371,6 +371,26 @@ def _break_or_continue(state: GCodeState, pc: int, lx: Lexed) -> int:
         ctrl.pop()
         return loop.start
     return loop.end  # do: test the while condition; repeat: count down
+
+
+def innermost_loop(state: GCodeState) -> Ctrl | None:
+    """The innermost loop open in any frame (a subroutine's, else its caller's), or None."""
+    for frame in reversed(state.frames):
+        for c in reversed(frame.ctrl):
+            if c.kind in _LOOPS:
+                return c
+    return None
+
+
+def loop_lines_error(state: GCodeState):
+    """The error when the loops executed more than their line budget,
+    located at the innermost open loop's first line."""
+    loop = innermost_loop(state)
+    col = lex(state, loop.start).oword.col
+    return state.error(f"{olabel(loop.label)} {loop.kind}: loops executed more than "
+                       f"{state.max_loop_lines} lines (all loops of the program together, "
+                       f"{LOOP_LINES_PER_ITERATION} per allowed loop iteration): endless loop? check its condition, or raise "
+                       "the limit (--max-loop-iterations N)", col, loop.start)
 
 
 def _next_pass(state: GCodeState, loop: Ctrl) -> None:

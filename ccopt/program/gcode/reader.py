@@ -13,7 +13,7 @@ from ccopt.errors import ProgramError
 from ccopt.program.expr import ExprError
 from ccopt.program.gcode.codes import read_words
 from ccopt.program.gcode.execute import execute_words
-from ccopt.program.gcode.oword import exec_oword
+from ccopt.program.gcode.oword import exec_oword, innermost_loop, loop_lines_error
 from ccopt.program.gcode.parameters import attach_grammar, set_parameter
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.words import Lexed, lex, olabel, program_span
@@ -84,10 +84,15 @@ def _run_lines(state: GCodeState) -> None:
         if state.executed > state.max_executed_lines:
             raise state.error(f"more than {state.max_executed_lines} lines executed: endless "
                               "loop or runaway recursion? check the loop conditions")
+        if state.in_loop:
+            state.loop_lines += 1
+            if state.loop_lines > state.max_loop_lines:
+                raise loop_lines_error(state)
         try:
             lx = lex(state, pc)
             if lx.oword is not None:
                 pc = exec_oword(state, pc, lx)
+                state.in_loop = innermost_loop(state) is not None
             else:
                 if lx.first is not None:
                     _exec_line(state, lx)
