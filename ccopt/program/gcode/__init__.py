@@ -22,9 +22,10 @@ from ccopt.errors import ProgramError
 from ccopt.program.gcode.arcs import MAX_ARC_TURNS, MM_PER_INCH  # noqa: F401
 from ccopt.program.gcode.parameters import MAX_PARAMETER, SUB_PARAMS  # noqa: F401
 from ccopt.program.gcode.reader import check_inputs, open_program, run
-# read_gcode reads these two at each call, so setting them here (as the
-# runaway tests do) changes the guards.
-from ccopt.program.gcode.state import (  # noqa: F401 - LOOP_LINES_PER_ITERATION documented here
+# read_gcode reads the three MAX_ limits at each call, so setting them here
+# (as the runaway tests do) changes the guards; LOOP_LINES_PER_ITERATION is
+# exported for reference only.
+from ccopt.program.gcode.state import (  # noqa: F401 - LOOP_LINES_PER_ITERATION exported
     LOOP_LINES_PER_ITERATION,
     MAX_CALL_DEPTH,
     MAX_EXECUTED_LINES,
