@@ -23,17 +23,19 @@ returns a :class:`Job`, which every command and :mod:`ccopt.run` work from.
 """
 from __future__ import annotations
 
+import math
 import os
 import re
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ccopt.compensate import compensate
+from ccopt.compensate import STYLES, compensate
 from ccopt.errors import ProgramError
 from ccopt.feed import AxisLimits
 from ccopt.program import read_program
-from ccopt.program.model import Program
+from ccopt.program.model import MAX_COORDINATE, Program
+from ccopt.tolerances import LIMIT_RANGE
 from ccopt.toolpath import ToolPath
 
 EXPECTS = ("ok", "gouge", "error")
@@ -86,56 +88,128 @@ def _toml_error(path: Path, exc: tomllib.TOMLDecodeError) -> ProgramError:
     return ProgramError(f"invalid TOML: {msg}", str(path))
 
 
+_TABLE_RE = re.compile(r"\[\s*([^\[\]]+?)\s*\]\s*(#.*)?$")
+_KEY_RE = re.compile(r"""([A-Za-z0-9_\-."' ]+?)\s*=""")
+
+
+def _dotted(key: str) -> list[str]:
+    return [k.strip().strip("\"'") for k in key.split(".")]
+
+
 def _key_line(text: str, key: str) -> int | None:
-    for i, line in enumerate(text.splitlines(), 1):
-        if re.match(rf"\s*{re.escape(key)}\s*=", line):
+    """The 1-based line of ``text`` (TOML) that sets ``key`` (dotted, e.g.
+    ``"limits.v"``): under its table header, as a dotted key or, failing
+    those, the line of its table (header or inline table). tomllib gives no
+    line numbers, so errors about values find their line here."""
+    want = _dotted(key)
+    table: list[str] = []
+    fallback = None
+    for i, raw in enumerate(text.splitlines(), 1):
+        line = raw.strip()
+        m = _TABLE_RE.match(line)
+        if m:
+            table = _dotted(m.group(1))
+            if fallback is None and table == want[:len(table)]:
+                fallback = i
+            continue
+        m = _KEY_RE.match(line)
+        if not m:
+            continue
+        path = table + _dotted(m.group(1))
+        if path == want:
             return i
-    return None
+        if fallback is None and path == want[:len(path)]:
+            fallback = i
+    return fallback
+
+
+def _shown(value) -> str:
+    """``value`` as TOML writes it, for a message (short)."""
+    if isinstance(value, bool):
+        text = "true" if value else "false"
+    elif isinstance(value, str):
+        text = '"' + value.replace('"', '\\"') + '"'
+    elif isinstance(value, list):
+        text = "[" + ", ".join(_shown(v) for v in value) + "]"
+    elif isinstance(value, dict):
+        text = "{" + ", ".join(f"{k} = {_shown(v)}" for k, v in value.items()) + "}"
+    else:
+        text = str(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _number_in(value, lowest: float, strict: bool) -> bool:
+    """``value`` is a TOML number (not a boolean), finite, above ``lowest``
+    (or equal, unless ``strict``) and at most :data:`MAX_COORDINATE`."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return False
+    if not math.isfinite(value) or value > MAX_COORDINATE:
+        return False
+    return value > lowest if strict else value >= lowest
+
+
+def _limits(data: dict, bad) -> tuple[tuple[float, ...] | None, tuple[float, ...] | None]:
+    """``[limits] v, a`` checked: ``(vmax, amax)``, ``(None, None)`` when absent."""
+    limits = data.get("limits", {})
+    if not isinstance(limits, dict):
+        raise bad("limits", limits, "must be a table with v and a, e.g. [limits] "
+                  "v = [100.0, 100.0] a = [1000.0, 1000.0]")
+    if not limits:
+        return None, None
+    for key in ("v", "a"):
+        vals = limits.get(key)
+        if vals is None:
+            raise bad("limits", None, f"[limits] needs {key} = [X, Y[, Z]]")
+        lo, hi = LIMIT_RANGE
+        if not (isinstance(vals, list) and 2 <= len(vals) <= 3
+                and all(_number_in(x, lo, strict=False) and x <= hi for x in vals)):
+            raise bad(f"limits.{key}", vals, f"must be a list of 2 or 3 numbers between {lo:g} "
+                      f"and {hi:g} (X, Y[, Z])")
+    return tuple(float(x) for x in limits["v"]), tuple(float(x) for x in limits["a"])
 
 
 def load_case(folder: str | os.PathLike) -> Case:
-    """Load ``folder/case.toml``; every problem is a located ProgramError."""
+    """Load ``folder/case.toml``; every problem is a ProgramError located at
+    the key's line (``case.toml:LINE: key = value: what it must be``)."""
     folder = Path(folder)
     toml_path = folder / "case.toml"
     try:
         text = toml_path.read_text(encoding="utf-8")
     except OSError as exc:
         raise ProgramError(f"cannot read case: {exc.strerror or exc}", str(toml_path)) from None
+    except UnicodeDecodeError:
+        raise ProgramError("not UTF-8 text", str(toml_path)) from None
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise _toml_error(toml_path, exc) from None
 
-    def bad(key: str, msg: str) -> ProgramError:
-        return ProgramError(f"{key}: {msg}", str(toml_path), _key_line(text, key.split(".")[-1]))
+    def bad(key: str, value, msg: str) -> ProgramError:
+        shown = f"{key} = {_shown(value)}: " if value is not None else f"{key}: "
+        return ProgramError(shown + msg, str(toml_path), _key_line(text, key))
 
     prog = data.get("program")
     if not isinstance(prog, str) or not prog:
-        raise bad("program", "a program file name is required")
+        raise bad("program", prog, "a program file name is required")
     program = folder / prog
     if not program.is_file():
-        raise bad("program", f"no such file {program}")
+        raise bad("program", prog, f"no such file {program}")
     radius = data.get("radius")
-    if radius is not None and (not isinstance(radius, (int, float)) or radius < 0):
-        raise bad("radius", "must be a number >= 0")
+    if radius is not None and not _number_in(radius, 0.0, strict=False):
+        raise bad("radius", radius, f"must be a finite number >= 0 and at most "
+                  f"{MAX_COORDINATE:g} (program units)")
     expect = data.get("expect", "ok")
     if expect not in EXPECTS:
-        raise bad("expect", f"must be one of {', '.join(EXPECTS)}")
-    limits = data.get("limits", {})
-    vmax = amax = None
-    if limits:
-        for key in ("v", "a"):
-            vals = limits.get(key)
-            if not (isinstance(vals, list) and 2 <= len(vals) <= 3
-                    and all(isinstance(x, (int, float)) and x > 0 for x in vals)):
-                raise bad(f"limits.{key}", "must be a list of 2 or 3 positive numbers (X, Y[, Z])")
-        vmax = tuple(float(x) for x in limits["v"])
-        amax = tuple(float(x) for x in limits["a"])
+        raise bad("expect", expect, f"must be one of {', '.join(EXPECTS)}")
+    style = data.get("style", "pmac")
+    if style not in STYLES:
+        raise bad("style", style, f"must be one of {', '.join(sorted(STYLES))}")
+    vmax, amax = _limits(data, bad)
     known = {"program", "title", "source", "style", "radius", "expect", "limits"}
     return Case(
         name=folder.resolve().name, folder=folder, program=program,
         title=str(data.get("title", "")), source=str(data.get("source", "")),
-        style=str(data.get("style", "pmac")), radius=None if radius is None else float(radius),
+        style=style, radius=None if radius is None else float(radius),
         expect=expect, vmax=vmax, amax=amax,
         extra={k: v for k, v in data.items() if k not in known},
     )
@@ -159,10 +233,11 @@ class Overrides:
     style: controller style; radius: cutter radius, program units (>= 0);
     side: ``"left"``/``"right"``; vmax, amax: axis limits ``(X, Y[, Z])`` in
     units/s and units/s^2; delta: the smoother's tolerance band, program units;
-    dialect, tool_table, var_file, units, table_units, sub_path: how to read the program
-    (G-code only: a LinuxCNC parameter file, the unit every length is
-    converted to, the tool table's units); sub_path: folders of subroutine
-    files (G-code, LinuxCNC's SUBROUTINE_PATH); style_options: the style's
+    dialect, tool_table, var_file, units, table_units, sub_path,
+    max_loop_iterations: how to read the program (G-code only but the first
+    two: a LinuxCNC parameter file, the unit every length is converted to,
+    the tool table's units, the folders of subroutine files (LinuxCNC's
+    SUBROUTINE_PATH), the O-word loop limit); style_options: the style's
     own options (``break_cos``, ``ccbuf``), passed to compensation as given.
     """
 
@@ -178,6 +253,7 @@ class Overrides:
     units: str | None = None
     table_units: str | None = None
     sub_path: tuple[str, ...] = ()
+    max_loop_iterations: int | None = None
     style_options: dict = field(default_factory=dict)
 
 
@@ -206,6 +282,7 @@ class Job:
     table_units: str | None = None
     sub_path: tuple[str, ...] = ()
     style_options: dict = field(default_factory=dict)
+    max_loop_iterations: int | None = None
 
     @property
     def title(self) -> str:
@@ -221,10 +298,11 @@ class Job:
         return self.case.expect if self.case else "ok"
 
     def read(self) -> Program:
-        """The program, read with the job's dialect, tool table and parameter file."""
+        """The program, read with the job's reading options."""
         return read_program(self.program, self.dialect, tool_table=self.tool_table,
                             var_file=self.var_file, units=self.units,
-                            table_units=self.table_units, sub_path=self.sub_path)
+                            table_units=self.table_units, sub_path=self.sub_path,
+                            max_loop_iterations=self.max_loop_iterations)
 
     def compensate(self, prog: Program) -> ToolPath:
         """``prog`` compensated with the job's style, radius, side and style options."""
@@ -280,4 +358,5 @@ def resolve_input(what: str | Case, overrides: Overrides = Overrides(),
         amax=overrides.amax or (case.amax if case else None) or default_limits.get("a"),
         delta=overrides.delta, dialect=overrides.dialect, tool_table=overrides.tool_table,
         var_file=overrides.var_file, units=overrides.units, table_units=overrides.table_units,
-        sub_path=overrides.sub_path, style_options=dict(overrides.style_options))
+        sub_path=overrides.sub_path, style_options=dict(overrides.style_options),
+        max_loop_iterations=overrides.max_loop_iterations)

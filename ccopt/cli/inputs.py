@@ -25,7 +25,9 @@ def overrides(args: argparse.Namespace) -> Overrides:
         dialect=getattr(args, "dialect", None), tool_table=getattr(args, "tool_table", None),
         var_file=getattr(args, "var_file", None), units=getattr(args, "units", None),
         table_units=getattr(args, "table_units", None),
-        sub_path=tuple(getattr(args, "sub_path", None) or ()), style_options={k: v for k, v in given.items() if v is not None})
+        sub_path=tuple(getattr(args, "sub_path", None) or ()),
+        max_loop_iterations=getattr(args, "max_loop_iterations", None),
+        style_options={k: v for k, v in given.items() if v is not None})
 
 
 def job(what: str | Case, args: argparse.Namespace, default_limits: dict | None = None) -> Job:

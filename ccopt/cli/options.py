@@ -12,6 +12,8 @@ from pathlib import Path
 
 from ccopt.cli.output import EXIT_BAD_INPUT
 from ccopt.compensate import STYLES
+from ccopt.program.gcode import MAX_LOOP_ITERATIONS
+from ccopt.program.model import MAX_COORDINATE
 
 
 class Parser(argparse.ArgumentParser):
@@ -34,12 +36,25 @@ def _checked(text: str, parse, ok, need: str):
     return x
 
 
+# Lengths, times and rates on the command line are bounded as a program's
+# coordinates are (ccopt.program.model.MAX_COORDINATE): beyond, the geometry's
+# work and the doubles' precision run out.
+def _at_most_bound(x: float, text: str) -> float:
+    if x > MAX_COORDINATE:
+        raise argparse.ArgumentTypeError(f"must be at most {MAX_COORDINATE:g}: {text!r}")
+    return x
+
+
 def positive_float(text: str) -> float:
-    return _checked(text, float, lambda x: 0 < x < math.inf, "a finite number > 0")
+    """A finite number > 0, at most MAX_COORDINATE."""
+    return _at_most_bound(_checked(text, float, lambda x: 0 < x < math.inf,
+                                   "a finite number > 0"), text)
 
 
 def nonneg_float(text: str) -> float:
-    return _checked(text, float, lambda x: 0 <= x < math.inf, "a finite number >= 0")
+    """A finite number >= 0, at most MAX_COORDINATE."""
+    return _at_most_bound(_checked(text, float, lambda x: 0 <= x < math.inf,
+                                   "a finite number >= 0"), text)
 
 
 def nonneg_int(text: str) -> int:
@@ -59,7 +74,9 @@ def axis_values(text: str) -> tuple[float, ...]:
     parts = text.split(",")
     if not 2 <= len(parts) <= 3:
         raise argparse.ArgumentTypeError(f"give 2 or 3 comma-separated numbers X,Y[,Z]: {text!r}")
-    return tuple(positive_float(x) for x in parts)
+    # the range the planners take is AxisLimits' own check (LIMIT_RANGE), made there
+    return tuple(_checked(x, float, lambda v: 0 < v < math.inf, "a finite number > 0")
+                 for x in parts)
 
 
 def folder_list(text: str) -> tuple[str, ...]:
@@ -111,6 +128,9 @@ def add_reading_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--sub-path", metavar="DIR[:DIR...]", type=folder_list,
                    help="G-code: folders where o<name> call finds name.ngc when the program "
                         "does not define it (LinuxCNC's SUBROUTINE_PATH), and nowhere else")
+    p.add_argument("--max-loop-iterations", type=nonneg_int, metavar="N",
+                   help="G-code: most O-word loop iterations, all loops together, before "
+                        f"a runaway loop is stopped (default {MAX_LOOP_ITERATIONS})")
     add_json_option(p)
 
 

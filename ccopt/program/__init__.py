@@ -38,12 +38,16 @@ def dialect_of(path: str | os.PathLike) -> str:
 def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
               tool_table: dict[int, float] | None = None,
               parameters: dict[int, float] | None = None, units: str | None = None,
-              table_units: str | None = None, sub_path=()) -> Program:
+              table_units: str | None = None, sub_path=(),
+              max_loop_iterations: int | None = None) -> Program:
     """Read program text of the given dialect (``parameters``, ``units``,
-    ``table_units`` and ``sub_path``: G-code only, see :func:`read_gcode`)."""
+    ``table_units``, ``sub_path`` and ``max_loop_iterations``: G-code only,
+    see :func:`read_gcode`; PMAC programs have no loops ccopt runs, ``WHILE``
+    is refused)."""
     if dialect == "gcode":
         return read_gcode(text, file, tool_table=tool_table, parameters=parameters,
-                          units=units, table_units=table_units, sub_path=sub_path)
+                          units=units, table_units=table_units, sub_path=sub_path,
+                          max_loop_iterations=max_loop_iterations)
     if dialect == "pmac":
         return read_pmac(text, file)
     raise ProgramError(f"unknown dialect {dialect!r}; choose one of {', '.join(DIALECTS)}", file)
@@ -52,7 +56,8 @@ def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
 def read_program(path: str | os.PathLike, dialect: str | None = None, *,
                  tool_table: str | os.PathLike | dict[int, float] | None = None,
                  var_file: str | os.PathLike | None = None, units: str | None = None,
-                 table_units: str | None = None, sub_path=()) -> Program:
+                 table_units: str | None = None, sub_path=(),
+                 max_loop_iterations: int | None = None) -> Program:
     """Read a part program file.
 
     Parameters
@@ -66,6 +71,8 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     units, table_units, sub_path: G-code only: the unit every length is
         converted to, the tool table's, and the folders of subroutine files
         (see :func:`~ccopt.program.gcode.read_gcode`).
+    max_loop_iterations: most O-word loop iterations of a G-code program, all
+        loops together (``None``: ``ccopt.program.gcode.MAX_LOOP_ITERATIONS``).
     """
     file = str(path)
     dialect = dialect or dialect_of(path)
@@ -89,7 +96,8 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
             if given is not None:
                 raise ProgramError(f"{what} applies to G-code programs only", file)
     return read_text(text, file, dialect, tool_table=table, parameters=parameters, units=units,
-                     table_units=table_units, sub_path=sub_path)
+                     table_units=table_units, sub_path=sub_path,
+                     max_loop_iterations=max_loop_iterations)
 
 
 __all__ = ["Block", "Modal", "Motion", "PLANE_AXES", "Program", "ProgramError", "Source",

@@ -40,6 +40,19 @@ PLANE_AXES: dict[str, tuple[int, int, int]] = {
     "YZ": (1, 2, 0),
 }
 
+#: Largest magnitude of a coordinate, centre, centre offset (I J K), radius
+#: (R) or feed a program may hold, in program units (feeds: units per minute
+#: as written, units per second as stored). A machine travels metres, not
+#: 1e9 units; past this the doubles downstream keep too few digits for
+#: micrometre checks and the geometry's work grows without bound, so readers
+#: refuse it as a located error instead.
+MAX_COORDINATE = 1e9
+
+
+def out_of_range(value: float) -> bool:
+    """``value`` is not finite or beyond :data:`MAX_COORDINATE` in magnitude."""
+    return not abs(value) <= MAX_COORDINATE
+
 
 class Motion(str, enum.Enum):
     """What a block does. ``ARC_CW``/``ARC_CCW`` are seen in the block's plane."""

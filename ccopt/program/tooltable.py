@@ -26,6 +26,7 @@ import re
 from pathlib import Path
 
 from ccopt.errors import ProgramError
+from ccopt.program.model import MAX_COORDINATE, out_of_range
 
 __all__ = ["ToolTable", "read_tool_table"]
 
@@ -126,6 +127,9 @@ def read_tool_table(path_or_text, file: str | None = None) -> ToolTable:
                 if not math.isfinite(number):
                     raise ProgramError(f"{letter}{value} is not a finite number", name, lineno, col)
                 if letter == "D":
+                    if out_of_range(number):
+                        raise ProgramError(f"D{value} is out of range: a diameter must lie "
+                                           f"within +-{MAX_COORDINATE:g}", name, lineno, col)
                     diameter = number
         if first_col is None:
             continue

@@ -22,19 +22,25 @@ from ccopt.errors import ProgramError
 from ccopt.program.gcode.arcs import MAX_ARC_TURNS  # noqa: F401
 from ccopt.program.gcode.parameters import MAX_PARAMETER, SUB_PARAMS  # noqa: F401
 from ccopt.program.gcode.reader import check_inputs, open_program, run
-# read_gcode reads these two at each call, so setting them here (as the
-# runaway tests do) changes the guards.
-from ccopt.program.gcode.state import MAX_CALL_DEPTH, MAX_EXECUTED_LINES
+# read_gcode reads the three MAX_ limits at each call, so setting them here
+# (as the runaway tests do) changes the guards; LOOP_LINES_PER_ITERATION is
+# exported for reference only.
+from ccopt.program.gcode.state import (  # noqa: F401 - LOOP_LINES_PER_ITERATION exported
+    LOOP_LINES_PER_ITERATION,
+    MAX_CALL_DEPTH,
+    MAX_EXECUTED_LINES,
+    MAX_LOOP_ITERATIONS,
+)
 from ccopt.program.gcode.units import MM_PER_INCH, UNITS  # noqa: F401
 from ccopt.program.model import Program
 
-__all__ = ["read_gcode", "MAX_EXECUTED_LINES", "MAX_CALL_DEPTH"]
+__all__ = ["read_gcode", "MAX_EXECUTED_LINES", "MAX_CALL_DEPTH", "MAX_LOOP_ITERATIONS"]
 
 
 def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float] | None = None,
                start=(0.0, 0.0, 0.0), parameters: dict[int, float] | None = None,
                units: str | None = None, table_units: str | None = None,
-               sub_path=()) -> Program:
+               sub_path=(), max_loop_iterations: int | None = None) -> Program:
     """Read RS274NGC/LinuxCNC G-code into a :class:`Program` (dialect ``"gcode"``).
 
     Parameters
@@ -66,9 +72,17 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
         Folders, in order, where ``o<name> call`` of a subroutine the program
         does not define finds ``name.ngc`` (LinuxCNC's SUBROUTINE_PATH);
         nowhere else. A name holding a path is refused.
+    max_loop_iterations:
+        Most loop iterations (passes of every O-word ``do``/``while``/
+        ``repeat`` loop of the program, together) before the reader stops
+        with an error located at the loop's first line; ``None``:
+        :data:`MAX_LOOP_ITERATIONS`. The loops may also execute at most
+        :data:`LOOP_LINES_PER_ITERATION` times as many lines (bodies,
+        nested loops and the subroutines they call, all together), so a
+        long body stops as soon as a short one.
 
-    The runaway guards are this module's :data:`MAX_EXECUTED_LINES` and
-    :data:`MAX_CALL_DEPTH`, read at each call.
+    The runaway guards are this module's :data:`MAX_EXECUTED_LINES`,
+    :data:`MAX_CALL_DEPTH` and :data:`MAX_LOOP_ITERATIONS`, read at each call.
 
     Raises
     ------
@@ -81,10 +95,15 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
             raise ProgramError(f"{name} must be one of {', '.join(UNITS)}, not {value!r}", file)
     if not isinstance(text, str):
         raise ProgramError(f"program text must be a string, not {type(text).__name__}", file)
+    loops = MAX_LOOP_ITERATIONS if max_loop_iterations is None else max_loop_iterations
+    if isinstance(loops, bool) or not isinstance(loops, int) or loops < 0:
+        raise ProgramError(f"max_loop_iterations must be a whole number >= 0, got {loops!r}",
+                           file)
     state = None
     try:
         state = open_program(text, file, table, s, max_executed_lines=MAX_EXECUTED_LINES,
-                             max_call_depth=MAX_CALL_DEPTH, parameters=parameters)
+                             max_call_depth=MAX_CALL_DEPTH, max_loop_iterations=loops,
+                             parameters=parameters)
         state.out_units, state.table_units = units, table_units
         state.sub_path = tuple(str(p) for p in sub_path)
         return run(state)

@@ -19,14 +19,15 @@ from ccopt.program.gcode.parameters import (
     bind_call_arguments,
     restore_after_call,
 )
-from ccopt.program.gcode.state import LINE_SPLIT, Ctrl, Frame, GCodeState
+from ccopt.program.gcode.state import (LINE_SPLIT, LOOP_LINES_PER_ITERATION, Ctrl, Frame,
+                                       GCodeState)
 from ccopt.program.gcode.words import Lexed, lex, olabel, skip_blanks
 
 _OPENERS = {"sub": "endsub", "if": "endif", "do": "while", "while": "endwhile",
             "repeat": "endrepeat"}
 _CLOSERS = {"endsub": "sub", "endif": "if", "endwhile": "while", "endrepeat": "repeat"}
 _LOOPS = ("do", "while", "repeat")
-# A repeat count beyond this runs "for ever" (the runaway guard stops it).
+# A repeat count beyond this runs "for ever" (the loop iteration limit stops it).
 _REPEAT_LIMIT = 2**62
 
 
@@ -323,7 +324,9 @@ def _end_of_branch(state: GCodeState, pc: int, lx: Lexed) -> int:
 def _do(state: GCodeState, pc: int, lx: Lexed) -> int:
     _no_args(state, lx)
     end, _ = structure(state, pc)
-    state.frames[-1].ctrl.append(Ctrl("do", lx.oword.label, pc, end))
+    loop = Ctrl("do", lx.oword.label, pc, end)
+    _next_pass(state, loop)
+    state.frames[-1].ctrl.append(loop)
     return pc + 1
 
 
@@ -333,12 +336,15 @@ def _while(state: GCodeState, pc: int, lx: Lexed) -> int:
     top = frame.ctrl[-1] if frame.ctrl else None
     if top is not None and top.kind == "do" and top.end == pc:
         if _condition(state, pc) != 0.0:
+            _next_pass(state, top)
             return top.start + 1
         frame.ctrl.pop()
         return pc + 1
     end, _ = structure(state, pc)
     if _condition(state, pc) != 0.0:
-        frame.ctrl.append(Ctrl("while", lx.oword.label, pc, end))
+        loop = Ctrl("while", lx.oword.label, pc, end)
+        _next_pass(state, loop)
+        frame.ctrl.append(loop)
         return pc + 1
     return end + 1
 
@@ -352,7 +358,7 @@ def _endwhile(state: GCodeState, pc: int, lx: Lexed) -> int:
         raise state.error(f"{olabel(ow.label)} endwhile without a matching "
                           f"{olabel(ow.label)} while", ow.col)
     frame.ctrl.pop()
-    return top.start
+    return top.start  # the while line tests the condition and counts the pass
 
 
 def _repeat(state: GCodeState, pc: int, lx: Lexed) -> int:
@@ -364,7 +370,9 @@ def _repeat(state: GCodeState, pc: int, lx: Lexed) -> int:
         times = _REPEAT_LIMIT if count > 0 else 0
     if times <= 0:
         return end + 1
-    state.frames[-1].ctrl.append(Ctrl("repeat", lx.oword.label, pc, end, times - 1))
+    loop = Ctrl("repeat", lx.oword.label, pc, end, times - 1)
+    _next_pass(state, loop)
+    state.frames[-1].ctrl.append(loop)
     return pc + 1
 
 
@@ -377,6 +385,7 @@ def _endrepeat(state: GCodeState, pc: int, lx: Lexed) -> int:
         raise state.error(f"{olabel(ow.label)} endrepeat without a matching "
                           f"{olabel(ow.label)} repeat", ow.col)
     if top.remaining > 0:
+        _next_pass(state, top)
         top.remaining -= 1
         return top.start + 1
     frame.ctrl.pop()
@@ -405,6 +414,38 @@ def _break_or_continue(state: GCodeState, pc: int, lx: Lexed) -> int:
         ctrl.pop()
         return loop.start
     return loop.end  # do: test the while condition; repeat: count down
+
+
+def innermost_loop(state: GCodeState) -> Ctrl | None:
+    """The innermost loop open in any frame (a subroutine's, else its caller's), or None."""
+    for frame in reversed(state.frames):
+        for c in reversed(frame.ctrl):
+            if c.kind in _LOOPS:
+                return c
+    return None
+
+
+def loop_lines_error(state: GCodeState):
+    """The error when the loops executed more than their line budget,
+    located at the innermost open loop's first line."""
+    loop = innermost_loop(state)
+    col = lex(state, loop.start).oword.col
+    return state.error(f"{olabel(loop.label)} {loop.kind}: loops executed more than "
+                       f"{state.max_loop_lines} lines (all loops of the program together, "
+                       f"{LOOP_LINES_PER_ITERATION} per allowed loop iteration): endless loop? check its condition, or raise "
+                       "the limit (--max-loop-iterations N)", col, loop.start)
+
+
+def _next_pass(state: GCodeState, loop: Ctrl) -> None:
+    """``loop`` starts a pass of its body: count it against the program's
+    iteration limit, which stops a runaway loop located at its opener."""
+    state.loop_iterations += 1
+    if state.loop_iterations > state.max_loop_iterations:
+        col = lex(state, loop.start).oword.col
+        raise state.error(f"{olabel(loop.label)} {loop.kind}: more than "
+                          f"{state.max_loop_iterations} loop iterations (all loops of the "
+                          "program together): endless loop? check its condition, or raise "
+                          "the limit (--max-loop-iterations N)", col, loop.start)
 
 
 _HANDLERS = {

@@ -14,7 +14,7 @@ from ccopt.program.expr import ExprError
 from ccopt.program.gcode.codes import read_words
 from ccopt.program.gcode.coordinates import init_coordinates
 from ccopt.program.gcode.execute import execute_words
-from ccopt.program.gcode.oword import exec_oword
+from ccopt.program.gcode.oword import exec_oword, innermost_loop, loop_lines_error
 from ccopt.program.gcode.parameters import MAX_PARAMETER, attach_grammar, set_parameter
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import output_units
@@ -48,11 +48,12 @@ def check_inputs(file, tool_table, start) -> tuple[str, dict[int, float] | None,
 
 def open_program(text: str, file: str, tool_table: dict[int, float] | None,
                  start: tuple[float, float, float], *, max_executed_lines: int,
-                 max_call_depth: int, parameters: dict[int, float] | None = None) -> GCodeState:
+                 max_call_depth: int, max_loop_iterations: int,
+                 parameters: dict[int, float] | None = None) -> GCodeState:
     """The state to run ``text`` with (its ``%`` span already found), its
     numbered parameters and coordinate systems set from ``parameters``."""
     state = GCodeState(text, file, tool_table, start, max_executed_lines=max_executed_lines,
-                       max_call_depth=max_call_depth)
+                       max_call_depth=max_call_depth, max_loop_iterations=max_loop_iterations)
     for number, value in (parameters or {}).items():
         if not (isinstance(number, int) and 1 <= number <= MAX_PARAMETER
                 and math.isfinite(float(value))):
@@ -97,10 +98,15 @@ def _run_lines(state: GCodeState) -> None:
         if state.executed > state.max_executed_lines:
             raise state.error(f"more than {state.max_executed_lines} lines executed: endless "
                               "loop or runaway recursion? check the loop conditions")
+        if state.in_loop:
+            state.loop_lines += 1
+            if state.loop_lines > state.max_loop_lines:
+                raise loop_lines_error(state)
         try:
             lx = lex(state, pc)
             if lx.oword is not None:
                 pc = exec_oword(state, pc, lx)
+                state.in_loop = innermost_loop(state) is not None
             else:
                 if lx.first is not None:
                     _exec_line(state, lx)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import re
 
 from ccopt.errors import ProgramError
-from ccopt.program.model import Block, Modal, Motion, Source, Vec3
+from ccopt.program.model import MAX_COORDINATE, Block, Modal, Motion, Source, Vec3, out_of_range
 from ccopt.program.pmac.lexer import (AXES, LETTERS_RE, MOVE_MODES, OTHER_AXES,
                                       UNSUPPORTED, UNSUPPORTED_MODES, UNSUPPORTED_WHY, VECTORS,
                                       keyword_at, skip, word)
@@ -78,6 +78,13 @@ class Interpreter:
         return value
 
     # -- variables and coordinate-system set-up --------------------------------
+    def bounded(self, value: float, letter: str, line: int, col: int) -> None:
+        """A ProgramError at ``col`` when word ``letter``'s value is beyond
+        :data:`~ccopt.program.model.MAX_COORDINATE`."""
+        if out_of_range(value):
+            raise self.error(f"{letter}{value:g} is out of range: coordinates, I J K R and F "
+                             f"must lie within +-{MAX_COORDINATE:g}", line, col)
+
     def isx(self, offset: int) -> int:
         """Number of the I-variable Isx<offset> of the selected coordinate system."""
         return _ISX_BASE + _ISX_STEP * self.coord_system + offset
@@ -175,6 +182,7 @@ class Interpreter:
                              line, col)
         if ch == "F":
             value, end = self.vars.data(line, text, pos + 1, "F")
+            self.bounded(value, "F", line, col)
             if not value > 0:
                 raise self.error(f"F{value:g}: the feedrate must be positive", line, col)
             self.feed = value * _MS / self.feed_unit_ms
@@ -329,6 +337,7 @@ class Interpreter:
     def axis_word(self, letter: str, line: int, text: str, pos: int) -> int:
         """Add ``X``/``Y``/``Z``, ``I``/``J``/``K`` or ``R`` to the line's move."""
         value, end = self.vars.data(line, text, pos + 1, letter)
+        self.bounded(value, letter, line, pos + 1)
         if self.pending is None:
             self.pending = PendingMove(line, pos + 1)
         pend = self.pending
