@@ -227,17 +227,37 @@ def find_case(name_or_path: str) -> Case | None:
 
 
 @dataclass(frozen=True)
+class ReadOptions:
+    """How to read a program (see :func:`ccopt.program.read_program`): the
+    dialect (``None``: from the suffix) and a tool table, and for G-code a
+    LinuxCNC parameter file, the unit every length is converted to, the tool
+    table's units, the folders of subroutine files (LinuxCNC's
+    SUBROUTINE_PATH) and the O-word loop limit (``None``: the defaults)."""
+
+    dialect: str | None = None
+    tool_table: str | os.PathLike | None = None
+    var_file: str | os.PathLike | None = None
+    units: str | None = None
+    table_units: str | None = None
+    sub_path: tuple[str, ...] = ()
+    max_loop_iterations: int | None = None
+
+    def read(self, program: str | os.PathLike) -> Program:
+        """``program`` read with these options."""
+        return read_program(program, self.dialect, tool_table=self.tool_table,
+                            var_file=self.var_file, units=self.units,
+                            table_units=self.table_units, sub_path=self.sub_path,
+                            max_loop_iterations=self.max_loop_iterations)
+
+
+@dataclass(frozen=True)
 class Overrides:
     """What the command line says for every input; ``None`` where it says nothing.
 
     style: controller style; radius: cutter radius, program units (>= 0);
     side: ``"left"``/``"right"``; vmax, amax: axis limits ``(X, Y[, Z])`` in
     units/s and units/s^2; delta: the smoother's tolerance band, program units;
-    dialect, tool_table, var_file, units, table_units, sub_path,
-    max_loop_iterations: how to read the program (G-code only but the first
-    two: a LinuxCNC parameter file, the unit every length is converted to,
-    the tool table's units, the folders of subroutine files (LinuxCNC's
-    SUBROUTINE_PATH), the O-word loop limit); style_options: the style's
+    reading: how to read the program (:class:`ReadOptions`); style_options: the style's
     own options (``break_cos``, ``ccbuf``), passed to compensation as given.
     """
 
@@ -247,13 +267,7 @@ class Overrides:
     vmax: tuple[float, ...] | None = None
     amax: tuple[float, ...] | None = None
     delta: float | None = None
-    dialect: str | None = None
-    tool_table: str | os.PathLike | None = None
-    var_file: str | os.PathLike | None = None
-    units: str | None = None
-    table_units: str | None = None
-    sub_path: tuple[str, ...] = ()
-    max_loop_iterations: int | None = None
+    reading: ReadOptions = ReadOptions()
     style_options: dict = field(default_factory=dict)
 
 
@@ -275,14 +289,8 @@ class Job:
     vmax: tuple[float, ...] | None
     amax: tuple[float, ...] | None
     delta: float | None = None
-    dialect: str | None = None
-    tool_table: str | os.PathLike | None = None
-    var_file: str | os.PathLike | None = None
-    units: str | None = None
-    table_units: str | None = None
-    sub_path: tuple[str, ...] = ()
+    reading: ReadOptions = ReadOptions()
     style_options: dict = field(default_factory=dict)
-    max_loop_iterations: int | None = None
 
     @property
     def title(self) -> str:
@@ -299,10 +307,7 @@ class Job:
 
     def read(self) -> Program:
         """The program, read with the job's reading options."""
-        return read_program(self.program, self.dialect, tool_table=self.tool_table,
-                            var_file=self.var_file, units=self.units,
-                            table_units=self.table_units, sub_path=self.sub_path,
-                            max_loop_iterations=self.max_loop_iterations)
+        return self.reading.read(self.program)
 
     def compensate(self, prog: Program) -> ToolPath:
         """``prog`` compensated with the job's style, radius, side and style options."""
@@ -356,7 +361,5 @@ def resolve_input(what: str | Case, overrides: Overrides = Overrides(),
         side=overrides.side,
         vmax=overrides.vmax or (case.vmax if case else None) or default_limits.get("v"),
         amax=overrides.amax or (case.amax if case else None) or default_limits.get("a"),
-        delta=overrides.delta, dialect=overrides.dialect, tool_table=overrides.tool_table,
-        var_file=overrides.var_file, units=overrides.units, table_units=overrides.table_units,
-        sub_path=overrides.sub_path, style_options=dict(overrides.style_options),
-        max_loop_iterations=overrides.max_loop_iterations)
+        delta=overrides.delta, reading=overrides.reading,
+        style_options=dict(overrides.style_options))

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import argparse
 
-from ccopt.cases import Case, Job, Overrides, resolve_input
+from ccopt.cases import Case, Job, Overrides, ReadOptions, resolve_input
 
 #: the command-line options (argparse dests) that are compensation style options of the same name
 STYLE_OPTIONS = ("break_cos", "ccbuf")
@@ -22,11 +22,12 @@ def overrides(args: argparse.Namespace) -> Overrides:
         style=getattr(args, "style", None), radius=getattr(args, "radius", None),
         side=getattr(args, "side", None), vmax=getattr(args, "vmax", None),
         amax=getattr(args, "amax", None), delta=getattr(args, "delta", None),
-        dialect=getattr(args, "dialect", None), tool_table=getattr(args, "tool_table", None),
-        var_file=getattr(args, "var_file", None), units=getattr(args, "units", None),
-        table_units=getattr(args, "table_units", None),
-        sub_path=tuple(getattr(args, "sub_path", None) or ()),
-        max_loop_iterations=getattr(args, "max_loop_iterations", None),
+        reading=ReadOptions(
+            dialect=getattr(args, "dialect", None), tool_table=getattr(args, "tool_table", None),
+            var_file=getattr(args, "var_file", None), units=getattr(args, "units", None),
+            table_units=getattr(args, "table_units", None),
+            sub_path=tuple(getattr(args, "sub_path", None) or ()),
+            max_loop_iterations=getattr(args, "max_loop_iterations", None)),
         style_options={k: v for k, v in given.items() if v is not None})
 
 
