@@ -26,7 +26,6 @@ import re
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial import cKDTree
 
 from ccopt.errors import ProgramError
 from ccopt.program.markers import SURFACE_AIR, SURFACE_PART
@@ -194,6 +193,8 @@ def _encloses(verts: np.ndarray, arcs: np.ndarray, eps: float) -> bool:
 def _loops(compensated, start, end, is_arc, eps, part, why) -> None:
     """Mark the closed loops of every episode part and the rest of an episode
     with a loop air (in place)."""
+    # deferred: scipy.spatial would add 0.3 s to every `import ccopt`
+    from scipy.spatial import cKDTree
     for a, b in _episodes(compensated):
         a, b = int(a), int(b)
         # the episode's vertices: its first start, then every end; a loop is a
