@@ -338,7 +338,7 @@ def _locate(what: str | Case) -> tuple[str, Path, Case | None]:
         raise ProgramError("no such program, case folder or bundled case name", what)
     if p.is_dir():
         raise ProgramError("a folder without case.toml is not a case", what)
-    return p.name, p, None
+    return p.stem, p, None  # outputs are <stem>.nc, <stem>.pmc, ... (no doubled suffix)
 
 
 def resolve_input(what: str | Case, overrides: Overrides = Overrides(),

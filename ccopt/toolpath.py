@@ -19,7 +19,7 @@ from typing import Any, Iterator
 
 from ccopt.geometry import Arc, Line, Spiral, translated
 from ccopt.program.model import Block, Motion, Program
-from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL
+from ccopt.tolerances import POINT_EPS, SPIRAL_RADIUS_REL_TOL
 
 
 class Role(str, enum.Enum):
@@ -210,6 +210,16 @@ def programmed_path(program: Program) -> ToolPath:
     return ToolPath(tuple(segs), plane=plane, style="programmed", radius=0.0,
                     dwells=tuple(dwells), units=program.units)
 
+
+
+def starts_at_origin(path: ToolPath) -> bool:
+    """Whether ``path`` starts at the machine origin, where ccopt's readers (so
+    a program read back) take the tool to be before the first move: an export
+    then needs no positioning move of its own."""
+    if not path.segments:
+        return True
+    first = path.segments[0]
+    return max(abs(first.start[0]), abs(first.start[1]), abs(first.w0)) <= POINT_EPS
 
 
 def tool_centre_path(path: ToolPath) -> ToolPath:

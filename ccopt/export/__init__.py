@@ -212,7 +212,11 @@ class _ProgramExport:
         """Program text and its moves ``(source segment, meant geometry, fit bound)``."""
         if self.fmt == "gcode":
             return write_gcode(self.path, self.tol, header, seg_tol=seg_tol)[:2]
-        return write_pmac(self.path, header, tol=self.tol, seg_tol=seg_tol)
+        # the program number the PMAC program was read from, kept
+        number = (self.program.meta.get("program") if self.program is not None
+                  and self.program.dialect == "pmac" else None)
+        return write_pmac(self.path, header, tol=self.tol, seg_tol=seg_tol,
+                          program_number=number if isinstance(number, int) else 1)
 
     def attempt(self, seg_tol: dict[int, float]):
         """Write, read back, verify: ``(moves, round-trip error, certificate)``."""

@@ -14,7 +14,7 @@ from ccopt.export.text import gcode_comment
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import PLANE_AXES
-from ccopt.toolpath import ToolPath
+from ccopt.toolpath import ToolPath, starts_at_origin
 
 PLANE_WORD = {"XY": "G17", "ZX": "G18", "YZ": "G19"}
 AXES = "XYZ"
@@ -120,7 +120,7 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
     dwell_at: dict[int, list[float]] = {}
     for idx, seconds, _ in path.dwells:
         dwell_at.setdefault(idx, []).append(seconds)
-    if path.segments:
+    if path.segments and not starts_at_origin(path):
         first = path.segments[0]
         wr.move(-1, f"G0 {wr.coords(first.start, first.w0)}")  # positioning, no segment
     for idx, seg in enumerate(path.segments):

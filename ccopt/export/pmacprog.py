@@ -17,7 +17,7 @@ from ccopt.export.text import pmac_comment
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import PLANE_AXES
-from ccopt.toolpath import ToolPath
+from ccopt.toolpath import ToolPath, starts_at_origin
 
 NORMAL = {"XY": "NORMAL K-1", "ZX": "NORMAL J-1", "YZ": "NORMAL I-1"}
 AXES = "XYZ"
@@ -80,7 +80,7 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
     dwell_at: dict[int, list[float]] = {}
     for idx, seconds, _ in path.dwells:
         dwell_at.setdefault(idx, []).append(seconds)
-    if path.segments:
+    if path.segments and not starts_at_origin(path):
         first = path.segments[0]
         emit(-1, "RAPID", coords(first.start, first.w0), None)
     for idx, seg in enumerate(path.segments):
