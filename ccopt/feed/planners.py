@@ -7,11 +7,13 @@ from __future__ import annotations
 
 import importlib
 
-#: planner name -> "module:function"; each takes (path, limits, junction_deviation=..., grid=...)
+#: planner name -> "module:function"; each takes (path, limits, junction_deviation=..., grid=...);
+#: ``jerk`` also takes ``ts`` and needs ``limits.j``
 PLANNERS: dict[str, str] = {
     "toppra": "ccopt.feed.toppra_planner:plan_toppra",
     "stop": "ccopt.feed.baselines:plan_stop_per_block",
     "junction": "ccopt.feed.baselines:plan_junction",
+    "jerk": "ccopt.feed.jerk_planner:plan_jerk",
 }
 
 
