@@ -21,7 +21,8 @@ def overrides(args: argparse.Namespace) -> Overrides:
     return Overrides(
         style=getattr(args, "style", None), radius=getattr(args, "radius", None),
         side=getattr(args, "side", None), vmax=getattr(args, "vmax", None),
-        amax=getattr(args, "amax", None), delta=getattr(args, "delta", None),
+        amax=getattr(args, "amax", None), jmax=getattr(args, "jmax", None),
+        delta=getattr(args, "delta", None),
         dialect=getattr(args, "dialect", None), tool_table=getattr(args, "tool_table", None),
         style_options={k: v for k, v in given.items() if v is not None})
 

@@ -82,10 +82,9 @@ from ccopt.feed.jerk_profile import CUBIC, JerkProfile, slinear_time
 from ccopt.feed.jerk_profile import SLINEAR as PIECE_SLINEAR
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
+from ccopt.feed.planners import DEFAULT_TS
 from ccopt.feed.toppra_planner import plan_toppra
 
-#: ``--ts`` default: the interpolation period, seconds.
-DEFAULT_TS = 1e-3
 #: Relative agreement of ``b`` and ``bhat`` that ends the pseudo-jerk rounds.
 BHAT_TOL = 2e-3
 MAX_ROUNDS = 12

@@ -71,7 +71,8 @@ class AxisLimits:
     centripetal_acc: optional bound on ``speed^2 * curvature``, units/s^2.
     j: optional axis jerk limits ``(X, Y[, Z])``, units/s^3, each ``> 0``.
 
-    ``v``, ``a`` (and ``j`` when given) must have the same length. A third value (Z for G17) is
+    ``v`` and ``a`` must have the same length; ``j`` may give fewer axes (X, Y
+    for a path in G17 that does not move Z). A third value (Z for G17) is
     needed only when the path moves that axis; :meth:`in_plane` says so.
     """
 
@@ -89,9 +90,6 @@ class AxisLimits:
                              f"{len(self.a)} values")
         if self.j is not None:
             object.__setattr__(self, "j", _positive_tuple("j", self.j))
-            if len(self.j) != len(self.v):
-                raise ValueError(f"j must name the same axes as v and a, got {len(self.j)} and "
-                                 f"{len(self.v)} values")
         object.__setattr__(self, "tangential_acc",
                            _optional_positive("tangential_acc", self.tangential_acc))
         object.__setattr__(self, "centripetal_acc",
@@ -118,7 +116,12 @@ class AxisLimits:
         if self.j is None:
             return None
         self.in_plane(plane, dof)
-        return np.array([self.j[i] for i in PLANE_AXES[plane][:dof]])
+        idx = PLANE_AXES[plane][:dof]
+        missing = [AXIS_NAMES[i] for i in idx if i >= len(self.j)]
+        if missing:
+            raise ValueError(f"the path uses axis {', '.join(missing)} but the jerk limits give "
+                             f"only {', '.join(AXIS_NAMES[:len(self.j)])}")
+        return np.array([self.j[i] for i in idx])
 
     def axis_names(self, plane: str, dof: int) -> tuple[str, ...]:
         """Machine axis names in plane-coordinate order, e.g. ``("Z", "X")`` for ZX."""

@@ -26,6 +26,7 @@ def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: st
     path = toolpath if isinstance(toolpath, ExactPath) else ExactPath(toolpath)
     try:
         limits.in_plane(path.toolpath.plane, path.dof)
+        limits.jerk_in_plane(path.toolpath.plane, path.dof)
     except ValueError as exc:
         raise FeedError(str(exc), path.source_file) from None
     kwargs: dict = {"junction_deviation": junction_deviation}

@@ -7,6 +7,10 @@ from __future__ import annotations
 
 import importlib
 
+#: The jerk planner's default interpolation period ``ts`` (s): the acceleration
+#: step at a curvature break is at most ``jmax * ts`` (:mod:`ccopt.feed.jerk_planner`).
+DEFAULT_TS = 1e-3
+
 #: planner name -> "module:function"; each takes (path, limits, junction_deviation=..., grid=...);
 #: ``jerk`` also takes ``ts`` and needs ``limits.j``
 PLANNERS: dict[str, str] = {
