@@ -94,29 +94,30 @@ BHAT_FALL = 0.1
 WINDOW_POINTS = 3000
 WINDOW_OVERLAP = 0.5
 #: Ratio of consecutive interval lengths in the geometric refinement at stops.
-STOP_RATIO = 1.08
+STOP_RATIO = 1.06
 #: First interval at a stop, as a share of the first jerk phase's length.
 STOP_FIRST = 0.02
 
 
 def _stop_refinement(path: ExactPath, stops: np.ndarray, a: np.ndarray, j: np.ndarray,
                      base: np.ndarray) -> np.ndarray:
-    """Extra gridpoints on both sides of every stop: geometric steps from
-    :data:`STOP_FIRST` of the first jerk phase's length ``A^3 / (6 J^2)`` (axis
-    extremes, so it is long enough on every axis) over twice that length, kept
-    within the stop's own neighbours in ``base``."""
+    """Extra gridpoints on both sides of every stop, at distances growing
+    geometrically (ratio :data:`STOP_RATIO`) from :data:`STOP_FIRST` of the
+    first jerk phase's length ``A^3 / (6 J^2)`` (largest ``A``, smallest ``J``
+    of the axes, so it is long enough on every axis) to twice that length, up
+    to half way to the neighbouring stops."""
     reach = 2.0 * float(a.max()) ** 3 / (6.0 * float(j.min()) ** 2)
     first = STOP_FIRST * reach / 2.0
     m = max(1, math.ceil(math.log(reach / first) / math.log(STOP_RATIO)))
-    offs = first * np.cumsum(STOP_RATIO ** np.arange(m))
+    offs = first * STOP_RATIO ** np.arange(m + 1)     # so s_k+1 / s_k = STOP_RATIO
     offs = offs[offs < reach]
     pts = []
-    for s in stops:
-        i = int(np.searchsorted(base, s))
-        left = base[i - 1] if i > 0 else s
-        right = base[i + 1] if i + 1 < base.size else s
-        pts.append(s - offs[s - offs > left + 0.5 * first])
-        pts.append(s + offs[s + offs < right - 0.5 * first])
+    for i, s in enumerate(stops):
+        # up to half way to the neighbouring stops
+        left = 0.5 * (s + stops[i - 1]) if i > 0 else s
+        right = 0.5 * (s + stops[i + 1]) if i + 1 < stops.size else s
+        pts.append(s - offs[s - offs > left])
+        pts.append(s + offs[s + offs < right])
     extra = np.concatenate(pts) if pts else np.zeros(0)
     return np.union1d(base, extra)
 
