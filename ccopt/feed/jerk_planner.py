@@ -90,6 +90,8 @@ BHAT_TOL = 2e-3
 MAX_ROUNDS = 12
 #: Largest fall of ``bhat`` in one round (a factor), see :func:`_solve_rounds`.
 BHAT_FALL = 0.1
+#: Trust region of a round: b may rise at most this factor above bhat.
+BHAT_RISE = 1.5
 #: Gridpoints per LP window, and how much further a window plans than it keeps.
 WINDOW_POINTS = 3000
 WINDOW_OVERLAP = 0.5
@@ -195,7 +197,7 @@ def _solve_rounds(g: JerkGrid, i0: int, i1: int, bhat: np.ndarray, cap: np.ndarr
     ``(b, alpha, rounds)`` scaled, or None when an LP is infeasible."""
     rounds = 0
     for rounds in range(1, MAX_ROUNDS + 1):
-        out = solve_window(g, i0, i1, bhat, cap, start, scale)
+        out = solve_window(g, i0, i1, bhat, np.minimum(cap, BHAT_RISE * bhat), start, scale)
         if out is None:
             return None
         b = out[0]
