@@ -168,6 +168,8 @@ def _new_highs():
             os.close(saved)
         _BANNER_SHOWN.append(True)
     h.setOptionValue("output_flag", False)
+    # presolve finds little to remove in these banded LPs: 20 % faster without
+    h.setOptionValue("presolve", "off")
     return h
 
 

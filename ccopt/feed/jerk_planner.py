@@ -62,7 +62,7 @@ steps are bounded by this rule instead.
 
 Windows: the path is cut at its stops (exactly: the pieces between stops are
 independent), and the pieces are gathered into windows of about
-:data:`WINDOW_POINTS` gridpoints, each solved as its own LP, so the cost grows
+:data:`BATCH_POINTS` gridpoints, each solved as its own LP, so the cost grows
 linearly with the length of the program. A stretch between two stops with
 more gridpoints than that is planned in overlapping windows: a window plans
 :data:`WINDOW_OVERLAP` of its size further than it keeps, and the next starts
@@ -92,7 +92,9 @@ MAX_ROUNDS = 12
 BHAT_FALL = 0.1
 #: Trust region of a round: b may rise at most this factor above bhat.
 BHAT_RISE = 1.5
-#: Gridpoints per LP window, and how much further a window plans than it keeps.
+#: Gridpoints per LP window of stop-to-stop stretches gathered together; of a
+#: stretch with no stop; and how much further such a window plans than it keeps.
+BATCH_POINTS = 800
 WINDOW_POINTS = 3000
 WINDOW_OVERLAP = 0.5
 #: Ratio of consecutive interval lengths in the geometric refinement at stops.
@@ -169,14 +171,15 @@ def _speed_caps(path, limits, s, q, v, j, ts) -> np.ndarray:
 
 def _windows(g: JerkGrid) -> list[tuple[int, int, int]]:
     """``(i0, i1, keep)`` windows: stop-to-stop stretches gathered up to
-    :data:`WINDOW_POINTS`; a longer stretch in overlapping windows that plan
-    to ``i1`` and keep ``i0..keep``."""
+    :data:`BATCH_POINTS` gridpoints (HiGHS's simplex costs more than linearly
+    in the size of an LP); a stretch of up to :data:`WINDOW_POINTS` alone; a
+    longer one in overlapping windows that plan to ``i1`` and keep ``i0..keep``."""
     stops = np.flatnonzero(g.stop)
     out: list[tuple[int, int, int]] = []
     i0 = int(stops[0])
     for a, b in zip(stops[:-1], stops[1:]):
         a, b = int(a), int(b)
-        if b - i0 <= WINDOW_POINTS:
+        if b - i0 <= BATCH_POINTS:
             continue
         if a > i0:
             out.append((i0, a, a))
@@ -186,6 +189,9 @@ def _windows(g: JerkGrid) -> list[tuple[int, int, int]]:
             keep = i0 + WINDOW_POINTS if end < b else b
             out.append((i0, end, keep))
             i0 = keep
+        if b - i0 > BATCH_POINTS:
+            out.append((i0, b, b))
+            i0 = b
     if int(stops[-1]) > i0:
         out.append((i0, int(stops[-1]), int(stops[-1])))
     return out
