@@ -236,6 +236,12 @@ def plan_junction(path: ExactPath, limits: AxisLimits, *,
 
 def _plan_scurve_per_block(path: ExactPath, limits: AxisLimits) -> JerkProfile:
     """Rest-to-rest 7-phase S-curve on every segment (see the module docstring)."""
+    return JerkProfile.from_pieces(path, limits, "stop", scurve_pieces(path, limits),
+                                   {"jerk_limited": 1})
+
+
+def scurve_pieces(path: ExactPath, limits: AxisLimits) -> dict:
+    """The pieces (:meth:`JerkProfile.from_pieces`) of the S-curve per block, dwells left out."""
     v_cap, a_tan, j_path = segment_jerk_budgets(path, limits)
     rows, seg = [], []
     for k in range(len(path.segments)):
@@ -247,4 +253,4 @@ def _plan_scurve_per_block(path: ExactPath, limits: AxisLimits) -> JerkProfile:
     cols = np.array(rows, dtype=float).reshape(-1, 8).T
     pieces = dict(zip(("s0", "h", "v0", "v1", "a0", "a1", "j", "dt"), cols))
     pieces.update(kind=np.full(len(rows), CUBIC), segment=np.array(seg, dtype=int))
-    return JerkProfile.from_pieces(path, limits, "stop", pieces, {"jerk_limited": 1})
+    return pieces

@@ -38,10 +38,13 @@ def sampled_ratios(prof):
 
 
 def test_line_rest_to_rest_matches_closed_form():
-    """100 mm along X, v = 100, a = 1000, j = 20000: T = 1 + 0.1 + 0.05 s."""
-    tp = ToolPath((seg(Line((0, 0), (100, 0)), 1000.0),))
+    """100 mm along X, v = 100, a = 1000, j = 20000: T = 1 + 0.1 + 0.05 s.
+    Two collinear blocks of 40 and 60 mm, so the S-curve per block (which
+    stops between them) cannot stand in for the LP's profile."""
+    tp = ToolPath((seg(Line((0, 0), (40, 0)), 1000.0), seg(Line((40, 0), (100, 0)), 1000.0)))
     lim = AxisLimits((100, 100), (1000, 1000), j=(20000, 20000))
     prof = plan_feed(tp, lim, planner="jerk")
+    assert prof.info["scurve_stretches"] == 0
     closed = 100 / 100 + 100 / 1000 + 1000 / 20000
     assert prof.duration == pytest.approx(closed, rel=5e-3)
     assert prof.duration >= closed * (1 - 1e-9)       # nothing beats the optimum
@@ -56,13 +59,15 @@ def test_short_diagonal_line_pure_jerk_limited():
     so the path's limits are sqrt(2) times the axes'; 2 mm is below
     2 a^3 / j^2, so the optimum is four jerk phases: T = 4 (L / (2 j))^(1/3)."""
     d = 2.0 / math.sqrt(2.0)
-    tp = ToolPath((seg(Line((0, 0), (d, d)), 1000.0),))
+    tp = ToolPath((seg(Line((0, 0), (d / 3, d / 3)), 1000.0),
+                   seg(Line((d / 3, d / 3), (d, d)), 1000.0)))
     lim = AxisLimits((100, 100), (1000, 1000), j=(5000, 5000))
     jp, ap = 5000 * math.sqrt(2), 1000 * math.sqrt(2)
     assert 2.0 <= 2 * ap ** 3 / jp ** 2
     closed = 4 * (2.0 / (2 * jp)) ** (1 / 3)
     assert (2.0 / (2 * jp)) ** (1 / 3) * jp <= ap          # peak acceleration below a
     prof = plan_feed(tp, lim, planner="jerk")
+    assert prof.info["scurve_stretches"] == 0
     assert prof.duration == pytest.approx(closed, rel=5e-3)
     v, a, j, _ = sampled_ratios(prof)
     assert max(v, a, j) <= OVER
