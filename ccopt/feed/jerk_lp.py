@@ -188,6 +188,11 @@ def _highs_simplex(c, A, lo, hi, lb, ub) -> np.ndarray | None:
     h.passModel(lp)
     h.run()
     if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
+        # rare numerical trouble without presolve: once more with it
+        h.setOptionValue("presolve", "on")
+        h.clearSolver()
+        h.run()
+    if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
         return None
     return np.asarray(h.getSolution().col_value, dtype=float)
 

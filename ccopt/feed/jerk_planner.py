@@ -232,8 +232,9 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
     """Jerk-limited time-optimal profile of ``path`` (see the module docstring).
 
     ``limits.j`` is required. ``junction_deviation`` is not used: the planner
-    stops at every tangent break. Raises :class:`FeedError` when a window's LP
-    is infeasible.
+    stops at every tangent break. A window from rest to rest whose LP HiGHS
+    does not solve takes the S-curve per block (``info["lp_failed_windows"]``);
+    raises :class:`FeedError` when any other window's LP fails.
     """
     if limits.j is None:
         raise FeedError("the jerk planner needs jerk limits (--jmax, or j in the case's "
@@ -250,11 +251,16 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
     cap = upper / scale
     b = np.zeros(g.s.size)
     alpha = np.zeros(g.s.size)
-    total_rounds = 0
+    total_rounds = failed = 0
     windows = _windows(g)
     for i0, i1, keep in windows:
         start = None if g.stop[i0] else (b[i0] / scale, alpha[i0] / scale)
         out = _solve_rounds(g, i0, i1, cap[i0:i1 + 1].copy(), cap[i0:i1 + 1], start, scale)
+        if out is None and start is None and g.stop[i1]:
+            # rest to rest: the S-curve per block stands in (see _best_per_stretch)
+            b[i0 + 1:i1] = np.nan
+            failed += 1
+            continue
         if out is None:
             raise FeedError(f"jerk planner: the LP of the window from s = {g.s[i0]:.6g} to "
                             f"{g.s[i1]:.6g} is infeasible", path.source_file,
@@ -265,7 +271,7 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         b[i0:keep + 1] = bw[:n] * scale
         alpha[i0:keep + 1] = aw[:n] * scale
     info = {"gridpoints": int(g.s.size), "windows": len(windows), "lp_rounds": total_rounds,
-            "ts": ts}
+            "ts": ts, "lp_failed_windows": failed}
     return _profile(path, limits, g, b, alpha, info)
 
 
@@ -307,7 +313,7 @@ def _best_per_stretch(mine: dict, scurve: dict, stops: np.ndarray) -> tuple[dict
     n = stops.size - 1
     t_mine = np.bincount(k_mine, weights=mine["dt"], minlength=n)
     t_sc = np.bincount(k_sc, weights=scurve["dt"], minlength=n)
-    use_sc = t_sc < t_mine
+    use_sc = ~(t_mine <= t_sc)        # also where the LP failed (NaN)
     keep_mine, keep_sc = ~use_sc[k_mine], use_sc[k_sc]
     out = {}
     for key in mine:
