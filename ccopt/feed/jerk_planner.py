@@ -233,7 +233,8 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
 
     ``limits.j`` is required. ``junction_deviation`` is not used: the planner
     stops at every tangent break. A window from rest to rest whose LP HiGHS
-    does not solve takes the S-curve per block (``info["lp_failed_windows"]``);
+    does not solve, or whose solution stalls (speed 0 away from a stop), takes
+    the S-curve per block (``info["lp_failed_windows"]``);
     raises :class:`FeedError` when any other window's LP fails.
     """
     if limits.j is None:
@@ -256,7 +257,10 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
     for i0, i1, keep in windows:
         start = None if g.stop[i0] else (b[i0] / scale, alpha[i0] / scale)
         out = _solve_rounds(g, i0, i1, cap[i0:i1 + 1].copy(), cap[i0:i1 + 1], start, scale)
-        if out is None and start is None and g.stop[i1]:
+        rest_to_rest = start is None and bool(g.stop[i1])
+        if out is not None and rest_to_rest and np.any(out[0][~g.stop[i0:i1 + 1]] <= 0.0):
+            out = None        # a stall (speed 0 away from a stop): as a failed LP
+        if out is None and rest_to_rest:
             # rest to rest: the S-curve per block stands in (see _best_per_stretch)
             b[i0 + 1:i1] = np.nan
             failed += 1

@@ -18,7 +18,10 @@ path position ``s``, speed ``s'`` and acceleration ``s''``, of two kinds:
 The knot arrays of :class:`FeedProfile` hold each piece's start and end
 (``t, s, sd``) and its mean acceleration ``sdd`` (speed change over duration),
 so code that reads them sees the right times, positions and speeds;
-:meth:`JerkProfile.motion` evaluates the pieces exactly.
+:meth:`JerkProfile.motion` (and so :meth:`~FeedProfile.sample` and
+:meth:`~FeedProfile.at`) evaluates the pieces exactly.
+:meth:`~FeedProfile.speed_at` reads the knots as constant-acceleration
+pieces: exact at the knots, approximate between them.
 """
 from __future__ import annotations
 
@@ -71,7 +74,7 @@ class JerkProfile(FeedProfile):
         (dwells of :attr:`ExactPath.dwells` are inserted here)."""
         p = {k: np.asarray(v) for k, v in pieces.items()}
         for d in sorted(path.dwells, key=lambda d: d.s, reverse=True):
-            i = int(np.searchsorted(p["s0"], d.s - 0.0, side="left"))
+            i = int(np.searchsorted(p["s0"], d.s, side="left"))
             for key, val in (("kind", CUBIC), ("s0", d.s), ("h", 0.0), ("v0", 0.0), ("v1", 0.0),
                              ("a0", 0.0), ("a1", 0.0), ("j", 0.0), ("dt", d.seconds),
                              ("segment", -1)):
