@@ -19,9 +19,13 @@ Measured in the same run, medians of ``--repeat`` runs:
   ``seidel`` solver, ``compute_trajectory`` with ``ParametrizeConstAccel``,
   time per gridpoint (the spline rings through the corners instead of
   stopping, so its cycle time means nothing; it is the cost reference);
-- the cycle times (and planning times) of the three planners.
+- the cycle times (and planning times) of the three planners;
+- the jerk planner (``planner="jerk"``, jerk limits :data:`JERK`): its
+  solve time per block and per gridpoint against TOPPRA's on the same path,
+  and its cycle time against TOPPRA's and the jerk-limited stop baseline's
+  (an S-curve per block). ``--no-jerk`` leaves it out.
 
-    python bench/feed.py [--sizes 1000,10000] [--repeat 3]
+    python bench/feed.py [--sizes 1000,10000] [--repeat 3] [--no-jerk]
 """
 from __future__ import annotations
 
@@ -45,6 +49,8 @@ RADIUS = 0.5        # cutter radius, mm
 FEED = 30.0         # mm/s
 DEPTH = -2.0
 LIMITS = AxisLimits(v=(100.0, 100.0, 30.0), a=(1000.0, 1000.0, 300.0))
+#: axis jerk limits for the jerk planner, units/s^3 (20 times the acceleration: 50 ms ramps)
+JERK = (20000.0, 20000.0, 6000.0)
 
 
 def pocket_program(n: int, seed: int = 1) -> Program:
@@ -139,7 +145,24 @@ def plain_toppra(path: ExactPath, gp: np.ndarray, scale: float):
     return run
 
 
-def bench(n: int, repeat: int) -> None:
+def bench_jerk(tp, toppra_cpu: float, toppra_n: int, toppra_T: float, n_blocks: int) -> None:
+    """The jerk planner once (it takes long), against TOPPRA's figures."""
+    lim = AxisLimits(LIMITS.v, LIMITS.a, j=JERK)
+    c0, w0 = time.process_time(), time.perf_counter()
+    prof = plan_feed(tp, lim, planner="jerk")
+    cpu, wall = time.process_time() - c0, time.perf_counter() - w0
+    N = prof.info["gridpoints"]
+    stop = plan_feed(tp, lim, planner="stop")
+    print(f"  jerk planner (j = {JERK})       : {cpu:7.3f} CPU s ({wall:.3f} wall), "
+          f"{N:,} gridpoints, {prof.info['windows']} windows, {prof.info['lp_rounds']} LPs")
+    print(f"    per block {cpu / n_blocks * 1e3:.2f} ms; per gridpoint {cpu / N * 1e6:.1f} us = "
+          f"{(cpu / N) / (toppra_cpu / toppra_n):.1f} x TOPPRA's")
+    print(f"    cycle time {prof.duration:.3f} s = {prof.duration / toppra_T:.4f} x TOPPRA's, "
+          f"{prof.duration / stop.duration:.4f} x the jerk-limited stop baseline's "
+          f"({stop.duration:.3f} s)")
+
+
+def bench(n: int, repeat: int, jerk: bool = True) -> None:
     prog = pocket_program(n)
     tp = compensate(prog, "pmac")
     kinds: dict[str, int] = {}
@@ -174,17 +197,20 @@ def bench(n: int, repeat: int) -> None:
         cpu_s, _, p = res[name]
         label = "toppra" if name == "ccopt" else name
         print(f"  {label:9s} {p.duration:10.3f} s  {p.duration / T0:9.4f}   {cpu_s:10.3f}")
+    if jerk:
+        bench_jerk(tp, c_cpu, N, T0, n)
 
 
 def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--sizes", default="1000,10000")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--no-jerk", action="store_true", help="leave the jerk planner out")
     args = ap.parse_args()
     print(f"limits v={LIMITS.v} a={LIMITS.a}, feed {FEED} mm/s, cutter radius {RADIUS} mm; "
           f"medians of {args.repeat} interleaved runs; grid {GridOptions()}")
     for n in (int(x) for x in args.sizes.split(",")):
-        bench(n, args.repeat)
+        bench(n, args.repeat, not args.no_jerk)
 
 
 if __name__ == "__main__":

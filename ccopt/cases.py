@@ -12,6 +12,7 @@
     [limits]                            # axis limits for feed planning
     v = [100.0, 100.0]                  # units/s per axis (X, Y[, Z])
     a = [1000.0, 1000.0]                # units/s^2 per axis
+    j = [20000.0, 20000.0]              # optional: units/s^3 per axis (jerk)
 
 A case folder is found either by path or by name among the bundled cases in
 the repository's ``cases/`` folder.
@@ -59,6 +60,7 @@ class Case:
     expect: str = "ok"
     vmax: tuple[float, ...] | None = None
     amax: tuple[float, ...] | None = None
+    jmax: tuple[float, ...] | None = None
     extra: dict = field(default_factory=dict, compare=False)
 
 
@@ -205,14 +207,28 @@ def load_case(folder: str | os.PathLike) -> Case:
     if style not in STYLES:
         raise bad("style", style, f"must be one of {', '.join(sorted(STYLES))}")
     vmax, amax = _limits(data, bad)
+    jmax = _case_jerk(data.get("limits", {}), bad) if vmax is not None else None
     known = {"program", "title", "source", "style", "radius", "expect", "limits"}
     return Case(
         name=folder.resolve().name, folder=folder, program=program,
         title=str(data.get("title", "")), source=str(data.get("source", "")),
         style=style, radius=None if radius is None else float(radius),
-        expect=expect, vmax=vmax, amax=amax,
+        expect=expect, vmax=vmax, amax=amax, jmax=jmax,
         extra={k: v for k, v in data.items() if k not in known},
     )
+
+
+def _case_jerk(limits: dict, bad) -> tuple[float, ...] | None:
+    """``[limits] j`` (optional): 2 or 3 positive numbers (X, Y[, Z]), units/s^3."""
+    vals = limits.get("j")
+    if vals is None:
+        return None
+    lo, hi = LIMIT_RANGE
+    if not (isinstance(vals, list) and 2 <= len(vals) <= 3
+            and all(_number_in(x, lo, strict=False) and x <= hi for x in vals)):
+        raise bad("limits.j", vals, f"must be a list of 2 or 3 numbers between {lo:g} and "
+                  f"{hi:g} (X, Y[, Z])")
+    return tuple(float(x) for x in vals)
 
 
 def find_case(name_or_path: str) -> Case | None:
@@ -255,8 +271,8 @@ class Overrides:
     """What the command line says for every input; ``None`` where it says nothing.
 
     style: controller style; radius: cutter radius, program units (>= 0);
-    side: ``"left"``/``"right"``; vmax, amax: axis limits ``(X, Y[, Z])`` in
-    units/s and units/s^2; delta: the smoother's tolerance band, program units;
+    side: ``"left"``/``"right"``; vmax, amax, jmax: axis limits ``(X, Y[, Z])`` in
+    units/s, units/s^2 and units/s^3; delta: the smoother's tolerance band, program units;
     reading: how to read the program (:class:`ReadOptions`); style_options: the style's
     own options (``break_cos``, ``ccbuf``), passed to compensation as given.
     """
@@ -269,6 +285,7 @@ class Overrides:
     delta: float | None = None
     reading: ReadOptions = ReadOptions()
     style_options: dict = field(default_factory=dict)
+    jmax: tuple[float, ...] | None = None
 
 
 @dataclass(frozen=True)
@@ -291,6 +308,7 @@ class Job:
     delta: float | None = None
     reading: ReadOptions = ReadOptions()
     style_options: dict = field(default_factory=dict)
+    jmax: tuple[float, ...] | None = None
 
     @property
     def title(self) -> str:
@@ -323,7 +341,7 @@ class Job:
                                "whose case.toml has [limits]", str(self.program))
         try:
             return AxisLimits(self.vmax, self.amax, tangential_acc=tangential_acc,
-                              centripetal_acc=centripetal_acc)
+                              centripetal_acc=centripetal_acc, j=self.jmax)
         except ValueError as exc:
             raise ProgramError(f"bad limits: {exc}", str(self.program)) from None
 
@@ -362,4 +380,5 @@ def resolve_input(what: str | Case, overrides: Overrides = Overrides(),
         vmax=overrides.vmax or (case.vmax if case else None) or default_limits.get("v"),
         amax=overrides.amax or (case.amax if case else None) or default_limits.get("a"),
         delta=overrides.delta, reading=overrides.reading,
-        style_options=dict(overrides.style_options))
+        style_options=dict(overrides.style_options),
+        jmax=overrides.jmax or (case.jmax if case else None) or default_limits.get("j"))

@@ -1,4 +1,4 @@
-"""``ccopt feed``: time-optimal feed (TOPPRA) and the baseline planners."""
+"""``ccopt feed``: time-optimal feed (TOPPRA), the jerk-limited planner and the baselines."""
 from __future__ import annotations
 
 import argparse
@@ -12,22 +12,38 @@ from ccopt.cli.options import (add_limit_options, add_program, add_reading_optio
 from ccopt.cli.output import EXIT_OK, emit_json
 from ccopt.atomic import write_text_atomic
 from ccopt.feed import AxisLimits, plan_feed
+from ccopt.feed.planners import DEFAULT_TS
 from ccopt.toolpath import ToolPath
 
 #: ``--dt``, seconds: the sampling step of the ratios and the CSV.
 DEFAULT_DT = 1e-3
 
 #: the planners ``--planner`` knows (``all`` names them all), in the order they are reported
-PLANNER_NAMES = ("toppra", "stop", "junction")
+PLANNER_NAMES = ("toppra", "stop", "junction", "jerk")
 
 
 def planner_names(text: str) -> list[str]:
-    """``A,B`` -> planner names (argparse type of ``--planner``); ``all``: every one."""
+    """``A,B`` -> planner names (argparse type of ``--planner``); ``all``: every one
+    (``jerk`` only when jerk limits are known: :func:`cmd_feed` drops it otherwise)."""
     names = [n.strip() for n in text.split(",")]
     for n in names:
         if n not in PLANNER_NAMES + ("all",):
-            raise argparse.ArgumentTypeError(f"unknown planner {n!r} (toppra, stop, junction, all)")
-    return list(PLANNER_NAMES) if "all" in names else names
+            raise argparse.ArgumentTypeError(f"unknown planner {n!r} "
+                                             f"({', '.join(PLANNER_NAMES)}, all)")
+    return ["all"] if "all" in names else names
+
+
+def chosen_planners(groups, limits: AxisLimits) -> list[str]:
+    """The ``--planner`` names in order, ``all`` expanded (with ``jerk`` when
+    ``limits`` give jerk limits); ``toppra`` when none is given."""
+    names: list[str] = []
+    for group in groups or [["toppra"]]:
+        for n in group:
+            if n == "all":
+                names.extend(p for p in PLANNER_NAMES if p != "jerk" or limits.j is not None)
+            else:
+                names.append(n)
+    return list(dict.fromkeys(names))
 
 
 def cmd_feed(args: argparse.Namespace) -> int:
@@ -36,23 +52,28 @@ def cmd_feed(args: argparse.Namespace) -> int:
     prog = work.read()
     path = work.compensate(prog)
     limits = work.limits(args.tangential_acc, args.centripetal_acc)
-    planners = list(dict.fromkeys(p for group in (args.planner or [["toppra"]]) for p in group))
+    planners = chosen_planners(args.planner, limits)
     out = _plan(path, limits, planners, args)
     first = out[planners[0]]
     if args.json:
         emit_json({"program": str(work.program), "style": path.style, "units": path.units,
                    "limits": limits.to_json(), "planner": planners[0],
                    **{k: first[k] for k in ("duration", "samples", "max_axis_acc_ratio",
-                                            "max_axis_vel_ratio", "max_feed_ratio")},
+                                            "max_axis_vel_ratio", "max_axis_jerk_ratio",
+                                            "max_feed_ratio")},
                    "planners": out})
     else:
+        jerk = f" j={list(limits.j)}" if limits.j is not None else ""
         print(f"{prog.file}: style {path.style}, tool path {path.length:.4f} {path.units}, "
-              f"limits v={list(limits.v)} a={list(limits.a)}")
-        print("planner   duration_s  vs_first  max_vel_ratio  max_acc_ratio  max_feed_ratio")
+              f"limits v={list(limits.v)} a={list(limits.a)}{jerk}")
+        print("planner   duration_s  vs_first  max_vel_ratio  max_acc_ratio  max_jerk_ratio  "
+              "max_feed_ratio")
         for name, r in out.items():
             vs = r["duration"] / first["duration"] if first["duration"] > 0 else math.nan
+            jr = r["max_axis_jerk_ratio"]
+            jr = f"{jr:14.4f}" if jr is not None else f"{'-':>14s}"
             print(f"{name:8s}  {r['duration']:10.4f}  {vs:8.4f}  "
-                  f"{r['max_axis_vel_ratio']:13.4f}  {r['max_axis_acc_ratio']:13.4f}  "
+                  f"{r['max_axis_vel_ratio']:13.4f}  {r['max_axis_acc_ratio']:13.4f}  {jr}  "
                   f"{r['max_feed_ratio']:14.4f}")
     return EXIT_OK
 
@@ -65,7 +86,8 @@ def _plan(path: ToolPath, limits: AxisLimits, planners: list[str],
     exact = feed_planning.ExactPath(path)
     out: dict = {}
     for name in planners:
-        prof = plan_feed(exact, limits, planner=name, junction_deviation=args.junction_deviation)
+        prof = plan_feed(exact, limits, planner=name, junction_deviation=args.junction_deviation,
+                         ts=args.ts)
         smp = prof.sample(args.dt)
         out[name] = prof.summary(args.dt, smp)
         if args.csv:
@@ -89,7 +111,11 @@ def add_commands(sub, commands: dict) -> None:
     p.add_argument("--centripetal-acc", type=positive_float, metavar="A",
                    help="limit on speed^2 * curvature, units/s^2")
     p.add_argument("--planner", type=planner_names, action="append", metavar="NAME[,NAME]",
-                   help="toppra (default), stop, junction or all; repeat or comma-separate")
+                   help="toppra (default), stop, junction, jerk (needs jerk limits) or all; "
+                        "repeat or comma-separate")
+    p.add_argument("--ts", type=positive_float, default=DEFAULT_TS, metavar="S",
+                   help="interpolation period of the jerk planner, seconds: the acceleration "
+                        "step at a curvature break is at most jmax * ts (default 0.001)")
     p.add_argument("--junction-deviation", type=positive_float, metavar="D",
                    help="allow grbl's corner speed at tangent breaks (default: stop there)")
     p.add_argument("--dt", type=positive_float, default=DEFAULT_DT, metavar="S",

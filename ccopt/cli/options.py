@@ -160,12 +160,16 @@ def add_style_options(p: argparse.ArgumentParser) -> None:
 
 
 def add_limit_options(p: argparse.ArgumentParser, v_default: str = "the case's [limits] v",
-                      a_default: str = "the case's [limits] a") -> None:
-    """The axis limits ``--vmax``/``--amax``; the defaults are named in their help."""
+                      a_default: str = "the case's [limits] a",
+                      j_default: str = "the case's [limits] j, else none") -> None:
+    """The axis limits ``--vmax``/``--amax``/``--jmax``; the defaults are named in their help."""
     p.add_argument("--vmax", type=axis_values, metavar="X,Y[,Z]",
                    help=f"axis velocity limits, units/s (default: {v_default})")
     p.add_argument("--amax", type=axis_values, metavar="X,Y[,Z]",
                    help=f"axis acceleration limits, units/s^2 (default: {a_default})")
+    p.add_argument("--jmax", type=axis_values, metavar="X,Y[,Z]",
+                   help=f"axis jerk limits, units/s^3 (default: {j_default}); the jerk "
+                        "planner and the jerk-limited stop baseline use them")
 
 
 def add_variants_option(p: argparse.ArgumentParser, help: str) -> None:

@@ -12,6 +12,8 @@ One concept per module, after toppra's layout:
 - :mod:`.junction`: corner speeds (stop, or grbl's junction deviation);
 - :mod:`.toppra_planner`: the time-optimal planner (TOPPRA);
 - :mod:`.baselines`: stop-per-block and grbl-style junction planners;
+- :mod:`.jerk_planner` (with :mod:`.jerk_lp`): the jerk-limited time-optimal
+  planner; :mod:`.jerk_profile`: its profiles and the S-curve;
 - :mod:`.bounds`: :func:`feed_limited_time`, the time no planner can beat;
 - :mod:`.profile`: :class:`FeedProfile`, its samples and CSV;
 - :mod:`.planners`: the planner registry; :mod:`.plan`: :func:`plan_feed` itself.
@@ -46,6 +48,8 @@ _LAZY = {
     "plan_toppra": "ccopt.feed.toppra_planner",
     "plan_stop_per_block": "ccopt.feed.baselines",
     "plan_junction": "ccopt.feed.baselines",
+    "plan_jerk": "ccopt.feed.jerk_planner",
+    "JerkProfile": "ccopt.feed.jerk_profile",
     "feed_limited_time": "ccopt.feed.bounds",
 }
 
@@ -58,7 +62,7 @@ def __getattr__(name):
 
 def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: str = "toppra",
               junction_deviation: float | None = None,
-              grid: GridOptions | None = None) -> FeedProfile:
+              grid: GridOptions | None = None, ts: float | None = None) -> FeedProfile:
     """Feed profile of ``toolpath`` under ``limits``.
 
     Parameters
@@ -67,12 +71,16 @@ def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: st
         to share it between planners).
     limits: :class:`AxisLimits` in machine axis order X, Y[, Z].
     planner: ``"toppra"`` (time-optimal, default), ``"stop"`` (stop after
-        every block) or ``"junction"`` (grbl-style look-ahead).
+        every block; an S-curve per block when ``limits.j`` is given),
+        ``"junction"`` (grbl-style look-ahead) or ``"jerk"`` (jerk-limited
+        time-optimal, needs ``limits.j``; :mod:`ccopt.feed.jerk_planner`).
     junction_deviation: ``None`` (default) stops at every tangent
         discontinuity; a length ``delta > 0`` (program units) allows grbl's
         corner speed there instead (an approximation, see
         :mod:`ccopt.feed.junction`). Used by ``toppra`` and ``junction``.
-    grid: gridpoint options for TOPPRA (:class:`GridOptions`).
+    grid: gridpoint options for TOPPRA and the jerk planner (:class:`GridOptions`).
+    ts: the interpolation period (s) of the ``"jerk"`` planner, which bounds the
+        acceleration step at a curvature break by ``jmax * ts`` (default 1 ms).
 
     Raises :class:`FeedError` (a located :class:`~ccopt.errors.ProgramError`)
     when the limits do not fit the path or TOPPRA fails.
@@ -81,7 +89,7 @@ def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: st
     # ccopt.feed.plan loads on the first plan, as the names in _LAZY do.
     plan = importlib.import_module("ccopt.feed.plan").plan_feed
     return plan(toolpath, limits, planner=planner, junction_deviation=junction_deviation,
-                grid=grid)
+                grid=grid, ts=ts)
 
 
 __all__ = [
@@ -92,8 +100,10 @@ __all__ = [
     "FeedProfile",
     "FeedSamples",
     "GridOptions",
+    "JerkProfile",
     "feed_limited_time",
     "plan_feed",
+    "plan_jerk",
     "plan_junction",
     "plan_stop_per_block",
     "plan_toppra",

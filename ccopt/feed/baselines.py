@@ -16,10 +16,20 @@ same limits everywhere along it (a block "budget"):
 - the programmed feed caps ``v`` (rapids: the axis limits only), and the
   optional tangential and centripetal limits cap ``a`` and ``v``.
 
+With jerk limits ``J_i`` (``AxisLimits.j``) the stop baseline runs a
+closed-form 7-phase S-curve per block instead
+(:func:`ccopt.feed.jerk_profile.scurve_rest_to_rest`), with a path jerk
+budget: axis ``i``'s jerk is ``q_i''' s'^3 + 3 q_i'' s' s'' + q_i' s'''``, so
+with ``M_i = max |q_i'''|`` also taken over the segment, the speed cap obeys
+``M_i v^3 <= J_i / 3`` too, the acceleration ``3 N_i v a <= J_i / 3``, and the
+path jerk is ``j = min_i (J_i - M_i v^3 - 3 N_i v a) / T_i`` (on a line
+``min_i J_i / |t_i|``, exact).
+
 Planners:
 
 - :func:`plan_stop_per_block`: stop at the end of every segment (rest to rest
-  trapezoid per block), the simplest controller behaviour;
+  trapezoid per block, or S-curve under jerk limits), the simplest controller
+  behaviour;
 - :func:`plan_junction`: grbl-style look-ahead: junction speeds where
   segments meet (0 at tangent breaks and dwells by default, grbl's junction
   deviation speed when ``junction_deviation`` is given, else the smaller of
@@ -32,6 +42,7 @@ import math
 
 import numpy as np
 
+from ccopt.feed.jerk_profile import CUBIC, JerkProfile, integrate_phases, scurve_rest_to_rest
 from ccopt.feed.junction import boundary_speed_caps
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
@@ -67,6 +78,26 @@ def _budget_samples(path: ExactPath) -> tuple[np.ndarray, np.ndarray]:
         order = np.argsort(k, kind="stable")
         k, s = k[order], s[order]
     return k, s
+
+
+def segment_jerk_budgets(path: ExactPath, limits: AxisLimits):
+    """``(v_cap, a_tangential, j_path)`` of each segment under jerk limits
+    (units/s, units/s^2, units/s^3; see the module docstring)."""
+    jlim = limits.jerk_in_plane(path.toolpath.plane, path.dof)
+    v, a = segment_budgets(path, limits)
+    k, s = _budget_samples(path)
+    starts = np.flatnonzero(np.r_[True, np.diff(k) != 0])
+    T = np.maximum.reduceat(np.abs(path.eval_segments(k, s, 1)), starts, axis=0)
+    N = np.maximum.reduceat(np.abs(path.eval_segments(k, s, 2)), starts, axis=0)
+    M = np.maximum.reduceat(np.abs(path.eval_segments(k, s, 3)), starts, axis=0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        v = np.minimum(v, np.where(M > 0, np.cbrt(jlim / (3.0 * np.where(M > 0, M, 1.0))),
+                                   np.inf).min(axis=1))
+        a = np.minimum(a, np.where(N > 0, jlim / (9.0 * np.where(N > 0, N, 1.0) * v[:, None]),
+                                   np.inf).min(axis=1))
+        rest = jlim - M * (v ** 3)[:, None] - 3.0 * N * (v * a)[:, None]
+        j = np.where(T > 0, rest / np.where(T > 0, T, 1.0), np.inf).min(axis=1)
+    return v, a, j
 
 
 def segment_budgets(path: ExactPath, limits: AxisLimits) -> tuple[np.ndarray, np.ndarray]:
@@ -184,6 +215,8 @@ def plan_stop_per_block(path: ExactPath, limits: AxisLimits, **_ignored) -> Feed
     """Rest-to-rest trapezoid on every segment (see the module docstring)."""
     if not path.segments:
         return FeedProfile.empty(path, limits, "stop")
+    if limits.j is not None:
+        return _plan_scurve_per_block(path, limits)
     v_cap, a_tan = segment_budgets(path, limits)
     knots = _trapezoid_knots(path, v_cap, a_tan, np.zeros(len(path.segments) + 1))
     return FeedProfile.from_knots(path, limits, "stop", *knots)
@@ -199,3 +232,25 @@ def plan_junction(path: ExactPath, limits: AxisLimits, *,
     knots = _trapezoid_knots(path, v_cap, a_tan, vb)
     info = {"junction_deviation": junction_deviation if junction_deviation else 0.0}
     return FeedProfile.from_knots(path, limits, "junction", *knots, info=info)
+
+
+def _plan_scurve_per_block(path: ExactPath, limits: AxisLimits) -> JerkProfile:
+    """Rest-to-rest 7-phase S-curve on every segment (see the module docstring)."""
+    return JerkProfile.from_pieces(path, limits, "stop", scurve_pieces(path, limits),
+                                   {"jerk_limited": 1})
+
+
+def scurve_pieces(path: ExactPath, limits: AxisLimits) -> dict:
+    """The pieces (:meth:`JerkProfile.from_pieces`) of the S-curve per block, dwells left out."""
+    v_cap, a_tan, j_path = segment_jerk_budgets(path, limits)
+    rows, seg = [], []
+    for k in range(len(path.segments)):
+        phases = scurve_rest_to_rest(float(path.lengths[k]), float(v_cap[k]), float(a_tan[k]),
+                                     float(j_path[k]))
+        new = integrate_phases(float(path.offsets[k]), phases, float(path.offsets[k + 1]))
+        rows.extend(new)
+        seg.extend([k] * len(new))
+    cols = np.array(rows, dtype=float).reshape(-1, 8).T
+    pieces = dict(zip(("s0", "h", "v0", "v1", "a0", "a1", "j", "dt"), cols))
+    pieces.update(kind=np.full(len(rows), CUBIC), segment=np.array(seg, dtype=int))
+    return pieces

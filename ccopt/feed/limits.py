@@ -6,6 +6,11 @@ second squared. ``v`` and ``a`` are given in machine axis order ``X, Y[, Z]``
 into the tool path's plane coordinates ``(u, v[, w])``
 (:data:`ccopt.program.model.PLANE_AXES`).
 
+``j`` (optional) gives per-axis jerk limits in program units per second
+cubed, in the same axis order; only the ``jerk`` planner and the jerk-limited
+``stop`` baseline use them (:mod:`ccopt.feed.jerk_planner`), and samples
+report the jerk against them.
+
 Two optional limits act along the path rather than per axis:
 
 - ``tangential_acc``: bound on ``|d(speed)/dt|``, the acceleration along the
@@ -64,8 +69,10 @@ class AxisLimits:
     a: axis acceleration limits ``(X, Y[, Z])``, units/s^2, each ``> 0``.
     tangential_acc: optional bound on the acceleration along the path, units/s^2.
     centripetal_acc: optional bound on ``speed^2 * curvature``, units/s^2.
+    j: optional axis jerk limits ``(X, Y[, Z])``, units/s^3, each ``> 0``.
 
-    ``v`` and ``a`` must have the same length. A third value (Z for G17) is
+    ``v`` and ``a`` must have the same length; ``j`` may give fewer axes (X, Y
+    for a path in G17 that does not move Z). A third value (Z for G17) is
     needed only when the path moves that axis; :meth:`in_plane` says so.
     """
 
@@ -73,6 +80,7 @@ class AxisLimits:
     a: tuple[float, ...]
     tangential_acc: float | None = None
     centripetal_acc: float | None = None
+    j: tuple[float, ...] | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "v", _positive_tuple("v", self.v))
@@ -80,6 +88,8 @@ class AxisLimits:
         if len(self.v) != len(self.a):
             raise ValueError(f"v and a must name the same axes, got {len(self.v)} and "
                              f"{len(self.a)} values")
+        if self.j is not None:
+            object.__setattr__(self, "j", _positive_tuple("j", self.j))
         object.__setattr__(self, "tangential_acc",
                            _optional_positive("tangential_acc", self.tangential_acc))
         object.__setattr__(self, "centripetal_acc",
@@ -100,6 +110,19 @@ class AxisLimits:
                              f"only {', '.join(AXIS_NAMES[:len(self.v)])}")
         return (np.array([self.v[i] for i in idx]), np.array([self.a[i] for i in idx]))
 
+    def jerk_in_plane(self, plane: str, dof: int) -> np.ndarray | None:
+        """Jerk limits as an array in plane coordinates (``None`` when not given);
+        the same axis checks as :meth:`in_plane`."""
+        if self.j is None:
+            return None
+        self.in_plane(plane, dof)
+        idx = PLANE_AXES[plane][:dof]
+        missing = [AXIS_NAMES[i] for i in idx if i >= len(self.j)]
+        if missing:
+            raise ValueError(f"the path uses axis {', '.join(missing)} but the jerk limits give "
+                             f"only {', '.join(AXIS_NAMES[:len(self.j)])}")
+        return np.array([self.j[i] for i in idx])
+
     def axis_names(self, plane: str, dof: int) -> tuple[str, ...]:
         """Machine axis names in plane-coordinate order, e.g. ``("Z", "X")`` for ZX."""
         return tuple(AXIS_NAMES[i] for i in PLANE_AXES[plane][:dof])
@@ -110,4 +133,6 @@ class AxisLimits:
             out["tangential_acc"] = self.tangential_acc
         if self.centripetal_acc is not None:
             out["centripetal_acc"] = self.centripetal_acc
+        if self.j is not None:
+            out["j"] = list(self.j)
         return out

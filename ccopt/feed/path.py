@@ -14,6 +14,11 @@ Positions and derivatives come from the exact primitives
     q(s)   = (geom.point(l),          w0 + dw * sigma / S)
     q'(s)  = (geom.d1(l) * L / S,     dw / S)
     q''(s) = (geom.d2(l) * (L / S)^2, 0)
+    q'''(s) = (d3(l) * (L / S)^3, 0)      (order 3, for the jerk)
+
+``d3`` is exact on lines (0) and arcs (``-d1 / R^2``); on other curves it is
+the central difference of ``d2`` over :data:`D3_STEP` of the in-plane length
+(relative), one-sided within ``[0, L]`` at the ends.
 
 with ``sigma = s - offset`` the 3-D arc length into the segment and
 ``l = sigma * L / S`` the in-plane arc length. Lines and arcs are evaluated by
@@ -45,6 +50,11 @@ from ccopt.tolerances import GAP_EPS, POINT_EPS, TURN_EPS
 from ccopt.toolpath import Role, ToolPath
 
 _LINE, _ARC, _OTHER = 0, 1, 2
+
+#: Step of the central difference of ``d2`` that gives ``q'''`` on curves other
+#: than lines and arcs, relative to the segment's in-plane length: near the cube
+#: root of the double precision, where truncation and rounding errors balance.
+D3_STEP = 1e-5
 
 
 @dataclass(frozen=True)
@@ -184,8 +194,8 @@ class ExactPath(AbstractGeometricPath):
         ``s`` is clipped into each segment, so ``s`` at a boundary evaluates
         the end of segment ``k`` exactly whichever side it lies on.
         """
-        if order not in (0, 1, 2):
-            raise ValueError(f"order must be 0, 1 or 2, not {order!r}")
+        if order not in (0, 1, 2, 3):
+            raise ValueError(f"order must be 0, 1, 2 or 3, not {order!r}")
         k = np.asarray(k, dtype=int)
         s = np.asarray(s, dtype=float)
         sigma = np.clip(s - self.offsets[k], 0.0, self.lengths[k])
@@ -211,8 +221,10 @@ class ExactPath(AbstractGeometricPath):
                     out[rows, :2] = geom.point(lam[rows])
                 elif order == 1:
                     out[rows, :2] = geom.d1(lam[rows]) * r
-                else:
+                elif order == 2:
                     out[rows, :2] = geom.d2(lam[rows]) * (r * r)
+                else:
+                    out[rows, :2] = _d3_by_difference(geom, lam[rows], self._L[kk]) * r ** 3
         if self._dof == 3:
             if order == 0:
                 out[:, 2] = self._w0[k] + self._dw[k] * (sigma / self.lengths[k])
@@ -312,7 +324,7 @@ class ExactPath(AbstractGeometricPath):
             return (1.0 - t) * self._p0[k] + t * self._p1[k]
         if order == 1:
             return self._dir[k] * self._ratio[k][:, None]
-        return np.zeros((k.size, 2))
+        return np.zeros((k.size, 2))   # q'' and q''' of a line
 
     def _arc_kernel(self, k, lam, order):
         # Same formulas as Arc.point/d1/d2 (phi = theta0 + sweep * l / L).
@@ -326,6 +338,11 @@ class ExactPath(AbstractGeometricPath):
             out[:, 1] = self._c[k, 1] + self._R[k] * s
         elif order == 1:
             f = self._sg[k] * self._ratio[k]
+            out[:, 0] = -f * s
+            out[:, 1] = f * c
+        elif order == 3:
+            # d3 = -d1 / R^2 on a circle
+            f = -self._sg[k] * self._ratio[k] ** 3 / self._R[k] ** 2
             out[:, 0] = -f * s
             out[:, 1] = f * c
         else:
@@ -349,3 +366,13 @@ class ExactPath(AbstractGeometricPath):
             out.append(Dwell(float(self.offsets[j]), float(seconds),
                              blk.source.line if blk is not None else None))
         return tuple(out)
+
+
+def _d3_by_difference(geom, lam: np.ndarray, length: float) -> np.ndarray:
+    """``d(d2)/dl`` of a plane curve at in-plane arc lengths ``lam`` by central
+    differences over :data:`D3_STEP` of ``length`` (one-sided at the ends)."""
+    h = D3_STEP * max(length, POINT_EPS)
+    lo = np.clip(lam - h, 0.0, length)
+    hi = np.clip(lam + h, 0.0, length)
+    span = np.where(hi > lo, hi - lo, 1.0)[:, None]
+    return (np.asarray(geom.d2(hi)).reshape(-1, 2) - np.asarray(geom.d2(lo)).reshape(-1, 2)) / span

@@ -16,7 +16,7 @@ from ccopt.toolpath import ToolPath
 
 def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: str = "toppra",
               junction_deviation: float | None = None,
-              grid: GridOptions | None = None) -> FeedProfile:
+              grid: GridOptions | None = None, ts: float | None = None) -> FeedProfile:
     """Feed profile of ``toolpath`` under ``limits`` (see :func:`ccopt.feed.plan_feed`)."""
     func = planner_function(planner)
     if not isinstance(limits, AxisLimits):
@@ -26,11 +26,14 @@ def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: st
     path = toolpath if isinstance(toolpath, ExactPath) else ExactPath(toolpath)
     try:
         limits.in_plane(path.toolpath.plane, path.dof)
+        limits.jerk_in_plane(path.toolpath.plane, path.dof)
     except ValueError as exc:
         raise FeedError(str(exc), path.source_file) from None
     kwargs: dict = {"junction_deviation": junction_deviation}
-    if planner == "toppra":
+    if planner in ("toppra", "jerk"):
         kwargs["grid"] = grid if grid is not None else GridOptions()
+    if planner == "jerk" and ts is not None:
+        kwargs["ts"] = ts
     return func(path, limits, **kwargs)
 
 

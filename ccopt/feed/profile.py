@@ -14,6 +14,16 @@ A dwell is an interval with ``segment = -1``, zero speed and zero length.
 :meth:`FeedProfile.sample` evaluates it at a fixed time step: axis positions,
 velocities ``q' s'`` and accelerations ``q'' s'^2 + q' s''`` from the exact
 path, the tangential feed ``s'`` (``|q'| = 1``), and which limit is active.
+
+Samples also carry the axis jerk ``q''' s'^3 + 3 q'' s' s'' + q' s'''``, the
+value within the piece a sample falls in. A profile of constant-acceleration
+pieces has ``s''' = 0`` inside them and an acceleration step at every knot
+(an unbounded jerk the samples do not show): its jerk figure is that of the
+curvature alone. The ``jerk`` planner and the jerk-limited ``stop`` baseline
+produce :class:`~ccopt.feed.jerk_profile.JerkProfile` objects, whose pieces
+have bounded ``s'''`` and continuous ``s''`` (see there), so their sampled
+jerk is the whole jerk but for the acceleration steps at curvature breaks,
+bounded by ``jmax * ts`` (:mod:`ccopt.feed.jerk_planner`).
 """
 from __future__ import annotations
 
@@ -40,7 +50,9 @@ class FeedSamples:
     ``position``, ``velocity``, ``acceleration`` are ``(n, dof)`` in plane
     coordinates, named by ``axes`` (machine axis letters, e.g. X, Y, Z).
     ``feed`` is the tangential speed (units/s), ``tangential_acc`` its rate of
-    change, ``curvature`` ``|q''|`` (1/units). ``active`` indexes
+    change, ``curvature`` ``|q''|`` (1/units). ``jerk`` ``(n, dof)``: axis
+    jerk (units/s^3); ``j_limit``: the axis jerk limits, ``None`` when the
+    limits give none. ``active`` indexes
     ``limit_names`` (the largest ratio, if at least :data:`ACTIVE_RATIO`;
     ``"none"`` otherwise, ``"dwell"`` during dwells).
     """
@@ -61,10 +73,14 @@ class FeedSamples:
     a_limit: np.ndarray
     tangential_limit: float | None
     centripetal_limit: float | None
+    jerk: np.ndarray | None = None
+    j_limit: np.ndarray | None = None
     limit_names: tuple[str, ...] = field(init=False)
     active: np.ndarray = field(init=False)
 
     def __post_init__(self):
+        if self.jerk is None:
+            object.__setattr__(self, "jerk", np.zeros_like(self.acceleration))
         names, cols = self._ratio_columns()
         ratios = np.column_stack(cols) if cols else np.zeros((self.t.size, 0))
         best = np.argmax(ratios, axis=1)
@@ -86,6 +102,10 @@ class FeedSamples:
         for i, ax in enumerate(self.axes):
             names.append(f"acceleration {ax}")
             cols.append(self.axis_acceleration_ratio[:, i])
+        if self.j_limit is not None:
+            for i, ax in enumerate(self.axes):
+                names.append(f"jerk {ax}")
+                cols.append(self.axis_jerk_ratio[:, i])
         names.append("feed")
         cols.append(self.feed_ratio)
         if self.tangential_limit is not None:
@@ -107,6 +127,13 @@ class FeedSamples:
         return np.abs(self.acceleration) / self.a_limit
 
     @property
+    def axis_jerk_ratio(self) -> np.ndarray:
+        """``|j_i| / jmax_i``, shape ``(n, dof)``; zeros when no jerk limit is given."""
+        if self.j_limit is None:
+            return np.zeros_like(self.jerk)
+        return np.abs(self.jerk) / self.j_limit
+
+    @property
     def feed_ratio(self) -> np.ndarray:
         """Tangential speed over the programmed feed (0 on rapids and dwells)."""
         return np.where(np.isfinite(self.feed_cap), self.feed / np.where(
@@ -117,12 +144,15 @@ class FeedSamples:
         return [self.limit_names[i] for i in self.active]
 
     def to_csv_text(self) -> str:
-        """CSV: ``t, s, block, <axes>, v<axes>, a<axes>, feed, tangential_acc, active``."""
+        """CSV: ``t, s, block, <axes>, v<axes>, a<axes>[, j<axes>], feed, tangential_acc,
+        active``; the jerk columns when the limits give jerk limits."""
         ax = [a.lower() for a in self.axes]
+        jerk_cols = [f"j{a}" for a in ax] if self.j_limit is not None else []
         header = (["t", "s", "block"] + ax + [f"v{a}" for a in ax] + [f"a{a}" for a in ax]
-                  + ["feed", "tangential_acc", "active"])
+                  + jerk_cols + ["feed", "tangential_acc", "active"])
+        jerk = [self.jerk] if jerk_cols else []
         num = np.column_stack([self.t, self.s, self.position, self.velocity, self.acceleration,
-                               self.feed, self.tangential_acc])
+                               *jerk, self.feed, self.tangential_acc])
         buf = io.StringIO()
         buf.write(",".join(header) + "\n")
         body = np.char.mod("%.10g", num)
@@ -265,6 +295,20 @@ class FeedProfile:
             times = np.append(times, T)
         return self.at(times)
 
+    def motion(self, times: np.ndarray):
+        """``(s, sd, sdd, sddd, segment)`` at ``times`` (inside ``[0, duration]``):
+        path position, speed, acceleration, jerk and the piece's segment (-1 in
+        dwells). Here constant acceleration per piece (``sddd = 0``); profiles
+        with other pieces override this."""
+        M = self.sdd.size
+        idx = np.clip(np.searchsorted(self.t, times, side="right") - 1, 0, M - 1)
+        tau = np.clip(times - self.t[idx], 0.0, self.t[idx + 1] - self.t[idx])
+        u = self.sdd[idx]
+        v = np.maximum(self.sd[idx] + u * tau, 0.0)
+        s = np.clip(self.s[idx] + self.sd[idx] * tau + 0.5 * u * tau * tau,
+                    self.s[idx], self.s[idx + 1])
+        return s, v, u, np.zeros_like(u), self.segment[idx]
+
     def at(self, times) -> FeedSamples:
         """The profile at the given times (s), clipped to ``[0, duration]``."""
         times = np.clip(np.atleast_1d(np.asarray(times, dtype=float)), 0.0, self.duration)
@@ -273,6 +317,7 @@ class FeedProfile:
         dof = path.dof
         axes = self.limits.axis_names(path.toolpath.plane, dof)
         vlim, alim = self.limits.in_plane(path.toolpath.plane, dof)
+        jlim = self.limits.jerk_in_plane(path.toolpath.plane, dof)
         n = times.size
         if M == 0 or not path.segments:
             # no motion: the path stands (a dwell alone still takes its time)
@@ -282,26 +327,23 @@ class FeedProfile:
                 pos[:] = path.eval_segments(np.zeros(1, int), np.zeros(1), 0)[0]
             return FeedSamples(times, z, np.full(n, -1), np.full(n, -1), pos, np.zeros((n, dof)),
                                np.zeros((n, dof)), z, z, z, np.full(n, np.inf), axes, vlim, alim,
-                               self.limits.tangential_acc, self.limits.centripetal_acc)
-        idx = np.clip(np.searchsorted(self.t, times, side="right") - 1, 0, M - 1)
-        tau = np.clip(times - self.t[idx], 0.0, self.t[idx + 1] - self.t[idx])
-        u = self.sdd[idx]
-        v = np.maximum(self.sd[idx] + u * tau, 0.0)
-        s = np.clip(self.s[idx] + self.sd[idx] * tau + 0.5 * u * tau * tau,
-                    self.s[idx], self.s[idx + 1])
-        seg = self.segment[idx]
+                               self.limits.tangential_acc, self.limits.centripetal_acc,
+                               np.zeros((n, dof)), jlim)
+        s, v, u, w, seg = self.motion(times)
         seg_eval = np.where(seg >= 0, seg, path.locate(s))
         q = path.eval_segments(seg_eval, s, 0)
         q1 = path.eval_segments(seg_eval, s, 1)
         q2 = path.eval_segments(seg_eval, s, 2)
+        q3 = path.eval_segments(seg_eval, s, 3)
         vel = q1 * v[:, None]
         acc = q2 * (v * v)[:, None] + q1 * u[:, None]
+        jerk = q3 * (v ** 3)[:, None] + q2 * (3.0 * v * u)[:, None] + q1 * w[:, None]
         line = np.array([b.source.line if b is not None else -1
                          for b in (sg.block for sg in path.segments)], dtype=int)
         feed_cap = np.where(seg >= 0, path.feeds[seg_eval], np.inf)
         return FeedSamples(times, s, seg, np.where(seg >= 0, line[seg_eval], -1), q, vel, acc, v,
                            u, np.linalg.norm(q2, axis=1), feed_cap, axes, vlim, alim,
-                           self.limits.tangential_acc, self.limits.centripetal_acc)
+                           self.limits.tangential_acc, self.limits.centripetal_acc, jerk, jlim)
 
     # -- reports -------------------------------------------------------------
 
@@ -318,6 +360,10 @@ class FeedProfile:
             "dt": dt,
             "max_axis_vel_ratio": float(smp.axis_velocity_ratio.max(initial=0.0)),
             "max_axis_acc_ratio": float(smp.axis_acceleration_ratio.max(initial=0.0)),
+            # None when the limits give no jerk limit; the jerk itself always
+            "max_axis_jerk_ratio": (float(smp.axis_jerk_ratio.max(initial=0.0))
+                                    if smp.j_limit is not None else None),
+            "max_axis_jerk": float(np.abs(smp.jerk).max(initial=0.0)),
             "max_feed_ratio": float(smp.feed_ratio.max(initial=0.0)),
             "axes": list(smp.axes),
         }

@@ -1,0 +1,332 @@
+"""Jerk-limited time-optimal feed (planner ``jerk``): a pseudo-jerk LP in windows.
+
+The problem. Along the exact path ``q(s)`` (arc length ``s``, ``|q'| = 1``)
+find ``s(t)`` from rest to rest, stopping at tangent breaks and dwells, of
+least duration, under the axis limits (plane order, axis ``i``)::
+
+    |q_i' s'|                                    <= V_i      velocity
+    |q_i' s'' + q_i'' s'^2|                      <= A_i      acceleration
+    |q_i''' s'^3 + 3 q_i'' s' s'' + q_i' s'''|   <= J_i      jerk
+    s' <= F (programmed feed), |s''| <= a_t, |q''| s'^2 <= a_n  (optional path limits)
+
+Formulation: squared speed ``b(s) = s'^2`` and path acceleration
+``alpha(s) = s'' = b'/2`` as functions of ``s`` on gridpoints ``s_k``. The
+axis acceleration is linear in ``(b, alpha)``; the jerk is
+``s' * (q''' b + 3 q'' alpha + q' alpha')`` (``s''' = s' alpha'``), linear but
+for the factor ``s' = sqrt(b)``. That factor is replaced by ``sqrt(bhat)``, a
+bound on the speed (the *pseudo-jerk* linearisation): first ``bhat`` is the
+TOPPRA solution (acceleration-limited, so an upper bound of every feasible
+speed), then ``bhat`` is updated to the geometric mean of itself and the LP's
+new ``b`` until the two agree within :data:`BHAT_TOL` (relative, on ``b``), at
+most :data:`MAX_ROUNDS` rounds; a last round imposes ``b <= bhat`` so that
+``sqrt(b) <= sqrt(bhat)`` and the jerk bound holds exactly at the
+gridpoints, and that round's solution is the profile. The objective is the
+duration ``sum h / sqrt(b)`` linearised at ``bhat``: maximise
+``sum h b / bhat^(3/2)``. Each round is one LP solved by HiGHS's simplex
+(``highspy``, ranged rows).
+
+Between gridpoints the model is exact, so the profile the samples show is the
+one the LP constrained:
+
+- an interval whose ends both move has ``alpha`` linear in ``s``: ``b`` is
+  quadratic, ``b_k+1 - b_k = h (alpha_k + alpha_k+1)`` (a linear equality),
+  the path jerk is ``s' (alpha_k+1 - alpha_k) / h``, and the axis acceleration
+  and jerk are imposed at both ends with the interval's own one-sided
+  derivatives;
+- an interval that starts at rest is a constant-jerk piece in time
+  (``s = sigma t^3 / 6``, ``alpha`` grows like ``s^(1/3)``, which no
+  polynomial in ``s`` does): with ``v1`` the speed at its other end,
+  ``alpha_1 = 2 b_1 / (3 h)`` (linear), duration ``3 h / v1`` and jerk
+  ``sigma = v1 * 2 b_1 / (9 h^2)``, imposed as ``sqrt(bhat_1) * 2 b_1 / (9 h^2)``;
+  an interval that ends at rest is its mirror image.
+
+What is checked only at gridpoints, and its margin: the axis acceleration on
+curved segments (as TOPPRA's, :mod:`ccopt.feed.grid`, whose gridpoints are
+used) and the speed and jerk where ``alpha`` changes sign inside an interval
+(``b`` then peaks inside, above its ends by at most ``alpha_k^2 h /
+|alpha_k+1 - alpha_k|``: second order in the grid spacing); the tests sample
+at 10 kHz and find all limits within 0.5 %.
+
+Where the loss is: inside an interval the path jerk grows with ``s'``, so a
+jerk-limited stretch uses its limit only at the faster end. Near each stop the
+grid is refined geometrically (:data:`STOP_RATIO`) over the first jerk phase,
+where ``s'`` changes fastest relative to itself.
+
+Curvature breaks (line into arc, arc into arc, tangent-continuous): the axis
+acceleration jumps by ``(q''_right - q''_left) b`` there, an infinite jerk for
+any speed above 0. Controllers that interpolate the path every ``Ts`` seconds
+see that jump spread over one period, so it is bounded by
+``|Delta q_i''| b <= J_i Ts`` (``ts``, default :data:`DEFAULT_TS` = 1 ms):
+a speed cap at the break. The samples' jerk is the jerk inside pieces; these
+steps are bounded by this rule instead.
+
+Windows: the path is cut at its stops (exactly: the pieces between stops are
+independent), and the pieces are gathered into windows of about
+:data:`BATCH_POINTS` gridpoints, each solved as its own LP, so the cost grows
+linearly with the length of the program. A stretch between two stops with
+more gridpoints than that is planned in overlapping windows: a window plans
+:data:`WINDOW_OVERLAP` of its size further than it keeps, and the next starts
+from the kept end's ``(b, alpha)``; ``b`` stays under TOPPRA's speed there, so
+the braking it still needs is within reach.
+
+Last, on every stretch between two stops the profile is the faster of the
+LP's and the jerk-limited stop baseline's (an S-curve per block: feasible,
+and exactly optimal on a lone straight block, where the LP loses a few 1e-3
+to its grid), so the planner is never slower than that baseline.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ccopt.feed.baselines import scurve_pieces
+from ccopt.feed.errors import FeedError
+from ccopt.feed.grid import GridOptions, gridpoints
+from ccopt.feed.jerk_lp import FROM_REST, SLINEAR, TO_REST, JerkGrid, piece_times, solve_window
+from ccopt.feed.jerk_profile import CUBIC, JerkProfile, slinear_time
+from ccopt.feed.jerk_profile import SLINEAR as PIECE_SLINEAR
+from ccopt.feed.limits import AxisLimits
+from ccopt.feed.path import ExactPath
+from ccopt.feed.planners import DEFAULT_TS
+from ccopt.feed.toppra_planner import plan_toppra
+
+#: Relative agreement of ``b`` and ``bhat`` that ends the pseudo-jerk rounds.
+BHAT_TOL = 2e-3
+MAX_ROUNDS = 12
+#: Largest fall of ``bhat`` in one round (a factor), see :func:`_solve_rounds`.
+BHAT_FALL = 0.1
+#: Trust region of a round: b may rise at most this factor above bhat.
+BHAT_RISE = 1.5
+#: Gridpoints per LP window of stop-to-stop stretches gathered together; of a
+#: stretch with no stop; and how much further such a window plans than it keeps.
+BATCH_POINTS = 800
+WINDOW_POINTS = 3000
+WINDOW_OVERLAP = 0.5
+#: Ratio of consecutive interval lengths in the geometric refinement at stops.
+STOP_RATIO = 1.06
+#: First interval at a stop, as a share of the first jerk phase's length.
+STOP_FIRST = 0.02
+
+
+def _stop_refinement(path: ExactPath, stops: np.ndarray, a: np.ndarray, j: np.ndarray,
+                     base: np.ndarray) -> np.ndarray:
+    """Extra gridpoints on both sides of every stop, at distances growing
+    geometrically (ratio :data:`STOP_RATIO`) from :data:`STOP_FIRST` of the
+    first jerk phase's length ``A^3 / (6 J^2)`` (largest ``A``, smallest ``J``
+    of the axes, so it is long enough on every axis) to twice that length, up
+    to half way to the neighbouring stops."""
+    reach = 2.0 * float(a.max()) ** 3 / (6.0 * float(j.min()) ** 2)
+    first = STOP_FIRST * reach / 2.0
+    m = max(1, math.ceil(math.log(reach / first) / math.log(STOP_RATIO)))
+    offs = first * STOP_RATIO ** np.arange(m + 1)     # so s_k+1 / s_k = STOP_RATIO
+    offs = offs[offs < reach]
+    pts = []
+    for i, s in enumerate(stops):
+        # up to half way to the neighbouring stops
+        left = 0.5 * (s + stops[i - 1]) if i > 0 else s
+        right = 0.5 * (s + stops[i + 1]) if i + 1 < stops.size else s
+        pts.append(s - offs[s - offs > left])
+        pts.append(s + offs[s + offs < right])
+    extra = np.concatenate(pts) if pts else np.zeros(0)
+    return np.union1d(base, extra)
+
+
+def build_grid(path: ExactPath, limits: AxisLimits, ts: float,
+               grid: GridOptions | None = None) -> JerkGrid:
+    """The gridpoints and their data (see :class:`~ccopt.feed.jerk_lp.JerkGrid`)."""
+    plane = path.toolpath.plane
+    v, a = limits.in_plane(plane, path.dof)
+    j = limits.jerk_in_plane(plane, path.dof)
+    base = gridpoints(path, v, a, grid or GridOptions())
+    stop_s = np.concatenate([[0.0], path.stop_positions, [path.length]])
+    s = _stop_refinement(path, stop_s, a, j, base)
+    q = [np.stack([path.eval_sided(s, o, "left"), path.eval_sided(s, o, "right")])
+         for o in (1, 2, 3)]
+    stop = np.isin(s, stop_s)
+    bmax = _speed_caps(path, limits, s, q, v, j, ts)
+    kind = np.full(s.size - 1, SLINEAR)
+    kind[stop[:-1]] = FROM_REST
+    kind[stop[1:]] = TO_REST
+    if np.any(stop[:-1] & stop[1:]):
+        i = int(np.flatnonzero(stop[:-1] & stop[1:])[0])
+        raise FeedError(f"two stops one grid interval apart at s = {s[i]:.6g}",
+                        path.source_file, path.block_line(s[i]))
+    a_t = limits.tangential_acc if limits.tangential_acc is not None else np.inf
+    return JerkGrid(s, q[0], q[1], q[2], kind, stop, bmax, a_t, a, j)
+
+
+def _speed_caps(path, limits, s, q, v, j, ts) -> np.ndarray:
+    """Box bound on ``b`` at each gridpoint: axis velocities and feed on both
+    sides, the centripetal limit, and ``|Delta q''| b <= J Ts`` at curvature breaks."""
+    q1, q2 = q[0], q[1]
+    with np.errstate(divide="ignore"):
+        vb = np.where(np.abs(q1) > 0, (v / np.where(np.abs(q1) > 0, np.abs(q1), 1.0)) ** 2,
+                      np.inf).min(axis=(0, 2))
+        feed = np.minimum(path.feeds[path.locate(s, "left")], path.feeds[path.locate(s, "right")])
+        cap = np.minimum(vb, feed ** 2)
+        jump = np.abs(q2[1] - q2[0])
+        cap = np.minimum(cap, np.where(jump > 0, j * ts / np.where(jump > 0, jump, 1.0),
+                                       np.inf).min(axis=1))
+        if limits.centripetal_acc is not None:
+            kap = np.linalg.norm(q2, axis=2).max(axis=0)
+            cap = np.minimum(cap, np.where(kap > 0, limits.centripetal_acc
+                                           / np.where(kap > 0, kap, 1.0), np.inf))
+    return cap
+
+
+def _windows(g: JerkGrid) -> list[tuple[int, int, int]]:
+    """``(i0, i1, keep)`` windows: stop-to-stop stretches gathered up to
+    :data:`BATCH_POINTS` gridpoints (HiGHS's simplex costs more than linearly
+    in the size of an LP); a stretch of up to :data:`WINDOW_POINTS` alone; a
+    longer one in overlapping windows that plan to ``i1`` and keep ``i0..keep``."""
+    stops = np.flatnonzero(g.stop)
+    out: list[tuple[int, int, int]] = []
+    i0 = int(stops[0])
+    for a, b in zip(stops[:-1], stops[1:]):
+        a, b = int(a), int(b)
+        if b - i0 <= BATCH_POINTS:
+            continue
+        if a > i0:
+            out.append((i0, a, a))
+            i0 = a
+        while b - i0 > WINDOW_POINTS:
+            end = min(b, i0 + int(WINDOW_POINTS * (1 + WINDOW_OVERLAP)))
+            keep = i0 + WINDOW_POINTS if end < b else b
+            out.append((i0, end, keep))
+            i0 = keep
+        if b - i0 > BATCH_POINTS:
+            out.append((i0, b, b))
+            i0 = b
+    if int(stops[-1]) > i0:
+        out.append((i0, int(stops[-1]), int(stops[-1])))
+    return out
+
+
+def _solve_rounds(g: JerkGrid, i0: int, i1: int, bhat: np.ndarray, cap: np.ndarray,
+                  start, scale: float):
+    """The pseudo-jerk rounds on one window (see the module docstring):
+    ``(b, alpha, rounds)`` scaled, or None when an LP is infeasible."""
+    rounds = 0
+    for rounds in range(1, MAX_ROUNDS + 1):
+        out = solve_window(g, i0, i1, bhat, np.minimum(cap, BHAT_RISE * bhat), start, scale)
+        if out is None:
+            return None
+        b = out[0]
+        big = b > BHAT_TOL * max(float(b.max(initial=0.0)), np.finfo(float).tiny)
+        rel = np.abs(b[big] - bhat[big]) / np.maximum(bhat[big], b[big])
+        # geometric mean, and never below a tenth of the last bound: a point the
+        # LP left at 0 would otherwise pin the next rounds' cap there
+        bhat = np.sqrt(np.maximum(b, BHAT_FALL * bhat) * bhat)
+        if rel.max(initial=0.0) < BHAT_TOL:
+            break
+    out = solve_window(g, i0, i1, bhat, np.minimum(cap, bhat), start, scale)
+    if out is None:
+        return None
+    return out[0], out[1], rounds + 1
+
+
+def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
+              grid: GridOptions | None = None, junction_deviation: float | None = None,
+              **_ignored) -> JerkProfile:
+    """Jerk-limited time-optimal profile of ``path`` (see the module docstring).
+
+    ``limits.j`` is required. ``junction_deviation`` is not used: the planner
+    stops at every tangent break. A window from rest to rest whose LP HiGHS
+    does not solve, or whose solution stalls (speed 0 away from a stop), takes
+    the S-curve per block (``info["lp_failed_windows"]``);
+    raises :class:`FeedError` when any other window's LP fails.
+    """
+    if limits.j is None:
+        raise FeedError("the jerk planner needs jerk limits (--jmax, or j in the case's "
+                        "[limits])", path.source_file)
+    if not ts > 0:
+        raise ValueError(f"ts must be > 0, got {ts!r}")
+    if not path.segments:
+        return JerkProfile.empty(path, limits, "jerk")
+    g = build_grid(path, limits, ts, grid)
+    no_jerk = AxisLimits(limits.v, limits.a, limits.tangential_acc, limits.centripetal_acc)
+    upper = plan_toppra(path, no_jerk, grid=grid).speed_at(g.s) ** 2
+    upper = np.where(g.stop, 0.0, np.minimum(upper, g.bmax))
+    scale = float(np.max(upper[np.isfinite(upper)], initial=1.0)) or 1.0
+    cap = upper / scale
+    b = np.zeros(g.s.size)
+    alpha = np.zeros(g.s.size)
+    total_rounds = failed = 0
+    windows = _windows(g)
+    for i0, i1, keep in windows:
+        start = None if g.stop[i0] else (b[i0] / scale, alpha[i0] / scale)
+        out = _solve_rounds(g, i0, i1, cap[i0:i1 + 1].copy(), cap[i0:i1 + 1], start, scale)
+        rest_to_rest = start is None and bool(g.stop[i1])
+        if out is not None and rest_to_rest and np.any(out[0][~g.stop[i0:i1 + 1]] <= 0.0):
+            out = None        # a stall (speed 0 away from a stop): as a failed LP
+        if out is None and rest_to_rest:
+            # rest to rest: the S-curve per block stands in (see _best_per_stretch)
+            b[i0 + 1:i1] = np.nan
+            failed += 1
+            continue
+        if out is None:
+            raise FeedError(f"jerk planner: the LP of the window from s = {g.s[i0]:.6g} to "
+                            f"{g.s[i1]:.6g} is infeasible", path.source_file,
+                            path.block_line(g.s[i0]))
+        bw, aw, rounds = out
+        total_rounds += rounds
+        n = keep - i0 + 1
+        b[i0:keep + 1] = bw[:n] * scale
+        alpha[i0:keep + 1] = aw[:n] * scale
+    info = {"gridpoints": int(g.s.size), "windows": len(windows), "lp_rounds": total_rounds,
+            "ts": ts, "lp_failed_windows": failed}
+    return _profile(path, limits, g, b, alpha, info)
+
+
+def _profile(path, limits, g: JerkGrid, b, alpha, info) -> JerkProfile:
+    """The :class:`JerkProfile` of the LP's ``(b, alpha)`` at the gridpoints."""
+    b = np.where(g.stop, 0.0, b)
+    moving = ~g.stop
+    if np.any(b[moving] <= 0.0):
+        i = int(np.flatnonzero(moving & (b <= 0.0))[0])
+        raise FeedError(f"jerk planner stalled: zero speed at s = {g.s[i]:.6g} away from a stop",
+                        path.source_file, path.block_line(g.s[i]))
+    alpha = np.where(g.stop, 0.0, alpha)
+    dt = piece_times(g.s, g.kind, b, alpha, slinear_time)
+    v = np.sqrt(b)
+    h = np.diff(g.s)
+    rest = g.kind != SLINEAR
+    # a rest piece's constant jerk: sigma = v_m * 2 b_m / (9 h^2) at its moving end m
+    vm = np.where(g.kind == FROM_REST, v[1:], v[:-1])
+    sigma = np.where(rest, 2.0 * b_moving(b, g.kind) * vm / (9.0 * h * h), 0.0)
+    a0 = alpha[:-1].copy()
+    a0[g.kind == TO_REST] = -2.0 * b[:-1][g.kind == TO_REST] / (3.0 * h[g.kind == TO_REST])
+    pieces = {"kind": np.where(rest, CUBIC, PIECE_SLINEAR), "s0": g.s[:-1], "h": h,
+              "v0": v[:-1], "v1": v[1:], "a0": a0, "a1": alpha[1:], "j": sigma, "dt": dt,
+              "segment": path.locate(0.5 * (g.s[:-1] + g.s[1:]))}
+    pieces, info["scurve_stretches"] = _best_per_stretch(pieces, scurve_pieces(path, limits),
+                                                         g.s[g.stop])
+    return JerkProfile.from_pieces(path, limits, "jerk", pieces, info)
+
+
+def _best_per_stretch(mine: dict, scurve: dict, stops: np.ndarray) -> tuple[dict, int]:
+    """Between every two consecutive stops, the faster of the LP's pieces and
+    the S-curve per block's (both feasible, rest to rest there): the S-curve is
+    exactly optimal on a stretch of one straight block, where the LP loses a
+    few 1e-3 to its grid. Returns the pieces and how many stretches took the S-curve."""
+    def stretch(p):
+        return np.clip(np.searchsorted(stops, p["s0"], side="right") - 1, 0, stops.size - 2)
+
+    k_mine, k_sc = stretch(mine), stretch(scurve)
+    n = stops.size - 1
+    t_mine = np.bincount(k_mine, weights=mine["dt"], minlength=n)
+    t_sc = np.bincount(k_sc, weights=scurve["dt"], minlength=n)
+    use_sc = ~(t_mine <= t_sc)        # also where the LP failed (NaN)
+    keep_mine, keep_sc = ~use_sc[k_mine], use_sc[k_sc]
+    out = {}
+    for key in mine:
+        out[key] = np.concatenate([np.asarray(mine[key])[keep_mine],
+                                   np.asarray(scurve[key])[keep_sc]])
+    order = np.argsort(out["s0"], kind="stable")
+    return {key: val[order] for key, val in out.items()}, int(use_sc.sum())
+
+
+def b_moving(b: np.ndarray, kind: np.ndarray) -> np.ndarray:
+    """``b`` at the moving end of each interval (the far end of a rest piece)."""
+    return np.where(kind == FROM_REST, b[1:], b[:-1])
