@@ -282,10 +282,10 @@ class Overrides:
     side: str | None = None
     vmax: tuple[float, ...] | None = None
     amax: tuple[float, ...] | None = None
+    jmax: tuple[float, ...] | None = None
     delta: float | None = None
     reading: ReadOptions = ReadOptions()
     style_options: dict = field(default_factory=dict)
-    jmax: tuple[float, ...] | None = None
 
 
 @dataclass(frozen=True)
@@ -305,10 +305,10 @@ class Job:
     side: str | None
     vmax: tuple[float, ...] | None
     amax: tuple[float, ...] | None
+    jmax: tuple[float, ...] | None = None
     delta: float | None = None
     reading: ReadOptions = ReadOptions()
     style_options: dict = field(default_factory=dict)
-    jmax: tuple[float, ...] | None = None
 
     @property
     def title(self) -> str:
