@@ -102,14 +102,22 @@ def _unlink_quietly(path: Path | None) -> None:
 
 
 def write_bytes_atomic(path: str | os.PathLike, data: bytes) -> None:
-    """Write ``data`` to ``path`` atomically (flushed to disk before the
-    rename); ProgramError naming the file on failure."""
-    def fill(tmp) -> None:
-        with open(tmp, "wb") as fh:
+    """Write ``data`` to ``path`` atomically; ProgramError naming the file on failure."""
+    path = Path(path)
+    tmp_name = None
+    try:
+        remove_stale_temps(path)
+        fd, tmp_name = _create_temp(path)
+        with os.fdopen(fd, "wb") as fh:
             fh.write(data)
             fh.flush()
             os.fsync(fh.fileno())
-    write_with_atomic(path, fill)
+        os.replace(tmp_name, path)
+        tmp_name = None
+    except OSError as exc:
+        raise ProgramError(f"cannot write: {exc.strerror or exc}", str(path)) from None
+    finally:
+        _unlink_quietly(tmp_name)
 
 
 def write_text_atomic(path: str | os.PathLike, text: str) -> None:
