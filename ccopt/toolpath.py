@@ -17,6 +17,7 @@ import math
 from dataclasses import dataclass, field
 from typing import Any, Iterator
 
+from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral, translated
 from ccopt.program.model import Block, Motion, Program
 from ccopt.tolerances import POINT_EPS, SPIRAL_RADIUS_REL_TOL
@@ -166,6 +167,36 @@ class ToolPath:
             "units": self.units,
             "segments": [s.to_json() for s in self.segments],
         }
+
+
+def effective_side_radius(block: Block, radius: float | None,
+                          side: int | None) -> tuple[int, float]:
+    """Side and radius in force for ``block`` after the overrides
+    (:meth:`Block.compensation_in_force`; the same for every style).
+
+    Raises :class:`~ccopt.errors.CompensationError` (located at the block)
+    when compensation is on with no radius from the program or ``radius``,
+    or with a negative one: whether that is an error depends on the
+    overrides, so compensation judges it, not the reader.
+    """
+    k, r = block.compensation_in_force(radius, side)
+    if r is None:
+        tool = block.modal.tool
+        if tool is not None:
+            # G41/G42 D<n> names a tool: its diameter is in a tool table
+            raise _located(block, f"no cutter radius: compensation is on with tool {tool}, whose "
+                              f"diameter is not known: give a LinuxCNC tool table "
+                              f"(--tool-table FILE) with tool {tool}, or pass --radius")
+        raise _located(block, "cutter compensation is on but no cutter radius is set: program "
+                          "CCR{r} (PMAC) or a tool D word (G-code), or pass --radius")
+    if r < 0:
+        raise _located(block, f"cutter radius {r:g} is negative")
+    return k, r
+
+
+def _located(block: Block, message: str) -> CompensationError:
+    s = block.source
+    return CompensationError(message, s.file, s.line, s.col)
 
 
 def block_geometry(block: Block, start_uv=None, end_uv=None):

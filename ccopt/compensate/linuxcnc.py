@@ -61,7 +61,6 @@ import numpy as np
 from ccopt.compensate import decisions
 from ccopt.compensate.corners import offset_dir, perp
 from ccopt.compensate.lathe import controlled_point_path
-from ccopt.compensate.scan import effective_side_radius
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
@@ -72,7 +71,7 @@ from ccopt.tolerances import (
     LINUXCNC_TOLERANCE_EQUAL,
     SPIRAL_RADIUS_REL_TOL,
 )
-from ccopt.toolpath import PathSegment, Role, ToolPath
+from ccopt.toolpath import PathSegment, Role, ToolPath, effective_side_radius
 
 
 #: The style's "straight on" turn tolerance (radians), exported under its old

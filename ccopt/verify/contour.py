@@ -19,13 +19,12 @@ from operator import attrgetter
 
 import numpy as np
 
-from ccopt.compensate.scan import effective_side_radius as compensation_side_radius
 from ccopt.geometry import KIND_ARC, KIND_LINE, KIND_SPIRAL, SegmentArray
 from ccopt.geometry.angles import TWO_PI
 from ccopt.geometry.arclength import END_POINT_REL_TOL
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
 from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL, VERIFY_EPS
-from ccopt.toolpath import block_geometry
+from ccopt.toolpath import block_geometry, effective_side_radius
 from ccopt.verify import decisions
 from ccopt.verify.segments import Packed, arc_bbox, pack
 from ccopt.verify.surface import WHY_LEAD_IN, WHY_LEAD_OUT, WHY_SIDE_CHANGE, surface_of
@@ -119,12 +118,6 @@ class Contour:
             for q in miss:
                 out[q] = by_val.get(blocks[q], -1)
         return out
-
-def effective_side_radius(block: Block, radius: float | None, side: int | None) -> tuple[int, float]:
-    """Side and radius in force for ``block`` after ``radius=``/``side=`` overrides:
-    the rule compensation applies (``(0, 0.0)`` when off), and its located
-    CompensationError when there is no radius or a negative one."""
-    return compensation_side_radius(block, radius, side)
 
 
 def element_geometry(blocks: list[Block], plane: str, st=None, en=None, ce=None, is_arc=None,
