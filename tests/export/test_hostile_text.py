@@ -11,7 +11,6 @@ appear anywhere outside comments.
 from __future__ import annotations
 
 import csv
-import io
 import json
 import re
 import shutil
@@ -176,7 +175,7 @@ def test_hostile_case_through_ccopt_run(cases, tmp_path, capsys):
 
 
 def test_sweep_csv_cells_are_never_formulas(tmp_path):
-    pd = pytest.importorskip("pandas")
+    import pandas as pd  # a dependency of ccopt (sweeps): missing is a failure, not a skip
     rows = [{"task_id": "a", "program": "=cmd|' /C calc'!A0", "style": "+pmac",
              "error": "-1+1\nI130=0", "cycle_time": -1.5, "ok": False},
             {"task_id": "b", "program": "@SUM(A1)", "style": "\tpmac", "error": None,
@@ -195,7 +194,7 @@ def test_sweep_csv_cells_are_never_formulas(tmp_path):
 
 
 def test_sweep_summary_escapes_the_spec_title_and_errors(tmp_path):
-    pd = pytest.importorskip("pandas")
+    import pandas as pd  # a dependency of ccopt (sweeps): missing is a failure, not a skip
     table = pd.DataFrame.from_records([
         {"task_id": "a", "program": "$\\frac{<b>", "style": "pmac", "error": "<script>x</script>",
          "cycle_time": None, "ok": None},

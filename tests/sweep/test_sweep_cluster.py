@@ -24,7 +24,7 @@ SPEC = {"title": "acceptance", "programs": PROGRAMS, "planners": ["toppra", "jun
 
 @pytest.fixture(scope="module")
 def client():
-    distributed = pytest.importorskip("distributed")
+    import distributed  # a dependency of ccopt (sweeps): missing is a failure, not a skip
     cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                        dashboard_address=None)
     cl = distributed.Client(cluster)
