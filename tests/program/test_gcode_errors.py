@@ -21,7 +21,7 @@ def err(text, **kw) -> ProgramError:
 CASES = [
     # words and numbers
     ("G1 X1 E5 F60", 1, 7, "unknown word E"),
-    ("G1 X1 F60\nG7 X2", 2, 1, "unknown G-code G7"),
+    ("G1 X1 F60\nG6 X2", 2, 1, "unknown G-code G6"),  # G7 is read since issue 15 (lathe diameter mode)
     ("G59.4", 1, 1, "G59.4"),  # G55 is read since issue 15 (coordinate systems)
     ("G1 X1 F60\nG1.5 X2", 2, 1, "unknown G-code G1.5"),
     ("G1 A10 F60", 1, 4, "axis A is not supported"),

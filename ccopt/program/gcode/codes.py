@@ -38,12 +38,13 @@ G_GROUPS: dict[int, str] = {
     530: "machine_coords",
     610: "path", 611: "path", 640: "path",
     900: "distance", 910: "distance",
+    70: "lathe_diameter", 80: "lathe_diameter",
     901: "arc_distance", 911: "arc_distance",
     930: "feed_mode", 940: "feed_mode",
     1360: "corner", 1370: "corner",
     1380: "start_end", 1390: "start_end",
 }
-_KNOWN_G = ("G0 G1 G2 G3 G4 G10 G17 G18 G19 G20 G21 G40 G41 G42 G41.1 G42.1 G43 G49 "
+_KNOWN_G = ("G0 G1 G2 G3 G4 G7 G8 G10 G17 G18 G19 G20 G21 G40 G41 G42 G41.1 G42.1 G43 G49 "
             "G52 G53 G54-G59.3 G61 G61.1 G64 G80 G90 G91 G90.1 G91.1 G92 G92.1 G92.2 G92.3 "
             "G93 G94 G136 G137 G138 G139")
 _G_UNSUPPORTED_HINT: dict[int, str] = {
@@ -53,8 +54,6 @@ _G_UNSUPPORTED_HINT: dict[int, str] = {
           "G81-G89) are not supported: write the moves out"
        for t in (700, 710, 711, 720, 721, 730, 740, 760, 810, 820, 830, 840, 841, 850, 860,
                  870, 880, 890)},
-    70: "G7 (lathe diameter mode) is not supported: program radii (G8)",
-    80: "G8 (lathe radius mode) is not supported yet",
 }
 # M-code modal groups that may not appear twice on a line.
 _M_GROUPS: dict[int, str] = {0: "stop", 1: "stop", 2: "stop", 30: "stop", 60: "stop",

@@ -54,6 +54,7 @@ def execute_words(state: GCodeState, words: Words) -> None:
     if units is not None:
         # later changes in RS274NGC's order: after F (which keeps its speed)
         _set_units(state, units)
+    L = _lathe_diameter(state, gc, L)
     L = scale_lengths(state, L, gc)
     _set_modes(state, gc, L)
     _set_coordinates(state, gc, L)
@@ -170,6 +171,24 @@ def _dwell(state: GCodeState, dwell: tuple[int, int], L: dict, mcodes: tuple,
         raise state.error(f"negative dwell time P{fmt(secs)}", L["P"][1])
     _emit(state, Block(Source(*state.where(state.line_no), first_col + 1), Motion.DWELL,
                        state.pos, state.pos, state.modal(), dwell=secs, mcodes=mcodes))
+
+
+def _lathe_diameter(state: GCodeState, gc: dict, L: dict) -> dict:
+    """G7/G8, and the X word of a line in diameter mode halved.
+
+    As LinuxCNC's ``read_x`` and ``convert_lathe_diameter_mode`` do: in G7
+    every X word (moves, G10, G92 and G52 values, absolute or incremental) is
+    a diameter and is halved; a G7 or G8 on the line applies to the line's own
+    X. Arc words (I, K, R) are never scaled: they stay radii.
+    """
+    mode = gc.get("lathe_diameter")
+    if mode is not None:
+        state.diameter_mode = mode[0] == 70
+    if state.diameter_mode and "X" in L:
+        value, col = L["X"]
+        L = dict(L)
+        L["X"] = (value / 2.0, col)
+    return L
 
 
 def _set_units(state: GCodeState, units: tuple[int, int]) -> None:

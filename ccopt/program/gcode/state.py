@@ -108,6 +108,8 @@ class GCodeState:
         self.table_units: str | None = None  # the tool table's units (None: out_units)
         self.incremental = False
         self.arc_incremental = True
+        # G7 lathe diameter mode: X words are diameters (halved when read)
+        self.diameter_mode = False
         # coordinate systems (see coordinates.py): active origin 1..9 (G54..G59.3)
         # and the G92/G52 axis offset, program units
         self.origin_index = 1
