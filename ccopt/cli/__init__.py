@@ -68,6 +68,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_INTERRUPTED
     except Exception as exc:  # an internal bug: one line, traceback on request
         if os.environ.get("CCOPT_DEBUG"):
+            # a worker process's failure carries the worker's traceback as text
+            if getattr(exc, "child_traceback", ""):
+                print(exc.child_traceback, file=sys.stderr)
             raise
         print(f"ccopt: internal error: {type(exc).__name__}: {exc} "
               "(set CCOPT_DEBUG=1 for the traceback and please report it)", file=sys.stderr)
