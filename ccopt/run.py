@@ -130,7 +130,7 @@ def _run_stages(job: Job, out: Path | None, opts: RunOptions, row: dict,
     clock("verify")
     cert = verify(path, prog, profile=profiles["toppra"])
     row["certificate"] = cert.to_json()
-    row["certificate_text"] = str(cert)
+    row["certificate_text"] = cert.summary()
     row["verified"] = bool(cert.ok)
     row["min_clearance"] = cert.min_clearance
     if opts.compare:

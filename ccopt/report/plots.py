@@ -120,9 +120,14 @@ def feed_plot(profile, title: str = "") -> bytes:
         plt, fig, ax = _plan_figure(xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(),
                                     xy[:, 1].max(), extra_width=1.2)
         segs = np.stack([xy[:-1], xy[1:]], axis=1)
+        # the colours span the feed moves' speeds; a faster rapid takes the top colour
+        top = speed_axis_top({"": profile})
         lc = LineCollection(segs, array=samples.feed[:-1], cmap="viridis", lw=2.0)
+        if top is not None:
+            lc.set_clim(0.0, top)
         ax.add_collection(lc)
-        fig.colorbar(lc, ax=ax, label="feed (units/s)")
+        fig.colorbar(lc, ax=ax, label="feed (units/s)",
+                     extend="max" if top is not None and samples.feed.max() > top else "neither")
         ax.set_xlim(xy[:, 0].min() - 1, xy[:, 0].max() + 1)
         ax.set_ylim(xy[:, 1].min() - 1, xy[:, 1].max() + 1)
     else:
@@ -133,16 +138,55 @@ def feed_plot(profile, title: str = "") -> bytes:
     return _png(plt, fig)
 
 
+#: Head room above the fastest feed move on the speed axes (a rapid may go
+#: above, clipped): 8 % of it.
+FEED_HEADROOM = 1.08
+
+
+def rapid_samples(profile, samples) -> np.ndarray:
+    """Which ``samples`` of ``profile`` lie on rapid moves (boolean array)."""
+    rapid = np.array([seg.role is Role.RAPID for seg in profile.path.toolpath.segments]
+                     + [False])       # index -1 (a dwell) is no rapid
+    return rapid[np.where(samples.segment >= 0, samples.segment, -1)]
+
+
+def speed_axis_top(profiles: dict) -> float | None:
+    """The top of the speed axis: :data:`FEED_HEADROOM` times the fastest
+    sample on a feed move over every profile, so rapids (often several times
+    the feed) do not flatten the feed moves; ``None`` when there are none."""
+    top = 0.0
+    for prof in profiles.values():
+        if prof is None or prof.duration <= 0:
+            continue
+        smp = prof.sample(max(prof.duration / 4000, 1e-4))
+        moving = smp.feed[~rapid_samples(prof, smp)]
+        if moving.size:
+            top = max(top, float(moving.max()))
+    return FEED_HEADROOM * top if top > 0 else None
+
+
 def speed_time_plot(profiles: dict, title: str = "") -> bytes:
-    """Tangential speed against time, one curve per planner."""
+    """Tangential speed against time, one curve per planner: solid on feed
+    moves, dotted on rapids; the axis tops at the feed moves' speed
+    (:func:`speed_axis_top`), a faster rapid is clipped and the label says so."""
     plt, fig, ax = _figure(7.0, 3.2)
+    clipped = False
+    top = speed_axis_top(profiles)
     for name, prof in profiles.items():
         if prof is None or prof.duration <= 0:
             continue
         smp = prof.sample(max(prof.duration / 4000, 1e-4))
-        ax.plot(smp.t, smp.feed, label=f"{name} ({prof.duration:.3f} s)", lw=1.2)
+        rapid = rapid_samples(prof, smp)
+        line, = ax.plot(smp.t, np.where(rapid, np.nan, smp.feed),
+                        label=f"{name} ({prof.duration:.3f} s)", lw=1.2)
+        if rapid.any():
+            ax.plot(smp.t, np.where(rapid, smp.feed, np.nan), color=line.get_color(), lw=0.8,
+                    ls=":")
+            clipped |= top is not None and bool((smp.feed[rapid] > top).any())
+    if top is not None:
+        ax.set_ylim(0.0, top)
     ax.set_xlabel("time (s)")
-    ax.set_ylabel("feed (units/s)")
+    ax.set_ylabel("feed (units/s)" + ("; rapids dotted, clipped" if clipped else ""))
     ax.set_title(plot_text(title))
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
