@@ -1,0 +1,44 @@
+"""Execute every notebook and store it with its outputs in notebooks/with-outputs/.
+
+The notebooks in this folder are kept without outputs, so their diffs stay
+readable and the test suite (tests/test_notebooks.py) executes them from
+clean; their executed copies, figures inline, are what a repository browser
+shows. Run from the repository root after changing a notebook::
+
+    .venv/bin/python notebooks/store_outputs.py [NAME.ipynb ...]
+"""
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import nbformat
+from nbclient import NotebookClient
+
+HERE = Path(__file__).resolve().parent
+OUT = HERE / "with-outputs"
+
+#: seconds a cell may take (the comparison of every variant is the longest)
+CELL_TIMEOUT = 1800
+
+
+def store(path: Path) -> Path:
+    """Execute ``path`` (from the repository root, at full size) and write its
+    executed copy into :data:`OUT`; returns the copy's path."""
+    book = nbformat.read(path, as_version=4)
+    NotebookClient(book, timeout=CELL_TIMEOUT, kernel_name="python3",
+                   resources={"metadata": {"path": str(HERE.parent)}}).execute()
+    OUT.mkdir(exist_ok=True)
+    target = OUT / path.name
+    nbformat.write(book, target)
+    return target
+
+
+def main(names: list[str]) -> None:
+    paths = [HERE / n for n in names] if names else sorted(HERE.glob("*.ipynb"))
+    for path in paths:
+        print(f"{path.name} -> {store(path).relative_to(HERE.parent)}", flush=True)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
