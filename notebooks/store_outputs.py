@@ -9,6 +9,7 @@ shows. Run from the repository root after changing a notebook::
 """
 from __future__ import annotations
 
+import re
 import sys
 from pathlib import Path
 
@@ -21,6 +22,19 @@ OUT = HERE / "with-outputs"
 #: seconds a cell may take (the comparison of every variant is the longest)
 CELL_TIMEOUT = 1800
 
+# A log record of the Dask cluster (its shutdown warnings): timestamped,
+# machine-specific noise, not the notebook's output.
+_CLUSTER_LOG = re.compile(r"\d{4}-\d\d-\d\d [\d:,]+ - distributed\.")
+
+
+def _without_cluster_logs(book) -> None:
+    """Drop the stderr outputs that are nothing but Dask's log records."""
+    for cell in book.cells:
+        if cell.cell_type == "code":
+            cell.outputs = [o for o in cell.outputs if not (
+                o.output_type == "stream" and o.name == "stderr"
+                and all(_CLUSTER_LOG.match(x) for x in o.text.splitlines() if x.strip()))]
+
 
 def store(path: Path) -> Path:
     """Execute ``path`` (from the repository root, at full size) and write its
@@ -28,6 +42,7 @@ def store(path: Path) -> Path:
     book = nbformat.read(path, as_version=4)
     NotebookClient(book, timeout=CELL_TIMEOUT, kernel_name="python3",
                    resources={"metadata": {"path": str(HERE.parent)}}).execute()
+    _without_cluster_logs(book)
     OUT.mkdir(exist_ok=True)
     target = OUT / path.name
     nbformat.write(book, target)
