@@ -18,7 +18,8 @@ from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Protocol
 
-from ccopt.cases import Job
+# DEFAULT_LIMITS: the axis limits of an input with none (ccopt.cases defines them)
+from ccopt.cases import DEFAULT_LIMITS, Job  # noqa: F401 - re-exported for ccopt run
 from ccopt.compare import compare
 from ccopt.errors import CcoptError, ProgramError
 from ccopt.export import export
@@ -35,9 +36,6 @@ from ccopt.workers import run_in_workers
 if TYPE_CHECKING:  # pragma: no cover - importing it loads toppra (see ccopt.feed)
     from ccopt.feed.profile import FeedProfile
 
-#: Axis limits for a program that is not a case and gets none on the command
-#: line: 100 units/s and 1000 units/s^2 on every axis (a small mill in mm).
-DEFAULT_LIMITS = {"v": (100.0, 100.0, 100.0), "a": (1000.0, 1000.0, 1000.0)}
 
 #: the planners of every run (``jerk`` joins them when the limits carry jerk)
 PLANNERS = ("toppra", "stop", "junction")
@@ -125,6 +123,7 @@ def _run_stages(job: Job, out: Path | None, opts: RunOptions, row: dict,
     files: dict[str, str] = {}
     row["files"] = files
     limits = job.limits()
+    row.update(limits=limits.to_json(), limits_from=job.limits_from)
     clock("feed")
     profiles = _plan(path, limits, row, job.ts)
     clock("verify")

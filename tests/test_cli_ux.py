@@ -138,6 +138,18 @@ def test_feed_and_run_give_the_same_cycle_time(capsys, tmp_path):
                     str(tmp_path / "c"), "--json")["cases"][0]
     assert run["duration"] == feed["duration"] and feed["limits_from"] == "case"
     assert feed["limits"]["v"] == [50.0, 50.0, 20.0]
+    # no limits anywhere: run takes the documented default and says so; feed
+    # with those limits spelled out gives the same time
+    code = main(["run", str(prog), "--no-compare", "-o", str(tmp_path / "d")])
+    out, err = capsys.readouterr()
+    assert code == 0, err
+    assert ("limits v=[100.0, 100.0, 100.0] a=[1000.0, 1000.0, 1000.0] (default: no [limits] "
+            "in a case and no --vmax/--amax) for lead") in out
+    row = json.loads((tmp_path / "d" / "summary.json").read_text())["cases"][0]
+    assert row["limits_from"] == "default"
+    feed = _duration(capsys, "feed", str(prog), "--vmax", "100,100", "--amax", "1000,1000",
+                     "--json")
+    assert row["duration"] == feed["duration"]
 
 
 def test_feed_prints_where_its_limits_come_from(capsys):

@@ -83,6 +83,11 @@ def _print_summary(rows: list[dict], out: Path) -> None:
     for r in rows:
         if r.get("message") and r["status"] != "error (expected)":
             print(r["message"], file=sys.stderr)
+    defaulted = [r["name"] for r in rows if r.get("limits_from") == "default"]
+    if defaulted:
+        print(f"limits v={list(DEFAULT_LIMITS['v'])} a={list(DEFAULT_LIMITS['a'])} "
+              f"(default: no [limits] in a case and no --vmax/--amax) for "
+              f"{', '.join(defaulted)}")
     print(f"report: {out / 'index.html'}")
 
 
