@@ -13,7 +13,7 @@ import argparse
 import sys
 
 #: the longest stage text shown per case on the bar, characters
-STAGE_WIDTH = 48
+STAGE_WIDTH = 60
 
 
 def wanted(args: argparse.Namespace) -> bool:
