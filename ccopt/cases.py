@@ -41,9 +41,28 @@ from ccopt.toolpath import ToolPath
 
 EXPECTS = ("ok", "gouge", "error")
 
-#: The controller style of a program that is not a case and gets none on the
-#: command line: the reference.
+#: The controller style of a PMAC program that is not a case and gets none on
+#: the command line: the reference. G-code gets :data:`GCODE_STYLE`, or
+#: :data:`FAGOR_STYLE` when Fagor's G136-G139 appear (:func:`default_style`).
 DEFAULT_STYLE = "pmac"
+GCODE_STYLE = "linuxcnc"
+FAGOR_STYLE = "fagor"
+
+#: Axis limits of an input whose case has no ``[limits]`` and that gets no
+#: ``--vmax``/``--amax``: 100 units/s and 1000 units/s^2 on every axis (a small
+#: mill in mm); no jerk limit. Every command that plans says when it uses them.
+DEFAULT_LIMITS = {"v": (100.0, 100.0, 100.0), "a": (1000.0, 1000.0, 1000.0)}
+
+#: How the output says where the axis limits come from (:attr:`Job.limits_from`).
+LIMITS_FROM = {"command line": "--vmax/--amax", "case": "the case's [limits]",
+               "default": "default: no [limits] in a case and no --vmax/--amax",
+               "command line and case": "--vmax/--amax over the case's [limits]",
+               "command line and default": "--vmax/--amax over the default"}
+
+# Fagor's words in G-code, outside comments: G136/G137 (corner transition),
+# G138/G139 (how compensation starts and ends).
+_FAGOR_WORD_RE = re.compile(r"(?i)(?<![A-Z])G\s*0*13[6-9](?![0-9.])")
+_COMMENT_RE = re.compile(r"\([^)]*\)|;.*")
 
 
 @dataclass(frozen=True)
@@ -242,6 +261,22 @@ def find_case(name_or_path: str) -> Case | None:
     return None
 
 
+def default_style(prog: Program) -> tuple[str, str]:
+    """The style of ``prog`` when neither a case nor the command line names
+    one, and why: ``pmac`` for a PMAC program, ``fagor`` for G-code where
+    Fagor's G136-G139 appear (outside comments), else ``linuxcnc``."""
+    if prog.dialect == "pmac":
+        return DEFAULT_STYLE, "default for a PMAC program"
+    for name in dict.fromkeys(b.source.file for b in prog.blocks):
+        try:
+            text = Path(name).read_text(encoding="utf-8", errors="replace")
+        except OSError:
+            continue        # a program read from a string: no file to look in
+        if any(_FAGOR_WORD_RE.search(_COMMENT_RE.sub(" ", line)) for line in text.splitlines()):
+            return FAGOR_STYLE, "default for G-code with Fagor's G136-G139"
+    return GCODE_STYLE, "default for G-code"
+
+
 @dataclass(frozen=True)
 class ReadOptions:
     """How to read a program (see :func:`ccopt.program.read_program`): the
@@ -286,21 +321,25 @@ class Overrides:
     delta: float | None = None
     reading: ReadOptions = ReadOptions()
     style_options: dict = field(default_factory=dict)
+    ts: float | None = None
 
 
 @dataclass(frozen=True)
 class Job:
     """One input with its settings resolved (see :func:`resolve_input`).
 
+    ``style`` ``None``: by the program's dialect (:func:`default_style`).
     ``radius``/``side`` ``None``: the program's own. ``vmax``/``amax``
-    ``None``: no limits known (:meth:`limits` says so). ``delta`` ``None``:
-    the smoother's default band.
+    ``None``: no limits known (:meth:`limits` says so); ``limits_from`` says
+    where they came from (``"command line"``, ``"case"``, ``"default"``).
+    ``delta`` ``None``: the smoother's default band. ``ts``: the interpolation
+    period of the jerk-limited planners, seconds (``None``: theirs).
     """
 
     label: str
     program: Path
     case: Case | None
-    style: str
+    style: str | None
     radius: float | None
     side: str | None
     vmax: tuple[float, ...] | None
@@ -309,6 +348,9 @@ class Job:
     delta: float | None = None
     reading: ReadOptions = ReadOptions()
     style_options: dict = field(default_factory=dict)
+    ts: float | None = None
+    limits_from: str | None = None
+    style_from: str | None = None
 
     @property
     def title(self) -> str:
@@ -327,10 +369,22 @@ class Job:
         """The program, read with the job's reading options."""
         return self.reading.read(self.program)
 
+    def style_for(self, prog: Program) -> tuple[str, str]:
+        """The style ``prog`` is compensated with, and where it comes from
+        (``"--style"``, ``"the case's"`` or the default's reason)."""
+        if self.style is not None:
+            return self.style, self.style_from or "given"
+        return default_style(prog)
+
     def compensate(self, prog: Program) -> ToolPath:
-        """``prog`` compensated with the job's style, radius, side and style options."""
-        return compensate(prog, style=self.style, radius=self.radius, side=self.side,
-                          **self.style_options)
+        """``prog`` compensated with the job's style (:meth:`style_for`), radius,
+        side and style options."""
+        return compensate(prog, style=self.style_for(prog)[0], radius=self.radius,
+                          side=self.side, **self.style_options)
+
+    def limits_note(self) -> str:
+        """Where the axis limits come from, for the output (``""`` when unknown)."""
+        return LIMITS_FROM.get(self.limits_from or "", self.limits_from or "")
 
     def limits(self, tangential_acc: float | None = None,
                centripetal_acc: float | None = None) -> AxisLimits:
@@ -363,22 +417,41 @@ def resolve_input(what: str | Case, overrides: Overrides = Overrides(),
                   default_limits: dict | None = None) -> Job:
     """The job for ``what`` (a program file, case folder, bundled case name or
     loaded :class:`Case`) with every setting resolved once: the command line's
-    ``overrides``, else the case's, else :data:`DEFAULT_STYLE` for the style
-    and ``default_limits`` (``{"v": (X, Y[, Z]), "a": (...)}``, units/s and
-    units/s^2; ``None``: no default) for the axis limits.
+    ``overrides``, else the case's, else the defaults: the style by the
+    program's dialect (:func:`default_style`, once it is read) and
+    ``default_limits`` (``{"v": (X, Y[, Z]), "a": (...)}``, units/s and
+    units/s^2, e.g. :data:`DEFAULT_LIMITS`; ``None``: no default) for the axis
+    limits. The velocity and acceleration limits come as a pair from one
+    place: both given on the command line, else the case's, else the default
+    (one of ``--vmax``/``--amax`` replaces that one of the pair).
 
     A ProgramError located at ``what`` when it is none of those.
     """
     label, program, case = _locate(what)
     default_limits = default_limits or {}
+    vmax, amax, limits_from = _resolved_limits(overrides, case, default_limits)
     return Job(
         label=label, program=program, case=case,
-        style=overrides.style or (case.style if case else DEFAULT_STYLE),
+        style=overrides.style or (case.style if case else None),
+        style_from="--style" if overrides.style else ("the case's" if case else None),
         radius=overrides.radius if overrides.radius is not None else (
             case.radius if case else None),
-        side=overrides.side,
-        vmax=overrides.vmax or (case.vmax if case else None) or default_limits.get("v"),
-        amax=overrides.amax or (case.amax if case else None) or default_limits.get("a"),
+        side=overrides.side, vmax=vmax, amax=amax,
         delta=overrides.delta, reading=overrides.reading,
         style_options=dict(overrides.style_options),
-        jmax=overrides.jmax or (case.jmax if case else None) or default_limits.get("j"))
+        jmax=overrides.jmax or (case.jmax if case else None) or default_limits.get("j"),
+        ts=overrides.ts, limits_from=limits_from)
+
+
+def _resolved_limits(overrides: Overrides, case: Case | None, default_limits: dict):
+    """``(vmax, amax, where from)`` by the rule of :func:`resolve_input`."""
+    base, source = (None, None), None
+    if case is not None and case.vmax is not None:
+        base, source = (case.vmax, case.amax), "case"
+    elif default_limits.get("v") is not None:
+        base, source = (default_limits.get("v"), default_limits.get("a")), "default"
+    vmax, amax = overrides.vmax or base[0], overrides.amax or base[1]
+    if overrides.vmax or overrides.amax:
+        source = "command line" if (overrides.vmax and overrides.amax) or source is None \
+            else f"command line and {source}"
+    return vmax, amax, source

@@ -9,13 +9,17 @@ settings resolved once by :func:`ccopt.cases.resolve_input`: a case's
 """
 from __future__ import annotations
 
+import inspect
 import json
 import os
+import time
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
-from typing import TYPE_CHECKING, Callable
+from typing import TYPE_CHECKING, Callable, Protocol
 
-from ccopt.cases import Job
+# DEFAULT_LIMITS: the axis limits of an input with none (ccopt.cases defines them)
+from ccopt.cases import DEFAULT_LIMITS, Job  # noqa: F401 - re-exported for ccopt run
 from ccopt.compare import compare
 from ccopt.errors import CcoptError, ProgramError
 from ccopt.export import export
@@ -27,15 +31,17 @@ from ccopt.report.html import render
 from ccopt.report.plots import feed_plot, path_plot, speed_time_plot
 from ccopt.toolpath import ToolPath, programmed_path
 from ccopt.verify import Certificate, verify
+from ccopt.workers import run_in_workers
 
 if TYPE_CHECKING:  # pragma: no cover - importing it loads toppra (see ccopt.feed)
     from ccopt.feed.profile import FeedProfile
 
-#: Axis limits for a program that is not a case and gets none on the command
-#: line: 100 units/s and 1000 units/s^2 on every axis (a small mill in mm).
-DEFAULT_LIMITS = {"v": (100.0, 100.0, 100.0), "a": (1000.0, 1000.0, 1000.0)}
 
+#: the planners of every run (``jerk`` joins them when the limits carry jerk)
 PLANNERS = ("toppra", "stop", "junction")
+
+#: the parameters the installed :func:`ccopt.compare.compare` takes
+COMPARE_PARAMETERS = frozenset(inspect.signature(compare).parameters)
 
 #: Sampling step of the feed figures and the feed CSV, seconds (fine enough to
 #: show a millisecond-scale acceleration phase; longer paths get a coarser one,
@@ -50,53 +56,101 @@ class RunOptions:
 
     compare: bool = True
     variants: list[str] | None = None     # blend variants compared (None: every available one)
+    compare_workers: int = 1              # worker processes of each comparison
 
 
-def run_one(job: Job, out: Path | None, opts: RunOptions) -> dict:
+class StageClock:
+    """The stages of one input (read, compensate, feed, verify, compare,
+    export), each announced to ``progress`` as it starts and its wall time
+    (s) kept in ``seconds``."""
+
+    def __init__(self, progress: Callable[[str], None] | None = None):
+        self.progress = progress
+        self.seconds: dict[str, float] = {}
+        self._stage: str | None = None
+        self._t0 = 0.0
+
+    def __call__(self, stage: str) -> None:
+        """``stage`` starts now (the previous one ends)."""
+        self.stop()
+        self._stage, self._t0 = stage, time.perf_counter()
+        self.say(stage)
+
+    def say(self, text: str) -> None:
+        if self.progress is not None:
+            self.progress(text)
+
+    def stop(self) -> None:
+        if self._stage is not None:
+            self.seconds[self._stage] = self.seconds.get(self._stage, 0.0) + \
+                time.perf_counter() - self._t0
+            self._stage = None
+
+
+def run_one(job: Job, out: Path | None, opts: RunOptions,
+            progress: Callable[[str], None] | None = None) -> dict:
     """Everything for one input; returns the row the report and summary use.
 
     ``status``: ``ok``; ``error (expected)``/``gouge (expected)`` when the case
     says so; ``error``/``FAILED``/``UNEXPECTED PASS`` otherwise. Bad input is
     reported in the row (``message``), never raised, so other inputs still run.
+    ``progress(text)`` hears each stage as it starts (and the comparison's
+    variants); ``row["stage_seconds"]`` is each stage's wall time.
     """
-    expect = job.expect
-    row: dict = {"name": job.label, "program": str(job.program), "expect": expect,
+    clock = StageClock(progress)
+    row: dict = {"name": job.label, "program": str(job.program), "expect": job.expect,
                  "title": job.title, "source": job.source}
     try:
-        prog = job.read()
-        path = job.compensate(prog)
+        _run_stages(job, out, opts, row, clock)
     except CcoptError as exc:
-        row.update(status="error (expected)" if expect == "error" else "error", message=str(exc))
-        return row
-    row.update(style=path.style, radius=path.radius, units=path.units,
-               segments=len(path.segments), length=path.length)
-    files: dict[str, str] = {}
-    try:
-        limits = job.limits()
-        profiles = _plan(path, limits, row)
-        cert = verify(path, prog, profile=profiles["toppra"])
-        row["certificate"] = cert.to_json()
-        row["verified"] = bool(cert.ok)
-        row["min_clearance"] = cert.min_clearance
-        if opts.compare:
-            row["compare"] = _compare(prog, limits, job, opts.variants)
-        if out is not None:
-            _write_files(out / job.label, job, path, prog, profiles, row, files)
-            row["plots"] = _plots(path, prog, cert, profiles, job.label)
-    except CcoptError as exc:
-        row.update(status="error", message=str(exc), files=files)
-        return row
-    row["files"] = files
-    row["status"] = _status(expect, cert.ok)
+        failed = "error (expected)" if job.expect == "error" and "style" not in row else "error"
+        row.update(status=failed, message=str(exc))
+    finally:
+        clock.stop()
+        row["stage_seconds"] = clock.seconds
     return row
 
 
-def _plan(path: ToolPath, limits: AxisLimits, row: dict) -> dict[str, FeedProfile]:
-    """Every planner's feed profile of ``path``; their summaries and the
-    TOPPRA cycle time (s) go into ``row``."""
+def _run_stages(job: Job, out: Path | None, opts: RunOptions, row: dict,
+                clock: StageClock) -> None:
+    """The stages of :func:`run_one`, filling ``row``; a CcoptError stops them."""
+    clock("read")
+    prog = job.read()
+    clock("compensate")
+    path = job.compensate(prog)
+    row.update(style=path.style, radius=path.radius, units=path.units,
+               segments=len(path.segments), length=path.length)
+    files: dict[str, str] = {}
+    row["files"] = files
+    limits = job.limits()
+    row.update(limits=limits.to_json(), limits_from=job.limits_from)
+    clock("feed")
+    profiles = _plan(path, limits, row, job.ts)
+    clock("verify")
+    cert = verify(path, prog, profile=profiles["toppra"])
+    row["certificate"] = cert.to_json()
+    row["certificate_text"] = cert.summary()
+    row["verified"] = bool(cert.ok)
+    row["min_clearance"] = cert.min_clearance
+    if opts.compare:
+        clock("compare")
+        row["compare"] = _compare(prog, limits, job, opts, clock.say)
+    if out is not None:
+        clock("export")
+        _write_files(out / job.label, job, path, prog, profiles, row, files)
+        row["plots"] = _plots(path, prog, cert, profiles, job.label)
+    row["status"] = _status(job.expect, cert.ok)
+
+
+def _plan(path: ToolPath, limits: AxisLimits, row: dict,
+          ts: float | None = None) -> dict[str, FeedProfile]:
+    """Every planner's feed profile of ``path`` (``ts``: the interpolation
+    period of the jerk-limited planners, s; ``None``: their default); their
+    summaries and the TOPPRA cycle time (s) go into ``row``."""
     # ccopt.feed loads ExactPath (and toppra, ~2 s) on first use, so `ccopt show` stays fast
     exact = feed_planning.ExactPath(path)
-    profiles = {p: plan_feed(exact, limits, planner=p) for p in PLANNERS}
+    planners = PLANNERS + (("jerk",) if limits.j is not None else ())
+    profiles = {p: plan_feed(exact, limits, planner=p, ts=ts) for p in planners}
     row["feed"] = {p: prof.summary(prof.affordable_dt(SAMPLE_DT)) for p, prof in profiles.items()}
     row["duration"] = profiles["toppra"].duration
     return profiles
@@ -131,13 +185,25 @@ def _status(expect: str, verified: bool) -> str:
     return "gouge (expected)" if expect == "gouge" else "FAILED"
 
 
-def _compare(prog: Program, limits: AxisLimits, job: Job,
-             variants: list[str] | None) -> list[dict]:
+def _compare(prog: Program, limits: AxisLimits, job: Job, opts: RunOptions,
+             say: Callable[[str], None]) -> list[dict]:
     """The blend comparison, with the same compensation overrides as the run
     (a case's radius, ``--radius``, ``--side``), so a program that names no
     radius (e.g. ``G41`` without ``D``) is compared, not refused."""
-    return [v.to_json() for v in compare(prog, variants, limits=limits, radius=job.radius,
-                                         side=job.side)]
+    extra = compare_extras(lambda text: say(f"compare: {text}"), opts.compare_workers, job.ts)
+    return [v.to_json() for v in compare(prog, opts.variants, limits=limits, radius=job.radius,
+                                         side=job.side, **extra)]
+
+
+def compare_extras(progress: Callable[[str], None] | None, workers: int,
+                   ts: float | None = None) -> dict:
+    """The ``progress``, ``workers`` and ``ts`` arguments for
+    :func:`ccopt.compare.compare`, as far as the installed one takes them (they
+    came with issue 17; an older one is called without them, one at a time)."""
+    given = {"progress": progress, "workers": workers}
+    if ts is not None:
+        given["ts"] = ts
+    return {k: v for k, v in given.items() if k in COMPARE_PARAMETERS}
 
 
 def _plots(path: ToolPath, prog: Program, cert: Certificate, profiles: dict[str, FeedProfile],
@@ -152,26 +218,53 @@ def _plots(path: ToolPath, prog: Program, cert: Certificate, profiles: dict[str,
 
 
 def run_all(jobs: list[Job], out: Path | None, opts: RunOptions,
-            progress: Callable[[int, int, str], None] | None = None) -> list[dict]:
-    """Run every input, write the report into ``out`` (if given)."""
+            workers: int | None = None, progress: RunProgress | None = None) -> list[dict]:
+    """Run every input, write the report into ``out`` (if given).
+
+    ``workers``: ``None`` runs the inputs one after the other in this process;
+    a number runs them in that many worker processes (:mod:`ccopt.workers`;
+    1: one after the other, in one), which a Ctrl-C stops at once. The rows
+    are the same either way, in the order of ``jobs``. ``progress`` hears
+    each stage of each input and each input done.
+    """
     if out is not None:
         try:
             out.mkdir(parents=True, exist_ok=True)
         except OSError as exc:
             raise ProgramError(f"cannot create output folder: {exc.strerror or exc}",
                                str(out)) from None
-    rows = []
-    for k, job in enumerate(jobs):
-        if progress:
-            progress(k, len(jobs), job.label)
-        rows.append(run_one(job, out, opts))
-    if progress:
-        progress(len(jobs), len(jobs), "")
+    work = partial(_run_job, out=out, opts=opts)
+    if workers is None:
+        rows = []
+        for k, job in enumerate(jobs):
+            rows.append(work(job, partial(progress.stage, k) if progress else None))
+            if progress:
+                progress.done(k, rows[-1])
+    else:
+        rows = run_in_workers(work, jobs, workers,
+                              on_progress=progress.stage if progress else None,
+                              on_done=progress.done if progress else None,
+                              temp_folders=[out] if out is not None else [])
     if out is not None:
         write_text_atomic(out / "index.html", render(rows, "ccopt run"))
         summary = [{k: v for k, v in r.items() if k not in ("plots",)} for r in rows]
         write_text_atomic(out / "summary.json", json.dumps({"cases": summary}, default=str) + "\n")
     return rows
+
+
+def _run_job(job: Job, progress: Callable[[str], None] | None, out: Path | None,
+             opts: RunOptions) -> dict:
+    """:func:`run_one` with the worker's progress (the signature :func:`run_in_workers` calls)."""
+    return run_one(job, out, opts, progress)
+
+
+class RunProgress(Protocol):
+    """What :func:`run_all` tells as it goes: input ``index`` is at ``text``
+    (a stage, or a comparison's variant), input ``index`` is done (its row)."""
+
+    def stage(self, index: int, text: str) -> None: ...
+
+    def done(self, index: int, row: dict) -> None: ...
 
 
 def exit_code(rows: list[dict]) -> int:

@@ -45,7 +45,20 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, Command]]:
     return parser, commands
 
 
+def _flush_and_exit(code: int) -> None:
+    """End the process now with ``code``, what was printed flushed."""
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            pass
+    os._exit(code)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
+    """The ``ccopt`` command with ``argv`` (``None``: this process's own
+    arguments, and then a Ctrl-C ends the process at once); returns the exit
+    code."""
     parser, commands = build_parser()
     args = parser.parse_args(argv)
     if not args.command:
@@ -65,9 +78,17 @@ def main(argv: Sequence[str] | None = None) -> int:
         return EXIT_OK
     except KeyboardInterrupt:
         print("ccopt: interrupted", file=sys.stderr)
+        if argv is None:
+            # the process's own command: leave at once, not after tearing down
+            # the solvers' modules (a second or more); temporary files are gone
+            # already (ccopt.atomic removes its own on the way out)
+            _flush_and_exit(EXIT_INTERRUPTED)
         return EXIT_INTERRUPTED
     except Exception as exc:  # an internal bug: one line, traceback on request
         if os.environ.get("CCOPT_DEBUG"):
+            # a worker process's failure carries the worker's traceback as text
+            if getattr(exc, "child_traceback", ""):
+                print(exc.child_traceback, file=sys.stderr)
             raise
         print(f"ccopt: internal error: {type(exc).__name__}: {exc} "
               "(set CCOPT_DEBUG=1 for the traceback and please report it)", file=sys.stderr)

@@ -7,9 +7,11 @@ import time
 from ccopt.cases import Job
 from ccopt.cli.inputs import job
 from ccopt.cli.options import (add_limit_options, add_output_option, add_program,
-                               add_radius_side, add_reading_options, add_variants_option,
-                               chosen_variants, positive_float)
+                               add_quiet_option, add_radius_side, add_reading_options,
+                               add_ts_option, add_variants_option, add_workers_option,
+                               chosen_variants, describe, positive_float)
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, aligned, emit_json, figure
+from ccopt.cli.progress import stage_progress
 from ccopt.compare import REFERENCE, BlendOutcome, BlendProblem, available, compare, measure
 from ccopt.compare.plot import plot_comparison
 from ccopt.compare.registry import Blend, require_known
@@ -20,7 +22,9 @@ from ccopt.export import ExportResult, export
 from ccopt.feed import AxisLimits
 from ccopt.feed.bounds import feed_limited_time
 from ccopt.program.model import Program
+from ccopt.run import compare_extras
 from ccopt.toolpath import ToolPath
+from ccopt.workers import default_workers
 
 #: the comparison table: header, figure of :meth:`Comparison.to_json`'s variants, format
 COLUMNS = [("variant", "name", "{}"), ("status", "status", "{}"), ("cycle_s", "duration", "{:.4f}"),
@@ -36,6 +40,32 @@ SMOOTH_FIGURES = ("min_clearance", "certified", "max_deviation", "max_deviation_
                   "solve_time")
 
 
+COMPARE_DESCRIPTION = """\
+Every lead-in, lead-out and corner variant of PROGRAM side by side: the
+controller styles, the geometric leads (tangent-arc, line-arc) and the
+optimised G2 blends registered as ccopt.blends entry points (opt-casadi,
+opt-cvxpy, smooth). Each is certified by the verifier (an optimised blend is
+only accepted certified) and timed under the axis limits (--vmax/--amax/--jmax,
+else the case's [limits]; the output prints them) against PMAC's path; a
+variant a controller refuses is listed with its message. Variants run in
+--workers processes (default one per core)."""
+
+COMPARE_EXAMPLE = """\
+  ccopt compare cases/leadin-inside-line
+  ccopt compare pocket --variants pmac,opt-casadi -o variants.png"""
+
+SMOOTH_DESCRIPTION = """\
+The whole-path smoother alone: a G2 blend at every tangent break and
+curvature jump of PMAC's path, within --delta of it (default 1% of the cutter
+radius) and at least the cutter radius from the contour, certified and timed
+against PMAC's path under the axis limits. -o exports the smoothed path
+(.nc/.pmc/.svg/.json, read back and verified). Exit 1 when the result or the
+written file is not certified."""
+
+SMOOTH_EXAMPLE = """\
+  ccopt smooth cases/pocket-chords -o pocket-smooth.nc"""
+
+
 def cmd_compare(args: argparse.Namespace) -> int:
     """Every blend variant (or ``--variants``) of the program, certified and timed."""
     if args.list:
@@ -45,22 +75,33 @@ def cmd_compare(args: argparse.Namespace) -> int:
     names = chosen_variants(args)
     if names:
         require_known(names, args.program)
-    work = job(args.program, args)
-    prog = work.read()
-    limits = work.limits()
-    options = {}
-    if args.lead_radius is not None:
-        options["lead_radius"] = args.lead_radius
-    cmp = compare(prog, names, limits=limits, delta=work.delta, radius=work.radius,
-                  side=work.side, options=options)
+    say = stage_progress(args, "compare")
+    try:
+        work = job(args.program, args)
+        say("read")
+        prog = work.read()
+        limits = work.limits()
+        options = {}
+        if args.lead_radius is not None:
+            options["lead_radius"] = args.lead_radius
+        say("compare")
+        extra = compare_extras(say, args.workers or default_workers(), work.ts)
+        cmp = compare(prog, names, limits=limits, delta=work.delta, radius=work.radius,
+                      side=work.side, options=options, **extra)
+    finally:
+        say.close()
     doc = cmp.to_json()
-    if args.plot:
-        doc["plot"] = plot_comparison(cmp, args.plot, f"{work.label}: variants")
+    if args.output:
+        doc["plot"] = plot_comparison(cmp, args.output, f"{work.label}: variants")
     if args.json:
         emit_json(doc)
         return EXIT_OK
+    if args.quiet:
+        return EXIT_OK
+    jerk = f" j={list(limits.j)}" if limits.j is not None else ""
     print(f"{prog.file}: reference pmac, cutter radius {figure(doc['radius'], '{:g}')} "
-          f"{prog.units}, limits v={list(limits.v)} a={list(limits.a)}")
+          f"{prog.units}, limits v={list(limits.v)} a={list(limits.a)}{jerk} "
+          f"({work.limits_note()})")
     rows = [[h for h, _, _ in COLUMNS]]
     for v in doc["variants"]:
         rows.append([figure(v.get(k), f) for _, k, f in COLUMNS])
@@ -68,7 +109,7 @@ def cmd_compare(args: argparse.Namespace) -> int:
     for v in doc["variants"]:
         if v["status"] != "ok" or v.get("message"):
             print(f"  {v['name']}: {v['message']}")
-    if args.plot:
+    if args.output:
         print(f"plot: {doc['plot']}")
     return EXIT_OK
 
@@ -116,30 +157,42 @@ def cmd_smooth(args: argparse.Namespace) -> int:
     """G2 blends at every corner within ``--delta``, certified, timed against
     PMAC's path and exported with ``-o`` (exit 1 when the certificate or the
     exported file's read-back fails)."""
-    work = job(args.program, args)
-    prog = work.read()
-    limits = work.limits()
+    say = stage_progress(args, "smooth")
     try:
-        blend = load_blend("smooth")
-    except KeyError:
-        raise ProgramError("the smoother is not installed: no 'smooth' entry point in group "
-                           "ccopt.blends (install ccopt with its formulations)",
-                           args.program) from None
-    doc, path, certified = _smoothed(blend, work, prog, limits)
-    exported = None
-    if args.out:
+        work = job(args.program, args)
+        say("read")
+        prog = work.read()
+        limits = work.limits()
         try:
-            exported = export(path, args.out, program=prog)
+            blend = load_blend("smooth")
+        except KeyError:
+            raise ProgramError("the smoother is not installed: no 'smooth' entry point in "
+                               "group ccopt.blends (install ccopt with its formulations)",
+                               args.program) from None
+        say("smooth")
+        doc, path, certified = _smoothed(blend, work, prog, limits)
+        exported = None
+        if args.output:
+            say("export")
+            exported = _export_smoothed(path, args.output, prog)
             doc["export"] = exported.to_json()
-        except ValueError as exc:  # the arc fit of a blend curve gave up (too many pieces)
-            raise ProgramError(f"cannot export the smoothed path: {exc}", args.out) from None
+    finally:
+        say.close()
     if args.json:
         emit_json(doc)
-    else:
+    elif not args.quiet:
         _print_smoothed(doc, prog, exported)
     # the written file is what runs on the machine: its own verdict counts too
     ok = certified and (exported is None or exported.verified is not False)
     return EXIT_OK if ok else EXIT_FAILED
+
+
+def _export_smoothed(path: ToolPath, output: str, prog: Program) -> ExportResult:
+    """``path`` exported to ``output`` (read back and verified)."""
+    try:
+        return export(path, output, program=prog)
+    except ValueError as exc:  # the arc fit of a blend curve gave up (too many pieces)
+        raise ProgramError(f"cannot export the smoothed path: {exc}", output) from None
 
 
 def _print_smoothed(doc: dict, prog: Program, exported: ExportResult | None) -> None:
@@ -174,12 +227,15 @@ def _add_blend_options(p: argparse.ArgumentParser) -> None:
                         "cutter radius)")
     add_radius_side(p)
     add_limit_options(p)
+    add_ts_option(p)
+    add_quiet_option(p)
 
 
 def add_commands(sub, commands: dict) -> None:
     """Register ``compare`` and ``smooth`` on ``sub`` (argparse subparsers)."""
     p = sub.add_parser("compare", help="compare lead-in/lead-out/corner variants, certified "
-                                       "and timed")
+                                       "and timed", **describe(COMPARE_DESCRIPTION,
+                                                               COMPARE_EXAMPLE))
     add_program(p)
     add_reading_options(p)
     add_variants_option(p, "variants to compare (default: every available one; see --list)")
@@ -187,13 +243,17 @@ def add_commands(sub, commands: dict) -> None:
     _add_blend_options(p)
     p.add_argument("--lead-radius", type=positive_float, metavar="R",
                    help="radius of the tangent-arc and line-arc leads (default: the cutter radius)")
-    p.add_argument("--plot", metavar="FILE", help="plot the variants over the contour (PNG/SVG/PDF)")
+    add_output_option(p, "FILE", help="plot the variants over the contour (.png/.svg/.pdf)",
+                      old=("--plot",))
+    add_workers_option(p, "variants run in N worker processes (default: one per core; 1: one "
+                          "after the other)")
     commands["compare"] = cmd_compare
 
-    p = sub.add_parser("smooth", help="G2 blends at every corner within a tolerance band")
+    p = sub.add_parser("smooth", help="G2 blends at every corner within a tolerance band",
+                       **describe(SMOOTH_DESCRIPTION, SMOOTH_EXAMPLE))
     add_program(p)
     add_reading_options(p)
     _add_blend_options(p)
-    add_output_option(p, "out", "FILE",
+    add_output_option(p, "FILE",
                       help="export the smoothed path (.nc/.pmc/.svg/.json, read back and verified)")
     commands["smooth"] = cmd_smooth

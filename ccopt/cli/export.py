@@ -5,9 +5,21 @@ import argparse
 
 from ccopt.cli.inputs import job
 from ccopt.cli.options import (add_output_option, add_program, add_reading_options,
-                               add_style_options, positive_float)
+                               add_style_options, describe, positive_float)
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, emit_json
 from ccopt.export import export
+
+
+DESCRIPTION = """\
+Compensate PROGRAM, then write the tool-centre path with no compensation
+words, in the format -o's suffix names: G-code (.nc, .ngc; spirals and blend
+curves as arcs within --tol, with a certified bound), PMAC (.pmc), SVG or
+JSON. A program is read back, compared with the computed path and verified
+against the contour before it is written (atomically); the verdict is in the
+file's header and the exit code (1 when it fails)."""
+
+EXAMPLE = """\
+  ccopt export cases/leadin-outside-arc -o leadin.nc"""
 
 
 def cmd_export(args: argparse.Namespace) -> int:
@@ -31,9 +43,10 @@ def cmd_export(args: argparse.Namespace) -> int:
 
 def add_commands(sub, commands: dict) -> None:
     """Register ``export`` on ``sub`` (argparse subparsers)."""
-    p = sub.add_parser("export", help="write the verified tool-centre path (.nc .pmc .svg .json)")
+    p = sub.add_parser("export", help="write the verified tool-centre path (.nc .pmc .svg .json)",
+                       **describe(DESCRIPTION, EXAMPLE))
     add_program(p)
-    add_output_option(p, "output", "OUT", required=True,
+    add_output_option(p, "OUT", required=True,
                       help="output file; the suffix picks the format (.nc .ngc .pmc .svg .json)")
     p.add_argument("--tol", type=positive_float, metavar="T",
                    help="arc-fit tolerance for spirals in G-code (default 0.001 mm or its inch "

@@ -7,13 +7,28 @@ from pathlib import Path
 
 from ccopt import feed as feed_planning
 from ccopt.cli.inputs import job
-from ccopt.cli.options import (add_limit_options, add_program, add_reading_options,
-                               add_style_options, positive_float)
+from ccopt.cli.options import (add_limit_options, add_output_option, add_program,
+                               add_quiet_option, add_reading_options, add_style_options,
+                               add_ts_option, describe, positive_float)
 from ccopt.cli.output import EXIT_OK, emit_json
+from ccopt.cli.progress import stage_progress
 from ccopt.atomic import write_text_atomic
 from ccopt.feed import AxisLimits, plan_feed
-from ccopt.feed.planners import DEFAULT_TS
 from ccopt.toolpath import ToolPath
+
+DESCRIPTION = """\
+Time-optimal feed along the exact compensated path with TOPPRA, under
+per-axis velocity and acceleration limits, the programmed F as a tangential
+cap, stopping at tangent breaks; the stop-per-block and grbl-style junction
+baselines and, with jerk limits (--jmax, or j in a case's [limits]), the
+jerk-limited planner plan the same path (--planner). Limits: --vmax/--amax,
+else the case's [limits]; the output prints the limits used and where they
+come from. -o writes the samples as CSV (time, position, velocity,
+acceleration, feed, active limit)."""
+
+EXAMPLE = """\
+  ccopt feed cases/leadin-outside-line --planner all
+  ccopt feed part.nc --vmax 100,100 --amax 1000,1000 -o part.feed.csv"""
 
 #: ``--dt``, seconds: the sampling step of the ratios and the CSV.
 DEFAULT_DT = 1e-3
@@ -48,24 +63,31 @@ def chosen_planners(groups, limits: AxisLimits) -> list[str]:
 
 def cmd_feed(args: argparse.Namespace) -> int:
     """Feed profiles of the compensated path: TOPPRA and/or the baselines."""
-    work = job(args.program, args)
-    prog = work.read()
-    path = work.compensate(prog)
-    limits = work.limits(args.tangential_acc, args.centripetal_acc)
-    planners = chosen_planners(args.planner, limits)
-    out = _plan(path, limits, planners, args)
+    say = stage_progress(args, "feed")
+    try:
+        work = job(args.program, args)
+        say("read")
+        prog = work.read()
+        say("compensate")
+        path = work.compensate(prog)
+        limits = work.limits(args.tangential_acc, args.centripetal_acc)
+        planners = chosen_planners(args.planner, limits)
+        out = _plan(path, limits, planners, args, say)
+    finally:
+        say.close()
     first = out[planners[0]]
     if args.json:
         emit_json({"program": str(work.program), "style": path.style, "units": path.units,
-                   "limits": limits.to_json(), "planner": planners[0],
+                   "limits": limits.to_json(), "limits_from": work.limits_from,
+                   "planner": planners[0],
                    **{k: first[k] for k in ("duration", "samples", "max_axis_acc_ratio",
                                             "max_axis_vel_ratio", "max_axis_jerk_ratio",
                                             "max_feed_ratio")},
                    "planners": out})
-    else:
+    elif not args.quiet:
         jerk = f" j={list(limits.j)}" if limits.j is not None else ""
         print(f"{prog.file}: style {path.style}, tool path {path.length:.4f} {path.units}, "
-              f"limits v={list(limits.v)} a={list(limits.a)}{jerk}")
+              f"limits v={list(limits.v)} a={list(limits.a)}{jerk} ({work.limits_note()})")
         print("planner   duration_s  vs_first  max_vel_ratio  max_acc_ratio  max_jerk_ratio  "
               "max_feed_ratio")
         for name, r in out.items():
@@ -79,19 +101,21 @@ def cmd_feed(args: argparse.Namespace) -> int:
 
 
 def _plan(path: ToolPath, limits: AxisLimits, planners: list[str],
-          args: argparse.Namespace) -> dict[str, dict]:
+          args: argparse.Namespace, say) -> dict[str, dict]:
     """Each planner's summary sampled every ``--dt`` s, its samples written as
-    CSV when ``--csv`` asks (``FILE.<planner>.csv`` when several)."""
+    CSV when ``-o``/``--csv`` asks (``FILE.<planner>.csv`` when several)."""
     # ccopt.feed loads ExactPath (and toppra, ~2 s) on first use, so `ccopt show` stays fast
     exact = feed_planning.ExactPath(path)
     out: dict = {}
-    for name in planners:
+    target = args.output
+    for k, name in enumerate(planners, 1):
+        say(f"plan: {name} ({k} of {len(planners)})")
         prof = plan_feed(exact, limits, planner=name, junction_deviation=args.junction_deviation,
                          ts=args.ts)
         smp = prof.sample(args.dt)
         out[name] = prof.summary(args.dt, smp)
-        if args.csv:
-            csv = Path(args.csv)
+        if target:
+            csv = Path(target)
             if len(planners) > 1:
                 csv = csv.with_name(f"{csv.stem}.{name}{csv.suffix}")
             write_text_atomic(csv, smp.to_csv_text())
@@ -101,7 +125,8 @@ def _plan(path: ToolPath, limits: AxisLimits, planners: list[str],
 
 def add_commands(sub, commands: dict) -> None:
     """Register ``feed`` on ``sub`` (argparse subparsers)."""
-    p = sub.add_parser("feed", help="time-optimal feed (TOPPRA) and baseline planners")
+    p = sub.add_parser("feed", help="time-optimal feed (TOPPRA) and baseline planners",
+                       **describe(DESCRIPTION, EXAMPLE))
     add_program(p)
     add_reading_options(p)
     add_style_options(p)
@@ -113,14 +138,13 @@ def add_commands(sub, commands: dict) -> None:
     p.add_argument("--planner", type=planner_names, action="append", metavar="NAME[,NAME]",
                    help="toppra (default), stop, junction, jerk (needs jerk limits) or all; "
                         "repeat or comma-separate")
-    p.add_argument("--ts", type=positive_float, default=DEFAULT_TS, metavar="S",
-                   help="interpolation period of the jerk planner, seconds: the acceleration "
-                        "step at a curvature break is at most jmax * ts (default 0.001)")
+    add_ts_option(p)
     p.add_argument("--junction-deviation", type=positive_float, metavar="D",
                    help="allow grbl's corner speed at tangent breaks (default: stop there)")
     p.add_argument("--dt", type=positive_float, default=DEFAULT_DT, metavar="S",
                    help="sampling step for ratios and CSV, seconds (default 0.001)")
-    p.add_argument("--csv", metavar="FILE", help="write the samples as CSV "
-                   "(FILE.<planner>.csv per planner when several)")
+    add_output_option(p, "FILE.csv", help="write the samples as CSV (FILE.<planner>.csv per "
+                                          "planner when several)", old=("--csv",))
+    add_quiet_option(p)
     commands["feed"] = cmd_feed
 

@@ -22,7 +22,7 @@ def overrides(args: argparse.Namespace) -> Overrides:
         style=getattr(args, "style", None), radius=getattr(args, "radius", None),
         side=getattr(args, "side", None), vmax=getattr(args, "vmax", None),
         amax=getattr(args, "amax", None), jmax=getattr(args, "jmax", None),
-        delta=getattr(args, "delta", None),
+        delta=getattr(args, "delta", None), ts=getattr(args, "ts", None),
         reading=ReadOptions(
             dialect=getattr(args, "dialect", None), tool_table=getattr(args, "tool_table", None),
             var_file=getattr(args, "var_file", None), units=getattr(args, "units", None),

@@ -16,11 +16,35 @@ from ccopt.program.gcode import MAX_LOOP_ITERATIONS
 from ccopt.program.model import MAX_COORDINATE
 
 
+#: Old spellings of options, still taken but left out of ``--help`` so nothing
+#: written for an older ccopt breaks (``--out`` is ``-o/--output`` now).
+HIDDEN_ALIASES = frozenset({"--out", "--csv", "--plot"})
+
+
 class Parser(argparse.ArgumentParser):
     """argparse with one-line errors and exit code 2."""
 
     def error(self, message: str) -> None:  # noqa: D401 - argparse API
         self.exit(EXIT_BAD_INPUT, f"{self.prog}: {message} (see {self.prog} --help)\n")
+
+
+class Formatter(argparse.RawDescriptionHelpFormatter):
+    """The description and example as written (paragraph and example lines),
+    the old option spellings (:data:`HIDDEN_ALIASES`) left out."""
+
+    def _format_action_invocation(self, action: argparse.Action) -> str:
+        shown = [o for o in action.option_strings if o not in HIDDEN_ALIASES]
+        if len(shown) == len(action.option_strings):
+            return super()._format_action_invocation(action)
+        trimmed = argparse.Action(shown, action.dest, action.nargs, metavar=action.metavar)
+        return super()._format_action_invocation(trimmed)
+
+
+def describe(description: str, example: str) -> dict:
+    """``add_parser`` keywords for a command's ``--help``: its one-paragraph
+    ``description`` and its ``example`` lines."""
+    return {"description": description, "epilog": "example:\n" + example,
+            "formatter_class": Formatter}
 
 
 # -- argument types: each checks its value and says what it needs ------------------
@@ -134,10 +158,31 @@ def add_reading_options(p: argparse.ArgumentParser) -> None:
     add_json_option(p)
 
 
-def add_output_option(p: argparse.ArgumentParser, dest: str, metavar: str, help: str,
-                      required: bool = False) -> None:
-    """``-o``: where a command writes (a file or a folder, by command)."""
-    p.add_argument("-o", f"--{dest}", required=required, metavar=metavar, help=help)
+def add_output_option(p: argparse.ArgumentParser, metavar: str, help: str,
+                      required: bool = False, old: tuple[str, ...] = ()) -> None:
+    """``-o/--output``: where a command writes (a file or a folder, by command);
+    ``--out`` and the command's ``old`` spellings are taken too (hidden,
+    :data:`HIDDEN_ALIASES`)."""
+    p.add_argument("-o", "--output", "--out", *old, dest="output", required=required,
+                   metavar=metavar, help=help)
+
+
+def add_quiet_option(p: argparse.ArgumentParser) -> None:
+    """``-q/--quiet``: no progress and no summary on a terminal."""
+    p.add_argument("-q", "--quiet", action="store_true",
+                   help="print nothing but errors (no progress, no summary)")
+
+
+def add_workers_option(p: argparse.ArgumentParser, help: str) -> None:
+    """``--workers N``: worker processes (default: one per core)."""
+    p.add_argument("--workers", type=positive_int, metavar="N", help=help)
+
+
+def add_ts_option(p: argparse.ArgumentParser) -> None:
+    """``--ts``: the interpolation period of the jerk-limited planners."""
+    p.add_argument("--ts", type=positive_float, metavar="S",
+                   help="interpolation period of the jerk planner, seconds: the acceleration "
+                        "step at a curvature break is at most jmax * ts (default 0.001)")
 
 
 def add_radius_side(p: argparse.ArgumentParser) -> None:

@@ -7,15 +7,33 @@ from pathlib import Path
 
 from ccopt.cases import bundled_cases
 from ccopt.cli.inputs import job
-from ccopt.cli.options import (add_limit_options, add_output_option, add_reading_options,
-                               add_style_options, add_variants_option, chosen_variants)
+from ccopt.cli.options import (add_limit_options, add_output_option, add_quiet_option,
+                               add_reading_options, add_style_options, add_ts_option,
+                               add_variants_option, add_workers_option, chosen_variants,
+                               describe)
 from ccopt.cli.output import emit_json
+from ccopt.cli.progress import cases_progress
 from ccopt.compare.registry import require_known
 from ccopt.errors import ProgramError
 from ccopt.run import DEFAULT_LIMITS, RunOptions, default_out, exit_code, run_all
+from ccopt.workers import default_workers
 
-#: width of the progress bar on a terminal, characters
-PROGRESS_WIDTH = 30
+DESCRIPTION = """\
+The main job, for every bundled case (no argument) or the given cases and
+programs: read, compensate, plan the feed (TOPPRA and the baselines), verify,
+compare the blend variants, export (.nc, .pmc, .svg, feed CSV, certificate,
+tool path) and write one HTML report, DIR/index.html, with summary.json.
+Independent cases run in parallel worker processes (--workers, default one per
+core); a Ctrl-C stops them all at once (exit 130) and leaves no partial file.
+Limits: --vmax/--amax, else a case's [limits], else 100 units/s and 1000
+units/s^2 per axis; style: --style, else a case's, else by dialect (pmac for
+PMAC programs, linuxcnc for G-code, fagor where G136-G139 appear). Exit 0 when
+every case gets its expected verdict, 1 when a verification fails
+unexpectedly, 2 when an input cannot be read or compensated."""
+
+EXAMPLE = """\
+  ccopt run leadin-inside-line pocket -o out --workers 2
+  ccopt run                      # every bundled case, report in ccopt-out/"""
 
 
 def cmd_run(args: argparse.Namespace) -> int:
@@ -29,26 +47,25 @@ def cmd_run(args: argparse.Namespace) -> int:
     if not jobs:
         raise ProgramError("no bundled cases found (is the cases/ folder next to ccopt/?)",
                            "cases")
-    out = Path(args.out) if args.out else default_out()
+    out = Path(args.output) if args.output else default_out()
     variants = chosen_variants(args)
     if variants:
         require_known(variants, "--variants")
-    opts = RunOptions(compare=not args.no_compare, variants=variants)
-
-    def progress(k: int, n: int, label: str) -> None:
-        if sys.stderr.isatty() and not args.json:
-            bar = "#" * int(PROGRESS_WIDTH * k / max(n, 1))
-            sys.stderr.write(f"\r[{bar:{PROGRESS_WIDTH}s}] {k}/{n} {label[:40]:40s}")
-            if k == n:
-                sys.stderr.write("\n")
-            sys.stderr.flush()
-
-    rows = run_all(jobs, out, opts, progress)
+    workers = args.workers or default_workers()
+    # cases share the workers; a single case's comparison gets them instead
+    opts = RunOptions(compare=not args.no_compare, variants=variants,
+                      compare_workers=workers if len(jobs) == 1 else 1)
+    progress = cases_progress(args, [j.label for j in jobs])
+    try:
+        rows = run_all(jobs, out, opts, workers=workers, progress=progress)
+    finally:
+        progress.close()
     if args.json:
         emit_json({"out": str(out), "cases": [
-            {k: v for k, v in r.items() if k not in ("plots", "compare", "feed", "certificate")}
+            {k: v for k, v in r.items()
+             if k not in ("plots", "compare", "feed", "certificate", "certificate_text")}
             for r in rows]})
-    else:
+    elif not args.quiet:
         _print_summary(rows, out)
     return exit_code(rows)
 
@@ -66,19 +83,29 @@ def _print_summary(rows: list[dict], out: Path) -> None:
     for r in rows:
         if r.get("message") and r["status"] != "error (expected)":
             print(r["message"], file=sys.stderr)
+    defaulted = [r["name"] for r in rows if r.get("limits_from") == "default"]
+    if defaulted:
+        print(f"limits v={list(DEFAULT_LIMITS['v'])} a={list(DEFAULT_LIMITS['a'])} "
+              f"(default: no [limits] in a case and no --vmax/--amax) for "
+              f"{', '.join(defaulted)}")
     print(f"report: {out / 'index.html'}")
 
 
 def add_commands(sub, commands: dict) -> None:
     """Register ``run`` on ``sub`` (argparse subparsers)."""
-    p = sub.add_parser("run", help="the main job, on bundled cases or given programs")
+    p = sub.add_parser("run", help="the main job, on bundled cases or given programs",
+                       **describe(DESCRIPTION, EXAMPLE))
     p.add_argument("inputs", nargs="*", metavar="CASE|PROGRAM")
-    add_output_option(p, "out", "DIR",
+    add_output_option(p, "DIR",
                       help="write the report and exported files into DIR (default ccopt-out)")
+    add_workers_option(p, "cases (or a single case's variants) run in N worker processes "
+                          "(default: one per core; 1: one after the other)")
     add_limit_options(p, "the case's, else 100", "the case's, else 1000")
+    add_ts_option(p)
     p.add_argument("--no-compare", action="store_true", help="skip the blend comparison")
     add_variants_option(p, "blend variants to compare (default: every available one; see "
                            "ccopt compare --list)")
     add_reading_options(p)
+    add_quiet_option(p)
     add_style_options(p)
     commands["run"] = cmd_run

@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 
 from ccopt.cli.inputs import job
-from ccopt.cli.options import add_program, add_reading_options, add_style_options
+from ccopt.cli.options import add_program, add_reading_options, add_style_options, describe
 from ccopt.cli.output import EXIT_OK, emit_json, path_table
 from ccopt.toolpath import programmed_path
 
@@ -30,20 +30,39 @@ def cmd_compensate(args: argparse.Namespace) -> int:
     if args.json:
         emit_json(path.to_json())
     else:
-        print(f"{prog.file}: style {path.style}, cutter radius {path.radius:g} {path.units}, "
-              f"{len(path.segments)} segments, tool path {path.length:.4f} {path.units}")
+        print(f"{prog.file}: style {path.style} ({work.style_for(prog)[1]}), cutter radius "
+              f"{path.radius:g} {path.units}, {len(path.segments)} segments, tool path "
+              f"{path.length:.4f} {path.units}")
         print(path_table(path))
     return EXIT_OK
 
 
+SHOW_DESCRIPTION = """\
+The programmed path of PROGRAM (a .pmc PMAC program, a .nc/.ngc G-code
+program, a case folder or a bundled case's name) before any compensation, as
+exact lines, arcs and spirals, each with its role and the program line it
+comes from; --json prints the same schema as ccopt compensate --json."""
+
+COMPENSATE_DESCRIPTION = """\
+The tool-centre path a controller makes from PROGRAM with cutter radius
+compensation (G41/G42/G40, CC1/CC2/CC0): exact lines, arcs and spirals with
+their roles (lead-in, compensated, corner, lead-out) and source lines. The
+style is --style, else the case's, else by dialect: pmac for PMAC programs,
+linuxcnc for G-code, fagor where G136-G139 appear (the output says which);
+--radius and --side override the program."""
+
+
 def add_commands(sub, commands: dict) -> None:
     """Register ``show`` and ``compensate`` on ``sub`` (argparse subparsers)."""
-    p = sub.add_parser("show", help="print the programmed path as exact segments")
+    p = sub.add_parser("show", help="print the programmed path as exact segments",
+                       **describe(SHOW_DESCRIPTION, "  ccopt show leadout-inside-line-arc"))
     add_program(p)
     add_reading_options(p)
     commands["show"] = cmd_show
 
-    p = sub.add_parser("compensate", help="the tool-centre path a controller style makes")
+    p = sub.add_parser("compensate", help="the tool-centre path a controller style makes",
+                       **describe(COMPENSATE_DESCRIPTION,
+                                  "  ccopt compensate cases/leadin-outside-arc --radius 1.5"))
     add_program(p)
     add_reading_options(p)
     add_style_options(p)

@@ -12,7 +12,8 @@ import json
 import sys
 from pathlib import Path
 
-from ccopt.cli.options import add_json_option, add_output_option, positive_float, positive_int
+from ccopt.cli.options import (add_json_option, add_output_option, describe, positive_float,
+                               positive_int)
 from ccopt.cli.output import EXIT_BAD_INPUT, EXIT_OK
 from ccopt.errors import CcoptError
 from ccopt.sweep import sweep
@@ -41,7 +42,7 @@ def _report(table, out: Path, as_json: bool) -> None:
 
 def cmd_sweep(args: argparse.Namespace) -> int:
     """Run the sweep a spec describes; returns the exit code."""
-    out = Path(args.out) if args.out else Path(f"sweep-{Path(args.spec).stem}")
+    out = Path(args.output) if args.output else Path(f"sweep-{Path(args.spec).stem}")
     if args.scheduler and args.workers:
         print("ccopt sweep: --workers sets the local cluster's size; a cluster given by "
               "--scheduler has its own workers", file=sys.stderr)
@@ -57,14 +58,28 @@ def cmd_sweep(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
+DESCRIPTION = """\
+A research sweep: the programs of SPEC.toml times every combination of its
+settings (controller styles, cutter radii, sides, machine limits, feed
+planners, compare variants, the smoother's band), each task compensate, feed,
+verify (and compare) on Dask: a local cluster of worker processes by default
+(--workers), any cluster with --scheduler. The result is one row per task in
+DIR (results.parquet, results.csv, summary.html); running again with the same
+DIR computes only the missing tasks."""
+
+EXAMPLE = """\
+  ccopt sweep styles-radii -o sweep-out --workers 2"""
+
+
 def add_commands(sub, commands: dict) -> None:
     """Register ``sweep`` on ``sub`` (argparse subparsers)."""
     p = sub.add_parser("sweep", help="programs x settings (styles, radii, limits, variants) "
-                                     "on Dask, as a resumable table")
+                                     "on Dask, as a resumable table",
+                       **describe(DESCRIPTION, EXAMPLE))
     p.add_argument("spec", metavar="SPEC.toml",
                    help="the sweep spec (TOML), or a bundled one by name: styles-radii, "
                         "limits-planners, variants")
-    add_output_option(p, "out", "DIR",
+    add_output_option(p, "DIR",
                       help="results folder; run again with the same DIR to compute only "
                            "the missing tasks (default: sweep-<spec name>)")
     p.add_argument("--scheduler", metavar="ADDRESS",

@@ -4,9 +4,11 @@ from __future__ import annotations
 import argparse
 
 from ccopt.cli.inputs import job
-from ccopt.cli.options import (add_limit_options, add_program, add_reading_options,
-                               add_style_options, nonneg_float, positive_float)
+from ccopt.cli.options import (add_limit_options, add_program, add_quiet_option,
+                               add_reading_options, add_style_options, describe, nonneg_float,
+                               positive_float)
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, emit_json
+from ccopt.cli.progress import stage_progress
 from ccopt.feed import plan_feed
 from ccopt.tolerances import VERIFY_EPS
 from ccopt.toolpath_json import read_toolpath_json
@@ -24,17 +26,39 @@ def part_line_ranges(text: str) -> tuple[tuple[int, int], ...]:
         raise argparse.ArgumentTypeError(str(exc)) from None
 
 
+DESCRIPTION = """\
+The certificate of the compensated path (or of --toolpath FILE.json, a path
+made elsewhere) against PROGRAM's contour: no gouge (every tool position at
+least r - eps from every part element), contact, side and continuity, exact
+for lines and arcs and certified bounds for spirals and curves; with --feed
+also TOPPRA's profile within the axis limits (--vmax/--amax, else the case's
+[limits]). Exit 1 when a check fails."""
+
+EXAMPLE = """\
+  ccopt verify short-move-overcut
+  ccopt verify leadin-outside-line --feed --json"""
+
+
 def cmd_verify(args: argparse.Namespace) -> int:
     """Compensate (or read ``--toolpath``), then certify the radius offset and,
     with ``--feed``, the feed limits of TOPPRA's profile (exit 1 when a check fails)."""
-    work = job(args.program, args)
-    prog = work.read()
-    path = read_toolpath_json(args.toolpath, prog) if args.toolpath else work.compensate(prog)
-    profile = None
-    if args.feed:
-        profile = plan_feed(path, work.limits(), planner="toppra")
-    cert = verify(path, prog, profile, eps=args.eps, radius=work.radius, side=work.side,
-                  limits_tol=args.limits_tol, part_lines=args.part_lines)
+    say = stage_progress(args, "verify")
+    try:
+        work = job(args.program, args)
+        say("read")
+        prog = work.read()
+        say("compensate")
+        path = read_toolpath_json(args.toolpath, prog) if args.toolpath else \
+            work.compensate(prog)
+        profile = None
+        if args.feed:
+            say("feed")
+            profile = plan_feed(path, work.limits(), planner="toppra", ts=work.ts)
+        say("verify")
+        cert = verify(path, prog, profile, eps=args.eps, radius=work.radius, side=work.side,
+                      limits_tol=args.limits_tol, part_lines=args.part_lines)
+    finally:
+        say.close()
     report = cert.to_json()
     agree = True
     if args.crosscheck:
@@ -42,7 +66,7 @@ def cmd_verify(args: argparse.Namespace) -> int:
         agree = all(x["agree"] for x in report["crosschecks"])
     if args.json:
         emit_json(report)
-    else:
+    elif not args.quiet:
         made = f"tool path {args.toolpath}" if args.toolpath else f"style {path.style}"
         print(f"{prog.file}: {made}, {len(path.segments)} tool segments")
         print(cert.summary())
@@ -56,7 +80,8 @@ def cmd_verify(args: argparse.Namespace) -> int:
 
 def add_commands(sub, commands: dict) -> None:
     """Register ``verify`` on ``sub`` (argparse subparsers)."""
-    p = sub.add_parser("verify", help="certify that the tool path keeps the radius offset")
+    p = sub.add_parser("verify", help="certify that the tool path keeps the radius offset",
+                       **describe(DESCRIPTION, EXAMPLE))
     add_program(p)
     add_reading_options(p)
     add_style_options(p)
@@ -77,4 +102,5 @@ def add_commands(sub, commands: dict) -> None:
                    help="program lines whose moves are part surface; the other compensated "
                         "moves are air (default: a closed loop is the part, leads before "
                         "and after it air; (ccopt: part|air) comments mark single moves)")
+    add_quiet_option(p)
     commands["verify"] = cmd_verify

@@ -13,7 +13,6 @@ Every text on the page (titles, sources, messages, names) is escaped by
 from __future__ import annotations
 
 import base64
-import json
 from typing import Any
 
 from ccopt.export.text import html_href, html_text
@@ -60,6 +59,52 @@ def _table(rows: list[dict], columns: list[str] | None = None) -> str:
 def _status(s: str) -> str:
     cls = "ok" if s.startswith("ok") or "expected" in s else "fail"
     return f'<span class="{cls}">{_e(s)}</span>'
+
+
+#: the columns of the variant table, in order (``message`` says why a variant
+#: was refused or rejected, or what its feed planning met)
+VARIANT_COLUMNS = ["name", "status", "duration", "length", "max_curvature", "max_curvature_jump",
+                   "continuity", "min_clearance", "max_deviation", "certified", "solve_time",
+                   "message"]
+
+#: the columns of the certificate's checks (``detail`` is written out as text)
+CHECK_COLUMNS = ["name", "ok", "figure", "unit", "basis", "requirement", "count", "violations",
+                 "detail"]
+
+
+def _variants_table(rows: list[dict]) -> str:
+    """Every variant with its figures, a refused or rejected one with its message."""
+    cols = [c for c in VARIANT_COLUMNS if any(row.get(c) is not None for row in rows)]
+    return _table(rows, cols)
+
+
+def _as_text(value: Any) -> Any:
+    """A check's nested detail as ``key: value`` text, lists comma-separated."""
+    if isinstance(value, dict):
+        return "; ".join(f"{k}: {_as_text(v)}" for k, v in value.items())
+    if isinstance(value, (list, tuple)):
+        return ", ".join(str(_as_text(v)) for v in value)
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    return value
+
+
+def _certificate(cert: dict, text: str | None) -> list[str]:
+    """The certificate section: the verdict, the verifier's own summary
+    (checks, violations, part and air in words) and the checks as a table."""
+    parts = ["<h3>Certificate</h3>",
+             f"<p>verdict: {_status('ok' if cert.get('ok') else 'FAILED')}, "
+             f"minimum clearance {_fmt(cert.get('min_clearance'))} for radius "
+             f"{_fmt(cert.get('radius'))}</p>"]
+    if text:
+        # escaped line by line (html_text makes each text one line, stripped),
+        # each line's indent kept
+        parts.append("<pre>" + "\n".join(" " * (len(line) - len(line.lstrip(" "))) + _e(line)
+                                           for line in text.splitlines()) + "</pre>")
+    checks = [{k: _as_text(c.get(k)) for k in CHECK_COLUMNS if k in c}
+              for c in cert.get("checks", [])]
+    parts.append(_table(checks))
+    return parts
 
 
 def render(results: list[dict], title: str = "ccopt run") -> str:
@@ -113,25 +158,9 @@ def render(results: list[dict], title: str = "ccopt run") -> str:
             parts.append(_table(rows))
         if r.get("compare"):
             parts.append("<h3>Blend variants</h3>")
-            cols = ["name", "duration", "length", "max_curvature", "max_curvature_jump",
-                    "continuity", "min_clearance", "max_deviation", "certified", "solve_time"]
-            rows = r["compare"]
-            cols = [c for c in cols if any(c in row for row in rows)]
-            parts.append(_table(rows, cols))
-        cert = r.get("certificate")
-        if cert:
-            parts.append("<h3>Certificate</h3>")
-            parts.append(f"<p>verdict: {_status('ok' if cert.get('ok') else 'FAILED')}, "
-                         f"minimum clearance {_fmt(cert.get('min_clearance'))} for radius "
-                         f"{_fmt(cert.get('radius'))}</p>")
-            checks = [{k: (json.dumps(v) if isinstance(v, (dict, list)) else v)
-                       for k, v in c.items()} for c in cert.get("checks", [])]
-            parts.append(_table(checks))
-            if cert.get("violations"):
-                parts.append("<h4>Violations</h4>")
-                viols = [{k: (json.dumps(v) if isinstance(v, (dict, list)) else v)
-                          for k, v in c.items()} for c in cert["violations"]]
-                parts.append(_table(viols))
+            parts.append(_variants_table(r["compare"]))
+        if r.get("certificate"):
+            parts += _certificate(r["certificate"], r.get("certificate_text"))
         if r.get("files"):
             links = " ".join(f'<a href="{html_href(path)}">{_e(label)}</a>'
                              for label, path in r["files"].items())

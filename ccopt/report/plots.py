@@ -25,12 +25,13 @@ ROLE_STYLE = {
 
 
 def _figure(width=7.0, height=5.0):
+    """A figure of its own, outside pyplot: drawing a report neither chooses
+    nor changes the backend of a notebook or program that imports ccopt (its
+    figures still show inline), and nothing is left open."""
     # deferred: matplotlib is heavy and optional (only reports with plots need it)
-    import matplotlib
-    matplotlib.use("Agg", force=True)
-    import matplotlib.pyplot as plt  # deferred with matplotlib, after its backend is chosen
-    fig, ax = plt.subplots(figsize=(width, height), dpi=110)
-    return plt, fig, ax
+    from matplotlib.figure import Figure
+    fig = Figure(figsize=(width, height), dpi=110)
+    return fig, fig.subplots()
 
 
 def _plan_figure(xmin, xmax, ymin, ymax, extra_width=0.0):
@@ -52,10 +53,9 @@ def _extent(paths) -> tuple[float, float, float, float]:
     return float(b[:, 0].min()), float(b[:, 2].max()), float(b[:, 1].min()), float(b[:, 3].max())
 
 
-def _png(plt, fig) -> bytes:
+def _png(fig) -> bytes:
     buf = io.BytesIO()
     fig.savefig(buf, format="png", bbox_inches="tight")
-    plt.close(fig)
     return buf.getvalue()
 
 
@@ -74,7 +74,7 @@ def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
     """Programmed contour (black), tool-centre path by role, tool circles
     along it, violations marked with red crosses at their witness points."""
     x0, x1, y0, y1 = _extent([path, contour])
-    plt, fig, ax = _plan_figure(x0, x1, y0 - radius, y1 + radius)
+    fig, ax = _plan_figure(x0, x1, y0 - radius, y1 + radius)
     step = _step(path)
     if contour is not None:
         for seg in contour.segments:
@@ -108,7 +108,7 @@ def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
     ax.set_title(plot_text(title))
     ax.legend(fontsize=7, loc="best")
     ax.grid(alpha=0.3)
-    return _png(plt, fig)
+    return _png(fig)
 
 
 def feed_plot(profile, title: str = "") -> bytes:
@@ -117,33 +117,77 @@ def feed_plot(profile, title: str = "") -> bytes:
     samples = profile.sample(max(profile.duration / 4000, 1e-4)) if profile.duration > 0 else None
     if samples is not None and len(samples) > 1:
         xy = samples.position[:, :2]
-        plt, fig, ax = _plan_figure(xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(),
+        fig, ax = _plan_figure(xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(),
                                     xy[:, 1].max(), extra_width=1.2)
         segs = np.stack([xy[:-1], xy[1:]], axis=1)
+        # the colours span the feed moves' speeds; a faster rapid takes the top colour
+        top = speed_axis_top({"": profile})
         lc = LineCollection(segs, array=samples.feed[:-1], cmap="viridis", lw=2.0)
+        if top is not None:
+            lc.set_clim(0.0, top)
         ax.add_collection(lc)
-        fig.colorbar(lc, ax=ax, label="feed (units/s)")
+        fig.colorbar(lc, ax=ax, label="feed (units/s)",
+                     extend="max" if top is not None and samples.feed.max() > top else "neither")
         ax.set_xlim(xy[:, 0].min() - 1, xy[:, 0].max() + 1)
         ax.set_ylim(xy[:, 1].min() - 1, xy[:, 1].max() + 1)
     else:
-        plt, fig, ax = _figure()
+        fig, ax = _figure()
     ax.set_aspect("equal")
     ax.set_title(plot_text(title))
     ax.grid(alpha=0.3)
-    return _png(plt, fig)
+    return _png(fig)
+
+
+#: Head room above the fastest feed move on the speed axes (a rapid may go
+#: above, clipped): 8 % of it.
+FEED_HEADROOM = 1.08
+
+
+def rapid_samples(profile, samples) -> np.ndarray:
+    """Which ``samples`` of ``profile`` lie on rapid moves (boolean array)."""
+    rapid = np.array([seg.role is Role.RAPID for seg in profile.path.toolpath.segments]
+                     + [False])       # index -1 (a dwell) is no rapid
+    return rapid[np.where(samples.segment >= 0, samples.segment, -1)]
+
+
+def speed_axis_top(profiles: dict) -> float | None:
+    """The top of the speed axis: :data:`FEED_HEADROOM` times the fastest
+    sample on a feed move over every profile, so rapids (often several times
+    the feed) do not flatten the feed moves; ``None`` when there are none."""
+    top = 0.0
+    for prof in profiles.values():
+        if prof is None or prof.duration <= 0:
+            continue
+        smp = prof.sample(max(prof.duration / 4000, 1e-4))
+        moving = smp.feed[~rapid_samples(prof, smp)]
+        if moving.size:
+            top = max(top, float(moving.max()))
+    return FEED_HEADROOM * top if top > 0 else None
 
 
 def speed_time_plot(profiles: dict, title: str = "") -> bytes:
-    """Tangential speed against time, one curve per planner."""
-    plt, fig, ax = _figure(7.0, 3.2)
+    """Tangential speed against time, one curve per planner: solid on feed
+    moves, dotted on rapids; the axis tops at the feed moves' speed
+    (:func:`speed_axis_top`), a faster rapid is clipped and the label says so."""
+    fig, ax = _figure(7.0, 3.2)
+    clipped = False
+    top = speed_axis_top(profiles)
     for name, prof in profiles.items():
         if prof is None or prof.duration <= 0:
             continue
         smp = prof.sample(max(prof.duration / 4000, 1e-4))
-        ax.plot(smp.t, smp.feed, label=f"{name} ({prof.duration:.3f} s)", lw=1.2)
+        rapid = rapid_samples(prof, smp)
+        line, = ax.plot(smp.t, np.where(rapid, np.nan, smp.feed),
+                        label=f"{name} ({prof.duration:.3f} s)", lw=1.2)
+        if rapid.any():
+            ax.plot(smp.t, np.where(rapid, smp.feed, np.nan), color=line.get_color(), lw=0.8,
+                    ls=":")
+            clipped |= top is not None and bool((smp.feed[rapid] > top).any())
+    if top is not None:
+        ax.set_ylim(0.0, top)
     ax.set_xlabel("time (s)")
-    ax.set_ylabel("feed (units/s)")
+    ax.set_ylabel("feed (units/s)" + ("; rapids dotted, clipped" if clipped else ""))
     ax.set_title(plot_text(title))
     ax.legend(fontsize=7)
     ax.grid(alpha=0.3)
-    return _png(plt, fig)
+    return _png(fig)

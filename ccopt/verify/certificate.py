@@ -204,6 +204,22 @@ class Certificate:
         lines.extend(_surface_lines(self.surface))
         return "\n".join(lines)
 
+    def __str__(self) -> str:
+        """A short summary for ``print(certificate)``: the verdict, the cutter
+        radius and smallest clearance and, when something failed, each failed
+        check with its number of violations (:meth:`summary` lists every check
+        and violation, :meth:`to_json` everything)."""
+        clear = "n/a" if self.min_clearance is None else \
+            f"{self.min_clearance:.6g} {self.units} ({self.min_clearance_basis})"
+        head = (f"Certificate {'OK' if self.ok else 'FAILED'} ({self._verdicts()}): cutter "
+                f"radius {self.radius:g} {self.units}, min clearance {clear}")
+        failed = [c for c in self.checks if not c.ok]
+        if not failed:
+            return f"{head}; {len(self.checks)} checks passed"
+        return head + "\n  failed: " + ", ".join(
+            f"{c.name} ({c.violations} violation{'s' if c.violations != 1 else ''})"
+            for c in failed)
+
     def _verdicts(self) -> str:
         """``geometry ok, limits FAIL`` and the like: the two verdicts ``ok`` joins."""
         lim = "ok" if self.limits_ok else "FAIL"

@@ -1,0 +1,101 @@
+"""Wall time of ``ccopt run``: per case and per stage, serial and parallel.
+
+Runs ``ccopt run`` twice in fresh processes on the same cases, once with
+``--workers 1`` (one case after the other) and once with ``--workers N``
+(default: one per core), and prints
+
+* per case, the wall time of each stage (read, compensate, feed, verify,
+  compare, export; from ``summary.json``'s ``stage_seconds``, measured in the
+  worker that ran the case) in the serial run, and the case's total in both;
+* the whole command's wall time (imports, workers, report included) in both,
+  and the parallel/serial ratio.
+
+::
+
+    .venv/bin/python bench/run.py                        # every bundled case (long)
+    .venv/bin/python bench/run.py leadin-inside-line pocket --workers 2
+    .venv/bin/python bench/run.py --no-compare --json
+
+Timings on a shared machine are inflated by the other load: compare ratios
+from one run, not absolute figures across runs.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+STAGES = ("read", "compensate", "feed", "verify", "compare", "export")
+
+
+def timed_run(cases: list[str], workers: int, extra: list[str], out: Path) -> dict:
+    """``ccopt run`` in a fresh process: its wall time (s) and each case's row
+    (name, status, stage_seconds)."""
+    cmd = [sys.executable, "-m", "ccopt.cli", "run", *cases, "-o", str(out), "--workers",
+           str(workers), "--quiet", *extra]
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True, env=env)
+    wall = time.perf_counter() - t0
+    if proc.returncode not in (0, 1):
+        sys.exit(f"ccopt run failed ({proc.returncode}): {proc.stderr.strip()}")
+    rows = json.loads((out / "summary.json").read_text())["cases"]
+    return {"wall": wall, "workers": workers,
+            "cases": [{"name": r["name"], "status": r["status"],
+                       "stage_seconds": r.get("stage_seconds", {})} for r in rows]}
+
+
+def report(serial: dict, parallel: dict) -> str:
+    """The table: per case and stage (serial), each case's total serial and
+    parallel, then the commands' wall times and their ratio."""
+    w = max([len(r["name"]) for r in serial["cases"]] + [5])
+    head = f"{'case'.ljust(w)}  " + "  ".join(f"{s:>10s}" for s in STAGES) + \
+        f"  {'serial':>8s}  {'parallel':>8s}"
+    lines = [head]
+    par = {r["name"]: r for r in parallel["cases"]}
+    for r in serial["cases"]:
+        st = r["stage_seconds"]
+        total = sum(st.values())
+        ptotal = sum(par[r["name"]]["stage_seconds"].values())
+        lines.append(f"{r['name'].ljust(w)}  " + "  ".join(
+            f"{st[s]:10.3f}" if s in st else f"{'-':>10s}" for s in STAGES)
+            + f"  {total:8.3f}  {ptotal:8.3f}")
+    sums = {s: sum(r["stage_seconds"].get(s, 0.0) for r in serial["cases"]) for s in STAGES}
+    lines.append(f"{'all'.ljust(w)}  " + "  ".join(f"{sums[s]:10.3f}" for s in STAGES))
+    ratio = parallel["wall"] / serial["wall"]
+    lines.append(f"ccopt run wall time: serial (--workers 1) {serial['wall']:.2f} s, parallel "
+                 f"(--workers {parallel['workers']}) {parallel['wall']:.2f} s, "
+                 f"parallel/serial {ratio:.3f}")
+    return "\n".join(lines)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("cases", nargs="*", help="cases or programs (default: every bundled case)")
+    ap.add_argument("--workers", type=int, default=os.cpu_count() or 1,
+                    help="workers of the parallel run (default: one per core)")
+    ap.add_argument("--no-compare", action="store_true", help="pass --no-compare")
+    ap.add_argument("--variants", help="pass --variants")
+    ap.add_argument("--json", action="store_true", help="print the figures as JSON")
+    args = ap.parse_args()
+    extra = ["--no-compare"] if args.no_compare else []
+    if args.variants:
+        extra += ["--variants", args.variants]
+    with tempfile.TemporaryDirectory() as tmp:
+        serial = timed_run(args.cases, 1, extra, Path(tmp) / "serial")
+        parallel = timed_run(args.cases, args.workers, extra, Path(tmp) / "parallel")
+    if args.json:
+        print(json.dumps({"serial": serial, "parallel": parallel,
+                          "ratio": parallel["wall"] / serial["wall"]}))
+    else:
+        print(report(serial, parallel))
+
+
+if __name__ == "__main__":
+    main()
