@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import argparse
 
-from ccopt.cases import Case, Job, Overrides, ReadOptions, resolve_input
+from ccopt.cases import DEFAULT_LIMITS, Case, Job, Overrides, ReadOptions, resolve_input
 
 #: the command-line options (argparse dests) that are compensation style options of the same name
 STYLE_OPTIONS = ("break_cos", "ccbuf")
@@ -32,8 +32,11 @@ def overrides(args: argparse.Namespace) -> Overrides:
         style_options={k: v for k, v in given.items() if v is not None})
 
 
-def job(what: str | Case, args: argparse.Namespace, default_limits: dict | None = None) -> Job:
+def job(what: str | Case, args: argparse.Namespace,
+        default_limits: dict | None = DEFAULT_LIMITS) -> Job:
     """The job for ``what`` (program file, case folder, bundled case name or
     case) with ``args``' overrides; ``default_limits`` as in
-    :func:`ccopt.cases.resolve_input`."""
+    :func:`ccopt.cases.resolve_input`: every command resolves the axis limits
+    by one rule (``--vmax/--amax``, else the case's ``[limits]``, else
+    :data:`ccopt.cases.DEFAULT_LIMITS`, which the output names)."""
     return resolve_input(what, overrides(args), default_limits)

@@ -43,7 +43,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     Exit 0 when every input did what its case expects, 1 when a verification
     failed, 2 when an input could not be read or compensated.
     """
-    jobs = [job(a, args, DEFAULT_LIMITS) for a in args.inputs or bundled_cases()]
+    jobs = [job(a, args) for a in args.inputs or bundled_cases()]
     if not jobs:
         raise ProgramError("no bundled cases found (is the cases/ folder next to ccopt/?)",
                            "cases")

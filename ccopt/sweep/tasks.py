@@ -18,13 +18,9 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
-from ccopt.cases import Case, bundled_cases, find_case, load_case
+from ccopt.cases import DEFAULT_LIMITS, Case, bundled_cases, find_case, load_case
 from ccopt.errors import ProgramError
 from ccopt.sweep.spec import Spec, limits_label
-
-#: Axis limits of a program that is not a case (and a sweep that sets none):
-#: 100 units/s and 1000 units/s^2 on every axis, as ``ccopt run`` uses.
-DEFAULT_LIMITS = {"v": [100.0, 100.0, 100.0], "a": [1000.0, 1000.0, 1000.0]}
 
 PROGRAM_SUFFIXES = (".pmc", ".nc", ".ngc")
 GLOB_CHARS = "*?["
@@ -41,7 +37,9 @@ class ProgramInput:
     def defaults(self) -> dict:
         """The settings the program brings: its case's style, radius and limits."""
         c = self.case
-        limits = dict(DEFAULT_LIMITS)
+        # a program that is not a case (and a sweep that sets none) takes the
+        # limits every command takes (ccopt.cases.DEFAULT_LIMITS)
+        limits = {key: list(value) for key, value in DEFAULT_LIMITS.items()}
         if c is not None and c.vmax and c.amax:
             limits = {"v": list(c.vmax), "a": list(c.amax)}
         return {"style": c.style if c else "pmac", "radius": c.radius if c else None,

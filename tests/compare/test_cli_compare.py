@@ -37,11 +37,13 @@ def test_compare_text_and_limits_override(capsys):
     assert "limits v=[10.0, 10.0, 10.0]" in out and out.splitlines()[1].startswith("variant")
 
 
-def test_compare_needs_limits(capsys, tmp_path):
+def test_compare_without_limits_takes_the_printed_default(capsys, tmp_path):
+    # issue 17: the same limit rule as feed and run (DEFAULT_LIMITS, printed)
     prog = tmp_path / "p.nc"
     prog.write_text("G21 G90 F600\nG41.1 D2\nG1 X10 Y0\nG1 X10 Y10\nG40\nG1 X20 Y10\n")
-    code, _, err = run(capsys, "compare", str(prog), "--variants", "pmac")
-    assert code == 2 and "no axis limits" in err and len(err.strip().splitlines()) == 1
+    code, out, err = run(capsys, "compare", str(prog), "--variants", "pmac")
+    assert code == 0, err
+    assert "default" in out and "a=[1000.0, 1000.0, 1000.0]" in out
 
 
 def test_smooth_json(capsys):

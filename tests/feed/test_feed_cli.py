@@ -59,15 +59,22 @@ def test_limits_from_the_command_line_override_the_case(capsys):
     assert slow["limits"]["v"] == [50.0, 50.0, 10.0]
 
 
-def test_program_file_needs_limits(capsys, tmp_path):
+def test_program_file_without_limits_takes_the_printed_default(capsys, tmp_path):
+    # issue 17: one rule everywhere: --vmax/--amax, else the case's [limits],
+    # else ccopt.cases.DEFAULT_LIMITS (100 units/s, 1000 units/s^2), which the
+    # output names. (Until issue 17 a program without limits was an error.)
     prog = tmp_path / "p.nc"
     prog.write_text("G21 G90 F600\nG1 X10 Y0\nG3 X0 Y10 I-10 J0\n")
     code, out, err = run(capsys, "feed", str(prog), "--json")
-    assert code == 2 and out == ""
-    assert err.count("\n") == 1 and "no axis limits" in err and str(prog) in err
-    code, out, err = run(capsys, "feed", str(prog), "--vmax", "100,100", "--amax", "1000,1000",
-                         "--json")
-    assert code == 0 and json.loads(out)["duration"] > 0
+    assert code == 0, err
+    doc = json.loads(out)
+    assert doc["limits_from"] == "default"
+    code, out2, _ = run(capsys, "feed", str(prog), "--vmax", "100,100,100",
+                        "--amax", "1000,1000,1000", "--json")
+    assert code == 0
+    assert json.loads(out2)["duration"] == pytest.approx(doc["duration"], rel=1e-9)
+    code, text, _ = run(capsys, "feed", str(prog))
+    assert code == 0 and "default" in text and "v=[100.0, 100.0, 100.0]" in text
 
 
 def test_csv_per_planner(capsys, tmp_path):
