@@ -1,9 +1,8 @@
-"""Execute every notebook and store it with its outputs in notebooks/with-outputs/.
+"""Execute every notebook and store it in place with its outputs.
 
-The notebooks in this folder are kept without outputs, so their diffs stay
-readable and the test suite (tests/test_notebooks.py) executes them from
-clean; their executed copies, figures inline, are what a repository browser
-shows. Run from the repository root after changing a notebook::
+The notebooks are stored executed, figures inline, so they read on a
+repository browser; the test suite (tests/test_notebooks.py) executes them
+again at small size. Run from the repository root after changing a notebook::
 
     .venv/bin/python notebooks/store_outputs.py [NAME.ipynb ...]
 """
@@ -17,7 +16,6 @@ import nbformat
 from nbclient import NotebookClient
 
 HERE = Path(__file__).resolve().parent
-OUT = HERE / "with-outputs"
 
 #: seconds a cell may take (the comparison of every variant is the longest)
 CELL_TIMEOUT = 1800
@@ -37,16 +35,14 @@ def _without_cluster_logs(book) -> None:
 
 
 def store(path: Path) -> Path:
-    """Execute ``path`` (from the repository root, at full size) and write its
-    executed copy into :data:`OUT`; returns the copy's path."""
+    """Execute ``path`` (from the repository root, at full size) and write it
+    back with its outputs; returns ``path``."""
     book = nbformat.read(path, as_version=4)
     NotebookClient(book, timeout=CELL_TIMEOUT, kernel_name="python3",
                    resources={"metadata": {"path": str(HERE.parent)}}).execute()
     _without_cluster_logs(book)
-    OUT.mkdir(exist_ok=True)
-    target = OUT / path.name
-    nbformat.write(book, target)
-    return target
+    nbformat.write(book, path)
+    return path
 
 
 def main(names: list[str]) -> None:

@@ -1,6 +1,6 @@
-"""The notebooks' executed copies (notebooks/with-outputs/, what a repository
-browser shows, made by notebooks/store_outputs.py) are the notebooks as they
-are, run to the end with their figures inline."""
+"""The notebooks are stored executed (by notebooks/store_outputs.py), run to
+the end in order with their figures inline, so they read on a repository
+browser."""
 from __future__ import annotations
 
 from pathlib import Path
@@ -15,12 +15,10 @@ SOURCES = sorted(NOTEBOOKS.glob("*.ipynb"))
 @pytest.mark.parametrize("path", SOURCES, ids=lambda p: p.stem)
 def test_executed_copy_matches_and_shows_its_figures(path):
     book = nbformat.read(path, as_version=4)
-    copy = nbformat.read(NOTEBOOKS / "with-outputs" / path.name, as_version=4)
-    # the same cells: the copy is not stale (run notebooks/store_outputs.py after a change)
-    assert [(c.cell_type, c.source) for c in copy.cells] == \
-        [(c.cell_type, c.source) for c in book.cells]
-    code = [c for c in copy.cells if c.cell_type == "code"]
-    assert all(c.execution_count is not None for c in code)
+    code = [c for c in book.cells if c.cell_type == "code"]
+    # executed top to bottom in one run (a cell edited or run again after the
+    # store breaks the 1, 2, 3, ... sequence: run notebooks/store_outputs.py)
+    assert [c.execution_count for c in code] == list(range(1, len(code) + 1))
     outputs = [o for c in code for o in c.outputs]
     assert not [o for o in outputs if o.output_type == "error"]
     # every cell that draws shows its figure inline (no forced non-interactive backend)
