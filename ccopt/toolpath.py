@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import enum
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Iterator
 
 from ccopt.errors import CompensationError
@@ -86,7 +86,8 @@ class PathSegment:
     w0, w1: out-of-plane coordinate (Z for G17) at start and end.
     feed: tangential speed cap in program units per second, ``None`` for rapids.
     plane: ``"XY" | "ZX" | "YZ"``, the plane of ``geom``'s ``(u, v)``; left
-        out (``None``), the block's plane (``"XY"`` without a block).
+        out (``None``), the block's plane, or without a block the plane of
+        the :class:`ToolPath` it is put in.
     """
 
     geom: Any
@@ -98,11 +99,10 @@ class PathSegment:
     plane: str | None = None
 
     def __post_init__(self):
-        if self.plane is None:
+        if self.plane is None and self.block is not None:
             # the plane of the block it came from: every engine's segments
             # follow their block, so they need not say it
-            b = self.block
-            object.__setattr__(self, "plane", "XY" if b is None else b.modal.plane)
+            object.__setattr__(self, "plane", self.block.modal.plane)
 
     @property
     def kind(self) -> str:
@@ -125,13 +125,13 @@ class PathSegment:
     def start_xyz(self) -> tuple[float, float, float]:
         """Start in machine coordinates ``(x, y, z)`` (program units)."""
         u, v = self.start
-        return machine_point(self.plane, u, v, float(self.w0))
+        return machine_point(self.plane or "XY", u, v, float(self.w0))
 
     @property
     def end_xyz(self) -> tuple[float, float, float]:
         """End in machine coordinates ``(x, y, z)`` (program units)."""
         u, v = self.end
-        return machine_point(self.plane, u, v, float(self.w1))
+        return machine_point(self.plane or "XY", u, v, float(self.w1))
 
     def to_json(self) -> dict:
         """The segment as the tool-path JSON schema (README, ``ccopt compensate``):
@@ -173,7 +173,8 @@ class ToolPath:
     ----------
     segments: tuple of :class:`PathSegment`.
     plane: ``"XY" | "ZX" | "YZ"``: the plane of the first segment (each
-        segment has its own: :attr:`planes`).
+        segment has its own: :attr:`planes`). A segment that has no plane
+        (built by hand, with no block) takes the plane given here.
     style: controller style that produced it (``"programmed"`` for the
         uncompensated programmed path).
     radius: cutter radius used (program units); 0 for the programmed path.
@@ -188,6 +189,14 @@ class ToolPath:
     dwells: tuple[tuple[int, float, Block], ...] = ()
     units: str = "mm"
     meta: dict = field(default_factory=dict, compare=False)
+
+    def __post_init__(self):
+        segs = self.segments
+        if any(s.plane is None for s in segs):
+            segs = tuple(s if s.plane is not None else replace(s, plane=self.plane) for s in segs)
+            object.__setattr__(self, "segments", segs)
+        if segs and segs[0].plane != self.plane:
+            object.__setattr__(self, "plane", segs[0].plane)
 
     def __iter__(self) -> Iterator[PathSegment]:
         return iter(self.segments)
