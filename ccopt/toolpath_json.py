@@ -158,7 +158,11 @@ class _Reader:
             feed = self.number(feed, "'feed'", where)
             if feed <= 0:
                 raise self.fail(f"'feed' must be > 0, not {feed!r}", where)
-        return PathSegment(geom, role, self.block(seg.get("block"), where), w0, w1, feed, plane)
+        block = self.block(seg.get("block"), where)
+        if block is not None and block.modal.plane != plane:
+            raise self.fail(f"'plane' {plane} is not the plane of its block (line "
+                            f"{block.source.line}, {block.modal.plane})", where)
+        return PathSegment(geom, role, block, w0, w1, feed, plane)
 
 
 def toolpath_from_json(data: Any, program: Program | None = None,
