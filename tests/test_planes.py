@@ -254,3 +254,27 @@ def test_linuxcnc_comp_ngc_is_no_longer_refused_at_its_g18(capsys, style):
     # G0 X-.2 Z-.2 Y0: the rapid ends there, in (u, v, w) = (Z, X, Y)
     assert first_zx["end_xyz"] == pytest.approx([-0.2, 0.0, -0.2])
     assert first_zx["end"] == pytest.approx([-0.2, -0.2])
+
+
+def test_a_gouge_in_the_g18_section_names_the_whole_paths_segment(capsys, tmp_path, part):
+    """The G18 compensated move's end moved from (u, v) = (20, 2) to (20, 1),
+    1 from its contour element's end (Z20, X0): a gouge of depth r - 1 = 1 at
+    that segment (numbered in the whole path), witnessed at (20, 1) in the ZX
+    plane, and a jump of 1 to the lead-out that still starts at (20, 2)."""
+    data = _json(capsys, "compensate", str(part), "--style", "pmac")
+    k = next(i for i, s in enumerate(data["segments"])
+             if s["plane"] == "ZX" and s["role"] == "compensated")
+    data["segments"][k]["end"] = [20.0, 1.0]
+    f = tmp_path / "moved.json"
+    f.write_text(json.dumps(data))
+    code = main(["verify", str(part), "--toolpath", str(f), "--json"])
+    cert = json.loads(capsys.readouterr().out)
+    assert code == 1 and not cert["ok"]
+    gouge = [v for v in cert["violations"] if v["kind"] == "gouge"]
+    assert gouge and gouge[0]["tool_segment"] == k and gouge[0]["plane"] == "ZX"
+    assert gouge[0]["depth"] == pytest.approx(1.0, abs=1e-12)
+    assert gouge[0]["witness_tool"] == pytest.approx([20.0, 1.0])
+    assert gouge[0]["element"] == 1          # the G17 run's element is 0
+    gap = [v for v in cert["violations"] if v["kind"] == "gap"]
+    assert [(v["tool_segment"], v["plane"]) for v in gap] == [(k + 1, "ZX")]
+    assert gap[0]["depth"] == pytest.approx(1.0, abs=1e-12)
