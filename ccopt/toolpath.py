@@ -4,22 +4,24 @@ A :class:`ToolPath` is what compensation produces and what feed planning,
 verification and export consume. Each :class:`PathSegment` holds one exact
 in-plane primitive (``Line``, ``Arc``, ``Spiral`` from :mod:`ccopt.geometry`,
 or a parametric blend curve), its :class:`Role`, the source :class:`Block` it
-came from, and the out-of-plane coordinate ``w`` at its start and end (carried
-linearly along the segment, never offset).
+came from, the out-of-plane coordinate ``w`` at its start and end (carried
+linearly along the segment, never offset) and its own plane.
 
-In-plane coordinates are the block plane's ``(u, v)`` (``X, Y`` for G17), see
-:data:`ccopt.program.model.PLANE_AXES`.
+In-plane coordinates are the segment plane's ``(u, v)`` (``X, Y`` for G17), see
+:data:`ccopt.program.model.PLANE_AXES`. A program may compensate in one plane
+and, after ``G40``, in another (LinuxCNC does): every segment knows its plane,
+and :attr:`ToolPath.plane` is the first segment's.
 """
 from __future__ import annotations
 
 import enum
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Iterator
 
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral, translated
-from ccopt.program.model import Block, Motion, Program
+from ccopt.program.model import PLANE_AXES, Block, Motion, Program
 from ccopt.tolerances import POINT_EPS, SPIRAL_RADIUS_REL_TOL
 
 
@@ -46,6 +48,20 @@ FITTED_PIECES = "fitted_pieces"
 TOOL_TIP = "tool_tip"
 
 
+def machine_point(plane: str, u: float, v: float, w: float) -> tuple[float, float, float]:
+    """``(x, y, z)`` of the point with plane coordinates ``(u, v, w)`` in ``plane``."""
+    xyz = [0.0, 0.0, 0.0]
+    iu, iv, iw = PLANE_AXES[plane]
+    xyz[iu], xyz[iv], xyz[iw] = u, v, w
+    return (xyz[0], xyz[1], xyz[2])
+
+
+def plane_point(plane: str, xyz) -> tuple[float, float, float]:
+    """``(u, v, w)`` of the machine point ``xyz`` in ``plane``."""
+    iu, iv, iw = PLANE_AXES[plane]
+    return (float(xyz[iu]), float(xyz[iv]), float(xyz[iw]))
+
+
 def segment_kind(geom: Any) -> str:
     """``"line" | "arc" | "spiral" | "curve"`` for a geometry object."""
     if isinstance(geom, Line):
@@ -69,6 +85,9 @@ class PathSegment:
         hand, e.g. in tests or blends not tied to one block).
     w0, w1: out-of-plane coordinate (Z for G17) at start and end.
     feed: tangential speed cap in program units per second, ``None`` for rapids.
+    plane: ``"XY" | "ZX" | "YZ"``, the plane of ``geom``'s ``(u, v)``; left
+        out (``None``), the block's plane, or without a block the plane of
+        the :class:`ToolPath` it is put in.
     """
 
     geom: Any
@@ -77,6 +96,13 @@ class PathSegment:
     w0: float = 0.0
     w1: float = 0.0
     feed: float | None = None
+    plane: str | None = None
+
+    def __post_init__(self):
+        if self.plane is None and self.block is not None:
+            # the plane of the block it came from: every engine's segments
+            # follow their block, so they need not say it
+            object.__setattr__(self, "plane", self.block.modal.plane)
 
     @property
     def kind(self) -> str:
@@ -95,12 +121,28 @@ class PathSegment:
         """In-plane length (program units)."""
         return float(self.geom.length)
 
+    @property
+    def start_xyz(self) -> tuple[float, float, float]:
+        """Start in machine coordinates ``(x, y, z)`` (program units)."""
+        u, v = self.start
+        return machine_point(self.plane or "XY", u, v, float(self.w0))
+
+    @property
+    def end_xyz(self) -> tuple[float, float, float]:
+        """End in machine coordinates ``(x, y, z)`` (program units)."""
+        u, v = self.end
+        return machine_point(self.plane or "XY", u, v, float(self.w1))
+
     def to_json(self) -> dict:
-        """The segment as DESIGN.md's JSON schema."""
+        """The segment as the tool-path JSON schema (README, ``ccopt compensate``):
+        in-plane ``start``/``end`` in its ``plane``, machine ``start_xyz``/``end_xyz``."""
         out: dict[str, Any] = {
             "kind": self.kind,
+            "plane": self.plane,
             "start": list(self.start),
             "end": list(self.end),
+            "start_xyz": list(self.start_xyz),
+            "end_xyz": list(self.end_xyz),
             "role": self.role.value,
             "block": self.block.source.line if self.block is not None else None,
         }
@@ -130,7 +172,9 @@ class ToolPath:
     Attributes
     ----------
     segments: tuple of :class:`PathSegment`.
-    plane: ``"XY" | "ZX" | "YZ"``.
+    plane: ``"XY" | "ZX" | "YZ"``: the plane of the first segment (each
+        segment has its own: :attr:`planes`). A segment that has no plane
+        (built by hand, with no block) takes the plane given here.
     style: controller style that produced it (``"programmed"`` for the
         uncompensated programmed path).
     radius: cutter radius used (program units); 0 for the programmed path.
@@ -146,6 +190,14 @@ class ToolPath:
     units: str = "mm"
     meta: dict = field(default_factory=dict, compare=False)
 
+    def __post_init__(self):
+        segs = self.segments
+        if any(s.plane is None for s in segs):
+            segs = tuple(s if s.plane is not None else replace(s, plane=self.plane) for s in segs)
+            object.__setattr__(self, "segments", segs)
+        if segs and segs[0].plane != self.plane:
+            object.__setattr__(self, "plane", segs[0].plane)
+
     def __iter__(self) -> Iterator[PathSegment]:
         return iter(self.segments)
 
@@ -158,6 +210,12 @@ class ToolPath:
     @property
     def length(self) -> float:
         return float(sum(s.length for s in self.segments))
+
+    @property
+    def planes(self) -> tuple[str, ...]:
+        """The segments' planes in the order they first appear (``(plane,)``
+        for a path without segments)."""
+        return tuple(dict.fromkeys(s.plane for s in self.segments)) or (self.plane,)
 
     def to_json(self) -> dict:
         return {
@@ -238,6 +296,8 @@ def programmed_path(program: Program) -> ToolPath:
         w0 = b.uvw(b.start)[2]
         w1 = b.uvw(b.end)[2]
         segs.append(PathSegment(block_geometry(b), role, b, w0, w1, b.feed))
+    if segs:
+        plane = segs[0].plane
     return ToolPath(tuple(segs), plane=plane, style="programmed", radius=0.0,
                     dwells=tuple(dwells), units=program.units)
 
@@ -272,7 +332,7 @@ def tool_centre_path(path: ToolPath) -> ToolPath:
             g = Line((g.p0[0] - du, g.p0[1] - dv), g.p1)
         else:  # "added": the centre does not move
             g = Line(g.p0, g.p0)
-        segments[i] = PathSegment(g, seg.role, seg.block, seg.w0, seg.w1, seg.feed)
+        segments[i] = PathSegment(g, seg.role, seg.block, seg.w0, seg.w1, seg.feed, seg.plane)
     meta = {k: v for k, v in path.meta.items() if k != TOOL_TIP}
     return ToolPath(tuple(segments), plane=path.plane, style=path.style, radius=path.radius,
                     dwells=path.dwells, units=path.units, meta=meta)

@@ -3,8 +3,12 @@
 The schema is what ``ccopt compensate --json`` prints (:meth:`ToolPath.to_json`):
 ``{"style", "radius", "plane", "units", "segments": [...]}``, each segment with
 ``kind`` (line|arc|spiral|curve), ``start``, ``end``, ``role``, ``block`` (the
-source line of the program block it belongs to, or null), optional ``w``
-(``[w0, w1]``, the out-of-plane coordinate) and ``feed``; arcs and spirals
+source line of the program block it belongs to, or null), optional ``plane``
+(the segment's own, default the file's ``plane``: ``start``/``end`` are in its
+``(u, v)``), ``w`` (``[w0, w1]``, the out-of-plane coordinate) and ``feed``;
+``start_xyz``/``end_xyz`` (machine coordinates) are written for the reader's
+convenience and not read: they follow from ``start``/``end``, ``w`` and
+``plane``, which are what a segment is rebuilt from; arcs and spirals
 ``center``, ``ccw`` and the signed ``sweep`` (radians), arcs ``radius``,
 spirals ``radius`` as ``[rho0, rho1]``; curves ``control_points`` (a Bezier
 curve of ``degree`` = points - 1). Another CAM system, a controller log or an
@@ -49,8 +53,9 @@ KINDS = ("line", "arc", "spiral", "curve")
 class _Reader:
     """One file's segments, with the program whose blocks they refer to."""
 
-    def __init__(self, file: str, program: Program | None):
+    def __init__(self, file: str, program: Program | None, plane: str = "XY"):
         self.file = file
+        self.plane = plane            # a segment's plane when it gives none
         self.blocks: list[Block] = list(program.blocks) if program is not None else []
         self.by_line: dict[int, list[int]] = {}
         for i, b in enumerate(self.blocks):
@@ -144,12 +149,20 @@ class _Reader:
         if not isinstance(w, list) or len(w) != 2:
             raise self.fail(f"'w' must be [w0, w1], not {w!r}", where)
         w0, w1 = (self.number(x, "'w'", where) for x in w)
+        plane = seg.get("plane", self.plane)
+        if plane not in PLANE_AXES:
+            raise self.fail(f"'plane' must be one of {', '.join(PLANE_AXES)}, not {plane!r}",
+                            where)
         feed = seg.get("feed")
         if feed is not None:
             feed = self.number(feed, "'feed'", where)
             if feed <= 0:
                 raise self.fail(f"'feed' must be > 0, not {feed!r}", where)
-        return PathSegment(geom, role, self.block(seg.get("block"), where), w0, w1, feed)
+        block = self.block(seg.get("block"), where)
+        if block is not None and block.modal.plane != plane:
+            raise self.fail(f"'plane' {plane} is not the plane of its block (line "
+                            f"{block.source.line}, {block.modal.plane})", where)
+        return PathSegment(geom, role, block, w0, w1, feed, plane)
 
 
 def toolpath_from_json(data: Any, program: Program | None = None,
@@ -170,6 +183,7 @@ def toolpath_from_json(data: Any, program: Program | None = None,
     plane = data.get("plane", "XY")
     if plane not in PLANE_AXES:
         raise reader.fail(f"'plane' must be one of {', '.join(PLANE_AXES)}, not {plane!r}")
+    reader.plane = plane
     default_units = program.units if program is not None else "mm"
     units = data.get("units", default_units)
     if units not in UNITS:
@@ -180,7 +194,8 @@ def toolpath_from_json(data: Any, program: Program | None = None,
     if not isinstance(style, str):
         raise reader.fail(f"'style' must be a string, not {style!r}")
     out = tuple(reader.segment(s, k) for k, s in enumerate(segs))
-    return ToolPath(out, plane=plane, style=style, radius=radius, units=units)
+    return ToolPath(out, plane=out[0].plane if out else plane, style=style, radius=radius,
+                    units=units)
 
 
 def read_toolpath_json(path: str | Path, program: Program | None = None) -> ToolPath:

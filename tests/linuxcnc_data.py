@@ -72,7 +72,7 @@ def canonical_moves(path):
         g = seg.geom
         if isinstance(g, Line):
             kind = "STRAIGHT_TRAVERSE" if seg.block.motion is Motion.RAPID else "STRAIGHT_FEED"
-            if path.plane == "ZX":      # in-plane (u, v) = (Z, X), w = Y
+            if seg.plane == "ZX":       # in-plane (u, v) = (Z, X), w = Y
                 out.append((kind, [g.end[1], seg.w1, g.end[0]]))
             else:
                 out.append((kind, [g.end[0], g.end[1], seg.w1]))

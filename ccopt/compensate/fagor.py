@@ -37,6 +37,7 @@ from ccopt.compensate.corners import (
     turn,
 )
 from ccopt.compensate.pmac import Joint, PmacStyle, SegmentList
+from ccopt.compensate.planes import by_plane
 from ccopt.compensate.scan import scan_program
 from ccopt.errors import CompensationError
 from ccopt.geometry import Line
@@ -250,6 +251,7 @@ class FagorStyle:
         return self.full_corner(a, b, a.k, a.r)
 
     # -- the whole program ---------------------------------------------------------
+    @by_plane
     def compensate(self, program: Program, radius: float | None = None,
                    side: int | None = None) -> ToolPath:
         scan = scan_program(program, radius=radius, side=side, style=self.name)

@@ -38,7 +38,7 @@ def controlled_point_path(path: ToolPath, radius_override: float | None = None) 
     """``path`` (nose-centre path in ``G18``) as the controlled point moves,
     where a lathe tool compensates; unchanged otherwise. ``path.meta[TOOL_TIP]``
     records what moved, for :func:`~ccopt.toolpath.tool_centre_path`."""
-    if path.plane != "ZX":
+    if "ZX" not in path.planes:
         return path
     iu, iv, _ = PLANE_AXES["ZX"]         # (u, v) = (Z, X)
     segments: list[PathSegment] = []
@@ -46,7 +46,7 @@ def controlled_point_path(path: ToolPath, radius_override: float | None = None) 
     index_map: list[int] = []
     for seg in path.segments:
         index_map.append(len(segments))
-        du, dv = _offset_uv(seg, radius_override, iu, iv)
+        du, dv = _offset_uv(seg, radius_override, iu, iv) if seg.plane == "ZX" else (0.0, 0.0)
         if (du, dv) == (0.0, 0.0) or seg.role not in (Role.LEAD_IN, Role.LEAD_OUT, *_MOVED):
             segments.append(seg)
             continue

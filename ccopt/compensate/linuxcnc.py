@@ -61,6 +61,7 @@ import numpy as np
 from ccopt.compensate import decisions
 from ccopt.compensate.corners import offset_dir, perp
 from ccopt.compensate.lathe import controlled_point_path
+from ccopt.compensate.planes import change_plane
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
@@ -287,7 +288,8 @@ class _Interpreter:
         # path ends at the last offset point; LinuxCNC has no automatic
         # lead-out (docs/compensation.md, LinuxCNC program end while on).
         self.dequeue()
-        return ToolPath(tuple(self.segs), plane=self.plane, style=LinuxcncStyle.name,
+        plane = self.segs[0].plane if self.segs else self.plane
+        return ToolPath(tuple(self.segs), plane=plane, style=LinuxcncStyle.name,
                         radius=self.used_radius, dwells=tuple(self.dwells),
                         units=self.program.units, meta={})
 
@@ -296,10 +298,7 @@ class _Interpreter:
         m = blk.modal
         was_on = prev_modal is not None and prev_modal.side != 0
         if m.plane != self.plane:
-            if self.k != 0 or m.side != 0 or was_on:
-                raise _err(blk, f"plane change ({self.plane} to {m.plane}) while cutter "
-                                "compensation is on: program G40 first")
-            self.plane = m.plane
+            was_on = change_plane(self, blk, was_on)
         if m.side == 0:
             if was_on:
                 self.compensation_off(blk)

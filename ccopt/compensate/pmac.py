@@ -28,6 +28,7 @@ from ccopt.compensate.batch import (
     ARC, SPIRAL, ElementArrays, classify_turn, corner_turn, nearest_corner_points,
     offset_points, tool_segments,
 )
+from ccopt.compensate.planes import by_plane
 from ccopt.compensate.scan import ScanResult, scan_program
 from ccopt.geometry import Arc, Line
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
@@ -224,6 +225,7 @@ class PmacStyle:
         return done, end_prev, start_next, arcs
 
     # -- the whole program ---------------------------------------------------------
+    @by_plane
     def compensate(self, program: Program, radius: float | None = None,
                    side: int | None = None) -> ToolPath:
         scan = scan_program(program, radius=radius, side=side, style=self.name)

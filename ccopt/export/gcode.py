@@ -1,5 +1,8 @@
 """ISO/RS274 G-code of a tool path: G0/G1 lines, G2/G3 arcs with I/J/K.
 
+Each segment is written in its own plane: ``G17``/``G18``/``G19`` stands in
+the first line and again wherever the plane changes.
+
 The exported program carries no compensation words: it is the tool-centre
 path itself. Spirals become arcs and Bezier blend curves arcs and lines
 within ``tol`` (:mod:`.arcfit`, certified bound). Feeds are written per
@@ -35,13 +38,19 @@ class _Writer:
     def __init__(self, path: ToolPath, digits: int):
         self.path = path
         self.digits = digits
-        iu, iv, iw = PLANE_AXES[path.plane]
-        self.u, self.v, self.w = AXES[iu], AXES[iv], AXES[iw]
-        self.ci, self.cj = CENTRE[iu], CENTRE[iv]
+        self.set_plane(path.plane)
         self.lines: list[str] = []
         self.source: list[int] = []   # original segment index of each move line
         self.intended: list = []      # (geometry meant by the line, certified bound)
         self.feed: float | None = None
+
+    def set_plane(self, plane: str) -> None:
+        """Write the coordinates of ``plane`` from now on: its ``(u, v, w)`` axis
+        letters and arc-centre words."""
+        self.plane = plane
+        iu, iv, iw = PLANE_AXES[plane]
+        self.u, self.v, self.w = AXES[iu], AXES[iv], AXES[iw]
+        self.ci, self.cj = CENTRE[iu], CENTRE[iv]
 
     def coords(self, uv, w) -> str:
         return (f"{self.u}{fmt(uv[0], self.digits)} {self.v}{fmt(uv[1], self.digits)} "
@@ -126,6 +135,10 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
     for idx, seg in enumerate(path.segments):
         for seconds in dwell_at.get(idx, ()):
             wr.lines.append(f"G4 P{fmt(seconds, 4)}")
+        if seg.plane != wr.plane:
+            # a path in several planes: the plane word before its first move
+            wr.lines.append(PLANE_WORD[seg.plane])
+            wr.set_plane(seg.plane)
         g = seg.geom
         if isinstance(g, Line):
             wr.line(idx, g, seg.w1, seg.feed)

@@ -7,7 +7,9 @@ spirals are exported exactly. Bezier blend curves become CIRCLE arcs and
 LINEAR moves within ``tol`` (:func:`ccopt.export.arcfit.fit_bezier`, certified
 bound), as in G-code. Centre vectors are incremental from the move start
 (PMAC's default ``INC(R)``); feeds are units per second (Isx90 = 1000). No
-compensation words (the program is the tool-centre path itself).
+compensation words (the program is the tool-centre path itself). Each
+segment is written in its own plane: ``NORMAL K-1`` (XY), ``J-1`` (ZX) or
+``I-1`` (YZ, docs/pmac.md) first and wherever the plane changes.
 """
 from __future__ import annotations
 
@@ -22,6 +24,28 @@ from ccopt.toolpath import ToolPath, starts_at_origin
 NORMAL = {"XY": "NORMAL K-1", "ZX": "NORMAL J-1", "YZ": "NORMAL I-1"}
 AXES = "XYZ"
 CENTRE = "IJK"
+
+
+class _PlaneWords:
+    """The axis letters of the current plane's ``(u, v, w)`` and its centre words."""
+
+    def __init__(self, plane: str, digits: int):
+        self.digits = digits
+        self.set_plane(plane)
+
+    def set_plane(self, plane: str) -> None:
+        self.plane = plane
+        iu, iv, iw = PLANE_AXES[plane]
+        self.letters = (AXES[iu], AXES[iv], AXES[iw])
+        self.centres = (CENTRE[iu], CENTRE[iv])
+
+    def coords(self, uv, w) -> str:
+        (U, V, W), d = self.letters, self.digits
+        return f"{U}{fmt(uv[0], d)} {V}{fmt(uv[1], d)} {W}{fmt(w, d)}"
+
+    def centre(self, i: float, j: float) -> str:
+        (CI, CJ), d = self.centres, self.digits
+        return f"{CI}{fmt(i, d)} {CJ}{fmt(j, d)}"
 
 
 def _pieces(g):
@@ -45,17 +69,13 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
     if tol is None:
         tol = DEFAULT_TOL[path.units]
     seg_tol = seg_tol or {}
-    iu, iv, iw = PLANE_AXES[path.plane]
-    U, V, W = AXES[iu], AXES[iv], AXES[iw]
-    CI, CJ = CENTRE[iu], CENTRE[iv]
     lines = [pmac_comment(h) for h in header or []]
     lines += ["CLOSE", f"OPEN PROG {program_number} CLEAR", NORMAL[path.plane], "ABS"]
     moves: list = []
     mode = None
     feed = None
-
-    def coords(uv, w):
-        return f"{U}{fmt(uv[0], digits)} {V}{fmt(uv[1], digits)} {W}{fmt(w, digits)}"
+    axes = _PlaneWords(path.plane, digits)
+    coords = axes.coords
 
     def emit(idx, new_mode, text, f, geom=None, bound=0.0):
         nonlocal mode, feed
@@ -74,7 +94,7 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
         i, j = piece.center[0] - su, piece.center[1] - sv
         # PMAC has no rapid circle: a circle in a rapid segment keeps the last feed
         emit(idx, "CIRCLE2" if piece.sweep > 0 else "CIRCLE1",
-             f"{coords(piece.end, w)} {CI}{fmt(i, digits)} {CJ}{fmt(j, digits)}",
+             f"{coords(piece.end, w)} {axes.centre(i, j)}",
              f if f is not None else feed, piece, bound)
 
     dwell_at: dict[int, list[float]] = {}
@@ -86,6 +106,10 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
     for idx, seg in enumerate(path.segments):
         for seconds in dwell_at.get(idx, ()):
             lines.append(f"DWELL {fmt(seconds * 1000.0, 3)}")
+        if seg.plane != axes.plane:
+            # a path in several planes: NORMAL before the first move in the next
+            lines.append(NORMAL[seg.plane])
+            axes.set_plane(seg.plane)
         g = seg.geom
         if isinstance(g, Line):
             emit(idx, "RAPID" if seg.feed is None else "LINEAR", coords(g.end, seg.w1), seg.feed, g)

@@ -83,7 +83,7 @@ def _budget_samples(path: ExactPath) -> tuple[np.ndarray, np.ndarray]:
 def segment_jerk_budgets(path: ExactPath, limits: AxisLimits):
     """``(v_cap, a_tangential, j_path)`` of each segment under jerk limits
     (units/s, units/s^2, units/s^3; see the module docstring)."""
-    jlim = limits.jerk_in_plane(path.toolpath.plane, path.dof)
+    jlim = limits.jerk_in_plane(path.frame, path.dof)
     v, a = segment_budgets(path, limits)
     k, s = _budget_samples(path)
     starts = np.flatnonzero(np.r_[True, np.diff(k) != 0])
@@ -102,7 +102,7 @@ def segment_jerk_budgets(path: ExactPath, limits: AxisLimits):
 
 def segment_budgets(path: ExactPath, limits: AxisLimits) -> tuple[np.ndarray, np.ndarray]:
     """``(v_cap, a_tangential)`` of each segment (units/s, units/s^2)."""
-    vlim, alim = limits.in_plane(path.toolpath.plane, path.dof)
+    vlim, alim = limits.in_plane(path.frame, path.dof)
     K = len(path.segments)
     k, s = _budget_samples(path)
     starts = np.flatnonzero(np.r_[True, np.diff(k) != 0])
@@ -176,7 +176,7 @@ def _trapezoid_knots(path, v_cap, a_tan, v_bound):
 
 def _junction_speeds(path, limits, v_cap, a_tan, junction_deviation):
     """Boundary speeds after grbl's backward and forward passes."""
-    _, alim = limits.in_plane(path.toolpath.plane, path.dof)
+    _, alim = limits.in_plane(path.frame, path.dof)
     K = len(path.segments)
     vb = boundary_speed_caps(path, alim, junction_deviation)
     vb[1:-1] = np.minimum(vb[1:-1], np.minimum(v_cap[:-1], v_cap[1:]))

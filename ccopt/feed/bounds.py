@@ -66,10 +66,12 @@ def feed_limited_time(toolpath: ToolPath, limits: AxisLimits) -> float:
     moves an axis the limits do not give (as :meth:`AxisLimits.in_plane`).
     """
     segs = [s for s in toolpath.segments if math.hypot(s.length, s.w1 - s.w0) > POINT_EPS]
-    moves_w = any(s.w1 != s.w0 for s in segs)
-    v_axis, _ = limits.in_plane(toolpath.plane, 3 if moves_w else 2)
+    several = len({s.plane for s in segs}) > 1     # then every section moves its w axis
+    moves_w = several or any(s.w1 != s.w0 for s in segs)
+    v_axes = {p: limits.in_plane(p, 3 if moves_w else 2)[0] for p in {s.plane for s in segs}}
     t = float(sum(seconds for _, seconds, _ in toolpath.dwells))
     for s in segs:
+        v_axis = v_axes[s.plane]            # the limits of the axes this segment moves
         travel = (*axis_travel(s.geom), abs(s.w1 - s.w0))[: len(v_axis)]
         t_axes = max(d / float(vmax) for d, vmax in zip(travel, v_axis))
         t_feed = 0.0

@@ -229,7 +229,7 @@ def _curve_samples(path: ExactPath, ks: np.ndarray, kappa_f: np.ndarray,
     min_piece = _MIN_PIECE * path.lengths
 
     def evaluate(kk, ss):
-        t = path.eval_segments(kk, ss, 1)[:, :2]
+        t = path.eval_in_plane(kk, ss, 1)
         return t / np.linalg.norm(t, axis=1, keepdims=True), path.eval_segments(kk, ss, 2)
 
     tan, q2 = evaluate(k, s)

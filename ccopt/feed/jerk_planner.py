@@ -135,7 +135,7 @@ def _stop_refinement(path: ExactPath, stops: np.ndarray, a: np.ndarray, j: np.nd
 def build_grid(path: ExactPath, limits: AxisLimits, ts: float,
                grid: GridOptions | None = None) -> JerkGrid:
     """The gridpoints and their data (see :class:`~ccopt.feed.jerk_lp.JerkGrid`)."""
-    plane = path.toolpath.plane
+    plane = path.frame
     v, a = limits.in_plane(plane, path.dof)
     j = limits.jerk_in_plane(plane, path.dof)
     base = gridpoints(path, v, a, grid or GridOptions())

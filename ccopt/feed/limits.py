@@ -4,7 +4,8 @@ Velocities in program units per second, accelerations in program units per
 second squared. ``v`` and ``a`` are given in machine axis order ``X, Y[, Z]``
 (as in ``case.toml`` ``[limits]``); :meth:`AxisLimits.in_plane` reorders them
 into the tool path's plane coordinates ``(u, v[, w])``
-(:data:`ccopt.program.model.PLANE_AXES`).
+(:data:`ccopt.program.model.PLANE_AXES`), or keeps them for a path in several
+planes, planned in machine coordinates (:data:`MACHINE_FRAME`).
 
 ``j`` (optional) gives per-axis jerk limits in program units per second
 cubed, in the same axis order; only the ``jerk`` planner and the jerk-limited
@@ -29,6 +30,14 @@ from ccopt.program.model import PLANE_AXES
 from ccopt.tolerances import LIMIT_RANGE
 
 AXIS_NAMES = ("X", "Y", "Z")
+
+#: The frame of a path whose segments lie in more than one plane: machine
+#: coordinates ``(x, y, z)`` (:attr:`ccopt.feed.path.ExactPath.frame`).
+MACHINE_FRAME = "XYZ"
+
+#: Machine axis index of each coordinate, per frame: a plane's ``(u, v, w)``
+#: (:data:`PLANE_AXES`), or the machine's own.
+FRAME_AXES: dict[str, tuple[int, int, int]] = {**PLANE_AXES, MACHINE_FRAME: (0, 1, 2)}
 
 
 def _positive_tuple(name: str, values) -> tuple[float, ...]:
@@ -96,15 +105,16 @@ class AxisLimits:
                            _optional_positive("centripetal_acc", self.centripetal_acc))
 
     def in_plane(self, plane: str, dof: int) -> tuple[np.ndarray, np.ndarray]:
-        """``(v, a)`` as arrays in plane coordinates ``(u, v[, w])`` of length ``dof``.
+        """``(v, a)`` as arrays in plane coordinates ``(u, v[, w])`` of length ``dof``
+        (``plane`` :data:`MACHINE_FRAME`: in machine order ``X, Y, Z``).
 
         ``ValueError`` naming the axis when the path needs a limit that was
         not given (e.g. it moves Z and only X, Y were given).
         """
-        idx = PLANE_AXES[plane][:dof]
+        idx = FRAME_AXES[plane][:dof]
         missing = [AXIS_NAMES[i] for i in idx if i >= len(self.v)]
         if missing:
-            moves = "moves" if dof == 3 and missing == [AXIS_NAMES[PLANE_AXES[plane][2]]] \
+            moves = "moves" if dof == 3 and missing == [AXIS_NAMES[FRAME_AXES[plane][2]]] \
                 else "uses"
             raise ValueError(f"the path {moves} axis {', '.join(missing)} but the limits give "
                              f"only {', '.join(AXIS_NAMES[:len(self.v)])}")
@@ -116,7 +126,7 @@ class AxisLimits:
         if self.j is None:
             return None
         self.in_plane(plane, dof)
-        idx = PLANE_AXES[plane][:dof]
+        idx = FRAME_AXES[plane][:dof]
         missing = [AXIS_NAMES[i] for i in idx if i >= len(self.j)]
         if missing:
             raise ValueError(f"the path uses axis {', '.join(missing)} but the jerk limits give "
@@ -125,7 +135,7 @@ class AxisLimits:
 
     def axis_names(self, plane: str, dof: int) -> tuple[str, ...]:
         """Machine axis names in plane-coordinate order, e.g. ``("Z", "X")`` for ZX."""
-        return tuple(AXIS_NAMES[i] for i in PLANE_AXES[plane][:dof])
+        return tuple(AXIS_NAMES[i] for i in FRAME_AXES[plane][:dof])
 
     def to_json(self) -> dict:
         out: dict = {"v": list(self.v), "a": list(self.a)}

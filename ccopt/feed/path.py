@@ -35,7 +35,12 @@ side is checked with its own curvature.
 
 Segments shorter than :data:`ccopt.tolerances.POINT_EPS` (in 3-D) do not move
 the tool and are left out. Coordinates are plane coordinates ``(u, v[, w])``;
-``dof`` is 3 only when some segment moves ``w``.
+``dof`` is 3 only when some segment moves ``w``. A path whose segments lie in
+more than one plane (G17, then G18 after G40) is planned in machine
+coordinates ``(x, y, z)`` instead (``frame`` :data:`~ccopt.feed.limits.MACHINE_FRAME`,
+``dof`` 3): each segment's ``(u, v, w)`` go to its own plane's axes
+(:data:`~ccopt.program.model.PLANE_AXES`), so every section is held to the
+limits of the axes it moves.
 """
 from __future__ import annotations
 
@@ -45,7 +50,9 @@ from dataclasses import dataclass
 import numpy as np
 from toppra.interpolator import AbstractGeometricPath
 
+from ccopt.feed.limits import MACHINE_FRAME
 from ccopt.geometry import Arc, Line, Spiral
+from ccopt.program.model import PLANE_AXES
 from ccopt.tolerances import GAP_EPS, POINT_EPS, TURN_EPS
 from ccopt.toolpath import Role, ToolPath
 
@@ -72,6 +79,9 @@ class ExactPath(AbstractGeometricPath):
     Attributes (arrays over the ``K`` moving segments, in order)
     ----------
     toolpath: the :class:`ToolPath` it was built from.
+    frame: the coordinates: the plane of every segment (``"XY"``, ``"ZX"``,
+        ``"YZ"``: ``(u, v[, w])``), or :data:`MACHINE_FRAME` ``(x, y, z)`` for
+        a path in several planes; :meth:`AxisLimits.in_plane` takes it.
     segments: the moving :class:`~ccopt.toolpath.PathSegment` objects.
     source_index: index of each in ``toolpath.segments``.
     lengths: 3-D lengths ``S``; ``offsets``: ``K + 1`` cumulative positions.
@@ -105,7 +115,15 @@ class ExactPath(AbstractGeometricPath):
         self._ratio = np.divide(self._L, self.lengths, out=np.zeros(len(S)),
                                 where=self.lengths > 0)
         self.offsets = np.concatenate([[0.0], np.cumsum(self.lengths)])
-        self._dof = 3 if np.any(self._dw != 0.0) else 2
+        planes = set(s.plane for s in toolpath.segments)
+        self._perm = None       # (K, 3): machine axis of each segment's (u, v, w)
+        if len(planes) > 1:
+            self.frame = MACHINE_FRAME
+            self._perm = np.array([PLANE_AXES[s.plane] for s in self.segments], int
+                                  ).reshape(-1, 3)
+        else:
+            self.frame = planes.pop() if planes else toolpath.plane
+        self._dof = 3 if self._perm is not None or np.any(self._dw != 0.0) else 2
         self.feeds = np.array([np.inf if (s.feed is None or s.role is Role.RAPID) else float(s.feed)
                                for s in self.segments])
         self._prepare_kernels()
@@ -232,7 +250,22 @@ class ExactPath(AbstractGeometricPath):
                 out[:, 2] = self._dw[k] / self.lengths[k]
             else:
                 out[:, 2] = 0.0
+        if self._perm is not None:
+            # (u, v, w) of each segment's plane to machine (x, y, z)
+            placed = np.empty_like(out)
+            rows = np.arange(out.shape[0])[:, None]
+            placed[rows, self._perm[np.broadcast_to(k, s.shape).reshape(-1)]] = out
+            return placed
         return out
+
+    def eval_in_plane(self, k, s, order: int = 0) -> np.ndarray:
+        """``(N, 2)``: the in-plane ``(u, v)`` part of :meth:`eval_segments`, in
+        each segment's own plane (what turns within the plane)."""
+        q = self.eval_segments(k, s, order)
+        if self._perm is None:
+            return q[:, :2]
+        kk = np.broadcast_to(np.asarray(k, dtype=int), np.shape(s)).reshape(-1)
+        return np.take_along_axis(q, self._perm[kk][:, :2], axis=1)
 
     def curvature_norm(self, k, s) -> np.ndarray:
         """``|q''|`` (curvature of the 3-D path, 1/units) at ``s`` on segments ``k``."""

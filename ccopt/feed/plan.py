@@ -25,8 +25,8 @@ def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: st
         raise ValueError(f"junction_deviation must be >= 0, got {junction_deviation!r}")
     path = toolpath if isinstance(toolpath, ExactPath) else ExactPath(toolpath)
     try:
-        limits.in_plane(path.toolpath.plane, path.dof)
-        limits.jerk_in_plane(path.toolpath.plane, path.dof)
+        limits.in_plane(path.frame, path.dof)
+        limits.jerk_in_plane(path.frame, path.dof)
     except ValueError as exc:
         raise FeedError(str(exc), path.source_file) from None
     kwargs: dict = {"junction_deviation": junction_deviation}

@@ -315,9 +315,9 @@ class FeedProfile:
         M = self.sdd.size
         path = self.path
         dof = path.dof
-        axes = self.limits.axis_names(path.toolpath.plane, dof)
-        vlim, alim = self.limits.in_plane(path.toolpath.plane, dof)
-        jlim = self.limits.jerk_in_plane(path.toolpath.plane, dof)
+        axes = self.limits.axis_names(path.frame, dof)
+        vlim, alim = self.limits.in_plane(path.frame, dof)
+        jlim = self.limits.jerk_in_plane(path.frame, dof)
         n = times.size
         if M == 0 or not path.segments:
             # no motion: the path stands (a dwell alone still takes its time)

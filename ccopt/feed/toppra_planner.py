@@ -219,7 +219,7 @@ def build_constraints(path: ExactPath, limits: AxisLimits, cap: np.ndarray,
     not wanted either: toppra's forward pass lowers each one by ``1e-8`` as
     a safety margin, which costs ``1e-8 / x`` of the time spent at ``x``.)
     """
-    v, a = limits.in_plane(path.toolpath.plane, path.dof)
+    v, a = limits.in_plane(path.frame, path.dof)
     s2 = scale * scale
     out = [IntervalAxisVelocityConstraint(v / scale),
            IntervalAxisAccelerationConstraint(a / s2, v / scale, cap / scale),
@@ -241,7 +241,7 @@ def plan_toppra(path: ExactPath, limits: AxisLimits, *, junction_deviation: floa
     grid = GridOptions() if grid is None else grid
     if not path.segments:
         return FeedProfile.empty(path, limits, "toppra")
-    v, a = limits.in_plane(path.toolpath.plane, path.dof)
+    v, a = limits.in_plane(path.frame, path.dof)
     budgets = segment_budgets(path, limits)
     gp = make_gridpoints(path, v, a, grid)
     if grid.baseline_knots:

@@ -49,6 +49,15 @@ PLANE_AXES: dict[str, tuple[int, int, int]] = {
 MAX_COORDINATE = 1e9
 
 
+#: ``Program.meta`` key, True when the reader has itself refused every plane
+#: change made while cutter compensation was on, where the plane word stands
+#: (the G-code reader, as LinuxCNC's interpreter). A move after such a change
+#: may then have compensation on on both sides (``G40``, ``G18``, ``G41``
+#: between two moves). Without it the compensation engines judge from the
+#: blocks alone and refuse a plane change next to any compensated move.
+PLANE_CHANGES_CHECKED = "plane_changes_checked"
+
+
 def out_of_range(value: float) -> bool:
     """``value`` is not finite or beyond :data:`MAX_COORDINATE` in magnitude."""
     return not abs(value) <= MAX_COORDINATE

@@ -18,6 +18,7 @@ from ccopt.verify.contact import check_contact
 from ccopt.verify.continuity import check_continuity
 from ccopt.verify.contour import STATUS_NAMES, STATUS_STEADY, Contour, contour_of
 from ccopt.verify.limits import LIMITS_TOL, check_limits
+from ccopt.verify.planes import join_certificates, plane_runs
 from ccopt.verify.segments import Packed, lengths, pack
 from ccopt.verify.side import check_side
 
@@ -193,6 +194,12 @@ def _verify(toolpath, program, profile, eps, radius, side, limits_tol,
                            program.file)
     if side not in SIDES:
         raise ProgramError(f"side must be left or right, not {side!r}", program.file)
+    runs = plane_runs(toolpath, program)
+    if runs is not None:
+        # in several planes: each run of one plane against its own contour
+        certs = [_verify(path, sub, None, eps, radius, side, limits_tol, part_lines)
+                 for path, sub, _ in runs]
+        return join_certificates(certs, runs, toolpath, profile, eps, limits_tol)
     contour = contour_of(program, radius=radius, side=SIDES[side],
                          toolpath_radius=toolpath.radius if radius is None else None,
                          part_lines=part_lines, eps=eps)

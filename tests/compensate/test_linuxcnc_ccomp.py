@@ -28,9 +28,9 @@ def _ours(folder: str):
     return canonical_moves(compensate(prog, style="linuxcnc"))
 
 
-@pytest.mark.parametrize("folder", MILL_TESTS)
-def test_program_matches_linuxcnc_move_for_move(folder):
-    got, want = _ours(folder), expected_moves(folder)
+def _differences(got, want) -> list[str]:
+    """Every move whose kind, end point, centre, Z or turn differs from
+    LinuxCNC's by more than TOL, in words."""
     assert [k for k, _ in got] == [k for k, _ in want]
     problems = []
     for i, ((kind, a), (_, b)) in enumerate(zip(got, want)):
@@ -40,7 +40,32 @@ def test_program_matches_linuxcnc_move_for_move(folder):
                      for q in fields if not abs(a[q] - b[q]) <= TOL]
         if kind == "ARC_FEED" and int(a[4]) != int(b[4]):
             problems.append(f"move {i} turn: ccopt {a[4]}, LinuxCNC {b[4]}")
+    return problems
+
+
+@pytest.mark.parametrize("folder", MILL_TESTS)
+def test_program_matches_linuxcnc_move_for_move(folder):
+    got, want = _ours(folder), expected_moves(folder)
+    problems = _differences(got, want)
     assert not problems, "\n".join(problems)
+
+
+def test_inside_corners_matches_linuxcnc_in_g17_and_then_g18():
+    """LinuxCNC's inside-corners test (tests/interp/inside-corners): the same
+    path of concave, convex and tangent joins with G41.1 D0, D-0.15 and
+    D0.15, in G17 and then, after G40, in G18 (no tool table: the diameters
+    are in the program). Every move matches LinuxCNC's, both planes'."""
+    d = CONFORMANCE / "inside-corners"
+    path = compensate(read_gcode((d / "test.ngc").read_text(), str(d / "test.ngc")),
+                      style="linuxcnc")
+    want = expected_moves("inside-corners")
+    problems = _differences(canonical_moves(path), want)
+    assert not problems, "\n".join(problems)
+    planes = [seg.plane for seg in path.segments]
+    # three passes of 39 compensated moves (and their corners) in each plane, XY first
+    assert planes[0] == "XY" and planes[-1] == "ZX"
+    assert planes.count("ZX") > 3 * 39 and planes.count("XY") > 3 * 39
+    assert planes == sorted(planes, key=["XY", "ZX"].index)
 
 
 def test_zchanges_arc_entry_with_z_move_is_linuxcncs_arc():

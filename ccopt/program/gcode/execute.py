@@ -200,7 +200,13 @@ def _set_modes(state: GCodeState, gc: dict, L: dict) -> None:
     """Plane, compensation, tool length, distance and Fagor modes."""
     plane = gc.get("plane")
     if plane is not None:
-        state.plane = _PLANES[plane[0]]
+        new_plane = _PLANES[plane[0]]
+        if new_plane != state.plane and state.side != 0:
+            # LinuxCNC's convert_set_plane, which runs before G40 in a block
+            raise state.error(f"cannot change planes ({state.plane} to {new_plane}) with "
+                              "cutter radius compensation on: program G40 on a line before",
+                              plane[1])
+        state.plane = new_plane
         state.modal_changed()
     comp = gc.get("comp")
     if comp is not None:

@@ -19,7 +19,7 @@ from ccopt.program.gcode.parameters import MAX_PARAMETER, attach_grammar, set_pa
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import output_units
 from ccopt.program.gcode.words import Lexed, lex, olabel, program_span
-from ccopt.program.model import Program
+from ccopt.program.model import PLANE_CHANGES_CHECKED, Program
 from ccopt.program.tooltable import ToolTable
 
 
@@ -82,6 +82,7 @@ def run(state: GCodeState) -> Program:
                             f"{f.call_line + 1})")
         raise
     units = output_units(state)
+    state.meta[PLANE_CHANGES_CHECKED] = True     # execute._set_modes refuses them
     return Program(tuple(state.blocks), file=state.file, dialect="gcode", units=units,
                    start=state.start, meta=state.meta)
 
