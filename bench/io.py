@@ -42,6 +42,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from ccopt.compensate import compensate  # noqa: E402
 from ccopt.export import export  # noqa: E402
 from ccopt.program import read_text  # noqa: E402
+from ccopt.verify import verify  # noqa: E402
 
 #: Tool diameter of the G-code program's tool table (mm).
 TOOL_DIAMETER = 6.0
@@ -177,14 +178,26 @@ def peak_rss_mb() -> float:
     return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
 
 
-def _child(blocks: int) -> None:
-    """Peak resident memory (MB) after the imports and after one export."""
+def _child(blocks: int, style: str, what: str) -> None:
+    """Peak resident memory (MB) after the imports and after one export (or,
+    ``what == "verify"``, one verification of the compensated path, as a peer)."""
     base = peak_rss_mb()
     prog = read_text(gcode_program(blocks), "bench.nc", "gcode", tool_table={1: TOOL_DIAMETER})
-    path = compensate(prog, style="linuxcnc")
-    with tempfile.TemporaryDirectory() as d:
-        export(path, Path(d) / "out.nc", program=prog)
+    path = compensate(prog, style=style)
+    if what == "verify":
+        verify(path, prog)
+    else:
+        with tempfile.TemporaryDirectory() as d:
+            export(path, Path(d) / "out.nc", program=prog)
     print(f"{base:.1f} {peak_rss_mb():.1f}")
+
+
+def peak_memory(blocks: int, style: str, what: str) -> tuple[float, float]:
+    """``(after the imports, peak)`` MB of a fresh process running ``_child``."""
+    out = subprocess.run([sys.executable, __file__, "--child", what, "--blocks", str(blocks),
+                          "--style", style], capture_output=True, text=True, check=True)
+    base, peak = out.stdout.split()
+    return float(base), float(peak)
 
 
 def main() -> None:
@@ -192,11 +205,14 @@ def main() -> None:
     ap.add_argument("--blocks", type=int, default=20_000)
     ap.add_argument("--lines", type=int, default=100_000)
     ap.add_argument("--repeat", type=int, default=3)
-    ap.add_argument("--child", action="store_true", help=argparse.SUPPRESS)
+    ap.add_argument("--style", default="linuxcnc",
+                    help="compensation style of the G-code program (default linuxcnc, as "
+                         "ccopt export does for G-code)")
+    ap.add_argument("--child", choices=("export", "verify"), help=argparse.SUPPRESS)
     ap.add_argument("--skip-export", action="store_true", help="time reading only")
     args = ap.parse_args()
     if args.child:
-        _child(args.blocks)
+        _child(args.blocks, args.style, args.child)
         return
     gtext = gcode_program(args.blocks)
     ptext = pmac_program(args.lines)
@@ -215,25 +231,27 @@ def main() -> None:
     t_gfloor, _ = timed(lambda: floor_split(gtext), args.repeat)
     t_gread, gprog = timed(lambda: read_text(gtext, "bench.nc", "gcode", tool_table=table),
                            args.repeat)
-    t_gcomp, gpath = timed(lambda: compensate(gprog, style="linuxcnc"), args.repeat)
+    t_gcomp, gpath = timed(lambda: compensate(gprog, style=args.style), args.repeat)
     print(f"G-code read {t_gread:7.3f} s  floor (regex split) {t_gfloor:.3f} s: read/floor "
           f"{t_gread / t_gfloor:.1f}x;  compensate {t_gcomp:.3f} s  "
           f"[{len(gprog.blocks)} blocks, {len(gpath.segments)} segments]")
     if args.skip_export:
         return
+    t_ver, _ = timed(lambda: verify(gpath, gprog), args.repeat)
     with tempfile.TemporaryDirectory() as d:
         t_exp, res = timed(lambda: export(gpath, Path(d) / "out.nc", program=gprog), args.repeat)
         t_pexp, _ = timed(lambda: export(gpath, Path(d) / "out.pmc", program=gprog), args.repeat)
     print(f"export .nc  {t_exp:7.3f} s  (target {EXPORT_SECONDS:g} s: "
           f"{t_exp / EXPORT_SECONDS:.2f}x; verified {res.verified}, read back within "
           f"{res.roundtrip_error:.3g})")
-    print(f"export .pmc {t_pexp:7.3f} s")
-    out = subprocess.run([sys.executable, __file__, "--child", "--blocks", str(args.blocks)],
-                         capture_output=True, text=True, check=True).stdout.split()
-    base, peak = float(out[0]), float(out[1])
+    print(f"export .pmc {t_pexp:7.3f} s;  peer: verify of the computed path alone "
+          f"{t_ver:.3f} s (export verifies the read-back, and the computed path again when "
+          f"the read-back fails)")
+    base, peak = peak_memory(args.blocks, args.style, "export")
+    _, peak_verify = peak_memory(args.blocks, args.style, "verify")
     print(f"peak memory (read + compensate + export .nc, fresh process): {peak:.0f} MB "
           f"(target {EXPORT_MB:g} MB: {peak / EXPORT_MB:.2f}x); after the imports alone "
-          f"{base:.0f} MB")
+          f"{base:.0f} MB; peer: read + compensate + verify alone {peak_verify:.0f} MB")
 
 
 if __name__ == "__main__":

@@ -16,7 +16,6 @@ Every text the writers put in a file (titles, headers) passes through
 """
 from __future__ import annotations
 
-import gc
 import json
 import math
 import os
@@ -334,16 +333,7 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
         raise ProgramError("export tolerance must be > 0", str(out))
     res = ExportResult(str(out), fmt, tol)
     if fmt in ("gcode", "pmac"):
-        # The cyclic garbage collector is paused meanwhile (as verify does): the
-        # read-back makes a block, a segment and its geometry per move, no
-        # reference cycles, and each automatic full collection would walk them all.
-        paused = gc.isenabled()
-        gc.disable()
-        try:
-            _export_program(res, path, out, program, title)
-        finally:
-            if paused:
-                gc.enable()
+        _export_program(res, path, out, program, title)
     elif fmt == "svg":
         contour = programmed_path(program) if program is not None else None
         write_text_atomic(out, write_svg(path, contour, title))

@@ -89,6 +89,11 @@ def run(state: GCodeState) -> Program:
                             f"{f.call_line + 1})")
         raise
     finally:
+        # the state is held in a reference cycle (its expression grammar reads
+        # it), so it waits for a collection: free its per-line caches now
+        state.lexed.clear()
+        state.constant.clear()
+        state.matched.clear()
         if paused:
             gc.enable()
     units = output_units(state)
