@@ -72,7 +72,7 @@ class Interpreter:
         self.finished = False
         #: line -> "part"/"air": the surface markers in the comments (markers.py)
         self.markers: dict[int, str] = {}
-        #: the Modal of each modal state met so far (see ``block``)
+        #: the Modal of each modal state met so far (see ``modal``)
         self._modals: dict[tuple, Modal] = {}
 
     def error(self, message: str, line: int | None, col: int | None = None) -> ProgramError:
