@@ -245,8 +245,8 @@ def main() -> None:
           f"{t_exp / EXPORT_SECONDS:.2f}x; verified {res.verified}, read back within "
           f"{res.roundtrip_error:.3g})")
     print(f"export .pmc {t_pexp:7.3f} s;  peer: verify of the computed path alone "
-          f"{t_ver:.3f} s (export verifies the read-back, and the computed path again when "
-          f"the read-back fails)")
+          f"{t_ver:.3f} s (export verifies the read-back, and the computed path too when a "
+          f"fitted move of the read-back gouges)")
     base, peak = peak_memory(args.blocks, args.style, "export")
     _, peak_verify = peak_memory(args.blocks, args.style, "verify")
     print(f"peak memory (read + compensate + export .nc, fresh process): {peak:.0f} MB "
