@@ -233,7 +233,13 @@ class _ProgramExport:
         verified, and the file is written from the last one. Returns the
         kept ``(seg_tol, moves, roundtrip, cert)``.
         """
-        if cert is None or cert.ok or not _verify(self.path, self.program).ok:
+        if cert is None or cert.ok:
+            return seg_tol, moves, roundtrip, cert
+        # No fitted move gouges (a path of lines and arcs only, say): nothing to
+        # tighten, so the computed path need not be verified to know it.
+        if _tighter_fits(cert, moves, seg_tol, self.tol) == seg_tol:
+            return seg_tol, moves, roundtrip, cert
+        if not _verify(self.path, self.program).ok:
             return seg_tol, moves, roundtrip, cert
         for _ in range(EXPORT_REFIT_ROUNDS):
             tighter = _tighter_fits(cert, moves, seg_tol, self.tol)

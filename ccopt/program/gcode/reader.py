@@ -7,6 +7,7 @@ lines to :mod:`.codes` and :mod:`.execute`, until the program ends.
 """
 from __future__ import annotations
 
+import gc
 import math
 
 from ccopt.errors import ProgramError
@@ -71,6 +72,12 @@ def run(state: GCodeState) -> Program:
 
     Errors raised inside a subroutine name the call that ran it.
     """
+    # The cyclic garbage collector is paused meanwhile (as verify does): the
+    # lines make blocks, tuples and cached words, no reference cycles, and each
+    # automatic full collection would walk every object made so far (measured:
+    # 40 % of the time of reading 20,000 lines).
+    paused = gc.isenabled()
+    gc.disable()
     try:
         _run_lines(state)
     except ProgramEnd:
@@ -81,6 +88,14 @@ def run(state: GCodeState) -> Program:
             exc.message += (f" (in subroutine {olabel(f.name)} called from line "
                             f"{f.call_line + 1})")
         raise
+    finally:
+        # the state is held in a reference cycle (its expression grammar reads
+        # it), so it waits for a collection: free its per-line caches now
+        state.lexed.clear()
+        state.constant.clear()
+        state.matched.clear()
+        if paused:
+            gc.enable()
     units = output_units(state)
     state.meta[PLANE_CHANGES_CHECKED] = True     # execute._set_modes refuses them
     return Program(tuple(state.blocks), file=state.file, dialect="gcode", units=units,

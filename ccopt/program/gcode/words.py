@@ -31,6 +31,12 @@ _N_NUMBER = re.compile(r"[\d. \t]*")
 # The number of an O-word label: digits and blanks.
 _O_NUMBER = re.compile(r"[\d \t]*")
 _O_KEYWORD = re.compile(r"[A-Za-z]*")
+# Where a comment starts: '(' to the next ')', ';' to the end of the line.
+_COMMENT_START = re.compile(r"[(;]")
+# The end of a '(' comment, or a '(' nested in it (an error).
+_PAREN = re.compile(r"[()]")
+# A character not allowed outside comments: anything but printable ASCII and tab.
+_NOT_CODE = re.compile(r"[^\t -~]")
 
 
 def fmt(x: float) -> str:
@@ -52,6 +58,8 @@ def olabel(label: str) -> str:
 
 def skip_blanks(code: str, p: int) -> int:
     """The first position at or after ``p`` that is not a space or a tab."""
+    if p < len(code) and code[p] != " " and code[p] != "\t":
+        return p            # the common case, without a match
     return _BLANKS.match(code, p).end()
 
 
@@ -112,34 +120,38 @@ def blank_comments(state: GCodeState, text: str, i: int) -> str:
     """``text`` with comments replaced by spaces (columns kept); checks characters.
 
     Outside comments only printable ASCII and tabs are allowed, so the code
-    every later stage reads is plain ASCII.
+    every later stage reads is plain ASCII. The comments and the characters
+    are found by regular expressions, the text between them taken whole.
     """
     if "(" not in text and ";" not in text:
         if text.isascii() and text.isprintable():
             return text
-    out = list(text)
-    opened = -1
-    for k, ch in enumerate(text):
-        if opened >= 0:
-            out[k] = " "
-            if ch == ")":
-                opened = -1
-            elif ch == "(":
-                raise state.error("'(' inside a comment: comments cannot be nested; "
-                                  "remove the inner '('", k, i)
-        elif ch == "(":
-            opened = k
-            out[k] = " "
-        elif ch == ";":
-            out[k:] = " " * (len(text) - k)
-            break
-        elif not (ch == "\t" or " " <= ch <= "~"):
+    parts = []
+    n = len(text)
+    k = 0
+    while True:
+        opened = _COMMENT_START.search(text, k)
+        stop = n if opened is None else opened.start()
+        bad = _NOT_CODE.search(text, k, stop)
+        if bad is not None:
+            ch = bad.group()
             raise state.error(f"character {ch!r} (U+{ord(ch):04X}) is not allowed outside "
-                              "comments: G-code is plain ASCII", k, i)
-    if opened >= 0:
-        raise state.error("unterminated comment: add ')' to close the '(' opened here",
-                          opened, i)
-    return "".join(out)
+                              "comments: G-code is plain ASCII", bad.start(), i)
+        parts.append(text[k:stop])
+        if opened is None:
+            return "".join(parts)
+        if opened.group() == ";":
+            parts.append(" " * (n - stop))
+            return "".join(parts)
+        close = _PAREN.search(text, stop + 1)
+        if close is None:
+            raise state.error("unterminated comment: add ')' to close the '(' opened here",
+                              stop, i)
+        if close.group() == "(":
+            raise state.error("'(' inside a comment: comments cannot be nested; "
+                              "remove the inner '('", close.start(), i)
+        k = close.end()
+        parts.append(" " * (k - stop))
 
 
 def _lex_oword(state: GCodeState, code: str, p: int, i: int) -> OWord:

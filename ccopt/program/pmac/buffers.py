@@ -43,7 +43,7 @@ class Download:
 def split_buffers(lines: Lines, file: str) -> Download | None:
     """Cut the file into PROG buffers and on-line text; ``None`` for a file
     without any ``OPEN`` (a bare program body, where ``CLOSE`` is an error)."""
-    if not any(line.lstrip().startswith("OPEN") for _, line in lines):
+    if not any("OPEN" in line and line.lstrip().startswith("OPEN") for _, line in lines):
         for n, line in lines:
             if line.strip() == "CLOSE":
                 raise ProgramError("CLOSE without OPEN (a file without OPEN is read as a "
@@ -55,8 +55,8 @@ def split_buffers(lines: Lines, file: str) -> Download | None:
     opened_at = 0
     for n, line in lines:
         stripped = line.strip()
-        col = len(line) - len(line.lstrip()) + 1
         if stripped.startswith("OPEN"):
+            col = len(line) - len(line.lstrip()) + 1
             if current is not None or skipping is not None:
                 raise ProgramError("OPEN inside an open buffer: CLOSE the buffer opened at "
                                    f"line {opened_at} first", file, n, col)

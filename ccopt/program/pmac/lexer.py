@@ -60,24 +60,34 @@ INDIRECT_RE = re.compile(r"([PQ])[ \t]*\(")
 #: ``P12``, ``Q3``, ``I15``, ``M7``: a variable read.
 VAR_RE = re.compile(r"([PQIM])(\d+)")
 LETTERS_RE = re.compile(r"[A-Z]+")
+#: The longest command word at a position: an alternation in the order of
+#: :data:`KEYWORDS` (longest first), which a regular expression tries in order.
+KEYWORD_RE = re.compile("|".join(re.escape(kw) for kw in KEYWORDS))
+#: One statement of a plain move line: a move-mode or ``CC0``/``CC1``/``CC2``
+#: word (group 1), or ``X Y Z I J K R F`` with a signed literal number (groups
+#: 2, 3, 4; blanks as :meth:`~ccopt.program.pmac.variables.Variables.data`
+#: allows them). A line made of these alone is run from this tokenizer, one
+#: match per statement; any other line statement by statement.
+PLAIN_STATEMENT_RE = re.compile(
+    r"[ \t]*(?:(LINEAR|LIN|CIRCLE1|CIR1|CIRCLE2|CIR2|RAPID|RPD|CC0|CC1|CC2)"
+    r"|([XYZIJKRF])[ \t]*([-+]?)[ \t]*(\d+\.?\d*|\.\d+))")
+#: A line made of :data:`PLAIN_STATEMENT_RE` statements only.
+PLAIN_LINE_RE = re.compile(r"(?:" + PLAIN_STATEMENT_RE.pattern + r")*[ \t]*")
 HEX_RE = re.compile(r"\$([0-9A-F]+)")
 NUMBER_RE = re.compile(r"(\d+\.?\d*|\.\d+)")
 _WORD_RE = re.compile(r"[A-Z][A-Z0-9]*")
+#: What ``split_lines`` cuts: a comment (``;`` to the end of the line) and
+#: the ``\r`` of a CR LF line end (one, as a line's last character).
+_CUT_RE = re.compile(r";[^\n]*|\r(?=\n|\Z)")
 
 
 def split_lines(text: str, file: str) -> list[tuple[int, str]]:
     """``(1-based line number, upper-case text without its comment)`` for every line."""
     if not isinstance(text, str):
         raise ProgramError("program text must be a str", file, None)
-    out = []
-    for n, raw in enumerate(text.split("\n"), start=1):
-        if raw.endswith("\r"):
-            raw = raw[:-1]
-        cut = raw.find(";")
-        if cut >= 0:
-            raw = raw[:cut]
-        out.append((n, raw.upper()))
-    return out
+    if ";" in text or "\r" in text:
+        text = _CUT_RE.sub("", text)
+    return list(enumerate(text.upper().split("\n"), start=1))
 
 
 def skip(text: str, pos: int) -> int:
@@ -95,10 +105,8 @@ def word(text: str, pos: int) -> str:
 
 def keyword_at(text: str, pos: int) -> str | None:
     """The longest command word of :data:`KEYWORDS` that starts at ``pos``."""
-    for kw in KEYWORDS:
-        if text.startswith(kw, pos):
-            return kw
-    return None
+    m = KEYWORD_RE.match(text, pos)
+    return m.group(0) if m else None
 
 
 def hex_value(digits: str, pos: int) -> float:

@@ -17,7 +17,7 @@ from ccopt.tolerances import POINT_EPS, R_CHORD_REL_TOL
 _VECTORS = "IJK"
 
 
-@dataclass
+@dataclass(slots=True)
 class PendingMove:
     """Axis words of the move being written on the current line.
 
@@ -40,6 +40,10 @@ class PendingMove:
 
 def finite_point(p, file: str, line: int, col: int, what: str) -> Vec3:
     """``p`` as a tuple of three floats; ProgramError when one is not finite."""
+    x, y, z = p
+    if -MAX_COORDINATE <= x <= MAX_COORDINATE and -MAX_COORDINATE <= y <= MAX_COORDINATE \
+            and -MAX_COORDINATE <= z <= MAX_COORDINATE:
+        return (float(x), float(y), float(z))      # the common case, in one test
     if not all(math.isfinite(v) for v in p):
         raise ProgramError(f"{what} is not a finite number (values too large)", file, line, col)
     if any(out_of_range(v) for v in p):

@@ -7,6 +7,7 @@ buffer statement by statement (:mod:`.statements`).
 """
 from __future__ import annotations
 
+import gc
 import math
 
 from ccopt.errors import ProgramError
@@ -46,7 +47,17 @@ def read_pmac(text: str, file: str = "<string>", *, start: Vec3 = (0.0, 0.0, 0.0
         raise ProgramError(f"start must be three numbers (x, y, z), got {start!r}", file) from None
     if len(start_t) != 3 or not all(math.isfinite(v) for v in start_t):
         raise ProgramError(f"start must be three finite numbers (x, y, z), got {start!r}", file)
-    return _read(text, file, start_t, program)  # type: ignore[arg-type]
+    # The cyclic garbage collector is paused meanwhile (as verify does): reading
+    # makes blocks, tuples and strings, no reference cycles, and each automatic
+    # full collection would walk every block made so far (measured: 40 % of
+    # the time of reading 100,000 lines).
+    paused = gc.isenabled()
+    gc.disable()
+    try:
+        return _read(text, file, start_t, program)  # type: ignore[arg-type]
+    finally:
+        if paused:
+            gc.enable()
 
 
 def _read(text: str, file: str, start: Vec3, program: int | None) -> Program:

@@ -10,13 +10,15 @@ units per second. The rules and decisions are in ``docs/pmac.md``.
 """
 from __future__ import annotations
 
+import math
 import re
 
 from ccopt.errors import ProgramError
 from ccopt.program.model import MAX_COORDINATE, Block, Modal, Motion, Source, Vec3, out_of_range
 from ccopt.program.pmac.lexer import (AXES, LETTERS_RE, MOVE_MODES, OTHER_AXES,
-                                      UNSUPPORTED, UNSUPPORTED_MODES, UNSUPPORTED_WHY, VECTORS,
-                                      keyword_at, skip, word)
+                                      PLAIN_LINE_RE, PLAIN_STATEMENT_RE, UNSUPPORTED,
+                                      UNSUPPORTED_MODES, UNSUPPORTED_WHY, VECTORS, keyword_at,
+                                      skip, word)
 from ccopt.program.pmac.moves import CircleMode, PendingMove, circle_centre, finite_point
 from ccopt.program.pmac.variables import Variables
 
@@ -24,6 +26,8 @@ _LABEL_RE = re.compile(r"[NO][ \t]*\d+")
 _FRAX_RE = re.compile(r"FRAX([ \t]*\([ \t]*([A-Z ,\t]*)\))?")
 #: Milliseconds per second: the program writes times in ms.
 _MS = 1000.0
+#: Axis letter -> index in (x, y, z).
+_AXIS_INDEX = {a: i for i, a in enumerate(AXES)}
 #: CC0/CC1/CC2 -> programmed side (+1 left, -1 right, 0 off).
 _CC_SIDES = {"CC0": 0, "CC1": 1, "CC2": -1}
 #: NORMAL's one negative component -> plane.
@@ -68,6 +72,8 @@ class Interpreter:
         self.finished = False
         #: line -> "part"/"air": the surface markers in the comments (markers.py)
         self.markers: dict[int, str] = {}
+        #: the Modal of each modal state met so far (see ``modal``)
+        self._modals: dict[tuple, Modal] = {}
 
     def error(self, message: str, line: int | None, col: int | None = None) -> ProgramError:
         return ProgramError(message, self.file, line, col)
@@ -137,18 +143,48 @@ class Interpreter:
     def program_line(self, line: int, text: str) -> None:
         """Execute one line of the program buffer."""
         self.pending = None
-        self.line_mcodes = []
-        pos = 0
-        while not self.finished:
-            pos = skip(text, pos)
-            if pos >= len(text):
-                break
-            pos = self.statement(line, text, pos)
+        if self.line_mcodes:
+            self.line_mcodes = []
+        if PLAIN_LINE_RE.fullmatch(text):
+            self.plain_line(line, text)
+        else:
+            pos = 0
+            while not self.finished:
+                pos = skip(text, pos)
+                if pos >= len(text):
+                    break
+                pos = self.statement(line, text, pos)
         self.flush()
         if self.line_mcodes:
             self.meta["ignored"].append({"line": line, "text": " ".join(
                 f"M{c}" for c in self.line_mcodes), "why": "M-code call without a move"})
-        self.line_mcodes = []
+            self.line_mcodes = []
+
+    def plain_line(self, line: int, text: str) -> None:
+        """Execute a line of move modes, ``CC0``/``CC1``/``CC2`` and axis and
+        ``F`` words with literal numbers (most lines of a long program), one
+        :data:`~ccopt.program.pmac.lexer.PLAIN_STATEMENT_RE` match per
+        statement (the line matched ``PLAIN_LINE_RE``, so they follow each
+        other): the same effects and errors as :meth:`statement`, without its
+        look-ups character by character."""
+        for m in PLAIN_STATEMENT_RE.finditer(text):
+            kw, letter, sign, number = m.groups()
+            if kw is not None:
+                self.flush()
+                if kw in _CC_SIDES:
+                    self.programmed_side = _CC_SIDES[kw]
+                else:
+                    self.mode = MOVE_MODES[kw]
+                continue
+            value = float(number)
+            if math.isinf(value):
+                raise self.error(f"{letter}: number too large", line, m.start(4) + 1)
+            if sign == "-":
+                value = -value
+            if letter == "F":
+                self.feed_word(value, line, m.start(2) + 1)
+            else:
+                self.add_axis_word(letter, value, line, m.start(2) + 1)
 
     def statement(self, line: int, text: str, pos: int) -> int:
         """Execute the statement at ``pos``; the position after it."""
@@ -182,11 +218,7 @@ class Interpreter:
                              line, col)
         if ch == "F":
             value, end = self.vars.data(line, text, pos + 1, "F")
-            self.bounded(value, "F", line, col)
-            if not value > 0:
-                raise self.error(f"F{value:g}: the feedrate must be positive", line, col)
-            self.feed = value * _MS / self.feed_unit_ms
-            self.time_mode = False
+            self.feed_word(value, line, col)
             return end
         if ch in "NO":
             m = _LABEL_RE.match(text, pos)
@@ -207,6 +239,14 @@ class Interpreter:
             raise self.error(f"{ch}-codes are not supported: PMAC runs them as calls into PROG "
                              f"10x0-10x3 subroutines that ccopt cannot see", line, col)
         raise self.error(f"unknown command {word(text, pos)!r}", line, col)
+
+    def feed_word(self, value: float, line: int, col: int) -> None:
+        """``F{value}`` at ``col``: the feedrate, in force from this line's move."""
+        self.bounded(value, "F", line, col)
+        if not value > 0:
+            raise self.error(f"F{value:g}: the feedrate must be positive", line, col)
+        self.feed = value * _MS / self.feed_unit_ms
+        self.time_mode = False
 
     def keyword(self, kw: str, line: int, text: str, pos: int) -> int:
         """Execute the command word ``kw`` at ``pos``; the position after it.
@@ -337,12 +377,18 @@ class Interpreter:
     def axis_word(self, letter: str, line: int, text: str, pos: int) -> int:
         """Add ``X``/``Y``/``Z``, ``I``/``J``/``K`` or ``R`` to the line's move."""
         value, end = self.vars.data(line, text, pos + 1, letter)
-        self.bounded(value, letter, line, pos + 1)
+        self.add_axis_word(letter, value, line, pos + 1)
+        return end
+
+    def add_axis_word(self, letter: str, value: float, line: int, col: int) -> None:
+        """Add the word ``letter`` (at ``col``) with ``value`` to the line's move."""
+        if not -MAX_COORDINATE <= value <= MAX_COORDINATE:
+            self.bounded(value, letter, line, col)
         if self.pending is None:
-            self.pending = PendingMove(line, pos + 1)
+            self.pending = PendingMove(line, col)
         pend = self.pending
         if letter in pend.words:
-            raise self.error(f"{letter} is written twice in one move", line, pos + 1)
+            raise self.error(f"{letter} is written twice in one move", line, col)
         pend.words.add(letter)
         if letter in AXES:
             pend.axes[letter] = (value, self.incremental[letter])
@@ -350,7 +396,6 @@ class Interpreter:
             pend.vector[letter] = value
         else:
             pend.radius = value
-        return end
 
     def flush(self) -> None:
         """Execute the move written so far on this line, if any."""
@@ -363,22 +408,23 @@ class Interpreter:
                              "point (X, Y, Z) on the same line", line, col)
         start = (self.pos[0], self.pos[1], self.pos[2])
         end = list(start)
-        for i, a in enumerate(AXES):
-            if a in pend.axes:
-                value, inc = pend.axes[a]
-                end[i] = start[i] + value if inc else value
+        for a, (value, inc) in pend.axes.items():
+            i = _AXIS_INDEX[a]
+            end[i] = start[i] + value if inc else value
         end_t = finite_point(end, self.file, line, col, "end point")
         has_centre = bool(pend.vector) or pend.radius is not None
-        mcodes = tuple(self.line_mcodes)
-        self.line_mcodes = []
-        kw = dict(mcodes=mcodes)
+        mcodes = ()
+        if self.line_mcodes:
+            mcodes = tuple(self.line_mcodes)
+            self.line_mcodes = []
+        feed = move_time = center = None
         if self.mode == "RAPID":
             if has_centre:
                 raise self.error("I/J/K or R on a RAPID move: only CIRCLE moves take a centre",
                                  line, col)
             motion = Motion.RAPID
         else:
-            kw["feed"], kw["move_time"] = self.feed_or_time(line, col)
+            feed, move_time = self.feed_or_time(line, col)
             if self.mode == "LINEAR":
                 if has_centre:
                     raise self.error("I/J/K or R on a LINEAR move: put CIRCLE1 or CIRCLE2 "
@@ -386,9 +432,12 @@ class Interpreter:
                 motion = Motion.LINE
             else:
                 cm = CircleMode(self.mode, self.plane, self.vector_absolute, self.file)
-                end_t, kw["center"] = circle_centre(pend, start, end_t, cm)
+                end_t, center = circle_centre(pend, start, end_t, cm)
                 motion = Motion.ARC_CW if self.mode == "CIRCLE1" else Motion.ARC_CCW
-        self.blocks.append(self.block(Source(self.file, line, col), motion, start, end_t, **kw))
+        self.blocks.append(Block(
+            source=Source(self.file, line, col), motion=motion, start=start, end=end_t,
+            modal=self.modal(), center=center, feed=feed, move_time=move_time, mcodes=mcodes,
+            surface=self.markers.get(line) if self.markers else None))
         self.pos = list(end_t)
 
     def feed_or_time(self, line: int, col: int) -> tuple[float | None, float | None]:
@@ -400,12 +449,20 @@ class Interpreter:
                              "TM (move time in ms) before it", line, col)
         return self.feed, None
 
+    def modal(self) -> Modal:
+        """The modal state in force (effective side: CC1/CC2 times sign of CCR)."""
+        key = (self.plane, self.programmed_side * self.radius_sign, self.radius,
+               self.accel_time, self.scurve_time)
+        modal = self._modals.get(key)
+        if modal is None:
+            # Modal is immutable: the blocks run under the same state share one
+            modal = Modal(plane=key[0], units="mm", side=key[1], radius=key[2],
+                          accel_time=key[3], scurve_time=key[4])
+            self._modals[key] = modal
+        return modal
+
     def block(self, source: Source, motion: Motion, start: Vec3, end: Vec3, **kw) -> Block:
-        """A block with the modal state in force (effective side: CC1/CC2 times sign of CCR)."""
-        modal = Modal(plane=self.plane, units="mm",
-                      side=self.programmed_side * self.radius_sign,
-                      radius=self.radius, accel_time=self.accel_time,
-                      scurve_time=self.scurve_time)
+        """A block with the modal state in force."""
         surface = self.markers.get(source.line) if self.markers else None
-        return Block(source=source, motion=motion, start=start, end=end, modal=modal,
+        return Block(source=source, motion=motion, start=start, end=end, modal=self.modal(),
                      surface=surface, **kw)

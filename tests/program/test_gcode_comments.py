@@ -1,0 +1,78 @@
+"""G-code comments are blanked by regular expressions (issue 17: no reading
+character by character): the same text and errors as the RS274NGC rule read
+one character at a time, written out here as the reference."""
+from __future__ import annotations
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from ccopt.errors import ProgramError
+from ccopt.program.gcode.state import GCodeState
+from ccopt.program.gcode.words import blank_comments
+
+
+def _reference(text: str):
+    """RS274NGC comments, character by character: ``(`` to ``)`` (not nested)
+    and ``;`` to the end become blanks; outside them only printable ASCII
+    and tabs. ``(blanked text, None)`` or ``(None, (column, message start))``."""
+    out = list(text)
+    opened = -1
+    for k, ch in enumerate(text):
+        if opened >= 0:
+            out[k] = " "
+            if ch == ")":
+                opened = -1
+            elif ch == "(":
+                return None, (k, "'(' inside a comment")
+        elif ch == "(":
+            opened = k
+            out[k] = " "
+        elif ch == ";":
+            out[k:] = " " * (len(text) - k)
+            break
+        elif not (ch == "\t" or " " <= ch <= "~"):
+            return None, (k, f"character {ch!r}")
+    if opened >= 0:
+        return None, (opened, "unterminated comment")
+    return "".join(out), None
+
+
+def _blanked(text: str):
+    state = GCodeState(text, "c.ngc", None, (0.0, 0.0, 0.0))
+    try:
+        return blank_comments(state, text, 0), None
+    except ProgramError as err:
+        return None, (err.col - 1, err.message)
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("G1 X1 (feed) Y2", "G1 X1        Y2"),
+    ("G1 X1 ; rest (x", "G1 X1          "),
+    ("(a;b) X1 (c)", "      X1    "),
+    ("\tX1", "\tX1"),
+])
+def test_comments_become_blanks(text, expected):
+    assert _blanked(text) == (expected, None)
+
+
+@pytest.mark.parametrize("text, col, start", [
+    ("G1 X1 (oops F60", 6, "unterminated comment"),
+    ("X1 (a (b)", 6, "'(' inside a comment"),
+    ("X1 é (c)", 3, "character 'é'"),
+    ("(c) X\x001", 5, "character '\\x00'"),
+])
+def test_comment_errors(text, col, start):
+    got, err = _blanked(text)
+    assert got is None and err[0] == col and err[1].startswith(start)
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(st.sampled_from(["(", ")", ";", "X1", " ", "\t", "é", "\x00", "~", "a"]),
+                max_size=12).map("".join))
+def test_comments_as_character_by_character(text):
+    got, err = _blanked(text)
+    ref, ref_err = _reference(text)
+    assert got == ref
+    if ref_err is not None:
+        assert err[0] == ref_err[0] and err[1].startswith(ref_err[1])
