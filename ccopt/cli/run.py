@@ -76,8 +76,10 @@ def _print_summary(rows: list[dict], out: Path) -> None:
     print(f"{'case'.ljust(w)}  style     radius  cycle time  min clearance  status")
     for r in rows:
         if "duration" in r:
-            print(f"{r['name'].ljust(w)}  {r['style']:8s}  {r['radius']:6g}  "
-                  f"{r['duration']:8.3f} s  {r['min_clearance']:13.6g}  {r['status']}")
+            # no clearance figure: the path has no compensated move to check
+            clear = "-" if r["min_clearance"] is None else f"{r['min_clearance']:.6g}"
+            print(f"{r['name'].ljust(w)}  {r['style']:8s}  {r['radius'] or 0:6g}  "
+                  f"{r['duration']:8.3f} s  {clear:>13s}  {r['status']}")
         else:
             print(f"{r['name'].ljust(w)}  {'':8s}  {'':6s}  {'':10s}  {'':13s}  {r['status']}")
     for r in rows:

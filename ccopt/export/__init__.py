@@ -279,9 +279,11 @@ def _verdict(res: ExportResult, path: ToolPath, fit: str, cert) -> list[str]:
     if cert is not None:
         res.verified = bool(cert.ok)
         res.certificate = cert.to_json()
+        # no clearance figure when the path has no compensated move to check
+        clearance = ("no compensated move to check" if cert.min_clearance is None else
+                     f"minimum clearance {cert.min_clearance:.6g} for radius {path.radius:g}")
         lines.append(f"verified against the programmed contour: "
-                     f"{'OK' if cert.ok else 'FAILED'}, minimum clearance "
-                     f"{cert.min_clearance:.6g} for radius {path.radius:g}")
+                     f"{'OK' if cert.ok else 'FAILED'}, {clearance}")
     else:
         lines.append("not verified: no programmed contour given")
     return lines
