@@ -30,6 +30,7 @@ from ccopt.export.pmacprog import write_pmac
 from ccopt.export.svg import write_svg
 from ccopt.geometry import Arc, Line
 from ccopt.program import read_text
+from ccopt.program.gcode.execute import LATHE_DIAMETER_MODE_USED
 from ccopt.program.model import Program
 from ccopt.tolerances import EXPORT_REFIT_MIN_TOL, EXPORT_REFIT_ROUNDS, EXPORT_REFIT_SHRINK
 from ccopt.toolpath import (FITTED_PIECES, TOOL_TIP, PathSegment, Role, ToolPath,
@@ -211,7 +212,11 @@ class _ProgramExport:
     def write(self, header: list[str], seg_tol: dict[int, float]) -> tuple[str, list]:
         """Program text and its moves ``(source segment, meant geometry, fit bound)``."""
         if self.fmt == "gcode":
-            return write_gcode(self.path, self.tol, header, seg_tol=seg_tol)[:2]
+            # a program that used G7 (lathe diameter mode) is written in radii under G8
+            radius_mode = bool(self.program is not None
+                               and self.program.meta.get(LATHE_DIAMETER_MODE_USED))
+            return write_gcode(self.path, self.tol, header, seg_tol=seg_tol,
+                               radius_mode=radius_mode)[:2]
         # the program number the PMAC program was read from, kept
         number = (self.program.meta.get("program") if self.program is not None
                   and self.program.dialect == "pmac" else None)

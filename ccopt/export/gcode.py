@@ -106,7 +106,7 @@ def bezier_pieces(g: BezierCurve, w0: float, w1: float, tol: float):
 
 
 def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, digits: int = 6,
-                seg_tol: dict[int, float] | None = None):
+                seg_tol: dict[int, float] | None = None, radius_mode: bool = False):
     """G-code text of ``path``.
 
     Returns ``(text, moves, max_fit_error)``: ``moves[m] = (source, geometry,
@@ -116,15 +116,17 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
     segment (0 for lines and arcs, the fit bound for arcs replacing a spiral
     and for lines and arcs replacing a Bezier curve); ``max_fit_error`` is the
     largest such bound. ``seg_tol`` gives some segments (by index) a tighter
-    fit tolerance than ``tol``.
+    fit tolerance than ``tol``. ``radius_mode``: the mode line says ``G8``
+    (lathe radius mode), for a program that used G7: the written X words are
+    radii, which a lathe left in diameter mode would read as diameters.
     """
     wr = _Writer(path, digits)
     seg_tol = seg_tol or {}
     out = ["%"]
     for h in header or []:
         out.append(gcode_comment(h))
-    out.append(f"G21 {PLANE_WORD[path.plane]} G90 G94" if path.units == "mm"
-               else f"G20 {PLANE_WORD[path.plane]} G90 G94")
+    modes = f"{PLANE_WORD[path.plane]} G90 G94" + (" G8" if radius_mode else "")
+    out.append(f"G21 {modes}" if path.units == "mm" else f"G20 {modes}")
     max_err = 0.0
     dwell_at: dict[int, list[float]] = {}
     for idx, seconds, _ in path.dwells:

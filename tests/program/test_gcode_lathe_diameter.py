@@ -11,6 +11,7 @@ import math
 import pytest
 
 from ccopt.compensate import compensate
+from ccopt.export import export
 from ccopt.program.gcode import read_gcode
 
 
@@ -66,3 +67,18 @@ def test_a_compensated_g7_program_is_its_g8_program():
         assert sa.geom.start == pytest.approx(sb.geom.start)
         assert sa.geom.end == pytest.approx(sb.geom.end)
     assert a.radius == pytest.approx(1.0)
+
+
+def test_export_of_a_g7_program_says_g8(tmp_path):
+    # the exported X words are radii; G8 on the mode line makes a lathe read
+    # them as such (the read-back reads the file as written)
+    text = ("G18 G21 F600\nG7\nG0 X40 Z5\nG42.1 D2 G1 X40 Z0\nG1 Z-20\nG40 G1 X50\n")
+    prog = read_gcode(text)
+    path = compensate(prog, style="linuxcnc")
+    res = export(path, tmp_path / "turn.nc", program=prog)
+    written = (tmp_path / "turn.nc").read_text().splitlines()
+    assert "G21 G18 G90 G94 G8" in written
+    assert res.verified
+    # the face pass at radius 20 (X40 in G7) plus the cutter radius 1 on the
+    # right of travel -Z in G18 (outside): X21 in radius
+    assert any(line.startswith("G1") and "X21 " in line + " " for line in written)

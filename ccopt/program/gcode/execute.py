@@ -173,6 +173,10 @@ def _dwell(state: GCodeState, dwell: tuple[int, int], L: dict, mcodes: tuple,
                        state.pos, state.pos, state.modal(), dwell=secs, mcodes=mcodes))
 
 
+#: ``Program.meta`` key: the program switched to G7 somewhere.
+LATHE_DIAMETER_MODE_USED = "lathe_diameter_mode_used"
+
+
 def _lathe_diameter(state: GCodeState, gc: dict, L: dict) -> dict:
     """G7/G8, and the X word of a line in diameter mode halved.
 
@@ -184,6 +188,9 @@ def _lathe_diameter(state: GCodeState, gc: dict, L: dict) -> dict:
     mode = gc.get("lathe_diameter")
     if mode is not None:
         state.diameter_mode = mode[0] == 70
+        if state.diameter_mode:
+            # exports hold radii: they say G8 (gcode.write_gcode)
+            state.meta[LATHE_DIAMETER_MODE_USED] = True
     if state.diameter_mode and "X" in L:
         value, col = L["X"]
         L = dict(L)
