@@ -66,15 +66,9 @@ def _interval_rows(g: JerkGrid, i0: int, i1: int, scale: float, vref: np.ndarray
     of order 1 and its bounds ``+-vref_m / sqrt(bhat_m)``, which start at 1,
     are all that changes between rounds.
 
-    Left out, as they add nothing: an interval's end acceleration row where
-    ``q'``, ``q''`` are continuous (it is the next interval's start row),
-    coefficients of variables fixed at 0 (stops) and the rows left empty (an
-    axis the path does not move). On a straight interval (``q'' = q''' = 0`` at
-    both ends) every axis's jerk row at both ends is a multiple of one row
-    (``alpha_k+1 - alpha_k``, or ``b_m`` for a rest piece): one row stands for
-    them, with the axis of largest ``|q_i'| / J_i`` and the larger ``bhat``
-    of the two ends (speed points ``at0``, ``at1``). An acceleration row with
-    a single entry is a bound on that column.
+    On a straight interval (``q'' = q''' = 0`` at both ends) every axis's
+    jerk row at both ends is a multiple of one row (:func:`_straight_rows`);
+    :func:`_assemble` leaves out the rows that add nothing.
     """
     n = i1 - i0
     k = np.arange(n)
@@ -84,20 +78,10 @@ def _interval_rows(g: JerkGrid, i0: int, i1: int, scale: float, vref: np.ndarray
     rows, cols, vals = [], [], []
 
     def add(rr, cc, vv):
-        rows.append(rr)
-        cols.append(cc)
-        vals.append(vv)
+        rows.append(rr), cols.append(cc), vals.append(vv)
 
-    # equalities: trapezoid (SLINEAR) or the rest pieces' alpha = +-2 b / (3 h)
     lin, fr, to = kind == SLINEAR, kind == FROM_REST, kind == TO_REST
-    add(k[lin], k[lin] + 1, np.ones(lin.sum()))
-    add(k[lin], k[lin], -np.ones(lin.sum()))
-    add(k[lin], nb + k[lin], -h[lin])
-    add(k[lin], nb + k[lin] + 1, -h[lin])
-    add(k[fr], nb + k[fr] + 1, np.ones(fr.sum()))
-    add(k[fr], k[fr] + 1, -2.0 / (3.0 * h[fr]))
-    add(k[to], nb + k[to], np.ones(to.sum()))
-    add(k[to], k[to], 2.0 / (3.0 * h[to]))
+    _equality_rows(add, k, h, nb, lin, fr, to)
     r = n
     q1s, q2s, q3s = g.q1[1, i0:i1], g.q2[1, i0:i1], g.q3[1, i0:i1]          # at starts
     q1e, q2e, q3e = g.q1[0, i0 + 1:i1 + 1], g.q2[0, i0 + 1:i1 + 1], g.q3[0, i0 + 1:i1 + 1]
@@ -136,25 +120,48 @@ def _interval_rows(g: JerkGrid, i0: int, i1: int, scale: float, vref: np.ndarray
             jerk_at.append(np.stack([mc, mc]))
             r += n
     # straight intervals: one jerk row each (see above)
-    ks = k[straight]
     at = np.stack([mov_of[0][straight], mov_of[1][straight]])
-    vrow = vref[at].max(axis=0)
-    cj = vrow * scale * np.max(np.abs(q1s[straight]) / g.j, axis=1)
-    ls = lin[straight]
-    rr = r + np.arange(ks.size)
-    add(rr[ls], nb + ks[ls] + 1, slope_a[straight][ls] * cj[ls])
-    add(rr[ls], nb + ks[ls], -slope_a[straight][ls] * cj[ls])
-    add(rr[~ls], at[0][~ls], slope_b[straight][~ls] * cj[~ls])
-    jerk_rows.append(rr)
-    jerk_at.append(at)
-    r += ks.size
+    cj = vref[at].max(axis=0) * scale * np.max(np.abs(q1s[straight]) / g.j, axis=1)
+    rr = r + np.arange(at.shape[1])
+    _straight_rows(add, rr, k[straight], at[0], nb, lin[straight], slope_a[straight],
+                   slope_b[straight], cj)
+    jerk_rows.append(rr), jerk_at.append(at)
+    r += at.shape[1]
     return _assemble(n, r, rows, cols, vals, g.stop[i0:i1 + 1], np.concatenate(acc_rows),
                      np.concatenate(twin), np.concatenate(jerk_rows),
                      np.concatenate(jerk_at, axis=1))
 
 
+def _equality_rows(add, k, h, nb, lin, fr, to) -> None:
+    """One row per interval ``k``: the trapezoid ``b_k+1 - b_k = h (alpha_k +
+    alpha_k+1)`` (``SLINEAR``), or a rest piece's ``alpha = +-2 b / (3 h)`` at
+    its moving end."""
+    add(k[lin], k[lin] + 1, np.ones(lin.sum()))
+    add(k[lin], k[lin], -np.ones(lin.sum()))
+    add(k[lin], nb + k[lin], -h[lin])
+    add(k[lin], nb + k[lin] + 1, -h[lin])
+    add(k[fr], nb + k[fr] + 1, np.ones(fr.sum()))
+    add(k[fr], k[fr] + 1, -2.0 / (3.0 * h[fr]))
+    add(k[to], nb + k[to], np.ones(to.sum()))
+    add(k[to], k[to], 2.0 / (3.0 * h[to]))
+
+
+def _straight_rows(add, rr, ks, mov, nb, ls, slope_a, slope_b, cj) -> None:
+    """The one jerk row (``rr``) of each straight interval ``ks``:
+    ``cj * slope * (alpha_k+1 - alpha_k)``, or ``cj * slope * b_mov`` on a rest
+    piece; ``cj`` takes the axis of largest ``|q_i'| / J_i`` and the larger
+    ``bhat`` of the two ends (speed points ``at0``, ``at1``)."""
+    add(rr[ls], nb + ks[ls] + 1, slope_a[ls] * cj[ls])
+    add(rr[ls], nb + ks[ls], -slope_a[ls] * cj[ls])
+    add(rr[~ls], mov[~ls], slope_b[~ls] * cj[~ls])
+
+
 def _assemble(n, r, rows, cols, vals, stop, acc_rows, twin, jerk_rows, jerk_at):
-    """The matrix of :func:`_interval_rows` with what it leaves out left out."""
+    """The matrix of :func:`_interval_rows` without what adds nothing: an
+    interval's end acceleration row where ``q'``, ``q''`` are continuous (it is
+    the next interval's start row), coefficients of variables fixed at 0
+    (stops) and the rows left empty (an axis the path does not move); an
+    acceleration row with a single entry becomes a bound on that column."""
     nb = n + 1
     rows, cols, vals = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
     fixed = np.concatenate([stop, stop])
