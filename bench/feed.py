@@ -25,12 +25,17 @@ Measured in the same run, medians of ``--repeat`` runs:
   and its cycle time against TOPPRA's and the jerk-limited stop baseline's
   (an S-curve per block). ``--no-jerk`` leaves it out.
 
-    python bench/feed.py [--sizes 1000,10000] [--repeat 3] [--no-jerk]
+A second program, ``--programs cam``, is CAM-style: ``n`` G1 chords of
+0.5 mm along a smooth freeform curve at 6 m/min (:func:`cam_program`).
+The jerk planner's CPU time counts its worker processes.
+
+    python bench/feed.py [--sizes 1000,10000] [--repeat 3] [--no-jerk] [--programs pocket,cam]
 """
 from __future__ import annotations
 
 import argparse
 import math
+import resource
 import statistics
 import sys
 import time
@@ -51,6 +56,9 @@ DEPTH = -2.0
 LIMITS = AxisLimits(v=(100.0, 100.0, 30.0), a=(1000.0, 1000.0, 300.0))
 #: axis jerk limits for the jerk planner, units/s^3 (20 times the acceleration: 50 ms ramps)
 JERK = (20000.0, 20000.0, 6000.0)
+#: the CAM-style program: chord length (mm) and feed (mm/s, 6 m/min)
+CAM_CHORD = 0.5
+CAM_FEED = 100.0
 
 
 def pocket_program(n: int, seed: int = 1) -> Program:
@@ -145,31 +153,73 @@ def plain_toppra(path: ExactPath, gp: np.ndarray, scale: float):
     return run
 
 
-def bench_jerk(tp, toppra_cpu: float, toppra_n: int, toppra_T: float, n_blocks: int) -> None:
-    """The jerk planner once (it takes long), against TOPPRA's figures."""
+def cpu_with_children() -> float:
+    """CPU seconds of this process and of the worker processes it has waited for
+    (the jerk planner solves its windows in workers on long programs)."""
+    me = resource.getrusage(resource.RUSAGE_SELF)
+    kids = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return me.ru_utime + me.ru_stime + kids.ru_utime + kids.ru_stime
+
+
+def bench_jerk(tp, toppra_cpu: float, toppra_wall: float, toppra_n: int, toppra_T: float,
+               n_blocks: int) -> None:
+    """The jerk planner once (it takes long), against TOPPRA's figures (same
+    path, same run), and the jerk-limited baselines."""
     lim = AxisLimits(LIMITS.v, LIMITS.a, j=JERK)
-    c0, w0 = time.process_time(), time.perf_counter()
+    c0, w0 = cpu_with_children(), time.perf_counter()
     prof = plan_feed(tp, lim, planner="jerk")
-    cpu, wall = time.process_time() - c0, time.perf_counter() - w0
+    cpu, wall = cpu_with_children() - c0, time.perf_counter() - w0
     N = prof.info["gridpoints"]
     stop = plan_feed(tp, lim, planner="stop")
-    print(f"  jerk planner (j = {JERK})       : {cpu:7.3f} CPU s ({wall:.3f} wall), "
-          f"{N:,} gridpoints, {prof.info['windows']} windows, {prof.info['lp_rounds']} LPs")
-    print(f"    per block {cpu / n_blocks * 1e3:.2f} ms; per gridpoint {cpu / N * 1e6:.1f} us = "
-          f"{(cpu / N) / (toppra_cpu / toppra_n):.1f} x TOPPRA's")
+    junction = plan_feed(tp, lim, planner="junction")
+    print(f"  jerk planner (j = {JERK})       : {cpu:7.3f} CPU s in {prof.info['workers']} "
+          f"process(es) ({wall:.3f} wall), {N:,} gridpoints, {prof.info['windows']} windows, "
+          f"{prof.info['lp_rounds']} LPs")
+    print(f"    per block {cpu / n_blocks * 1e3:.2f} ms CPU; per gridpoint {cpu / N * 1e6:.1f} us = "
+          f"{(cpu / N) / (toppra_cpu / toppra_n):.1f} x TOPPRA's (CPU); wall "
+          f"{wall / toppra_wall:.1f} x TOPPRA's")
     print(f"    cycle time {prof.duration:.3f} s = {prof.duration / toppra_T:.4f} x TOPPRA's, "
           f"{prof.duration / stop.duration:.4f} x the jerk-limited stop baseline's "
-          f"({stop.duration:.3f} s)")
+          f"({stop.duration:.3f} s), {prof.duration / junction.duration:.4f} x the "
+          f"jerk-limited junction baseline's ({junction.duration:.3f} s)")
 
 
-def bench(n: int, repeat: int, jerk: bool = True) -> None:
-    prog = pocket_program(n)
+def cam_program(n: int) -> Program:
+    """A CAM-style program: ``n`` G1 chords of about 0.5 mm along a smooth
+    closed freeform curve (a circle with a five-lobed ripple of 15 %), cut
+    inside with CC1 at :data:`CAM_FEED`, so the machine is acceleration- and
+    jerk-limited most of the way; with rapid, plunge, lead-in/out, retract."""
+    R = n * CAM_CHORD / (2 * math.pi)
+    theta = np.linspace(0.0, 2 * math.pi, n, endpoint=False)
+    rad = R * (1.0 + 0.15 * np.sin(5 * theta))
+    pts = np.c_[rad * np.cos(theta), rad * np.sin(theta)]
+    on, off = Modal(side=1, radius=RADIUS), Modal(side=0, radius=RADIUS)
+    src = iter(range(1, n + 10))
+
+    def blk(motion, s, e, modal, z0=DEPTH, z1=DEPTH):
+        return Block(Source("cam", next(src), 1), motion, (s[0], s[1], z0), (e[0], e[1], z1),
+                     modal, feed=None if motion is Motion.RAPID else CAM_FEED)
+
+    centre = (0.5 * R, 0.0)
+    blocks = [blk(Motion.RAPID, (0.0, 0.0), centre, off, 0.0, 5.0),
+              blk(Motion.LINE, centre, centre, off, 5.0, DEPTH),
+              blk(Motion.LINE, centre, pts[0], on)]
+    blocks += [blk(Motion.LINE, pts[i], pts[(i + 1) % n], on) for i in range(n)]
+    blocks += [blk(Motion.LINE, pts[0], centre, off), blk(Motion.LINE, centre, centre, off, DEPTH, 5.0)]
+    return Program(tuple(blocks), "cam", "pmac")
+
+
+PROGRAMS = {"pocket": pocket_program, "cam": cam_program}
+
+
+def bench(n: int, repeat: int, jerk: bool = True, program: str = "pocket") -> None:
+    prog = PROGRAMS[program](n)
     tp = compensate(prog, "pmac")
     kinds: dict[str, int] = {}
     for s in tp.segments:
         kinds[s.kind] = kinds.get(s.kind, 0) + 1
     path = ExactPath(tp)
-    print(f"\npocket of {n:,} contour blocks -> {len(tp.segments):,} segments {kinds}, "
+    print(f"\n{program} of {n:,} contour blocks -> {len(tp.segments):,} segments {kinds}, "
           f"{path.length:,.1f} mm, {int(path.tangent_break.sum()):,} stops")
 
     prof = plan_feed(tp, LIMITS)            # the gridpoints (and a warm-up)
@@ -198,7 +248,7 @@ def bench(n: int, repeat: int, jerk: bool = True) -> None:
         label = "toppra" if name == "ccopt" else name
         print(f"  {label:9s} {p.duration:10.3f} s  {p.duration / T0:9.4f}   {cpu_s:10.3f}")
     if jerk:
-        bench_jerk(tp, c_cpu, N, T0, n)
+        bench_jerk(tp, c_cpu, c_wall, N, T0, n)
 
 
 def main() -> None:
@@ -206,11 +256,14 @@ def main() -> None:
     ap.add_argument("--sizes", default="1000,10000")
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--no-jerk", action="store_true", help="leave the jerk planner out")
+    ap.add_argument("--programs", default="pocket,cam",
+                    help="which generated programs: pocket (lines and arcs), cam (G1 chords)")
     args = ap.parse_args()
     print(f"limits v={LIMITS.v} a={LIMITS.a}, feed {FEED} mm/s, cutter radius {RADIUS} mm; "
           f"medians of {args.repeat} interleaved runs; grid {GridOptions()}")
-    for n in (int(x) for x in args.sizes.split(",")):
-        bench(n, args.repeat, not args.no_jerk)
+    for program in args.programs.split(","):
+        for n in (int(x) for x in args.sizes.split(",")):
+            bench(n, args.repeat, not args.no_jerk, program)
 
 
 if __name__ == "__main__":

@@ -25,6 +25,15 @@ with ``M_i = max |q_i'''|`` also taken over the segment, the speed cap obeys
 path jerk is ``j = min_i (J_i - M_i v^3 - 3 N_i v a) / T_i`` (on a line
 ``min_i J_i / |t_i|``, exact).
 
+The junction baseline under jerk limits runs the same look-ahead with
+jerk-limited speed changes: per block a speed change from its start speed up
+to a peak, a cruise and one down to its end speed, each with the
+acceleration 0 at its ends (:func:`ccopt.feed.jerk_profile.scurve_between`),
+under the same jerk budget; its passes use the distance of such a change
+(its mean speed times its duration), and a junction at a curvature break is
+capped as the jerk planner caps it, ``|Delta q_i''| v^2 <= J_i ts``
+(``ts`` the interpolation period, 1 ms by default).
+
 Planners:
 
 - :func:`plan_stop_per_block`: stop at the end of every segment (rest to rest
@@ -42,10 +51,12 @@ import math
 
 import numpy as np
 
-from ccopt.feed.jerk_profile import CUBIC, JerkProfile, integrate_phases, scurve_rest_to_rest
+from ccopt.feed.jerk_profile import (BISECTION_STEPS, CUBIC, JerkProfile, integrate_phases,
+                                     scurve_between, scurve_rest_to_rest, speed_change_distance)
 from ccopt.feed.junction import boundary_speed_caps
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
+from ccopt.feed.planners import DEFAULT_TS
 from ccopt.feed.profile import FeedProfile
 from ccopt.geometry import Arc
 from ccopt.tolerances import BUDGET_SAMPLE_ANGLE
@@ -223,10 +234,15 @@ def plan_stop_per_block(path: ExactPath, limits: AxisLimits, **_ignored) -> Feed
 
 
 def plan_junction(path: ExactPath, limits: AxisLimits, *,
-                  junction_deviation: float | None = None, **_ignored) -> FeedProfile:
-    """grbl-style look-ahead with junction speeds (see the module docstring)."""
+                  junction_deviation: float | None = None, ts: float = DEFAULT_TS,
+                  **_ignored) -> FeedProfile:
+    """grbl-style look-ahead with junction speeds (see the module docstring);
+    jerk-limited when ``limits.j`` is given (``ts``: the interpolation period
+    of the curvature-break rule, s)."""
     if not path.segments:
         return FeedProfile.empty(path, limits, "junction")
+    if limits.j is not None:
+        return _plan_junction_jerk(path, limits, junction_deviation, ts)
     v_cap, a_tan = segment_budgets(path, limits)
     vb = _junction_speeds(path, limits, v_cap, a_tan, junction_deviation)
     knots = _trapezoid_knots(path, v_cap, a_tan, vb)
@@ -254,3 +270,61 @@ def scurve_pieces(path: ExactPath, limits: AxisLimits) -> dict:
     pieces = dict(zip(("s0", "h", "v0", "v1", "a0", "a1", "j", "dt"), cols))
     pieces.update(kind=np.full(len(rows), CUBIC), segment=np.array(seg, dtype=int))
     return pieces
+
+
+def _plan_junction_jerk(path: ExactPath, limits: AxisLimits, junction_deviation, ts: float):
+    """grbl-style look-ahead under jerk limits (see the module docstring)."""
+    v_cap, a_tan, j_path = segment_jerk_budgets(path, limits)
+    vb = _jerk_junction_speeds(path, limits, v_cap, a_tan, j_path, junction_deviation, ts)
+    rows, seg = [], []
+    for k in range(len(path.segments)):
+        phases = scurve_between(float(path.lengths[k]), float(vb[k]), float(vb[k + 1]),
+                                float(v_cap[k]), float(a_tan[k]), float(j_path[k]))
+        new = integrate_phases(float(path.offsets[k]), phases, float(path.offsets[k + 1]),
+                               float(vb[k]), float(vb[k + 1]))
+        rows.extend(new)
+        seg.extend([k] * len(new))
+    cols = np.array(rows, dtype=float).reshape(-1, 8).T
+    pieces = dict(zip(("s0", "h", "v0", "v1", "a0", "a1", "j", "dt"), cols))
+    pieces.update(kind=np.full(len(rows), CUBIC), segment=np.array(seg, dtype=int))
+    info = {"junction_deviation": junction_deviation if junction_deviation else 0.0,
+            "jerk_limited": 1, "ts": ts}
+    return JerkProfile.from_pieces(path, limits, "junction", pieces, info)
+
+
+def _jerk_junction_speeds(path, limits, v_cap, a_tan, j_path, junction_deviation, ts):
+    """Boundary speeds of the jerk-limited look-ahead: the caps of
+    :func:`_junction_speeds` and, at a curvature break, ``|Delta q_i''| v^2 <=
+    J_i ts`` (the jerk planner's rule); then the backward and forward passes
+    with the distance of a jerk-limited speed change
+    (:func:`~ccopt.feed.jerk_profile.speed_change_distance`)."""
+    _, alim = limits.in_plane(path.toolpath.plane, path.dof)
+    jlim = limits.jerk_in_plane(path.toolpath.plane, path.dof)
+    vb = boundary_speed_caps(path, alim, junction_deviation)
+    vb[1:-1] = np.minimum(vb[1:-1], np.minimum(v_cap[:-1], v_cap[1:]))
+    K = len(path.segments)
+    if K > 1:
+        at = path.offsets[1:-1]
+        jump = np.abs(path.eval_segments(np.arange(1, K), at, 2)
+                      - path.eval_segments(np.arange(K - 1), at, 2))
+        with np.errstate(divide="ignore"):
+            cap = np.where(jump > 0, jlim * ts / np.where(jump > 0, jump, 1.0), np.inf).min(axis=1)
+        vb[1:-1] = np.minimum(vb[1:-1], np.sqrt(cap))
+    L = path.lengths
+
+    def reach(v_from, k, bound):
+        """The largest speed at most ``bound`` that changes to ``v_from`` within block k."""
+        a, j = float(a_tan[k]), float(j_path[k])
+        if bound <= v_from or speed_change_distance(v_from, bound, a, j) <= L[k]:
+            return bound
+        lo, hi = v_from, bound
+        for _ in range(BISECTION_STEPS):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if speed_change_distance(v_from, mid, a, j) <= L[k] else (lo, mid)
+        return lo
+
+    for k in range(K - 1, -1, -1):  # backward pass: can still slow down to the next junction
+        vb[k] = reach(float(vb[k + 1]), k, float(vb[k]))
+    for k in range(K):  # forward pass: can speed up to it from the previous one
+        vb[k + 1] = reach(float(vb[k]), k, float(vb[k + 1]))
+    return vb

@@ -1,8 +1,9 @@
 """The linear programme of the ``jerk`` planner on one window of gridpoints.
 
 See :mod:`ccopt.feed.jerk_planner` for the formulation. Here: the gridpoint
-data (:class:`JerkGrid`), the LP of a window for a given speed bound ``bhat``
-(:func:`solve_window`), and the piece durations (:func:`piece_times`).
+data (:class:`JerkGrid`), the LP of a window (:class:`WindowLP`, built once
+and solved for each speed bound ``bhat`` of the pseudo-jerk rounds), and the
+piece durations (:func:`piece_times`).
 
 Unknowns of a window of gridpoints ``0..n``: the squared speeds ``b_k`` and
 the path accelerations ``alpha_k = s''`` (``b' = 2 alpha``), scaled by
@@ -50,110 +51,224 @@ class JerkGrid:
     j: np.ndarray
 
 
-def _interval_rows(g: JerkGrid, i0: int, i1: int, scale: float, bhat: np.ndarray):
-    """Sparse rows (COO triplets) and bounds of the equalities, accelerations and
-    jerks of the intervals ``i0..i1-1`` (window-local variable indices)."""
+def _interval_rows(g: JerkGrid, i0: int, i1: int, scale: float, vref: np.ndarray):
+    """The constraints of the intervals ``i0..i1-1`` (window-local variable
+    indices) as ``(A, lo, hi, jerk, col_lo, col_hi)``: sparse rows (CSC) with
+    bounds; the jerk rows ``(rows, at0, at1)`` whose bounds change between
+    rounds (see below); and bounds on the columns that single-entry rows come to.
+
+    A jerk row is ``sqrt(bhat_m) * (a linear form in b, alpha) <= J`` with
+    ``m`` the row's speed point: the gridpoint itself on an ``SLINEAR``
+    interval, the moving end of a rest piece (the row at its stop has its
+    other terms on variables fixed at 0). Divided by ``sqrt(bhat_m)`` it
+    is a fixed row with bounds ``+-J / sqrt(bhat_m)``; times ``vref_m / J``
+    (``vref``: the window's first speed bound, units/s) its coefficients are
+    of order 1 and its bounds ``+-vref_m / sqrt(bhat_m)``, which start at 1,
+    are all that changes between rounds.
+
+    On a straight interval (``q'' = q''' = 0`` at both ends) every axis's
+    jerk row at both ends is a multiple of one row (:func:`_straight_rows`);
+    :func:`_assemble` leaves out the rows that add nothing.
+    """
     n = i1 - i0
     k = np.arange(n)
     h = np.diff(g.s[i0:i1 + 1])
     kind = g.kind[i0:i1]
     nb = n + 1                                   # b_k at column k, alpha_k at nb + k
-    rows, cols, vals, lo, hi = [], [], [], [], []
-    r = 0
+    rows, cols, vals = [], [], []
 
     def add(rr, cc, vv):
-        rows.append(rr)
-        cols.append(cc)
-        vals.append(vv)
+        rows.append(rr), cols.append(cc), vals.append(vv)
 
-    # equalities: trapezoid (SLINEAR) or the rest pieces' alpha = +-2 b / (3 h)
     lin, fr, to = kind == SLINEAR, kind == FROM_REST, kind == TO_REST
-    e = r + k
-    add(e[lin], k[lin] + 1, np.ones(lin.sum()))
-    add(e[lin], k[lin], -np.ones(lin.sum()))
-    add(e[lin], nb + k[lin], -h[lin])
-    add(e[lin], nb + k[lin] + 1, -h[lin])
-    add(e[fr], nb + k[fr] + 1, np.ones(fr.sum()))
-    add(e[fr], k[fr] + 1, -2.0 / (3.0 * h[fr]))
-    add(e[to], nb + k[to], np.ones(to.sum()))
-    add(e[to], k[to], 2.0 / (3.0 * h[to]))
-    lo.append(np.zeros(n))
-    hi.append(np.zeros(n))
-    r += n
-    dof = g.a.size
-    sb = np.sqrt(np.maximum(bhat, 0.0) * scale)       # bhat is scaled like b
+    _equality_rows(add, k, h, nb, lin, fr, to)
+    r = n
+    q1s, q2s, q3s = g.q1[1, i0:i1], g.q2[1, i0:i1], g.q3[1, i0:i1]          # at starts
+    q1e, q2e, q3e = g.q1[0, i0 + 1:i1 + 1], g.q2[0, i0 + 1:i1 + 1], g.q3[0, i0 + 1:i1 + 1]
+    straight = (np.all((q2s == 0.0) & (q3s == 0.0) & (q2e == 0.0) & (q3e == 0.0)
+                       & (q1s == q1e), axis=1))
+    slope_b = np.where(lin, 0.0, 2.0 / (9.0 * h * h))     # rest pieces: sigma = v_m 2 b_m / (9 h^2)
+    slope_a = np.where(lin, 1.0 / h, 0.0)                 # SLINEAR: s''' = s' (alpha_k+1 - alpha_k) / h
+    mov_of = [np.where(fr, k + 1, np.where(to, k, k + end)) for end in (0, 1)]
+    acc_rows, jerk_rows, jerk_at, twin = [], [], [], []
     for end, side in ((0, 1), (1, 0)):               # interval start (right limits), end (left)
         gi = i0 + k + end
         q1, q2, q3 = g.q1[side, gi], g.q2[side, gi], g.q3[side, gi]
-        col_b, col_a = k + end, nb + k + end
-        # the moving end supplies the speed of the rest pieces' constant jerk
-        mov = np.where(fr, k + 1, np.where(to, k, k + end))
-        for i in range(dof):
-            # acceleration q' alpha + q'' b (both scaled by `scale`)
-            rr = r + k
-            add(rr, col_a, q1[:, i] * scale / g.a[i])
-            add(rr, col_b, q2[:, i] * scale / g.a[i])
-            lo.append(-np.ones(n))
-            hi.append(np.ones(n))
+        col_b, col_a, mov = k + end, nb + k + end, mov_of[end]
+        for i in range(g.a.size):
+            # acceleration q' alpha + q'' b (both scaled by `scale`); an interval's
+            # end row is its successor's start row where q', q'' are continuous
+            add(r + k, col_a, q1[:, i] * scale / g.a[i])
+            add(r + k, col_b, q2[:, i] * scale / g.a[i])
+            acc_rows.append(r + k)
+            if end == 1:
+                same = ((g.q1[0, gi, i] == g.q1[1, gi, i]) & (g.q2[0, gi, i] == g.q2[1, gi, i])
+                        & (k < n - 1))
+                twin.append(r + k[same])
             r += n
-            # jerk sqrt(bhat) (q''' b + 3 q'' alpha) + sqrt(bhat_m) q' slope
-            rr = r + k
-            cj = scale / g.j[i]
-            add(rr, col_b, sb[col_b] * q3[:, i] * cj)
-            add(rr, col_a, sb[col_b] * 3.0 * q2[:, i] * cj)
-            slope_b = np.where(lin, 0.0, 2.0 / (9.0 * h * h))
-            add(rr, mov, sb[mov] * q1[:, i] * slope_b * cj)
-            lin_c = np.where(lin, 1.0 / h, 0.0)
-            add(rr, nb + k + 1, sb[col_b] * q1[:, i] * lin_c * cj)
-            add(rr, nb + k, -sb[col_b] * q1[:, i] * lin_c * cj)
-            lo.append(-np.ones(n))
-            hi.append(np.ones(n))
+            # jerk / s': q''' b + 3 q'' alpha + q' (path jerk / s'), times vref_m / J
+            c = ~straight
+            rr, kc, mc = r + k[c], k[c], mov[c]
+            cj = vref[mc] * scale / g.j[i]
+            lc, rc = lin[c], ~lin[c]
+            add(rr, col_b[c], q3[c, i] * cj)
+            add(rr, col_a[c], 3.0 * q2[c, i] * cj)
+            add(rr[lc], nb + kc[lc] + 1, q1[c, i][lc] * slope_a[c][lc] * cj[lc])
+            add(rr[lc], nb + kc[lc], -q1[c, i][lc] * slope_a[c][lc] * cj[lc])
+            add(rr[rc], mc[rc], q1[c, i][rc] * slope_b[c][rc] * cj[rc])
+            jerk_rows.append(rr)
+            jerk_at.append(np.stack([mc, mc]))
             r += n
-    A = sp.csr_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))),
-                      shape=(r, 2 * nb))
-    return A, np.concatenate(lo), np.concatenate(hi)
+    # straight intervals: one jerk row each (see above)
+    at = np.stack([mov_of[0][straight], mov_of[1][straight]])
+    cj = vref[at].max(axis=0) * scale * np.max(np.abs(q1s[straight]) / g.j, axis=1)
+    rr = r + np.arange(at.shape[1])
+    _straight_rows(add, rr, k[straight], at[0], nb, lin[straight], slope_a[straight],
+                   slope_b[straight], cj)
+    jerk_rows.append(rr), jerk_at.append(at)
+    r += at.shape[1]
+    return _assemble(n, r, rows, cols, vals, g.stop[i0:i1 + 1], np.concatenate(acc_rows),
+                     np.concatenate(twin), np.concatenate(jerk_rows),
+                     np.concatenate(jerk_at, axis=1))
 
 
-def solve_window(g: JerkGrid, i0: int, i1: int, bhat: np.ndarray, cap: np.ndarray,
-                 start: tuple[float, float] | None, scale: float):
-    """``(b, alpha)`` of gridpoints ``i0..i1`` maximising the linearised time
-    gain under the pseudo-jerk bound ``bhat`` (both scaled by ``1 / scale``),
-    with ``b <= cap``; ``start``: fixed scaled ``(b, alpha)`` at ``i0``, or None
-    (then ``i0`` is a stop or free as the grid says). ``None`` when infeasible.
-    """
-    n = i1 - i0
-    A, lo, hi = _interval_rows(g, i0, i1, scale, bhat)
+def _equality_rows(add, k, h, nb, lin, fr, to) -> None:
+    """One row per interval ``k``: the trapezoid ``b_k+1 - b_k = h (alpha_k +
+    alpha_k+1)`` (``SLINEAR``), or a rest piece's ``alpha = +-2 b / (3 h)`` at
+    its moving end."""
+    add(k[lin], k[lin] + 1, np.ones(lin.sum()))
+    add(k[lin], k[lin], -np.ones(lin.sum()))
+    add(k[lin], nb + k[lin], -h[lin])
+    add(k[lin], nb + k[lin] + 1, -h[lin])
+    add(k[fr], nb + k[fr] + 1, np.ones(fr.sum()))
+    add(k[fr], k[fr] + 1, -2.0 / (3.0 * h[fr]))
+    add(k[to], nb + k[to], np.ones(to.sum()))
+    add(k[to], k[to], 2.0 / (3.0 * h[to]))
+
+
+def _straight_rows(add, rr, ks, mov, nb, ls, slope_a, slope_b, cj) -> None:
+    """The one jerk row (``rr``) of each straight interval ``ks``:
+    ``cj * slope * (alpha_k+1 - alpha_k)``, or ``cj * slope * b_mov`` on a rest
+    piece; ``cj`` takes the axis of largest ``|q_i'| / J_i`` and the larger
+    ``bhat`` of the two ends (speed points ``at0``, ``at1``)."""
+    add(rr[ls], nb + ks[ls] + 1, slope_a[ls] * cj[ls])
+    add(rr[ls], nb + ks[ls], -slope_a[ls] * cj[ls])
+    add(rr[~ls], mov[~ls], slope_b[~ls] * cj[~ls])
+
+
+def _assemble(n, r, rows, cols, vals, stop, acc_rows, twin, jerk_rows, jerk_at):
+    """The matrix of :func:`_interval_rows` without what adds nothing: an
+    interval's end acceleration row where ``q'``, ``q''`` are continuous (it is
+    the next interval's start row), coefficients of variables fixed at 0
+    (stops) and the rows left empty (an axis the path does not move); an
+    acceleration row with a single entry becomes a bound on that column."""
     nb = n + 1
-    bmax = np.minimum(g.bmax[i0:i1 + 1] / scale, cap)
-    stop = g.stop[i0:i1 + 1]
-    bmax = np.where(stop, 0.0, bmax)
-    a_t = g.amax_t / scale
-    lb = np.concatenate([np.zeros(nb), np.where(stop, 0.0, -a_t)])
-    ub = np.concatenate([bmax, np.where(stop, 0.0, a_t)])
-    if start is not None:
-        lb[0], ub[0] = start[0], start[0]
-        lb[nb], ub[nb] = start[1], start[1]
-    s = g.s[i0:i1 + 1]
-    hbar = np.zeros(nb)
-    hbar[:-1] += 0.5 * np.diff(s)
-    hbar[1:] += 0.5 * np.diff(s)
-    floor = WEIGHT_FLOOR * max(float(bhat.max(initial=0.0)), np.finfo(float).tiny)
-    w = hbar / np.maximum(bhat, floor) ** 1.5
-    w = w / w.max()
-    x = _highs_simplex(np.concatenate([-w, np.zeros(nb)]), A.tocsc(), lo, hi, lb, ub)
-    if x is None:
-        return None
-    return np.maximum(x[:nb], 0.0), x[nb:]
+    rows, cols, vals = np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
+    fixed = np.concatenate([stop, stop])
+    keep = (vals != 0.0) & ~fixed[cols]
+    dropped = np.zeros(r, bool)
+    dropped[twin] = True
+    keep &= ~dropped[rows]
+    rows, cols, vals = rows[keep], cols[keep], vals[keep]
+    # acceleration rows with one entry: |coefficient * x| <= 1 bounds x
+    is_acc = np.zeros(r, bool)
+    is_acc[acc_rows] = True
+    count = np.bincount(rows, minlength=r)
+    single = is_acc[rows] & (count[rows] == 1)
+    col_hi = np.full(2 * nb, np.inf)
+    np.minimum.at(col_hi, cols[single], 1.0 / np.abs(vals[single]))
+    rows, cols, vals = rows[~single], cols[~single], vals[~single]
+    used = np.zeros(r, bool)
+    used[rows] = True
+    used[:n] = True                                  # the equalities stay (a row per interval)
+    new_index = np.cumsum(used) - 1
+    A = sp.csc_matrix((vals, (new_index[rows], cols)), shape=(int(used.sum()), 2 * nb))
+    kept = used[jerk_rows]
+    lo = -np.ones(A.shape[0])
+    lo[:n] = 0.0
+    jerk = (new_index[jerk_rows[kept]].astype(np.int32), jerk_at[0, kept], jerk_at[1, kept])
+    return A, lo, -lo, jerk, -col_hi, col_hi
+
+
+class WindowLP:
+    """The LP of the gridpoints ``i0..i1`` of a window, built once and solved
+    for each speed bound ``bhat`` of the pseudo-jerk rounds.
+
+    Between rounds only bounds and costs change (the jerk rows' bounds, see
+    :func:`_interval_rows`; the caps on ``b``; the objective weights), so one
+    ``highspy.Highs`` keeps the model and HiGHS's simplex starts each round
+    from the last one's optimal basis. Values are scaled by ``1 / scale``;
+    ``bref``: the window's first ``bhat`` (scaled); ``start``: fixed scaled
+    ``(b, alpha)`` at ``i0``, or None (then ``i0`` is a stop or free as the
+    grid says).
+    """
+
+    def __init__(self, g: JerkGrid, i0: int, i1: int, bref: np.ndarray,
+                 start: tuple[float, float] | None, scale: float):
+        self.nb = nb = i1 - i0 + 1
+        self.scale = scale
+        self.vref = np.sqrt(np.where(bref > 0.0, bref, 1.0) * scale)     # units/s
+        A, lo, hi, jerk, col_lo, col_hi = _interval_rows(g, i0, i1, scale, self.vref)
+        self.jerk_rows, self.jerk_at0, self.jerk_at1 = jerk
+        stop = g.stop[i0:i1 + 1]
+        self.bmax = np.where(stop, 0.0, np.minimum(g.bmax[i0:i1 + 1] / scale, col_hi[:nb]))
+        a_t = g.amax_t / scale
+        lb = np.concatenate([np.zeros(nb), np.where(stop, 0.0, np.maximum(-a_t, col_lo[nb:]))])
+        ub = np.concatenate([self.bmax, np.where(stop, 0.0, np.minimum(a_t, col_hi[nb:]))])
+        if start is not None:
+            lb[0] = ub[0] = self.bmax[0] = start[0]
+            lb[nb] = ub[nb] = start[1]
+        self.b_low = lb[:nb].copy()
+        s = g.s[i0:i1 + 1]
+        self.hbar = np.zeros(nb)
+        self.hbar[:-1] += 0.5 * np.diff(s)
+        self.hbar[1:] += 0.5 * np.diff(s)
+        self.b_cols = np.arange(nb, dtype=np.int32)
+        self.highs = _new_highs()
+        lp = highspy.HighsLp()
+        lp.num_col_, lp.num_row_ = A.shape[1], A.shape[0]
+        lp.col_cost_, lp.col_lower_, lp.col_upper_ = np.zeros(2 * nb), lb, ub
+        lp.row_lower_, lp.row_upper_ = lo, hi
+        lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
+        lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = (A.indptr, A.indices,
+                                                                          A.data)
+        self.highs.passModel(lp)
+
+    def solve(self, bhat: np.ndarray, cap: np.ndarray):
+        """``(b, alpha)`` (scaled) maximising the linearised time gain under the
+        pseudo-jerk bound ``bhat``, with ``b <= cap``; None unless optimal."""
+        h, nb = self.highs, self.nb
+        b_at = np.maximum(bhat[self.jerk_at0], bhat[self.jerk_at1])
+        v_at = np.maximum(self.vref[self.jerk_at0], self.vref[self.jerk_at1])
+        with np.errstate(divide="ignore"):
+            jb = np.where(b_at > 0.0, v_at / np.sqrt(np.maximum(b_at, 0.0) * self.scale), np.inf)
+        h.changeRowsBounds(self.jerk_rows.size, self.jerk_rows, -jb, jb)
+        ub = np.maximum(np.minimum(self.bmax, cap), self.b_low)   # a fixed start stays fixed
+        h.changeColsBounds(nb, self.b_cols, self.b_low, ub)
+        floor = WEIGHT_FLOOR * max(float(bhat.max(initial=0.0)), np.finfo(float).tiny)
+        w = self.hbar / np.maximum(bhat, floor) ** 1.5
+        h.changeColsCost(nb, self.b_cols, -w / w.max())
+        h.run()
+        if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
+            # rare numerical trouble without presolve: once more, from scratch, with it
+            h.setOptionValue("presolve", "on")
+            h.clearSolver()
+            h.run()
+            h.setOptionValue("presolve", "off")
+        if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
+            return None
+        x = np.asarray(h.getSolution().col_value, dtype=float)
+        return np.maximum(x[:nb], 0.0), x[nb:]
 
 
 _BANNER_SHOWN = []
 
 
 def _new_highs():
-    """A silent ``highspy.Highs``. The first one made in a process prints HiGHS's
-    banner on the C-level stdout, before any option can stop it, which would
-    spoil ``--json`` output: that one is made with file descriptor 1 pointed at
-    the null device."""
+    """A silent ``highspy.Highs`` running the simplex without presolve. The
+    first one made in a process prints HiGHS's banner on the C-level stdout,
+    before any option can stop it, which would spoil ``--json`` output: that
+    one is made with file descriptor 1 pointed at the null device."""
     if _BANNER_SHOWN:
         h = highspy.Highs()
     else:
@@ -170,31 +285,10 @@ def _new_highs():
     h.setOptionValue("output_flag", False)
     # presolve finds little to remove in these banded LPs: 20 % faster without
     h.setOptionValue("presolve", "off")
-    return h
-
-
-def _highs_simplex(c, A, lo, hi, lb, ub) -> np.ndarray | None:
-    """``min c x`` with ``lo <= A x <= hi`` (ranged rows) and ``lb <= x <= ub`` by
-    HiGHS's simplex (highspy directly: ``scipy.optimize.milp`` runs the MIP
-    machinery around it, ten times slower on these LPs); None unless optimal."""
-    h = _new_highs()
+    # highspy directly: scipy.optimize.milp runs the MIP machinery around the
+    # simplex, ten times slower on these LPs
     h.setOptionValue("solver", "simplex")
-    lp = highspy.HighsLp()
-    lp.num_col_, lp.num_row_ = A.shape[1], A.shape[0]
-    lp.col_cost_, lp.col_lower_, lp.col_upper_ = c, lb, ub
-    lp.row_lower_, lp.row_upper_ = lo, hi
-    lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
-    lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = A.indptr, A.indices, A.data
-    h.passModel(lp)
-    h.run()
-    if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
-        # rare numerical trouble without presolve: once more with it
-        h.setOptionValue("presolve", "on")
-        h.clearSolver()
-        h.run()
-    if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
-        return None
-    return np.asarray(h.getSolution().col_value, dtype=float)
+    return h
 
 
 def piece_times(s: np.ndarray, kind: np.ndarray, b: np.ndarray, alpha: np.ndarray,

@@ -17,13 +17,18 @@ for the factor ``s' = sqrt(b)``. That factor is replaced by ``sqrt(bhat)``, a
 bound on the speed (the *pseudo-jerk* linearisation): first ``bhat`` is the
 TOPPRA solution (acceleration-limited, so an upper bound of every feasible
 speed), then ``bhat`` is updated to the geometric mean of itself and the LP's
-new ``b`` until the two agree within :data:`BHAT_TOL` (relative, on ``b``), at
-most :data:`MAX_ROUNDS` rounds; a last round imposes ``b <= bhat`` so that
-``sqrt(b) <= sqrt(bhat)`` and the jerk bound holds exactly at the
-gridpoints, and that round's solution is the profile. The objective is the
-duration ``sum h / sqrt(b)`` linearised at ``bhat``: maximise
-``sum h b / bhat^(3/2)``. Each round is one LP solved by HiGHS's simplex
-(``highspy``, ranged rows).
+new ``b`` until the two agree within
+:data:`~ccopt.feed.jerk_windows.BHAT_TOL` (relative, on ``b``), or the
+window's duration settles (:data:`~ccopt.feed.jerk_windows.DURATION_TOL`),
+at most :data:`~ccopt.feed.jerk_windows.MAX_ROUNDS` rounds; a last round
+imposes ``b <= bhat`` so that ``sqrt(b) <= sqrt(bhat)`` and the jerk bound
+holds exactly at the gridpoints, and that round's solution is the profile.
+The objective is the duration ``sum h / sqrt(b)`` linearised at ``bhat``:
+maximise ``sum h b / bhat^(3/2)``. Each round is one LP solved by HiGHS's
+simplex (``highspy``, ranged rows). A jerk row divided by its
+``sqrt(bhat)`` is a fixed row whose bounds move, so a window's LP is built
+once and each round starts from the last one's basis
+(:class:`~ccopt.feed.jerk_lp.WindowLP`).
 
 Between gridpoints the model is exact, so the profile the samples show is the
 one the LP constrained:
@@ -60,14 +65,17 @@ see that jump spread over one period, so it is bounded by
 a speed cap at the break. The samples' jerk is the jerk inside pieces; these
 steps are bounded by this rule instead.
 
-Windows: the path is cut at its stops (exactly: the pieces between stops are
-independent), and the pieces are gathered into windows of about
-:data:`BATCH_POINTS` gridpoints, each solved as its own LP, so the cost grows
-linearly with the length of the program. A stretch between two stops with
-more gridpoints than that is planned in overlapping windows: a window plans
-:data:`WINDOW_OVERLAP` of its size further than it keeps, and the next starts
-from the kept end's ``(b, alpha)``; ``b`` stays under TOPPRA's speed there, so
-the braking it still needs is within reach.
+Windows (:mod:`ccopt.feed.jerk_windows`): the path is cut at its stops
+(exactly: the pieces between stops are independent), and the pieces are
+gathered into windows of about :data:`~ccopt.feed.jerk_windows.BATCH_POINTS`
+gridpoints, each solved as its own LP, so the cost grows linearly with the
+length of the program. A stretch between two stops with more gridpoints than
+that is planned in overlapping windows: a window plans
+:data:`~ccopt.feed.jerk_windows.WINDOW_OVERLAP` of its size further than it
+keeps, and the next starts from the kept end's ``(b, alpha)``; ``b`` stays
+under TOPPRA's speed there, so the braking it still needs is within reach.
+Windows that start at a stop are independent of those before, and on a long
+program are solved in several processes (``info["workers"]``).
 
 Last, on every stretch between two stops the profile is the faster of the
 LP's and the jerk-limited stop baseline's (an S-curve per block: feasible,
@@ -83,26 +91,15 @@ import numpy as np
 from ccopt.feed.baselines import scurve_pieces
 from ccopt.feed.errors import FeedError
 from ccopt.feed.grid import GridOptions, gridpoints
-from ccopt.feed.jerk_lp import FROM_REST, SLINEAR, TO_REST, JerkGrid, piece_times, solve_window
+from ccopt.feed.jerk_lp import FROM_REST, SLINEAR, TO_REST, JerkGrid, piece_times
 from ccopt.feed.jerk_profile import CUBIC, JerkProfile, slinear_time
 from ccopt.feed.jerk_profile import SLINEAR as PIECE_SLINEAR
+from ccopt.feed.jerk_windows import plan_windows
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.feed.planners import DEFAULT_TS
 from ccopt.feed.toppra_planner import plan_toppra
 
-#: Relative agreement of ``b`` and ``bhat`` that ends the pseudo-jerk rounds.
-BHAT_TOL = 2e-3
-MAX_ROUNDS = 12
-#: Largest fall of ``bhat`` in one round (a factor), see :func:`_solve_rounds`.
-BHAT_FALL = 0.1
-#: Trust region of a round: b may rise at most this factor above bhat.
-BHAT_RISE = 1.5
-#: Gridpoints per LP window of stop-to-stop stretches gathered together; of a
-#: stretch with no stop; and how much further such a window plans than it keeps.
-BATCH_POINTS = 800
-WINDOW_POINTS = 3000
-WINDOW_OVERLAP = 0.5
 #: Ratio of consecutive interval lengths in the geometric refinement at stops.
 STOP_RATIO = 1.06
 #: First interval at a stop, as a share of the first jerk phase's length.
@@ -175,57 +172,6 @@ def _speed_caps(path, limits, s, q, v, j, ts) -> np.ndarray:
     return cap
 
 
-def _windows(g: JerkGrid) -> list[tuple[int, int, int]]:
-    """``(i0, i1, keep)`` windows: stop-to-stop stretches gathered up to
-    :data:`BATCH_POINTS` gridpoints (HiGHS's simplex costs more than linearly
-    in the size of an LP); a stretch of up to :data:`WINDOW_POINTS` alone; a
-    longer one in overlapping windows that plan to ``i1`` and keep ``i0..keep``."""
-    stops = np.flatnonzero(g.stop)
-    out: list[tuple[int, int, int]] = []
-    i0 = int(stops[0])
-    for a, b in zip(stops[:-1], stops[1:]):
-        a, b = int(a), int(b)
-        if b - i0 <= BATCH_POINTS:
-            continue
-        if a > i0:
-            out.append((i0, a, a))
-            i0 = a
-        while b - i0 > WINDOW_POINTS:
-            end = min(b, i0 + int(WINDOW_POINTS * (1 + WINDOW_OVERLAP)))
-            keep = i0 + WINDOW_POINTS if end < b else b
-            out.append((i0, end, keep))
-            i0 = keep
-        if b - i0 > BATCH_POINTS:
-            out.append((i0, b, b))
-            i0 = b
-    if int(stops[-1]) > i0:
-        out.append((i0, int(stops[-1]), int(stops[-1])))
-    return out
-
-
-def _solve_rounds(g: JerkGrid, i0: int, i1: int, bhat: np.ndarray, cap: np.ndarray,
-                  start, scale: float):
-    """The pseudo-jerk rounds on one window (see the module docstring):
-    ``(b, alpha, rounds)`` scaled, or None when an LP is infeasible."""
-    rounds = 0
-    for rounds in range(1, MAX_ROUNDS + 1):
-        out = solve_window(g, i0, i1, bhat, np.minimum(cap, BHAT_RISE * bhat), start, scale)
-        if out is None:
-            return None
-        b = out[0]
-        big = b > BHAT_TOL * max(float(b.max(initial=0.0)), np.finfo(float).tiny)
-        rel = np.abs(b[big] - bhat[big]) / np.maximum(bhat[big], b[big])
-        # geometric mean, and never below a tenth of the last bound: a point the
-        # LP left at 0 would otherwise pin the next rounds' cap there
-        bhat = np.sqrt(np.maximum(b, BHAT_FALL * bhat) * bhat)
-        if rel.max(initial=0.0) < BHAT_TOL:
-            break
-    out = solve_window(g, i0, i1, bhat, np.minimum(cap, bhat), start, scale)
-    if out is None:
-        return None
-    return out[0], out[1], rounds + 1
-
-
 def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
               grid: GridOptions | None = None, junction_deviation: float | None = None,
               **_ignored) -> JerkProfile:
@@ -253,29 +199,22 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
     b = np.zeros(g.s.size)
     alpha = np.zeros(g.s.size)
     total_rounds = failed = 0
-    windows = _windows(g)
-    for i0, i1, keep in windows:
-        start = None if g.stop[i0] else (b[i0] / scale, alpha[i0] / scale)
-        out = _solve_rounds(g, i0, i1, cap[i0:i1 + 1].copy(), cap[i0:i1 + 1], start, scale)
-        rest_to_rest = start is None and bool(g.stop[i1])
-        if out is not None and rest_to_rest and np.any(out[0][~g.stop[i0:i1 + 1]] <= 0.0):
-            out = None        # a stall (speed 0 away from a stop): as a failed LP
-        if out is None and rest_to_rest:
+    results, n_windows, workers = plan_windows(g, cap, scale)
+    for i0, i1, keep, bw, aw, rounds in results:
+        if bw is None and aw:
             # rest to rest: the S-curve per block stands in (see _best_per_stretch)
             b[i0 + 1:i1] = np.nan
             failed += 1
             continue
-        if out is None:
+        if bw is None:
             raise FeedError(f"jerk planner: the LP of the window from s = {g.s[i0]:.6g} to "
                             f"{g.s[i1]:.6g} is infeasible", path.source_file,
                             path.block_line(g.s[i0]))
-        bw, aw, rounds = out
         total_rounds += rounds
-        n = keep - i0 + 1
-        b[i0:keep + 1] = bw[:n] * scale
-        alpha[i0:keep + 1] = aw[:n] * scale
-    info = {"gridpoints": int(g.s.size), "windows": len(windows), "lp_rounds": total_rounds,
-            "ts": ts, "lp_failed_windows": failed}
+        b[i0:keep + 1] = bw * scale
+        alpha[i0:keep + 1] = aw * scale
+    info = {"gridpoints": int(g.s.size), "windows": n_windows, "lp_rounds": total_rounds,
+            "ts": ts, "lp_failed_windows": failed, "workers": workers}
     return _profile(path, limits, g, b, alpha, info)
 
 

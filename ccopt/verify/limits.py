@@ -1,4 +1,4 @@
-"""Limits: axis velocity and acceleration, and the programmed feed, from samples.
+"""Limits: axis velocity, acceleration and jerk, and the programmed feed, from samples.
 
 Works on a :class:`ccopt.feed.FeedProfile` (sampled with ``sample(dt)``) or
 on anything shaped like its samples (duck typing, so other planners plug in):
@@ -10,7 +10,15 @@ on anything shaped like its samples (duck typing, so other planners plug in):
 - optional ``feed`` ``(n,)`` tangential speed with ``feed_cap`` ``(n,)``
   programmed feed (``inf`` on rapids); optional ``axes`` names, ``line``
   ``(n,)`` source lines, ``tangential_acc`` with ``tangential_limit``,
-  ``curvature`` with ``centripetal_limit``.
+  ``curvature`` with ``centripetal_limit``; optional ``j_limit`` or ``jmax``
+  ``(dof,)`` axis jerk limits (units/s^3), checked against ``jerk``
+  ``(n, dof)`` at the samples when they carry it, and between samples: the
+  change of the acceleration from one sample to the next is at most ``J``
+  times their time step, so an acceleration step (a trapezoid's switch, which
+  the jerk at the samples does not show) fails. A profile planned with an
+  interpolation period ``ts`` (``info["ts"]``: the ``jerk`` planner and the
+  jerk-limited ``junction`` baseline, which allow a step of ``J ts`` at a
+  curvature break, :mod:`ccopt.feed.jerk_planner`) is allowed ``J (dt + ts)``.
 
 A sample fails when ``|value| > limit * (1 + limits_tol)``, a stated relative
 tolerance: :data:`LIMITS_TOL` (0.1 %) by default, the certificate's
@@ -38,6 +46,11 @@ SAMPLE_DT = 1e-3
 #: by this fraction (0.1 %) before it fails (see the module docstring).
 LIMITS_TOL = 1e-3
 
+#: Sample steps (s) shorter than this (a profile's end sampled twice, a
+#: rounding apart) are not timed for the jerk between samples: the change of
+#: the acceleration across them is rounding, not jerk.
+MIN_SAMPLE_STEP = 1e-9
+
 #: At most this many limit violations are listed.
 MAX_LISTED = 200
 
@@ -56,6 +69,37 @@ def samples_of(profile):
     if hasattr(profile, "sample") and callable(profile.sample) and not hasattr(profile, "velocity"):
         return profile.sample(SAMPLE_DT)
     return profile
+
+
+def _jerk_quantities(smp, t: np.ndarray, acc: np.ndarray, axes, step_period: float) -> list:
+    """The axis jerk against its limit ``J`` (``j_limit`` or ``jmax``), when
+    given: the samples' ``jerk`` at each sample (when they carry it), and
+    between consecutive samples the change of the acceleration, ``|Delta a|``
+    at most ``J (Delta t + step_period)`` (reported at the later sample;
+    ``step_period``: the acceleration step a jerk-limited planner allows at a
+    curvature break, ``J ts``, else 0)."""
+    jlim = _get(smp, "j_limit", "jmax")
+    if jlim is None or t.size < 2:
+        return []
+    jlim = np.asarray(jlim, float)
+    out = []
+    jerk = _get(smp, "jerk")
+    dof = min(jlim.size, acc.shape[1])
+    if jerk is not None:
+        jerk = np.atleast_2d(np.asarray(jerk, float))
+        if jerk.shape[0] != t.size and jerk.shape[1] == t.size:
+            jerk = jerk.T
+        out += [("jerk", axes[i], np.abs(jerk[:, i]) / jlim[i], jerk[:, i],
+                 np.full(t.size, jlim[i])) for i in range(dof)]
+    dt = np.diff(t)
+    # no change before the first sample, nor over a step too short to time
+    span = np.r_[np.inf, np.where(dt > MIN_SAMPLE_STEP, dt + step_period, np.inf)]
+    change = np.vstack([np.zeros((1, acc.shape[1])), np.diff(acc, axis=0)])
+    for i in range(dof):
+        mean = change[:, i] / span                          # units/s^3 between samples
+        out.append(("jerk", f"{axes[i]} between samples", np.abs(mean) / jlim[i], mean,
+                    np.full(t.size, jlim[i])))
+    return out
 
 
 def check_limits(profile, rel_tol: float = LIMITS_TOL):
@@ -83,6 +127,9 @@ def check_limits(profile, rel_tol: float = LIMITS_TOL):
                            np.full(t.size, vlim[i])))
         quantities.append(("acceleration", axes[i], np.abs(acc[:, i]) / alim[i], acc[:, i],
                            np.full(t.size, alim[i])))
+    info = getattr(profile, "info", None)
+    step_period = float(info.get("ts", 0.0)) if isinstance(info, dict) else 0.0
+    quantities.extend(_jerk_quantities(smp, t, acc, axes, step_period))
     feed = _get(smp, "feed")
     cap = _get(smp, "feed_cap")
     if feed is not None and cap is not None:
@@ -126,6 +173,7 @@ def check_limits(profile, rel_tol: float = LIMITS_TOL):
                                           "value": float(value[k]), "limit": float(limit[k]),
                                           "samples": int(b - a)}))
     return Check("limits", not viol, worst, rel_tol, SAMPLED, "ratio",
-                 "axis |velocity|, |acceleration| and feed at most their limits at every sample, "
+                 "axis |velocity|, |acceleration|, |jerk| (when jerk limits are given) and feed "
+                 "at most their limits at every sample, "
                  f"within {rel_tol:g} relative (figure: largest |value| / limit)", int(t.size), len(viol),
                  {"largest": worst_name}), viol

@@ -1,0 +1,293 @@
+"""The ``jerk`` planner's windows: the pseudo-jerk rounds on each, in parallel.
+
+See :mod:`ccopt.feed.jerk_planner` for the formulation. Here: how the
+gridpoints are cut into windows (:func:`windows`), the rounds that tighten a
+window's speed bound ``bhat`` (:func:`solve_rounds`), and
+:func:`plan_windows`, which solves every window and gathers ``(b, alpha)``.
+
+Windows are grouped into *chains*: a chain starts at a stop and goes on as
+long as each window starts where the last one kept its solution (a stretch
+with no stop, planned in overlapping windows). Chains are independent (a stop
+fixes ``b = alpha = 0`` between them), so on a long program they are solved
+by :data:`WORKERS` processes (fresh interpreters fed over pipes, see
+:func:`_run_in_processes`); the result does not depend on how many.
+"""
+from __future__ import annotations
+
+import multiprocessing
+import os
+import pickle
+import subprocess
+import sys
+import threading
+from collections import deque
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+
+from ccopt.feed.jerk_lp import JerkGrid, WindowLP
+
+#: Relative agreement of ``b`` and ``bhat`` that ends the pseudo-jerk rounds.
+BHAT_TOL = 2e-3
+#: ... or a window's duration estimate changing by less than DURATION_TOL
+#: (relative) in each of SETTLED_ROUNDS rounds in a row; at most MAX_ROUNDS
+#: rounds (on the 1,000-block pocket of bench/feed.py, 8 rounds gave the
+#: shortest total of any fixed number from 3 to 12, within 0.5 % of taking
+#: each window's best round; later rounds wander, as the LP's optimum jumps
+#: between vertices when bhat moves, and 12 rounds ended 0.4 % slower).
+DURATION_TOL = 1e-3
+SETTLED_ROUNDS = 2
+MAX_ROUNDS = 8
+#: Largest fall of ``bhat`` in one round (a factor), see :func:`solve_rounds`.
+BHAT_FALL = 0.1
+#: Trust region of a round: b may rise at most this factor above bhat.
+BHAT_RISE = 1.5
+#: Gridpoints per LP window of stop-to-stop stretches gathered together; of a
+#: stretch with no stop; and how much further such a window plans than it keeps.
+BATCH_POINTS = 800
+WINDOW_POINTS = 3000
+WINDOW_OVERLAP = 0.5
+#: Processes for the chains (None: as many as the CPUs this process may use),
+#: and the fewest gridpoints worth starting them for (a spawned process takes
+#: about a second to import ccopt).
+WORKERS: int | None = None
+PARALLEL_MIN_POINTS = 50_000
+#: Gridpoints per task handed to a process (several chains each, so the
+#: grid's arrays cross in few messages and the processes stay evenly loaded).
+TASK_POINTS = 20_000
+
+
+def windows(g: JerkGrid) -> list[tuple[int, int, int]]:
+    """``(i0, i1, keep)`` windows: stop-to-stop stretches gathered up to
+    :data:`BATCH_POINTS` gridpoints (fewer, larger LPs: less overhead per
+    gridpoint); a stretch of up to :data:`WINDOW_POINTS` alone; a longer one
+    in overlapping windows that plan to ``i1`` and keep ``i0..keep``."""
+    stops = np.flatnonzero(g.stop)
+    out: list[tuple[int, int, int]] = []
+    i0 = int(stops[0])
+    for a, b in zip(stops[:-1], stops[1:]):
+        a, b = int(a), int(b)
+        if b - i0 <= BATCH_POINTS:
+            continue
+        if a > i0:
+            out.append((i0, a, a))
+            i0 = a
+        while b - i0 > WINDOW_POINTS:
+            end = min(b, i0 + int(WINDOW_POINTS * (1 + WINDOW_OVERLAP)))
+            keep = i0 + WINDOW_POINTS if end < b else b
+            out.append((i0, end, keep))
+            i0 = keep
+        if b - i0 > BATCH_POINTS:
+            out.append((i0, b, b))
+            i0 = b
+    if int(stops[-1]) > i0:
+        out.append((i0, int(stops[-1]), int(stops[-1])))
+    return out
+
+
+def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: float):
+    """The pseudo-jerk rounds on one window (see :mod:`ccopt.feed.jerk_planner`):
+    ``(b, alpha, rounds)`` scaled, or None when an LP is infeasible.
+
+    ``bhat`` starts at ``cap`` (TOPPRA's speed, scaled). The rounds end when
+    ``b`` and ``bhat`` agree within :data:`BHAT_TOL`, or when the window's
+    duration (estimated from the speeds at the gridpoints) has changed by less
+    than :data:`DURATION_TOL` in each of the last :data:`SETTLED_ROUNDS`
+    rounds, or after :data:`MAX_ROUNDS` rounds; then one more round with
+    ``b <= bhat`` gives the profile."""
+    bhat = cap.copy()
+    lp = WindowLP(g, i0, i1, bhat, start, scale)
+    h = np.diff(g.s[i0:i1 + 1])
+    durations: list[float] = []
+    rounds = 0
+    for rounds in range(1, MAX_ROUNDS + 1):
+        out = lp.solve(bhat, np.minimum(cap, BHAT_RISE * bhat))
+        if out is None:
+            return None
+        b = out[0]
+        big = b > BHAT_TOL * max(float(b.max(initial=0.0)), np.finfo(float).tiny)
+        rel = np.abs(b[big] - bhat[big]) / np.maximum(bhat[big], b[big])
+        # geometric mean, and never below a tenth of the last bound: a point the
+        # LP left at 0 would otherwise pin the next rounds' cap there
+        bhat = np.sqrt(np.maximum(b, BHAT_FALL * bhat) * bhat)
+        v = np.sqrt(b)
+        with np.errstate(divide="ignore"):
+            durations.append(float(np.sum(2.0 * h / (v[1:] + v[:-1]))))
+        if rel.max(initial=0.0) < BHAT_TOL or _settled(durations):
+            break
+    out = lp.solve(bhat, np.minimum(cap, bhat))
+    if out is None:
+        return None
+    return out[0], out[1], rounds + 1
+
+
+def _settled(durations: list[float]) -> bool:
+    """Whether each of the last :data:`SETTLED_ROUNDS` changes of the duration
+    estimate is within :data:`DURATION_TOL` (relative)."""
+    if len(durations) <= SETTLED_ROUNDS:
+        return False
+    d = np.asarray(durations[-SETTLED_ROUNDS - 1:])
+    if not np.all(np.isfinite(d)):
+        return False                 # a speed of 0 away from a stop: not settled
+    return bool(np.all(np.abs(np.diff(d)) <= DURATION_TOL * d[1:]))
+
+
+def _chains(wins: list[tuple[int, int, int]], stop: np.ndarray) -> list[list[tuple[int, int, int]]]:
+    """The windows in chains, each starting at a stop (see the module docstring)."""
+    chains: list[list[tuple[int, int, int]]] = []
+    for w in wins:
+        if stop[w[0]] or not chains:
+            chains.append([w])
+        else:
+            chains[-1].append(w)
+    return chains
+
+
+def _grid_slice(g: JerkGrid, i0: int, i1: int) -> JerkGrid:
+    """The gridpoints ``i0..i1`` of ``g`` (its intervals between them)."""
+    sl = slice(i0, i1 + 1)
+    return replace(g, s=g.s[sl], q1=g.q1[:, sl], q2=g.q2[:, sl], q3=g.q3[:, sl],
+                   kind=g.kind[i0:i1], stop=g.stop[sl], bmax=g.bmax[sl])
+
+
+def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float) -> list[tuple]:
+    """Every window of a chain in turn, each starting from the last one's
+    kept end: per window ``(i0, i1, keep, b, alpha, rounds)`` (``b, alpha``
+    scaled, on ``i0..keep``), or ``(i0, i1, keep, None, rest_to_rest, 0)`` for
+    a window whose LP failed (the chain stops there)."""
+    out = []
+    b0 = a0 = 0.0
+    for i0, i1, keep in chain:
+        start = None if g.stop[i0] else (b0, a0)
+        res = solve_rounds(g, i0, i1, cap[i0:i1 + 1], start, scale)
+        rest_to_rest = start is None and bool(g.stop[i1])
+        if res is not None and rest_to_rest and np.any(res[0][~g.stop[i0:i1 + 1]] <= 0.0):
+            res = None        # a stall (speed 0 away from a stop): as a failed LP
+        if res is None:
+            out.append((i0, i1, keep, None, rest_to_rest, 0))
+            break
+        n = keep - i0 + 1
+        out.append((i0, i1, keep, res[0][:n], res[1][:n], res[2]))
+        b0, a0 = float(res[0][n - 1]), float(res[1][n - 1])
+    return out
+
+
+def _solve_task(g: JerkGrid, cap: np.ndarray, chains, scale: float) -> list[tuple]:
+    """:func:`_solve_chain` on each of ``chains`` (indices local to ``g``)."""
+    return [r for chain in chains for r in _solve_chain(g, cap, chain, scale)]
+
+
+def _tasks(g: JerkGrid, cap: np.ndarray, chains, scale: float):
+    """Chains gathered into tasks of about :data:`TASK_POINTS` gridpoints, each
+    with its own slice of the grid: ``(offset, args of _solve_task)``."""
+    groups: list[list] = [[]]
+    size = 0
+    for chain in chains:
+        if size >= TASK_POINTS:
+            groups.append([])
+            size = 0
+        groups[-1].append(chain)
+        size += chain[-1][1] - chain[0][0]
+    for group in groups:
+        lo, hi = group[0][0][0], group[-1][-1][1]
+        local = [[(i0 - lo, i1 - lo, keep - lo) for i0, i1, keep in chain] for chain in group]
+        yield lo, (_grid_slice(g, lo, hi), cap[lo:hi + 1], local, scale)
+
+
+def _workers(points: int, n_chains: int) -> int:
+    """How many processes to use (1: this one)."""
+    if points < PARALLEL_MIN_POINTS or n_chains < 2:
+        return 1
+    if multiprocessing.current_process().daemon:
+        return 1                      # a daemonic process (a Dask worker) may not have children
+    n = WORKERS
+    if n is None:
+        n = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    n = n or 1
+    return max(1, min(n, n_chains))
+
+
+def plan_windows(g: JerkGrid, cap: np.ndarray, scale: float):
+    """Every window of ``g`` solved (see the module docstring): ``(results,
+    n_windows, workers)``, ``results`` as :func:`_solve_chain`'s, with global
+    gridpoint indices, in order along the path."""
+    wins = windows(g)
+    chains = _chains(wins, g.stop)
+    workers = _workers(g.s.size, len(chains))
+    if workers == 1:
+        return _solve_task(g, cap, chains, scale), len(wins), 1
+    tasks = list(_tasks(g, cap, chains, scale))
+    results: list[tuple] = []
+    for (lo, _), part in zip(tasks, _run_in_processes([args for _, args in tasks], workers)):
+        results.extend((i0 + lo, i1 + lo, keep + lo, *rest) for i0, i1, keep, *rest in part)
+    return results, len(wins), workers
+
+
+def _run_in_processes(tasks: list[tuple], workers: int) -> list[list[tuple]]:
+    """:func:`_solve_task` on each of ``tasks`` in ``workers`` processes, in order.
+
+    Each process runs :func:`_worker_main` (a fresh interpreter that imports
+    only this module, never the caller's main script, as ``multiprocessing``'s
+    ``spawn`` would), fed one task at a time by a thread of this process, so
+    the processes stay evenly loaded. A task a process could not return (it
+    could not start, or died) is solved here afterwards, so a failure in it
+    shows with its own traceback."""
+    results: list = [None] * len(tasks)
+    todo = deque(range(len(tasks)))
+    env = dict(os.environ)
+    # the ccopt this process runs, first on the path (a source tree, say)
+    root = str(Path(__file__).resolve().parents[2])
+    env["PYTHONPATH"] = os.pathsep.join([root] + [p for p in [env.get("PYTHONPATH")] if p])
+
+    def serve():
+        try:
+            proc = subprocess.Popen([sys.executable, "-c", WORKER_COMMAND], stdin=subprocess.PIPE,
+                                    stdout=subprocess.PIPE, env=env)
+        except OSError:
+            return
+        try:
+            while todo:
+                try:
+                    i = todo.popleft()
+                except IndexError:
+                    break
+                pickle.dump(tasks[i], proc.stdin, protocol=pickle.HIGHEST_PROTOCOL)
+                proc.stdin.flush()
+                results[i] = pickle.load(proc.stdout)
+        except (OSError, EOFError, pickle.UnpicklingError):
+            pass                        # that task is solved here afterwards
+        finally:
+            try:
+                proc.stdin.close()
+            except OSError:
+                pass
+            proc.wait()
+
+    threads = [threading.Thread(target=serve, daemon=True) for _ in range(workers)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    return [r if r is not None else _solve_task(*tasks[i]) for i, r in enumerate(results)]
+
+
+#: What a worker process runs (see :func:`_run_in_processes`).
+WORKER_COMMAND = "from ccopt.feed.jerk_windows import _worker_main; _worker_main()"
+
+
+def _worker_main() -> None:
+    """A worker process: pickled tasks on stdin, their results on stdout, until
+    stdin closes. Anything else written to the standard output (HiGHS's banner
+    from C) goes to the standard error, so the result stream stays clean."""
+    results = os.fdopen(os.dup(1), "wb")
+    os.dup2(2, 1)
+    sys.stdout = sys.stderr
+    tasks = sys.stdin.buffer
+    while True:
+        try:
+            args = pickle.load(tasks)
+        except EOFError:
+            break
+        pickle.dump(_solve_task(*args), results, protocol=pickle.HIGHEST_PROTOCOL)
+        results.flush()
