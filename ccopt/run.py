@@ -25,7 +25,7 @@ from ccopt.errors import CcoptError, ProgramError
 from ccopt.export import export
 from ccopt.atomic import write_text_atomic
 from ccopt import feed as feed_planning
-from ccopt.feed import AxisLimits, plan_feed
+from ccopt.feed import AxisLimits, certified_planner, plan_feed
 from ccopt.program.model import Program
 from ccopt.report.html import render
 from ccopt.report.plots import feed_plot, path_plot, speed_time_plot
@@ -127,7 +127,7 @@ def _run_stages(job: Job, out: Path | None, opts: RunOptions, row: dict,
     clock("feed")
     profiles = _plan(path, limits, row, job.ts)
     clock("verify")
-    cert = verify(path, prog, profile=profiles["toppra"])
+    cert = verify(path, prog, profile=profiles[row["planner"]])
     row["certificate"] = cert.to_json()
     row["certificate_text"] = cert.summary()
     row["verified"] = bool(cert.ok)
@@ -138,7 +138,7 @@ def _run_stages(job: Job, out: Path | None, opts: RunOptions, row: dict,
     if out is not None:
         clock("export")
         _write_files(out / job.label, job, path, prog, profiles, row, files)
-        row["plots"] = _plots(path, prog, cert, profiles, job.label)
+        row["plots"] = _plots(path, prog, cert, profiles, job.label, row["planner"])
     row["status"] = _status(job.expect, cert.ok)
 
 
@@ -152,7 +152,10 @@ def _plan(path: ToolPath, limits: AxisLimits, row: dict,
     planners = PLANNERS + (("jerk",) if limits.j is not None else ())
     profiles = {p: plan_feed(exact, limits, planner=p, ts=ts) for p in planners}
     row["feed"] = {p: prof.summary(prof.affordable_dt(SAMPLE_DT)) for p, prof in profiles.items()}
-    row["duration"] = profiles["toppra"].duration
+    # the cycle time is the certified planner's: the jerk planner's when the
+    # limits carry jerk (TOPPRA's profile would break them), else TOPPRA's
+    row["planner"] = certified_planner(limits)
+    row["duration"] = profiles[row["planner"]].duration
     return profiles
 
 
@@ -167,7 +170,7 @@ def _write_files(stem: Path, job: Job, path: ToolPath, prog: Program,
         files[suffix[1:]] = Path(res.file).name
     export(path, f"{stem}.svg", program=prog, title=label)
     files["svg"] = f"{label}.svg"
-    best = profiles["toppra"]
+    best = profiles[row["planner"]]
     best.to_csv(f"{stem}.feed.csv", best.affordable_dt(SAMPLE_DT))
     files["feed csv"] = f"{label}.feed.csv"
     write_text_atomic(f"{stem}.certificate.json", json.dumps(row["certificate"]) + "\n")
@@ -207,12 +210,13 @@ def compare_extras(progress: Callable[[str], None] | None, workers: int,
 
 
 def _plots(path: ToolPath, prog: Program, cert: Certificate, profiles: dict[str, FeedProfile],
-           label: str) -> dict:
+           label: str, planner: str = "toppra") -> dict:
     contour = programmed_path(prog)
+    name = "jerk-limited" if planner == "jerk" else "TOPPRA"
     viol = cert.to_json().get("violations", [])
     return {
         "tool path": path_plot(path, contour, path.radius, viol, f"{label}: programmed vs tool path"),
-        "feed": feed_plot(profiles["toppra"], f"{label}: TOPPRA feed along the path"),
+        "feed": feed_plot(profiles[planner], f"{label}: {name} feed along the path"),
         "speed": speed_time_plot(profiles, f"{label}: speed against time"),
     }
 

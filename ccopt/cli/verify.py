@@ -9,7 +9,7 @@ from ccopt.cli.options import (add_limit_options, add_program, add_quiet_option,
                                positive_float)
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, emit_json
 from ccopt.cli.progress import stage_progress
-from ccopt.feed import plan_feed
+from ccopt.feed import certified_planner, plan_feed
 from ccopt.tolerances import VERIFY_EPS
 from ccopt.toolpath_json import read_toolpath_json
 from ccopt.verify import verify
@@ -31,8 +31,9 @@ The certificate of the compensated path (or of --toolpath FILE.json, a path
 made elsewhere) against PROGRAM's contour: no gouge (every tool position at
 least r - eps from every part element), contact, side and continuity, exact
 for lines and arcs and certified bounds for spirals and curves; with --feed
-also TOPPRA's profile within the axis limits (--vmax/--amax, else the case's
-[limits]). Exit 1 when a check fails."""
+also the planned profile within the axis limits (--vmax/--amax, else the
+case's [limits]): TOPPRA's, or the jerk planner's when the limits carry jerk
+(--jmax or the case's j). Exit 1 when a check fails."""
 
 EXAMPLE = """\
   ccopt verify short-move-overcut
@@ -53,7 +54,10 @@ def cmd_verify(args: argparse.Namespace) -> int:
         profile = None
         if args.feed:
             say("feed")
-            profile = plan_feed(path, work.limits(), planner="toppra", ts=work.ts)
+            limits = work.limits()
+            # the certificate checks jerk when the limits carry it: the jerk
+            # planner's profile then, TOPPRA's (velocity, acceleration) otherwise
+            profile = plan_feed(path, limits, planner=certified_planner(limits), ts=work.ts)
         say("verify")
         cert = verify(path, prog, profile, eps=args.eps, radius=work.radius, side=work.side,
                       limits_tol=args.limits_tol, part_lines=args.part_lines)

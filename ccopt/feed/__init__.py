@@ -60,6 +60,13 @@ def __getattr__(name):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
+def certified_planner(limits: AxisLimits) -> str:
+    """The planner whose profile a command certifies and whose time it reports
+    as the cycle time: ``"jerk"`` when ``limits`` carry jerk (TOPPRA's profile
+    would break them), else ``"toppra"``."""
+    return "jerk" if limits.j is not None else "toppra"
+
+
 def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: str = "toppra",
               junction_deviation: float | None = None,
               grid: GridOptions | None = None, ts: float | None = None) -> FeedProfile:
@@ -79,8 +86,9 @@ def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: st
         corner speed there instead (an approximation, see
         :mod:`ccopt.feed.junction`). Used by ``toppra`` and ``junction``.
     grid: gridpoint options for TOPPRA and the jerk planner (:class:`GridOptions`).
-    ts: the interpolation period (s) of the ``"jerk"`` planner, which bounds the
-        acceleration step at a curvature break by ``jmax * ts`` (default 1 ms).
+    ts: the interpolation period (s) of the ``"jerk"`` planner and of the
+        jerk-limited ``"junction"`` baseline, which bounds the acceleration
+        step at a curvature break by ``jmax * ts`` (default 1 ms).
 
     Raises :class:`FeedError` (a located :class:`~ccopt.errors.ProgramError`)
     when the limits do not fit the path or TOPPRA fails.
@@ -96,6 +104,7 @@ __all__ = [
     "PLANNERS",
     "AxisLimits",
     "ExactPath",
+    "certified_planner",
     "FeedError",
     "FeedProfile",
     "FeedSamples",

@@ -32,7 +32,8 @@ def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: st
     kwargs: dict = {"junction_deviation": junction_deviation}
     if planner in ("toppra", "jerk"):
         kwargs["grid"] = grid if grid is not None else GridOptions()
-    if planner == "jerk" and ts is not None:
+    if planner in ("jerk", "junction") and ts is not None:
+        # the interpolation period caps curvature-break speeds under jerk limits
         kwargs["ts"] = ts
     return func(path, limits, **kwargs)
 

@@ -118,7 +118,8 @@ def render(results: list[dict], title: str = "ccopt run") -> str:
              f"<h1>{_e(title)}</h1>"]
     summary = []
     for r in results:
-        feed = r.get("feed", {}).get("toppra", {})
+        # the certified planner's time (the jerk planner's under jerk limits)
+        feed = r.get("feed", {}).get(r.get("planner", "toppra"), {})
         cert = r.get("certificate") or {}
         summary.append({"case": f'<a href="#{_e(r["name"])}">{_e(r["name"])}</a>',
                         "style": r.get("style", ""), "radius": r.get("radius", ""),

@@ -16,11 +16,13 @@ Figures derived here:
 """
 from __future__ import annotations
 
+import json
 from types import SimpleNamespace
 
 import numpy as np
 import pytest
 
+from ccopt.cli import main
 from ccopt.feed import AxisLimits, plan_feed
 from ccopt.geometry import Line
 from ccopt.toolpath import PathSegment, Role, ToolPath
@@ -84,3 +86,13 @@ def test_planned_profiles_under_jerk_limits():
     check, _ = check_limits(plan_feed(tp, lim, planner="toppra"))
     assert not check.ok
     assert check.figure == pytest.approx(1000.0 / 1e-3 / J, rel=1e-6)
+
+
+def test_verify_feed_certifies_the_jerk_planner_under_jerk_limits(capsys):
+    # with --jmax the certificate checks jerk, so `verify --feed` must certify
+    # the jerk planner's profile: TOPPRA's (acceleration steps) would fail it
+    code = main(["verify", "leadin-inside-line", "--feed", "--jmax", "20000,20000", "--json"])
+    doc = json.loads(capsys.readouterr().out)
+    assert code == 0 and doc["limits_ok"]
+    limits = next(c for c in doc["checks"] if c["name"] == "limits")
+    assert "jerk" in limits["requirement"] and limits["figure"] <= 1.0 + doc["limits_tol"]
