@@ -243,7 +243,7 @@ def plan_toppra(path: ExactPath, limits: AxisLimits, *, junction_deviation: floa
         return FeedProfile.empty(path, limits, "toppra")
     v, a = limits.in_plane(path.toolpath.plane, path.dof)
     budgets = segment_budgets(path, limits)
-    gp = make_gridpoints(path, v, a, grid)
+    gp = make_gridpoints(path, v, a, grid, (limits.tangential_acc, limits.centripetal_acc))
     if grid.baseline_knots:
         gp = refine(gp, baseline_knot_positions(path, limits, junction_deviation, budgets),
                     grid.min_spacing)
