@@ -10,7 +10,16 @@ offsets the same contour, as a polyline with every arc replaced by
 Prints medians of repeated runs, blocks per second, the ratio ccopt/shapely and
 the peak memory of ccopt's run per block at two sizes (linear memory check).
 
-    python bench/compensate.py [--n 100000] [--repeat 5]
+Second contour (issue 17): a closed serrated ring of ``SERRATED_N`` = 100,000
+straight edges about the origin, radius ``SERRATED_RADIUS`` = 8000 with a
+triangle wave of amplitude 2 and 5,000 periods (20 edges a period, corners of
+about 170 and 190 degrees alternately), run clockwise and cut with CC1
+(left: outside) and r = 0.05. ccopt compensates it (PMAC) against shapely's
+``offset_curve`` of the same polyline (round joins, ``quad_segs`` 8, offset
+to the left), both timed in the same run, and the certificate of ccopt's
+tool path (``verify``) is timed too.
+
+    python bench/compensate.py [--n 100000] [--repeat 5] [--serrated-only]
 """
 from __future__ import annotations
 
@@ -92,6 +101,86 @@ def polyline(pts, bulge) -> np.ndarray:
     return np.asarray(out)
 
 
+SERRATED_N = 100_000
+SERRATED_RADIUS = 8000.0
+SERRATED_AMPLITUDE = 2.0
+SERRATED_PERIODS = 5_000
+SERRATED_CUTTER = 0.05
+
+
+def serrated(n: int = SERRATED_N) -> np.ndarray:
+    """Vertices of the closed serrated ring, clockwise (``n`` edges)."""
+    i = np.arange(n)
+    phase = (SERRATED_PERIODS * i / n) % 1.0
+    tri = 4.0 * np.abs(phase - 0.5) - 1.0          # triangle wave in [-1, 1]
+    rad = SERRATED_RADIUS + SERRATED_AMPLITUDE * tri
+    theta = -2.0 * np.pi * i / n                   # clockwise
+    return np.c_[rad * np.cos(theta), rad * np.sin(theta)]
+
+
+def serrated_program(pts) -> Program:
+    """CC1 onto the ring from outside, once round it, and off to the outside
+    again (lead-in and lead-out on either side of the start, 100 units out)."""
+    n = len(pts)
+    on = Modal(side=1, radius=SERRATED_CUTTER)
+    start = (SERRATED_RADIUS + 100.0, 60.0, 0.0)
+    stop = (SERRATED_RADIUS + 100.0, -60.0, 0.0)
+    blocks = [Block(Source("serrated", 1), Motion.LINE, start, (*pts[0], 0.0), on, feed=10.0)]
+    for i in range(n):
+        p, q = pts[i], pts[(i + 1) % n]
+        blocks.append(Block(Source("serrated", i + 2), Motion.LINE, (float(p[0]), float(p[1]), 0.0),
+                            (float(q[0]), float(q[1]), 0.0), on, feed=10.0))
+    blocks.append(Block(Source("serrated", n + 2), Motion.LINE, (*pts[0], 0.0), stop,
+                        Modal(side=0, radius=SERRATED_CUTTER), feed=10.0))
+    return Program(tuple(blocks), "serrated", "pmac")
+
+
+def serrated_bench(n: int, repeat: int) -> None:
+    """Time ccopt's compensation and certificate of the serrated ring against
+    shapely's offset_curve, alternating turns so load hits both alike."""
+    import shapely
+
+    from ccopt.verify import verify
+
+    pts = serrated(n)
+    prog = serrated_program(pts)
+    line = shapely.linestrings(np.vstack([pts, pts[:1]]))
+    wall = {"ccopt": [], "shapely": []}
+    cpu = {"ccopt": [], "shapely": []}
+    runs = {"ccopt": lambda: compensate(prog, "pmac"),
+            "shapely": lambda: shapely.offset_curve(line, SERRATED_CUTTER, quad_segs=8,
+                                                    join_style="round")}
+    for _ in range(repeat):
+        for name, fn in runs.items():
+            t0, c0 = time.perf_counter(), time.process_time()
+            fn()
+            wall[name].append(time.perf_counter() - t0)
+            cpu[name].append(time.process_time() - c0)
+    path = compensate(prog, "pmac")
+    c0, t0 = time.process_time(), time.perf_counter()
+    cert = verify(path, prog)          # the first call also imports what verify needs
+    first = (time.perf_counter() - t0, time.process_time() - c0)
+    v_wall, v_cpu = [], []
+    for _ in range(max(1, repeat // 2)):
+        t0, c0 = time.perf_counter(), time.process_time()
+        verify(path, prog)
+        v_wall.append(time.perf_counter() - t0)
+        v_cpu.append(time.process_time() - c0)
+    tc, ts = statistics.median(wall["ccopt"]), statistics.median(wall["shapely"])
+    cc, cs = statistics.median(cpu["ccopt"]), statistics.median(cpu["shapely"])
+    print(f"serrated ring: {n} edges, R {SERRATED_RADIUS:g}, amplitude {SERRATED_AMPLITUDE:g}, "
+          f"{SERRATED_PERIODS} periods, r = {SERRATED_CUTTER}, CC1 clockwise")
+    print(f"ccopt  pmac compensate : {tc * 1e3:9.1f} ms wall, {cc * 1e3:9.1f} ms CPU, median "
+          f"of {repeat} -> {len(path.segments)} exact segments")
+    print(f"shapely offset_curve   : {ts * 1e3:9.1f} ms wall, {cs * 1e3:9.1f} ms CPU "
+          f"(round, quad_segs 8)")
+    print(f"ratio ccopt/shapely    : {tc / ts:9.2f} wall, {cc / cs:.2f} CPU  (target <= 2)")
+    print(f"ccopt  verify          : {statistics.median(v_wall) * 1e3:9.1f} ms wall, "
+          f"{statistics.median(v_cpu) * 1e3:9.1f} ms CPU (target < 1000; first call, with "
+          f"its imports: {first[0] * 1e3:.0f} ms wall, {first[1] * 1e3:.0f} ms CPU), "
+          f"ok={cert.ok}")
+
+
 def median_time(fn, repeat):
     times = []
     for _ in range(repeat):
@@ -113,7 +202,11 @@ def main() -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--n", type=int, default=100_000)
     ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--serrated-only", action="store_true")
     args = ap.parse_args()
+    serrated_bench(SERRATED_N, args.repeat)
+    if args.serrated_only:
+        return
     import shapely
 
     pts, bulge = contour(args.n)

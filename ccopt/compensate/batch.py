@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from itertools import chain
+from operator import attrgetter
 
 import numpy as np
 
@@ -43,6 +45,15 @@ def wrap_pi(a: np.ndarray) -> np.ndarray:
     return a - math.pi
 
 
+_ARC_MOTIONS = frozenset((Motion.ARC_CW, Motion.ARC_CCW))
+_CCW = frozenset((Motion.ARC_CCW,))
+
+
+def _column3(triples, n: int) -> np.ndarray:
+    """``(n, 3)`` float array of ``n`` coordinate triples."""
+    return np.fromiter(chain.from_iterable(triples), float, 3 * n).reshape(n, 3)
+
+
 @dataclass
 class ElementArrays:
     """Programmed in-plane moves as arrays (plane coordinates).
@@ -70,13 +81,16 @@ class ElementArrays:
     def from_blocks(cls, blocks: list[Block], plane: str, k: np.ndarray, r: np.ndarray):
         i, j, _ = PLANE_AXES[plane]
         n = len(blocks)
-        st = np.array([b.start for b in blocks], float).reshape(n, 3)
-        en = np.array([b.end for b in blocks], float).reshape(n, 3)
+        # the blocks' fields straight into arrays (fromiter over flattened
+        # tuples: no per-block list or tuple-of-tuples conversion)
+        st = _column3(map(attrgetter("start"), blocks), n)
+        en = _column3(map(attrgetter("end"), blocks), n)
         nan3 = (math.nan, math.nan, math.nan)
-        ce = np.array([b.center if b.center is not None else nan3 for b in blocks], float).reshape(n, 3)
-        motion_arc = np.array([b.motion.is_arc for b in blocks], bool)
-        ccw = np.array([b.motion is Motion.ARC_CCW for b in blocks], bool)
-        turns = np.array([b.turns for b in blocks], float)
+        ce = _column3((nan3 if c is None else c for c in map(attrgetter("center"), blocks)), n)
+        motions = list(map(attrgetter("motion"), blocks))
+        motion_arc = np.fromiter(map(_ARC_MOTIONS.__contains__, motions), bool, n)
+        ccw = np.fromiter(map(_CCW.__contains__, motions), bool, n)
+        turns = np.fromiter(map(attrgetter("turns"), blocks), float, n)
         S, E, C = st[:, [i, j]], en[:, [i, j]], ce[:, [i, j]]
         R0 = np.hypot(*(S - C).T)
         R1 = np.hypot(*(E - C).T)
@@ -196,8 +210,37 @@ def tool_segments(arr: ElementArrays, idx: np.ndarray, starts: np.ndarray, ends:
     must build with the reference (an arc through its own centre).
     """
     out: list = [None] * len(idx)
-    s, e = starts[idx], ends[idx]
     kind = arr.kind[idx]
+    lines = kind == LINE
+    q_line = np.flatnonzero(lines)
+    s, e = starts[idx[q_line]], ends[idx[q_line]]
+    if np.isfinite(s).all() and np.isfinite(e).all():
+        # Lines in bulk: end points checked finite once here, then built
+        # without re-validation (Line.trusted) from Python floats (tolist, not
+        # per-item numpy scalars): the per-segment checks and conversions were
+        # most of the time on long programs.
+        made = map(Line.trusted, s[:, 0].tolist(), s[:, 1].tolist(),
+                   e[:, 0].tolist(), e[:, 1].tolist())
+        if q_line.size == len(idx):
+            out = list(made)
+        else:
+            for q, g in zip(q_line.tolist(), made):
+                out[q] = g
+    else:
+        for q in q_line.tolist():   # the checked constructor says what is wrong
+            out[q] = Line((float(starts[idx[q], 0]), float(starts[idx[q], 1])),
+                          (float(ends[idx[q], 0]), float(ends[idx[q], 1])))
+    q_arc = np.flatnonzero(~lines)
+    if q_arc.size:
+        for q, g in zip(q_arc.tolist(), _arc_segments(arr, idx[q_arc], starts, ends)):
+            out[q] = g
+    return out
+
+
+def _arc_segments(arr: ElementArrays, idx: np.ndarray, starts: np.ndarray, ends: np.ndarray):
+    """:func:`tool_segments` of arc elements ``idx``: arcs, spirals, or ``None``."""
+    out: list = [None] * len(idx)
+    s, e = starts[idx], ends[idx]
     C = arr.C[idx]
     rs = np.hypot(*(s - C).T)
     re = np.hypot(*(e - C).T)
@@ -209,11 +252,9 @@ def tool_segments(arr: ElementArrays, idx: np.ndarray, starts: np.ndarray, ends:
     # corners.tool_geometry: both ends on the offset circle -> exactly that arc
     on = arr.offset_radius(idx, arr.k[idx], arr.r[idx])
     tol = OFFSET_CIRCLE_REL_TOL * np.maximum(1.0, on)
-    on_offset = (kind == ARC) & (on > 0) & (np.abs(rs - on) <= tol) & (np.abs(re - on) <= tol)
+    on_offset = (on > 0) & (np.abs(rs - on) <= tol) & (np.abs(re - on) <= tol)
     for q in range(len(idx)):
-        if kind[q] == LINE:
-            out[q] = Line((float(s[q, 0]), float(s[q, 1])), (float(e[q, 0]), float(e[q, 1])))
-        elif rs[q] > POINT_EPS and re[q] > POINT_EPS:
+        if rs[q] > POINT_EPS and re[q] > POINT_EPS:
             c = (float(C[q, 0]), float(C[q, 1]))
             if on_offset[q]:
                 out[q] = Arc(c, float(on[q]), float(th_s[q]), float(sweep[q]))

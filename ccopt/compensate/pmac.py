@@ -31,6 +31,7 @@ from ccopt.compensate.batch import (
 from ccopt.compensate.planes import by_plane
 from ccopt.compensate.scan import ScanResult, scan_program
 from ccopt.geometry import Arc, Line
+from ccopt.geometry.columns import paused_gc
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
 from ccopt.tolerances import PMAC_BREAK_COS, POINT_EPS
 from ccopt.toolpath import PathSegment, Role, ToolPath
@@ -228,8 +229,9 @@ class PmacStyle:
     @by_plane
     def compensate(self, program: Program, radius: float | None = None,
                    side: int | None = None) -> ToolPath:
-        scan = scan_program(program, radius=radius, side=side, style=self.name)
-        return assemble(self, scan, program)
+        with paused_gc():       # one object per block and segment: see paused_gc
+            scan = scan_program(program, radius=radius, side=side, style=self.name)
+            return assemble(self, scan, program)
 
 
 def classes_of(k: np.ndarray) -> list[str]:
@@ -326,11 +328,14 @@ def tool_geometries(scan: ScanResult, arr: ElementArrays, joints: Joints,
     n = len(scan)
     geoms: list = [None] * n
     fast = np.flatnonzero(arr.kind != SPIRAL) if vectorised else np.zeros(0, int)
-    for i, g in zip(fast, tool_segments(arr, fast, joints.starts, joints.ends)):
-        geoms[i] = g
-    for i in range(n):
-        if geoms[i] is None:
-            geoms[i] = tool_geometry(scan.element(i), joints.starts[i], joints.ends[i])
+    made = tool_segments(arr, fast, joints.starts, joints.ends)
+    if fast.size == n:
+        geoms = made
+    else:
+        for i, g in zip(fast.tolist(), made):
+            geoms[i] = g
+    for i in [i for i, g in enumerate(geoms) if g is None]:
+        geoms[i] = tool_geometry(scan.element(i), joints.starts[i], joints.ends[i])
     return geoms
 
 
@@ -373,19 +378,23 @@ def emit_moves(out: SegmentList, scan: ScanResult, classes: list[str], geoms: li
     def comp_on(i: int) -> bool:     # gap before move i runs compensated
         return k[i] != 0 and classes[i] != LEAD_IN
 
-    for i, blk in enumerate(scan.blocks):
-        if scan.gaps[i] and (gaps_after or i == 0):
-            out.gap(scan.gaps[i], joints.starts[i], comp_on(i))
-        role = ROLE_OF[classes[i]]
-        if classes[i] == UNCOMP and blk.motion is Motion.RAPID:
-            role = Role.RAPID
+    # One pass over plain lists with the look-ups hoisted: this loop runs once
+    # per block of the program.
+    gaps, corners, segs = scan.gaps, joints.corners, out.segs
+    rapid, corner_role = Motion.RAPID, Role.CORNER
+    for i, (blk, cls, geom) in enumerate(zip(scan.blocks, classes, geoms)):
+        if gaps[i] and (gaps_after or i == 0):
+            out.gap(gaps[i], joints.starts[i], comp_on(i))
+        motion = blk.motion
+        role = Role.RAPID if cls == UNCOMP and motion is rapid else ROLE_OF[cls]
         w0, w1 = blk.start[plane_w], blk.end[plane_w]
-        if geoms[i].length > POINT_EPS or w0 != w1:
-            out.add(geoms[i], role, blk, w0, w1)
-        if not gaps_after and i + 1 < n and scan.gaps[i + 1]:
-            out.gap(scan.gaps[i + 1], joints.ends[i], comp_on(i + 1))
-        for cg in joints.corners.get(i, ()):
-            out.add(cg, Role.CORNER, blk, w1, w1)
+        if geom.length > POINT_EPS or w0 != w1:
+            segs.append(PathSegment(geom, role, blk, w0, w1, blk.feed))
+        if not gaps_after and i + 1 < n and gaps[i + 1]:
+            out.gap(gaps[i + 1], joints.ends[i], comp_on(i + 1))
+        if corners and i in corners:
+            for cg in corners[i]:
+                segs.append(PathSegment(cg, corner_role, blk, w1, w1, blk.feed))
 
 
 def emit_tail(out: SegmentList, scan: ScanResult, joints: Joints) -> None:

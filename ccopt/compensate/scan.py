@@ -16,7 +16,7 @@ import numpy as np
 from ccopt.compensate import decisions
 from ccopt.compensate.corners import Element, element_of
 from ccopt.errors import CompensationError
-from ccopt.program.model import Block, Motion, Program
+from ccopt.program.model import PLANE_AXES, Block, Motion, Program
 from ccopt.toolpath import effective_side_radius
 
 
@@ -71,23 +71,33 @@ def scan_program(program: Program, radius: float | None = None, side: int | None
     plane = program.blocks[0].modal.plane if program.blocks else "XY"
     prev_side = 0
     prev_plane = plane
-    for blk in program.blocks:
-        k, r = effective_side_radius(blk, radius, side)
-        if blk.modal.plane != prev_plane:
+    # Side and radius depend on the block's modal state alone: one look-up per
+    # modal state (shared by the blocks it governs), not one per block; the
+    # first block of a state still raises, located, when it has no radius.
+    in_force: dict[int, tuple[int, float]] = {}
+    rapid_uncompensated = style == "pmac" and not decisions.PMAC_OFFSET_RAPIDS
+    for blk, in_plane in zip(program.blocks, _in_plane(program.blocks)):
+        modal = blk.modal
+        kr = in_force.get(id(modal))
+        if kr is None:
+            kr = in_force[id(modal)] = effective_side_radius(blk, radius, side)
+        k, r = kr
+        if modal.plane != prev_plane:
             if prev_side != 0 or k != 0:
-                raise _err(blk, f"plane change ({prev_plane} to {blk.modal.plane}, NORMAL/G17-G19) "
+                raise _err(blk, f"plane change ({prev_plane} to {modal.plane}, NORMAL/G17-G19) "
                                 "while cutter compensation is on: turn it off (CC0/G40) first")
             if moves:
                 raise _err(blk, "moves in more than one plane in one program are not supported "
                                 "by the compensation engine yet")
-            plane = blk.modal.plane
-        prev_plane = blk.modal.plane
-        if k != 0 and blk.move_time is not None and blk.motion.is_move:
+            plane = modal.plane
+        prev_plane = modal.plane
+        is_move = blk.motion is not Motion.DWELL
+        if k != 0 and blk.move_time is not None and is_move:
             raise _err(blk, "TM (move time) moves cannot be compensated: program a feed rate F "
                             "while cutter compensation is on")
         prev_side = k
-        if blk.motion.is_move and blk.in_plane:
-            if style == "pmac" and blk.motion is Motion.RAPID and not decisions.PMAC_OFFSET_RAPIDS:
+        if in_plane:
+            if rapid_uncompensated and blk.motion is Motion.RAPID:
                 # A rapid runs uncompensated: the move before it ends as for
                 # a lead-out, the move after it is a lead-in.
                 k, r = 0, 0.0
@@ -100,3 +110,24 @@ def scan_program(program: Program, radius: float | None = None, side: int | None
     start = program.blocks[0].uvw(program.start)[:2] if program.blocks else (0.0, 0.0)
     return ScanResult(moves, np.array(ks, dtype=int), np.array(rs, dtype=float), gaps, plane,
                       (float(start[0]), float(start[1])))
+
+
+_ARCS = frozenset((Motion.ARC_CW, Motion.ARC_CCW))
+
+
+def _in_plane(blocks) -> list[bool]:
+    """:attr:`Block.in_plane` of every block, in bulk: a move that is an arc,
+    or a straight move whose in-plane coordinates change (``hypot > 0``
+    exactly when either difference is non-zero)."""
+    out = []
+    for blk in blocks:
+        motion = blk.motion
+        if motion is Motion.DWELL:
+            out.append(False)
+        elif motion in _ARCS:
+            out.append(True)
+        else:
+            i, j, _ = PLANE_AXES[blk.modal.plane]
+            a, b = blk.start, blk.end
+            out.append(a[i] != b[i] or a[j] != b[j])
+    return out

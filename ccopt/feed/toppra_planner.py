@@ -125,9 +125,11 @@ class IntervalAxisVelocityConstraint(AxisVelocityConstraint):
     (:func:`ccopt.feed.grid.interval_speed_peaks`; ``x`` is linear between
     gridpoints). On lines the same as :class:`AxisVelocityConstraint`."""
 
+    samples = None   # IntervalSamples of the planner's grid, shared with the acceleration rows
+
     def compute_constraint_params(self, path, gridpoints, *args, **kwargs):
         out = list(super().compute_constraint_params(path, gridpoints, *args, **kwargs))
-        peak = interval_speed_peaks(interval_samples(path, gridpoints))
+        peak = interval_speed_peaks(_samples(self.samples, path, gridpoints))
         with np.errstate(divide="ignore"):
             x = np.where(peak > 0, (self.v / np.where(peak > 0, peak, 1.0)) ** 2, np.inf).min(axis=1)
         upper = out[6][:, 1].copy()
@@ -149,6 +151,8 @@ class IntervalAxisAccelerationConstraint(AxisAccelerationConstraint):
     constraint's units, which with the axis velocities bound ``x_i`` there.
     """
 
+    samples = None   # as IntervalAxisVelocityConstraint.samples
+
     def __init__(self, a, v, cap):
         super().__init__(a)
         self.v = np.asarray(v, dtype=float)
@@ -156,7 +160,7 @@ class IntervalAxisAccelerationConstraint(AxisAccelerationConstraint):
 
     def compute_constraint_params(self, path, gridpoints, *args, **kwargs):
         gridpoints = np.asarray(gridpoints, dtype=float)
-        smp = interval_samples(path, gridpoints)
+        smp = _samples(self.samples, path, gridpoints)
         q1 = path.eval_sided(gridpoints, 1, "right")
         with np.errstate(divide="ignore"):
             x_vel = np.where(np.abs(q1) > 0, (self.v / np.where(np.abs(q1) > 0, np.abs(q1), 1.0))
@@ -176,6 +180,16 @@ class IntervalAxisAccelerationConstraint(AxisAccelerationConstraint):
         F = np.vstack([eye, -eye])
         g = np.tile(self.a, 2 * k)
         return a, b, np.zeros_like(a), F, g, None, None
+
+
+def _samples(given, path, gridpoints):
+    """The :class:`~ccopt.feed.grid.IntervalSamples` of ``gridpoints``: from
+    ``given`` (``(gridpoints, samples)`` computed once by the planner for both
+    constraints) when it is of the same gridpoints, else computed here."""
+    gp = np.asarray(gridpoints, dtype=float)
+    if given is not None and np.array_equal(given[0], gp):
+        return given[1]
+    return interval_samples(path, gp)
 
 
 def speed_caps(path: ExactPath, gridpoints: np.ndarray, a_axis,
@@ -243,13 +257,17 @@ def plan_toppra(path: ExactPath, limits: AxisLimits, *, junction_deviation: floa
         return FeedProfile.empty(path, limits, "toppra")
     v, a = limits.in_plane(path.frame, path.dof)
     budgets = segment_budgets(path, limits)
-    gp = make_gridpoints(path, v, a, grid)
+    gp = make_gridpoints(path, v, a, grid, (limits.tangential_acc, limits.centripetal_acc))
     if grid.baseline_knots:
         gp = refine(gp, baseline_knot_positions(path, limits, junction_deviation, budgets),
                     grid.min_spacing)
     cap = speed_caps(path, gp, a, junction_deviation)
     scale = speed_scale(path, budgets[0])
-    algo = StoppingTOPPRA(build_constraints(path, limits, cap, scale), path, gridpoints=gp,
+    constraints = build_constraints(path, limits, cap, scale)
+    shared = (gp, interval_samples(path, gp))
+    for c in constraints[:2]:
+        c.samples = shared
+    algo = StoppingTOPPRA(constraints, path, gridpoints=gp,
                           solver_wrapper="seidel", parametrizer="ParametrizeConstAccel")
     _, sd, _, K = algo.compute_parameterization(0.0, 0.0, return_data=True)
     code = algo.problem_data.return_code

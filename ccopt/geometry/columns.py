@@ -12,9 +12,32 @@ Lengths are program units, angles radians.
 """
 from __future__ import annotations
 
+import gc
+from contextlib import contextmanager
+
 import numpy as np
 
 from ccopt.geometry.angles import in_sweep_prepared
+
+@contextmanager
+def paused_gc():
+    """Pause Python's cyclic garbage collector while a long program's objects
+    are built one per block or segment (none of them in a reference cycle).
+
+    Each collection of the oldest generation walks every live object (a
+    100,000-block program is some millions), and building 100,000 segments
+    set off several: most of the time of building them. Reference counting
+    still frees everything as usual; the collector is switched back on (if
+    it was on) on the way out, also on an exception.
+    """
+    was_on = gc.isenabled()
+    gc.disable()
+    try:
+        yield
+    finally:
+        if was_on:
+            gc.enable()
+
 
 def columns(points, scalars=()):
     """Broadcast points (``(..., 2)``) and scalars to 1-D columns of one length.

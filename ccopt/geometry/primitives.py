@@ -68,6 +68,19 @@ class Line:
         object.__setattr__(self, "_length",
                            math.hypot(self.p1[0] - self.p0[0], self.p1[1] - self.p0[1]))
 
+    @classmethod
+    def trusted(cls, x0: float, y0: float, x1: float, y1: float) -> "Line":
+        """The line from ``(x0, y0)`` to ``(x1, y1)``, four Python floats the
+        caller has already checked finite (an engine's own arrays, checked in
+        bulk): the same object as ``Line((x0, y0), (x1, y1))`` without its
+        per-segment conversion and checks, which dominate long programs."""
+        # the slots' own descriptors: the frozen __setattr__ is not involved
+        obj = object.__new__(cls)
+        _set_p0(obj, (x0, y0))
+        _set_p1(obj, (x1, y1))
+        _set_length(obj, math.hypot(x1 - x0, y1 - y0))
+        return obj
+
     @property
     def length(self) -> float:
         return self._length
@@ -142,6 +155,11 @@ class Line:
 
     def reversed(self) -> "Line":
         return Line(self.p1, self.p0)
+
+
+_set_p0 = Line.__dict__["p0"].__set__
+_set_p1 = Line.__dict__["p1"].__set__
+_set_length = Line.__dict__["_length"].__set__
 
 
 # --------------------------------------------------------------------------- Arc

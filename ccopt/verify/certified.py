@@ -112,7 +112,11 @@ class SpiralParam(Param):
         u = np.asarray(u, float)
         rho = self.rho0 + self.b * u
         ang = self.th0 + self.sg * u
-        return np.c_[self.c[0] + rho * np.cos(ang), self.c[1] + rho * np.sin(ang)]
+        out = np.empty((u.size, 2))     # (np.c_ costs more than the trigonometry here)
+        np.multiply(rho, np.cos(ang), out=out[:, 0])
+        np.multiply(rho, np.sin(ang), out=out[:, 1])
+        out += self.c
+        return out
 
     def d2(self, u0, u1):
         rho = np.maximum(self.rho0 + self.b * np.asarray(u0), self.rho0 + self.b * np.asarray(u1))
@@ -310,7 +314,12 @@ def _bound_pieces(pa: Param, b, pb: Param | None, pieces, exempt):
         e0, e1 = pb.eval(ub0), pb.eval(ub1)
         db = pb.delta(ub0, ub1)
         d, w_a, w_b = segment_segment(c0, c1, e0, e1)
-    lb = d - da - db
+    # Distances are never negative, and about a common centre no nearer than
+    # the gap between the two polar radius ranges (|A - B| >= ||A - c| - |B - c||):
+    # both are certified lower bounds too, and settle in one round the pairs
+    # the chords alone would refine down to ``tol`` all along (a spiral on
+    # itself, or against its concentric offset).
+    lb = np.maximum(d - da - db, _radial_gap(pa, ua0, ua1, b, pb, ub0, ub1))
     skip = np.zeros(ua0.size, bool)
     if exempt is not None:
         inside_by, _ = exempt
@@ -330,16 +339,40 @@ def _bound_pieces(pa: Param, b, pb: Param | None, pieces, exempt):
     return lb, ~skip, dq, qa, qb, ok_ub
 
 
+def _radius_range(p: "SpiralParam", u0, u1):
+    """Polar radius range ``(lo, hi)`` of the pieces ``[u0, u1]`` of a spiral or arc."""
+    r0 = p.rho0 + p.b * np.asarray(u0, float)
+    r1 = p.rho0 + p.b * np.asarray(u1, float)
+    return np.minimum(r0, r1), np.maximum(r0, r1)
+
+
+def _radial_gap(pa: Param, ua0, ua1, b, pb: Param | None, ub0, ub1):
+    """A lower bound of the distance of each piece (pair) from the polar radii
+    about a shared centre (0 when there is none to use)."""
+    if not isinstance(pa, SpiralParam):
+        return 0.0
+    if pb is None:
+        if not isinstance(b, Arc) or tuple(pa.c) != tuple(map(float, b.center)):
+            return 0.0
+        lo_b = hi_b = float(b.radius)
+    elif isinstance(pb, SpiralParam) and np.array_equal(pa.c, pb.c):
+        lo_b, hi_b = _radius_range(pb, ub0, ub1)
+    else:
+        return 0.0
+    lo_a, hi_a = _radius_range(pa, ua0, ua1)
+    return np.maximum(np.maximum(lo_a - hi_b, lo_b - hi_a), 0.0)
+
+
 def _halve(pieces, keep):
     """The kept pieces (pairs), each cut in two halves (a pair in four)."""
     ua0, ua1 = pieces[0][keep], pieces[1][keep]
     mid = 0.5 * (ua0 + ua1)
     if pieces[2] is None:
-        return np.r_[ua0, mid], np.r_[mid, ua1], None, None
+        return np.concatenate((ua0, mid)), np.concatenate((mid, ua1)), None, None
     ub0, ub1 = pieces[2][keep], pieces[3][keep]
     midb = 0.5 * (ub0 + ub1)
-    return (np.r_[ua0, ua0, mid, mid], np.r_[mid, mid, ua1, ua1],
-            np.r_[ub0, midb, ub0, midb], np.r_[midb, ub1, midb, ub1])
+    return (np.concatenate((ua0, ua0, mid, mid)), np.concatenate((mid, mid, ua1, ua1)),
+            np.concatenate((ub0, midb, ub0, midb)), np.concatenate((midb, ub1, midb, ub1)))
 
 
 def _chords(p: Param, n: int):
