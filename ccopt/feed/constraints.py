@@ -24,7 +24,8 @@ fall back to ``path(s, order)``.
 from __future__ import annotations
 
 import numpy as np
-from toppra.constraint import DiscretizationType, LinearConstraint
+
+from ccopt.feed.toppra_import import DiscretizationType, LinearConstraint
 
 
 def _sided(path, gridpoints, order):

@@ -48,9 +48,9 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from toppra.interpolator import AbstractGeometricPath
 
 from ccopt.feed.limits import MACHINE_FRAME
+from ccopt.feed.toppra_import import AbstractGeometricPath
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.program.model import PLANE_AXES
 from ccopt.tolerances import GAP_EPS, POINT_EPS, TURN_EPS

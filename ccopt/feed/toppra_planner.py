@@ -32,8 +32,6 @@ across each other next to zero-speed gridpoints.
 from __future__ import annotations
 
 import numpy as np
-from toppra.algorithm import TOPPRA
-from toppra.algorithm.algorithm import ParameterizationReturnCode
 
 from ccopt.feed.baselines import baseline_knot_positions, segment_budgets
 from ccopt.feed.constraints import (
@@ -51,6 +49,7 @@ from ccopt.feed.junction import boundary_speed_caps
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.feed.profile import FeedProfile
+from ccopt.feed.toppra_import import TOPPRA, ParameterizationReturnCode
 from ccopt.tolerances import CROSSING_TOL
 
 #: Relative lowerings of the current squared speed tried when a forward step's
