@@ -24,7 +24,7 @@ MAX_CELLS = 64
 CELL_FACTOR = 2.0
 
 #: Pairs are produced in chunks of about this many to bound memory.
-CHUNK = 1 << 21
+CHUNK = 1 << 18
 
 #: Smallest cell size (program units): boxes that are all points with zero
 #: reach would otherwise give a zero cell and divide by it.
