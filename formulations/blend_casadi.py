@@ -62,6 +62,10 @@ SPEED_SQUARE_SMOOTHING = 1e-10
 
 #: IPOPT's convergence and constraint tolerances (the verifier judges the result).
 IPOPT_TOL = 1e-9
+#: IPOPT's iteration limit: the solves that succeed on the bundled cases take 25 to
+#: 150 iterations; a lead still unsolved after this many keeps PMAC's (with 1000,
+#: two such leads took 3/4 of opt-casadi's time on fagor-g136-g138).
+IPOPT_MAX_ITER = 200
 
 
 def classes_at(setup: LeadSetup, x, m_clear: int):
@@ -318,7 +322,7 @@ def lead_solver(shape: ModelShape, options: dict | None = None) -> LeadSolver:
     if key not in _SOLVERS:
         opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
                 "ipopt.tol": IPOPT_TOL, "ipopt.constr_viol_tol": IPOPT_TOL,
-                "ipopt.max_iter": 1000} if shape.solver == "ipopt" else {}
+                "ipopt.max_iter": IPOPT_MAX_ITER} if shape.solver == "ipopt" else {}
         opts.update(options or {})
         _SOLVERS[key] = LeadSolver(shape, ca.nlpsol("lead", shape.solver, _lead_nlp(shape),
                                                     opts))

@@ -334,7 +334,12 @@ def run_leads(problem: BlendProblem, solve_lead, name: str,
             except BlendRejected as exc:
                 last_err = str(exc)
                 break
-            except (ValueError, RuntimeError) as exc:
+            except RuntimeError as exc:
+                # the solver found no solution: denser samples only add constraints,
+                # they cannot make the model feasible (they fix what lies between samples)
+                last_err = f"{type(exc).__name__}: {exc}"
+                break
+            except ValueError as exc:     # e.g. a curve that is not regular between samples
                 last_err = f"{type(exc).__name__}: {exc}"
                 continue
             cusp = near_cusp(setup, geom) or (too_tight(setup, geom) if curvature_bounded
