@@ -63,9 +63,10 @@ SPEED_SQUARE_SMOOTHING = 1e-10
 #: IPOPT's convergence and constraint tolerances (the verifier judges the result).
 IPOPT_TOL = 1e-9
 #: IPOPT's iteration limit: the solves that succeed on the bundled cases take 25 to
-#: 150 iterations; a lead still unsolved after this many keeps PMAC's (with 1000,
-#: two such leads took 3/4 of opt-casadi's time on fagor-g136-g138).
-IPOPT_MAX_ITER = 200
+#: 240 iterations (with the curvature rows; z-plunges and the sidechange cases
+#: 220-240); a lead still unsolved after this many keeps PMAC's (with 1000, two
+#: such leads took 3/4 of opt-casadi's time on fagor-g136-g138).
+IPOPT_MAX_ITER = 500
 
 
 def classes_at(setup: LeadSetup, x, m_clear: int):
