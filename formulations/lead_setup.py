@@ -295,6 +295,15 @@ def too_tight(setup: "LeadSetup", geom) -> str | None:
 ATTEMPTS = (1, 3, 9)
 
 
+def _made(path, cand) -> list[int]:
+    """The segments of ``cand`` the splice made, and their neighbours (a lead-out's
+    blend is the curve reversed, a new object, so it is found by what is new, not
+    by the curve)."""
+    old = {id(s) for s in path.segments}
+    made = [i for i, s in enumerate(cand.segments) if id(s) not in old]
+    return sorted({j for i in made for j in (i - 1, i, i + 1) if 0 <= j < len(cand.segments)})
+
+
 def run_leads(problem: BlendProblem, solve_lead, name: str,
               attempts: tuple[int, ...] = ATTEMPTS,
               curvature_bounded: bool = True) -> BlendOutcome:
@@ -348,15 +357,8 @@ def run_leads(problem: BlendProblem, solve_lead, name: str,
                 last_err = cusp      # denser samples next time (the models scale with refine)
                 continue
             cand = splice(path, ld, [geom], float(x[-1]), style=name)
-            # the segments the splice made (a lead-out's blend is the curve reversed, a
-            # new object, so it is found by what is new, not by the curve) and their
-            # neighbours
-            old = {id(s) for s in path.segments}
-            made = [i for i, s in enumerate(cand.segments) if id(s) not in old]
-            mine = sorted({j for i in made for j in (i - 1, i, i + 1)
-                           if 0 <= j < len(cand.segments)})
             try:
-                cert = problem.accept(cand, mine)
+                cert = problem.accept(cand, _made(path, cand))
             except BlendRejected as exc:
                 last_err = str(exc)
                 continue
