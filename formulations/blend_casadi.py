@@ -1,8 +1,11 @@
 """``opt-casadi``: a G2 quintic Bezier lead-in/lead-out solved with IPOPT through CasADi.
 
-The model (:func:`lead_model`) and the solve (:func:`solve_lead_model`) are
-separate, so the same NLP can go to another CasADi solver (``sqpmethod``,
-``bonmin`` ...). The numbers come from :mod:`ccopt_formulations.lead_setup`:
+The model is built and compiled once per :class:`ModelShape` (host kind,
+degree, number of contour elements and samples, solver) with every number of
+a lead as a CasADi parameter (:func:`lead_solver`), and reused for every
+round and every lead of that shape (:func:`solve_round`: parameters, bounds,
+warm start); the solver is a CasADi NLP plug-in (``ipopt`` by default,
+``sqpmethod``, ``bonmin`` ...). The numbers come from :mod:`ccopt_formulations.lead_setup`:
 
     minimise   sum_i 2 ds_i / (v_i + v_i+1) + (F - v_end)^2 / (2 a F)
                + (L_host - sigma)/F + mu * integral |r'''(t)|^2 dt
@@ -17,6 +20,8 @@ separate, so the same NLP can go to another CasADi solver (``sqpmethod``,
                  an arc, |p - E|^2 >= r^2 beyond an end E (beyond a line's open
                  end too, and u . p >= u . E, u its direction out of E),
                |r'(t_i)| >= v_min (a regular curve),
+               |r'(t_i) x r''(t_i)| <= 0.8 kappa_max |r'(t_i)|^3 (the curvature bound,
+                 :func:`ccopt_formulations.lead_setup.curvature_bound`),
 
 so the path and its speed are optimised together (a small time-optimal
 parametrisation inside the NLP, with the machine's own axis limits; TOPPRA
@@ -35,7 +40,8 @@ from ccopt.compare.contract import BlendProblem
 from ccopt.geometry.bezier import DIVISION_FLOOR, curve_samples, end_acceleration, jerk_gram
 from ccopt.geometry.curve import bernstein, derivative_matrix
 from ccopt_formulations.clearance import CONCAVE, CONVEX, END, EXEMPT, LINE, classify
-from ccopt_formulations.lead_setup import V_MIN_FRACTION, LeadSetup, run_leads
+from ccopt_formulations.lead_setup import (CURVATURE_MODEL_SHARE, V_MIN_FRACTION, LeadSetup,
+                                           run_leads)
 
 #: Rounds of "solve, re-classify the clearance cases at the solution".
 MAX_ROUNDS = 4
@@ -56,6 +62,11 @@ SPEED_SQUARE_SMOOTHING = 1e-10
 
 #: IPOPT's convergence and constraint tolerances (the verifier judges the result).
 IPOPT_TOL = 1e-9
+#: IPOPT's iteration limit: the solves that succeed on the bundled cases take 25 to
+#: 240 iterations (with the curvature rows; z-plunges and the sidechange cases
+#: 220-240); a lead still unsolved after this many keeps PMAC's (with 1000, two
+#: such leads took 3/4 of opt-casadi's time on fagor-g136-g138).
+IPOPT_MAX_ITER = 500
 
 
 def classes_at(setup: LeadSetup, x, m_clear: int):
@@ -65,30 +76,85 @@ def classes_at(setup: LeadSetup, x, m_clear: int):
     return [classify(el, pts) for el in setup.elements]
 
 
-def _join_controls(setup: LeadSetup, x):
+@dataclass(frozen=True)
+class ModelShape:
+    """What the structure of a lead's NLP depends on; every lead of one shape shares one
+    compiled solver (:func:`lead_solver`), its numbers passed as parameters."""
+
+    host_kind: str      # "line" | "arc"
+    degree: int
+    elements: int       # contour elements constrained
+    m_clear: int
+    m_time: int
+    solver: str
+
+    @property
+    def n_free(self) -> int:
+        return self.degree - 3
+
+    @property
+    def nx(self) -> int:
+        return 2 * self.n_free + 3
+
+
+class _Symbols:
+    """A lead's numbers (:class:`LeadSetup`) as CasADi parameters: the points ``A``,
+    ``H0``, ``t0``, ``center`` and the scalars of :data:`SCALARS`
+    (:meth:`values` gives them for one setup)."""
+
+    POINTS = ("A", "H0", "t0", "center")
+    SCALARS = ("rho", "theta0", "sweep_sign", "L0", "feed", "a_end", "host_length",
+               "jerk_weight", "kappa_cap", "vmin")
+
+    def __init__(self, shape: ModelShape):
+        import casadi as ca  # deferred: heavy, and only this blend needs it
+
+        for k in self.POINTS:
+            setattr(self, k, ca.SX.sym(k, 2))
+        for k in self.SCALARS:
+            setattr(self, k, ca.SX.sym(k))
+        self.shape = shape
+
+    def vector(self):
+        import casadi as ca  # deferred: heavy, and only this blend needs it
+
+        return ca.vertcat(*[getattr(self, k) for k in self.POINTS + self.SCALARS])
+
+    @staticmethod
+    def values(setup: LeadSetup) -> np.ndarray:
+        a_end = end_acceleration(setup.t0, setup.acc) \
+            if setup.host_kind == "line" else float(np.min(setup.acc))
+        cap = CURVATURE_MODEL_SHARE * setup.kappa_max if np.isfinite(setup.kappa_max) else 0.0
+        center = setup.center if setup.center is not None else np.zeros(2)
+        return np.r_[setup.A, setup.H0, setup.t0, center, setup.rho, setup.theta0,
+                     setup.sweep_sign, setup.L0, setup.feed, a_end, setup.lg.host_length,
+                     setup.jerk_weight, cap, V_MIN_FRACTION * setup.L0]
+
+
+def _join_controls(sym: _Symbols, x):
     """The control points (``(n+1) x 2``, CasADi) of the decision vector ``x``: ``A``,
     the free points, and the G2 end at the host point ``J(sigma)`` (as
     :func:`ccopt.geometry.bezier.g2_end`, with ``J``, its tangent and curvature
     symbolic in ``sigma`` on an arc host)."""
     import casadi as ca  # deferred: heavy, and only this blend needs it
 
-    n = setup.degree
-    free = [x[2 * i: 2 * i + 2] for i in range(setup.n_free)]
+    n = sym.shape.degree
+    free = [x[2 * i: 2 * i + 2] for i in range(sym.shape.n_free)]
     a, e, sg = x[-3], x[-2], x[-1]
-    if setup.host_kind == "line":
-        J = ca.DM(setup.H0) + sg * ca.DM(setup.t0)
-        t = ca.DM(setup.t0)
+    if sym.shape.host_kind == "line":
+        J = sym.H0 + sg * sym.t0
+        t = sym.t0
         kappa = 0.0
     else:
-        phi = setup.theta0 + setup.sweep_sign * sg / setup.rho
-        J = ca.DM(setup.center) + setup.rho * ca.vertcat(ca.cos(phi), ca.sin(phi))
-        t = setup.sweep_sign * ca.vertcat(-ca.sin(phi), ca.cos(phi))
-        kappa = setup.sweep_sign / setup.rho
+        phi = sym.theta0 + sym.sweep_sign * sg / sym.rho
+        J = sym.center + sym.rho * ca.vertcat(ca.cos(phi), ca.sin(phi))
+        t = sym.sweep_sign * ca.vertcat(-ca.sin(phi), ca.cos(phi))
+        kappa = sym.sweep_sign / sym.rho
     nl = ca.vertcat(-t[1], t[0])
     c = n * kappa * a * a / (n - 1)
     Pm2 = J + (e - 2.0 * a) * t + c * nl
     Pm1 = J - a * t
-    return ca.horzcat(ca.DM(setup.A), *free, Pm2, Pm1, J).T
+    return ca.horzcat(sym.A, *free, Pm2, Pm1, J).T
 
 
 @dataclass
@@ -111,117 +177,157 @@ class SpeedModel:
     time: object
 
 
-def _speed_model(setup: LeadSetup, P, m_time: int) -> SpeedModel:
+def _speed_model(sym: _Symbols, P, m_time: int) -> SpeedModel:
     """The speed profile of the curve ``P`` and its time (see :class:`SpeedModel`)."""
     import casadi as ca  # deferred: heavy, and only this blend needs it
 
-    n = setup.degree
+    n = sym.shape.degree
     b = ca.SX.sym("b", m_time)
     tt = np.linspace(0.0, 1.0, m_time)
     pt = ca.mtimes(ca.DM(bernstein(tt, n)), P)
     d1 = ca.mtimes(ca.DM(bernstein(tt, n - 1) @ derivative_matrix(n, 1)), P)
     d2 = ca.mtimes(ca.DM(bernstein(tt, n - 2) @ derivative_matrix(n, 2)), P)
     sp2 = d1[:, 0] ** 2 + d1[:, 1] ** 2
-    sp = ca.sqrt(sp2 + SPEED_SMOOTHING * setup.L0 ** 2)
+    sp = ca.sqrt(sp2 + SPEED_SMOOTHING * sym.L0 ** 2)
     Tx, Ty = d1[:, 0] / sp, d1[:, 1] / sp
     dn = d2[:, 0] * Tx + d2[:, 1] * Ty
     Kx = (d2[:, 0] - dn * Tx) / sp2
     Ky = (d2[:, 1] - dn * Ty) / sp2
     dp = pt[1:, :] - pt[:-1, :]
-    ds = ca.sqrt(dp[:, 0] ** 2 + dp[:, 1] ** 2 + PIECE_SMOOTHING * setup.L0 ** 2)
+    ds = ca.sqrt(dp[:, 0] ** 2 + dp[:, 1] ** 2 + PIECE_SMOOTHING * sym.L0 ** 2)
     u = (b[1:] - b[:-1]) / (2.0 * ds)
-    v = ca.sqrt(b + SPEED_SQUARE_SMOOTHING * setup.feed ** 2)
-    a_end = end_acceleration(setup.t0, setup.acc) \
-        if setup.host_kind == "line" else float(np.min(setup.acc))
+    v = ca.sqrt(b + SPEED_SQUARE_SMOOTHING * sym.feed ** 2)
     T = ca.sum1(2.0 * ds / (v[:-1] + v[1:]))
-    T += (setup.feed - v[-1]) ** 2 / (2.0 * a_end * setup.feed)
+    T += (sym.feed - v[-1]) ** 2 / (2.0 * sym.a_end * sym.feed)
     return SpeedModel(b, sp2, Tx, Ty, Kx, Ky, u, T)
 
 
-class _Rows:
-    """Constraint rows ``lbg <= g <= ubg`` as they are added."""
-
-    def __init__(self):
-        self.g, self.lbg, self.ubg = [], [], []
-
-    def add(self, expr, count: int, lo=0.0, hi=None):
-        import casadi as ca  # deferred: heavy, and only this blend needs it
-
-        self.g.append(expr)
-        self.lbg += lo if isinstance(lo, list) else [lo] * count
-        self.ubg += hi if isinstance(hi, list) else [ca.inf if hi is None else hi] * count
+#: Columns of the clearance parameters of each (element, inner sample):
+#: row 1 ``vx px + vy py + q |p - c|^2 - k0 >= 0``, row 2 ``q2 |p - c2|^2 - k2 >= 0``.
+ROW1, ROW2 = 6, 4
 
 
-def _clearance_rows(rows: _Rows, setup: LeadSetup, classes, pts) -> None:
-    """Clearance from every element within reach, by the case of each sample
-    (:mod:`ccopt_formulations.clearance`; ``pts`` the curve samples, ends excluded)."""
-    import casadi as ca  # deferred: heavy, and only this blend needs it
+def clearance_numbers(setup: LeadSetup, classes):
+    """The clearance parameters ``(C1, C2)`` and lower bounds of both rows for the cases
+    ``classes`` (:func:`classes_at`), element by element (see :data:`ROW1`):
 
+    alongside a line ``n . p >= n . A + r``; alongside a concave arc
+    ``-|p - c|^2 >= -(R - r)^2``; a convex one ``|p - c|^2 >= (R + r)^2``;
+    beyond an end ``E`` ``|p - E|^2 >= r^2``; beyond a line's *open* end ``E``
+    ``u . p >= u . E`` and ``|p - E|^2 >= r^2`` (the verifier checks no point
+    there, but one just inside the end it does, and a sample left free would
+    drift into the band along the line, where the next round, with its case
+    re-taken, could not move it out); beyond an arc's open end: free (both rows
+    void, lower bound ``-inf``).
+    """
+    rows1, rows2, lo1, lo2 = [], [], [], []
     for el, (kind, vec, scal) in zip(setup.elements, classes):
-        for k in (LINE, CONCAVE, CONVEX, END, EXEMPT):
-            if k == EXEMPT and el.kind != "line":
-                continue                       # beyond an arc's open end: free
-            idx = [int(i) for i in np.flatnonzero(kind == k)]
-            if not idx:
-                continue
-            px, py = pts[idx, 0], pts[idx, 1]
-            vx, vy, sc = ca.DM(vec[idx, 0]), ca.DM(vec[idx, 1]), ca.DM(scal[idx])
-            if k == EXEMPT:
-                # beyond a line's open end E: kept beyond it (u . p >= u . E), and r from
-                # E. The verifier checks no point there, but one just inside the end
-                # (between samples) it does; and a sample left free would drift into
-                # the band along the line, where the next round, with its case re-taken,
-                # could not move it out (the model fixes each sample's case for a round)
-                d = np.subtract(el.geom.p1, el.geom.p0)
-                at_start = vec[idx] @ d < 0.0
-                E = np.where(at_start[:, None], el.geom.p0, el.geom.p1)
-                rows.add(vx * px + vy * py - sc, len(idx))
-                rows.add((px - ca.DM(E[:, 0])) ** 2 + (py - ca.DM(E[:, 1])) ** 2
-                         - el.clearance ** 2, len(idx))
-            elif k == LINE:
-                rows.add(vx * px + vy * py - sc, len(idx))
-            elif k == CONCAVE:
-                rows.add(sc ** 2 - (px - vx) ** 2 - (py - vy) ** 2, len(idx))
-            else:
-                rows.add((px - vx) ** 2 + (py - vy) ** 2 - sc ** 2, len(idx))
+        m = len(kind)
+        C1 = np.zeros((m, ROW1))
+        C2 = np.zeros((m, ROW2))
+        l1 = np.zeros(m)
+        l2 = np.full(m, -np.inf)
+        k = kind == LINE
+        C1[k, 0:2], C1[k, 5] = vec[k], scal[k]
+        for case, sign in ((CONCAVE, -1.0), (CONVEX, 1.0), (END, 1.0)):
+            k = kind == case
+            C1[k, 2], C1[k, 3:5], C1[k, 5] = sign, vec[k], sign * scal[k] ** 2
+        k = kind == EXEMPT
+        if el.kind == "line" and k.any():
+            d = np.subtract(el.geom.p1, el.geom.p0)
+            at_start = vec[k] @ d < 0.0
+            C1[k, 0:2], C1[k, 5] = vec[k], scal[k]
+            C2[k, 0] = 1.0
+            C2[k, 1:3] = np.where(at_start[:, None], el.geom.p0, el.geom.p1)
+            C2[k, 3] = el.clearance ** 2
+            l2[k] = 0.0
+        else:
+            l1[k] = -np.inf
+        rows1.append(C1)
+        rows2.append(C2)
+        lo1.append(l1)
+        lo2.append(l2)
+    return np.vstack(rows1), np.vstack(rows2), np.concatenate(lo1), np.concatenate(lo2)
 
 
-def lead_model(setup: LeadSetup, classes, m_time: int = M_TIME, m_clear: int = M_CLEAR) -> dict:
-    """The NLP of one lead as a CasADi dict: ``nlp`` (``x``, ``f``, ``g``),
-    bounds ``lbx, ubx, lbg, ubg``, first guess ``x0``."""
+@dataclass
+class LeadSolver:
+    """One compiled NLP per :class:`ModelShape` (:func:`lead_solver`): ``solve`` takes a
+    lead's parameters, bounds and first guess. Rows, in order: clearance row 1 and
+    row 2 of every (element, inner sample), ``|r'|^2 >= v_min^2`` at the speed cuts and
+    at the clearance samples, the curvature bound ``cap |r'|^3 -+ r' x r'' >= 0`` at
+    the clearance samples, and the axis accelerations at both ends of every piece."""
+
+    shape: ModelShape
+    function: object
+
+    def bounds_g(self, setup: LeadSetup, lo1, lo2, m_time: int):
+        """``(lbg, ubg)`` of every row."""
+        sh = self.shape
+        ax, ay = float(setup.acc[0]), float(setup.acc[1])
+        curv = 0.0 if np.isfinite(setup.kappa_max) else -np.inf
+        lbg = np.r_[lo1, lo2, np.zeros(m_time + sh.m_clear), np.full(2 * sh.m_clear, curv),
+                    np.tile(np.r_[np.full(m_time - 1, -ax), np.full(m_time - 1, -ay)], 2)]
+        ubg = np.r_[np.full(len(lbg) - 4 * (m_time - 1), np.inf),
+                    np.tile(np.r_[np.full(m_time - 1, ax), np.full(m_time - 1, ay)], 2)]
+        return lbg, ubg
+
+
+def _lead_nlp(shape: ModelShape):
+    """The NLP of a lead of ``shape``: ``(nlp dict, parameter symbols)``."""
     import casadi as ca  # deferred: heavy, and only this blend needs it
 
-    n = setup.degree
-    x = ca.SX.sym("x", setup.nx)
-    P = _join_controls(setup, x)                                  # (n + 1) x 2
-    spd = _speed_model(setup, P, m_time)
+    n, E, mc, mt = shape.degree, shape.elements, shape.m_clear, shape.m_time
+    sym = _Symbols(shape)
+    x = ca.SX.sym("x", shape.nx)
+    C1 = ca.SX.sym("C1", E * (mc - 2), ROW1)
+    C2 = ca.SX.sym("C2", E * (mc - 2), ROW2)
+    P = _join_controls(sym, x)                                    # (n + 1) x 2
+    spd = _speed_model(sym, P, mt)
     G = ca.DM(jerk_gram(n))
     jerk = ca.dot(P[:, 0], ca.mtimes(G, P[:, 0])) + ca.dot(P[:, 1], ca.mtimes(G, P[:, 1]))
-    obj = spd.time + (setup.lg.host_length - x[-1]) / setup.feed + setup.jerk_weight * jerk
-
-    rows = _Rows()
-    tc = np.linspace(0.0, 1.0, m_clear)
+    obj = spd.time + (sym.host_length - x[-1]) / sym.feed + sym.jerk_weight * jerk
+    tc = np.linspace(0.0, 1.0, mc)
     pts = ca.mtimes(ca.DM(bernstein(tc, n)), P)
-    _clearance_rows(rows, setup, classes, pts[1:-1, :])
+    inner = ca.repmat(pts[1:-1, :], E, 1)
+    px, py = inner[:, 0], inner[:, 1]
+    g = [C1[:, 0] * px + C1[:, 1] * py
+         + C1[:, 2] * ((px - C1[:, 3]) ** 2 + (py - C1[:, 4]) ** 2) - C1[:, 5],
+         C2[:, 0] * ((px - C2[:, 1]) ** 2 + (py - C2[:, 2]) ** 2) - C2[:, 3]]
     # regular curve, at the speed cuts and at the (refined) clearance samples
-    vmin = V_MIN_FRACTION * setup.L0
-    rows.add(spd.sp2[:] - vmin ** 2, m_time)
     dc = ca.mtimes(ca.DM(bernstein(tc, n - 1) @ derivative_matrix(n, 1)), P)
-    rows.add(dc[:, 0] ** 2 + dc[:, 1] ** 2 - vmin ** 2, m_clear)
+    sp2c = dc[:, 0] ** 2 + dc[:, 1] ** 2
+    g += [spd.sp2[:] - sym.vmin ** 2, sp2c - sym.vmin ** 2]
+    # curvature bound: |r' x r''| <= cap |r'|^3 at the clearance samples
+    d2c = ca.mtimes(ca.DM(bernstein(tc, n - 2) @ derivative_matrix(n, 2)), P)
+    cross = dc[:, 0] * d2c[:, 1] - dc[:, 1] * d2c[:, 0]
+    cap = sym.kappa_cap * sp2c ** 1.5
+    g += [cap - cross, cap + cross]
     # axis accelerations q' s'' + q'' s'^2 within the limits, at both ends of every piece
-    ax, ay = float(setup.acc[0]), float(setup.acc[1])
-    for end in (slice(0, m_time - 1), slice(1, m_time)):
-        rows.add(spd.Tx[end] * spd.u + spd.Kx[end] * spd.b[end], m_time - 1, -ax, ax)
-        rows.add(spd.Ty[end] * spd.u + spd.Ky[end] * spd.b[end], m_time - 1, -ay, ay)
-    lo, hi = setup.bounds()
-    blo = np.zeros(m_time)
-    bhi = np.full(m_time, setup.feed ** 2)
-    bhi[0] = 0.0                       # the approach point is a stop
-    x0 = setup.initial()
-    return {"nlp": {"x": ca.vertcat(x, spd.b), "f": obj, "g": ca.vertcat(*rows.g)},
-            "lbx": np.r_[lo, blo], "ubx": np.r_[hi, bhi],
-            "lbg": np.asarray(rows.lbg, float), "ubg": np.asarray(rows.ubg, float),
-            "x0": np.r_[x0, speed_squares(setup, x0, m_time)], "m_time": m_time}
+    for end in (slice(0, mt - 1), slice(1, mt)):
+        g += [spd.Tx[end] * spd.u + spd.Kx[end] * spd.b[end],
+              spd.Ty[end] * spd.u + spd.Ky[end] * spd.b[end]]
+    p = ca.vertcat(sym.vector(), ca.vec(C1), ca.vec(C2))
+    return {"x": ca.vertcat(x, spd.b), "p": p, "f": obj, "g": ca.vertcat(*g)}
+
+
+#: Compiled solvers by shape (per process; a handful per comparison).
+_SOLVERS: dict = {}
+
+
+def lead_solver(shape: ModelShape, options: dict | None = None) -> LeadSolver:
+    """The compiled solver of ``shape`` (built on first use, then reused)."""
+    import casadi as ca  # deferred: heavy, and only this blend needs it
+
+    key = (shape, tuple(sorted((options or {}).items())))
+    if key not in _SOLVERS:
+        opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
+                "ipopt.tol": IPOPT_TOL, "ipopt.constr_viol_tol": IPOPT_TOL,
+                "ipopt.max_iter": IPOPT_MAX_ITER} if shape.solver == "ipopt" else {}
+        opts.update(options or {})
+        _SOLVERS[key] = LeadSolver(shape, ca.nlpsol("lead", shape.solver, _lead_nlp(shape),
+                                                    opts))
+    return _SOLVERS[key]
 
 
 def speed_squares(setup: LeadSetup, x, m: int) -> np.ndarray:
@@ -239,18 +345,24 @@ def speed_squares(setup: LeadSetup, x, m: int) -> np.ndarray:
     return b
 
 
-def solve_lead_model(model: dict, solver: str = "ipopt", options: dict | None = None, x0=None):
-    """Solve a :func:`lead_model` with a CasADi NLP solver: ``(x, stats)``."""
-    import casadi as ca  # deferred: heavy, and only this blend needs it
-
-    opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
-            "ipopt.tol": IPOPT_TOL, "ipopt.constr_viol_tol": IPOPT_TOL,
-            "ipopt.max_iter": 1000} \
-        if solver == "ipopt" else {}
-    opts.update(options or {})
-    S = ca.nlpsol("lead", solver, model["nlp"], opts)
-    res = S(x0=model["x0"] if x0 is None else x0, lbx=model["lbx"], ubx=model["ubx"],
-            lbg=model["lbg"], ubg=model["ubg"])
+def solve_round(setup: LeadSetup, classes, m_clear: int, solver: str = "ipopt",
+                options: dict | None = None, x0=None, m_time: int = M_TIME):
+    """One solve of the lead's NLP with the clearance cases ``classes``: ``(X, stats)``
+    (``X``: the decision vector and the squared speeds)."""
+    shape = ModelShape(setup.host_kind, setup.degree, len(setup.elements), m_clear, m_time,
+                       solver)
+    ls = lead_solver(shape, options)
+    C1, C2, lo1, lo2 = clearance_numbers(setup, classes)
+    p = np.r_[_Symbols.values(setup), C1.ravel(order="F"), C2.ravel(order="F")]
+    lbg, ubg = ls.bounds_g(setup, lo1, lo2, m_time)
+    lo, hi = setup.bounds()
+    bhi = np.full(m_time, setup.feed ** 2)
+    bhi[0] = 0.0                       # the approach point is a stop
+    if x0 is None:
+        xi = setup.initial()
+        x0 = np.r_[xi, speed_squares(setup, xi, m_time)]
+    S = ls.function
+    res = S(x0=x0, p=p, lbx=np.r_[lo, np.zeros(m_time)], ubx=np.r_[hi, bhi], lbg=lbg, ubg=ubg)
     st = S.stats()
     return np.asarray(res["x"]).ravel(), {"solver": solver, "status": st.get("return_status"),
                                           "success": bool(st.get("success")),
@@ -260,7 +372,8 @@ def solve_lead_model(model: dict, solver: str = "ipopt", options: dict | None = 
 
 def solve_lead(setup: LeadSetup, solver: str = "ipopt"):
     """Solve one lead; re-classify the clearance cases at the solution and solve
-    again until they no longer change (at most :data:`MAX_ROUNDS` rounds).
+    again, warm-started, until they no longer change (at most :data:`MAX_ROUNDS`
+    rounds). Every round runs the same compiled solver (:func:`lead_solver`).
 
     A later round can fail where an earlier one succeeded: re-classified at
     the earlier solution, a sample that was beyond an open end of the contour
@@ -276,8 +389,7 @@ def solve_lead(setup: LeadSetup, solver: str = "ipopt"):
     classes = classes_at(setup, x, m_clear)
     X, stats, rounds = None, {}, 0
     for rounds in range(1, MAX_ROUNDS + 1):
-        model = lead_model(setup, classes, m_clear=m_clear)
-        X_new, st = solve_lead_model(model, solver, x0=X)
+        X_new, st = solve_round(setup, classes, m_clear, solver, x0=X)
         if not st["success"]:
             if X is None:
                 raise RuntimeError(f"IPOPT: {st['status']}")

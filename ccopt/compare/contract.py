@@ -64,6 +64,8 @@ class BlendProblem:
         of the cutter radius.
     options: blend options by name (e.g. ``lead_radius``).
     radius, side: the compensation overrides the reference was made with.
+    progress: called with a short line as a blend goes (:meth:`report`);
+        ``None`` (the default, and in worker processes): silent.
     """
 
     program: Program
@@ -73,6 +75,12 @@ class BlendProblem:
     options: Mapping[str, Any] = field(default_factory=dict)
     radius: float | None = None
     side: Any = None
+    progress: Callable[[str], None] | None = None
+
+    def report(self, line: str) -> None:
+        """Pass ``line`` (e.g. "blend 2/6") to :attr:`progress`, if any."""
+        if self.progress is not None:
+            self.progress(line)
 
     @property
     def cutter_radius(self) -> float:

@@ -2,25 +2,36 @@
 
 For each variant: build its tool path (timed: ``solve_time``), certify it
 with :func:`ccopt.verify.verify` against the program's contour, plan its feed
-with TOPPRA under the same limits (``max_acc_ratio`` is the largest axis
-acceleration over its limit in the profile sampled every 0.2 ms; the feed grid
-follows the turning inside blend curves, :mod:`ccopt.feed.grid`),
-and measure it (:mod:`.figures`) against the reference, PMAC's path. A variant that a controller refuses
+under the same limits, with TOPPRA, or with the jerk planner when the limits
+carry jerk (``max_acc_ratio`` is the largest axis acceleration over its limit
+in the profile sampled every 0.2 ms; the feed grid follows the turning inside
+blend curves, :mod:`ccopt.feed.grid`), and measure it (:mod:`.figures`)
+against the reference, PMAC's path. A variant that a controller refuses
 (``refused``), that cannot be built or certified (``rejected``) or that fails
 unexpectedly (``failed``) is still listed, with the reason and no figures.
+
+The reference is planned once, whole; a variant's cycle time reuses the
+reference's time on every stretch between two stops that it shares and
+plans only the stretches it changed (:mod:`.timing`, where the rule and why
+it is exact are). ``workers > 1`` runs the variants in that many worker
+processes; the rows are the same as a serial run's (each variant starts
+from the reference's stretch times alone), ``solve_time`` aside.
 """
 from __future__ import annotations
 
+import multiprocessing
 import time
-from dataclasses import dataclass, field
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, field, replace
+from typing import Callable
 
 from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.figures import max_deviation, path_figures
 from ccopt.compare.leads import lead_joins
 from ccopt.compare.registry import available, load
 from ccopt.compensate import compensate
+from ccopt.compare.timing import StretchTimes, duration_figures, planner_for
 from ccopt.errors import CcoptError
-from ccopt.feed import plan_feed
 from ccopt.feed.limits import AxisLimits
 from ccopt.program.model import Program
 from ccopt.toolpath import ToolPath
@@ -86,27 +97,24 @@ class Comparison:
                 "units": self.program.units,
                 "limits": self.limits.to_json() if self.limits is not None else None,
                 "reference": REFERENCE,
+                "planner": planner_for(self.limits) if self.limits is not None else None,
                 "variants": [v.to_json() for v in self.variants]}
 
 
-def _duration(path: ToolPath, limits: AxisLimits | None):
-    """``(duration, max axis acceleration ratio sampled every 0.2 ms, message)``."""
-    if limits is None:
-        return None, None, None
-    try:
-        prof = plan_feed(path, limits)
-    except CcoptError as exc:
-        return None, None, f"feed: {exc}"
-    ratio = float(prof.sample(prof.affordable_dt(2e-4)).axis_acceleration_ratio.max(initial=0.0))
-    return prof.duration, ratio, None
+def _duration(path: ToolPath, limits: AxisLimits | None, times: StretchTimes | None = None):
+    """``(duration, max axis acceleration ratio sampled every 0.2 ms, message)``
+    (:func:`ccopt.compare.timing.duration_figures`)."""
+    return duration_figures(path, limits, times)
 
 
 def measure(name: str, path: ToolPath, problem: BlendProblem, solve_time: float,
-            info: dict | None = None, certificate=None) -> VariantResult:
-    """Certify, time and measure one variant's tool path."""
+            info: dict | None = None, certificate=None,
+            times: StretchTimes | None = None) -> VariantResult:
+    """Certify, time and measure one variant's tool path (``times``: the
+    reference's stretch times, :mod:`.timing`; ``None`` plans the whole path)."""
     cert = certificate if certificate is not None else problem.certify(path)
     fig = path_figures(path, lead_joins(path))
-    dur, acc_ratio, feed_msg = _duration(path, problem.limits)
+    dur, acc_ratio, feed_msg = _duration(path, problem.limits, times)
     if problem.reference is not None:
         dev, dev_bound = max_deviation(path, problem.reference)
     else:  # no reference to measure against (PMAC refused the program)
@@ -121,16 +129,22 @@ def measure(name: str, path: ToolPath, problem: BlendProblem, solve_time: float,
 
 def compare(program: Program, variants=None, *, limits: AxisLimits | None = None,
             delta: float | None = None, radius: float | None = None, side=None,
-            options: dict | None = None) -> Comparison:
+            options: dict | None = None, workers: int = 1,
+            progress: Callable[[str], None] | None = None) -> Comparison:
     """Compare lead-in/lead-out/corner variants of ``program``.
 
     Parameters
     ----------
     variants: names (default: every available one, :func:`available`).
-    limits: machine limits for the TOPPRA cycle time (``None``: no durations).
+    limits: machine limits for the cycle time (``None``: no durations); with
+        jerk limits (``limits.j``) cycle times are the jerk planner's.
     delta: the smoother's tolerance band (default 1 % of the cutter radius).
     radius, side: compensation overrides, as for :func:`ccopt.compensate`.
     options: blend options (e.g. ``lead_radius`` for the geometric leads).
+    workers: worker processes for the variants (1: all in this process); the
+        rows are the same either way, ``solve_time`` aside.
+    progress: called with a short line as the work goes ("variant 3/10
+        opt-casadi"; in this process also "opt-casadi: blend 2/6").
     """
     names = list(variants) if variants else available()
     known = set(available())
@@ -142,37 +156,36 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     except CcoptError as exc:
         ref_error = str(exc)
     ref_time = time.perf_counter() - t0
-    problem = None
+    opts = dict(options or {})
+    problem = times = ref_row = None
     if reference is not None:
-        problem = BlendProblem(program, reference, limits, delta, dict(options or {}), radius,
-                               side)
-    rows: list[VariantResult] = []
-    ref_duration = None
-    for name in names:
+        problem = BlendProblem(program, reference, limits, delta, opts, radius, side)
+        times = _reference_times(reference, limits)
+    rows: list[VariantResult | None] = [None] * len(names)
+    jobs: list[tuple[int, str, BlendProblem]] = []
+    for i, name in enumerate(names):
         if name not in known:
-            rows.append(VariantResult(name, "failed", f"unknown variant {name!r}; known: "
-                                      f"{', '.join(sorted(known))}"))
-            continue
-        if problem is None:
+            rows[i] = VariantResult(name, "failed", f"unknown variant {name!r}; known: "
+                                    f"{', '.join(sorted(known))}")
+        elif problem is None:
             if name == REFERENCE:
-                rows.append(VariantResult(name, "refused", ref_error))
+                rows[i] = VariantResult(name, "refused", ref_error)
             elif getattr(load(name), "compensates", False):
                 # another controller style needs no reference: it may accept the program
-                alone = BlendProblem(program, None, limits, delta, dict(options or {}), radius,
-                                     side)
-                rows.append(_run(name, alone))
+                jobs.append((i, name, BlendProblem(program, None, limits, delta, opts, radius,
+                                                   side)))
             else:
-                rows.append(VariantResult(name, "failed", f"no reference path: {ref_error}"))
-            continue
-        if name == REFERENCE:
-            row = measure(name, reference, problem, ref_time)
+                rows[i] = VariantResult(name, "failed", f"no reference path: {ref_error}")
+        elif name == REFERENCE:
+            _say(progress, f"variant {i + 1}/{len(names)} {name}")
+            rows[i] = ref_row = measure(name, reference, problem, ref_time, times=times)
         else:
-            row = _run(name, problem)
-        rows.append(row)
-        if name == REFERENCE:
-            ref_duration = row.figures.get("duration")
+            jobs.append((i, name, problem))
+    for i, row in _run_jobs(jobs, times, len(names), workers, progress):
+        rows[i] = row
+    ref_duration = ref_row.figures.get("duration") if ref_row is not None else None
     if ref_duration is None and problem is not None and limits is not None:
-        ref_duration = _duration(reference, limits)[0]
+        ref_duration = _duration(reference, limits, times)[0]
     for row in rows:
         d = row.figures.get("duration")
         if d is not None and ref_duration:
@@ -180,7 +193,46 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     return Comparison(rows, reference, limits, program)
 
 
-def _run(name: str, problem: BlendProblem) -> VariantResult:
+def _say(progress, line: str) -> None:
+    if progress is not None:
+        progress(line)
+
+
+def _reference_times(reference: ToolPath, limits: AxisLimits | None) -> StretchTimes | None:
+    """The reference planned whole and cut at its stops (``None`` without limits, or
+    when the planner refuses it: each variant is then planned whole and says why)."""
+    if limits is None:
+        return None
+    try:
+        return StretchTimes.from_reference(reference, limits)[0]
+    except CcoptError:
+        return None
+
+
+def _run_jobs(jobs, times: StretchTimes | None, total: int, workers: int, progress):
+    """``(row index, VariantResult)`` of every job ``(index, name, problem)``: here,
+    one after the other, or in ``workers`` processes."""
+    if workers <= 1 or len(jobs) <= 1:
+        for i, name, problem in jobs:
+            _say(progress, f"variant {i + 1}/{total} {name}")
+            local = problem if progress is None else replace(problem, progress=progress)
+            yield i, _run(name, local, times.copy() if times is not None else None)
+        return
+    # fork where there is one: a worker then starts with ccopt and its libraries
+    # loaded (spawning would import toppra, casadi and cvxpy again in each)
+    methods = multiprocessing.get_all_start_methods()
+    ctx = multiprocessing.get_context("fork" if "fork" in methods else None)
+    with ProcessPoolExecutor(max_workers=min(workers, len(jobs)), mp_context=ctx) as pool:
+        futures = [(i, name, pool.submit(_run, name, problem,
+                                         times.copy() if times is not None else None))
+                   for i, name, problem in jobs]
+        for done, (i, name, fut) in enumerate(futures, 1):
+            row = fut.result()
+            _say(progress, f"variant {i + 1}/{total} {name} done ({done}/{len(jobs)})")
+            yield i, row
+
+
+def _run(name: str, problem: BlendProblem, times: StretchTimes | None = None) -> VariantResult:
     t0 = time.perf_counter()
     try:
         blend = load(name)
@@ -204,4 +256,4 @@ def _run(name: str, problem: BlendProblem) -> VariantResult:
     if not isinstance(out, ToolPath):
         return VariantResult(name, "failed", f"blend returned {type(out).__name__}, "
                              "not a ToolPath or BlendOutcome", figures={"solve_time": solve})
-    return measure(name, out, problem, solve, info, cert)
+    return measure(name, out, problem, solve, info, cert, times)

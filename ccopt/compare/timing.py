@@ -1,0 +1,220 @@
+"""Cycle times of the variants, planned stretch by stretch between stops.
+
+The rule. The feed planners bring the tool to rest (speed 0) at every
+tangent break, at every dwell and at both ends of the path
+(:func:`ccopt.feed.junction.boundary_speed_caps`; ``compare`` uses no
+junction deviation). A profile at rest at a point splits there: TOPPRA's
+controllable set at a stop is ``[0, 0]``, so its backward pass cannot carry
+a later stretch's braking into an earlier one and its forward pass starts
+again from 0, and every segment's gridpoints are its own
+(:mod:`ccopt.feed.grid`); the jerk planner cuts at the same stops itself
+(:mod:`ccopt.feed.jerk_planner`). So the cycle time of a path is the sum,
+over its *stretches* (the runs of segments between consecutive stops), of
+each stretch planned from rest to rest, plus its dwells.
+
+A variant changes the reference only at its leads or corners. Its stretches
+identical to one of the reference's (the same primitives, ``w``, feeds and
+rapid/feed kind, in order: :func:`stretch_key`) take the reference's time,
+read off the reference's whole-path profile between the two stops; only the
+others are planned, each on its own, and each once per comparison. The same
+holds for ``max_acc_ratio`` (the largest sampled axis acceleration over its
+limit): the reference's samples inside a shared stretch, a new stretch's own.
+
+What is not shared bit for bit: toppra works in a time unit set by the
+path's largest cruise speed (:func:`ccopt.feed.toppra_planner.speed_scale`),
+so a stretch planned alone can differ from the same stretch inside the whole
+path in the last digits (the tests compare both on a case: within 1e-9
+relative); the jerk planner groups stretches into LP windows and stops its
+rounds per window, so there the difference is within its round tolerance
+(:data:`ccopt.feed.jerk_planner.BHAT_TOL`, on a squared speed).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+# ccopt.feed loads ExactPath (and toppra, ~2 s) on first use: importing ccopt.compare stays fast
+from ccopt import feed as feed_planning
+from ccopt.errors import CcoptError
+from ccopt.feed import plan_feed
+from ccopt.feed.limits import AxisLimits
+from ccopt.geometry import Arc, Line, Spiral
+from ccopt.toolpath import Role, ToolPath
+
+if TYPE_CHECKING:
+    from ccopt.feed.path import ExactPath
+
+#: Sampling step of ``max_acc_ratio`` (s): fine enough to see a blend's
+#: millisecond-scale turn (longer profiles get a coarser one,
+#: :meth:`ccopt.feed.FeedProfile.affordable_dt`).
+RATIO_DT = 2e-4
+
+#: A stop of the reference profile is found at a knot this close to the
+#: stop's path position, relative to the path length (knots at stops are the
+#: segment boundaries themselves; this only absorbs rounding of a sum).
+STOP_MATCH_REL = 1e-12
+
+
+def planner_for(limits: AxisLimits) -> str:
+    """The planner cycle times are compared under: ``jerk`` when the limits carry
+    jerk (issue 18: blends are judged where they pay), else ``toppra``."""
+    return "jerk" if limits.j is not None else "toppra"
+
+
+def _geometry_key(g):
+    """A value-equal, hashable, picklable key of a primitive (``None``: unknown kind,
+    never shared)."""
+    if isinstance(g, (Line, Arc, Spiral)):
+        return g
+    cps = getattr(g, "control_points", None)
+    if cps is not None:
+        return (type(g).__name__, tuple(map(tuple, cps)))
+    return None
+
+
+def stretch_key(segments) -> tuple | None:
+    """What the plan of a run of segments depends on: each one's primitive, ``w``
+    at both ends, feed and whether it is a rapid (``None`` when a primitive has
+    no value key)."""
+    out = []
+    for s in segments:
+        g = _geometry_key(s.geom)
+        if g is None:
+            return None
+        out.append((g, float(s.w0), float(s.w1),
+                    None if s.feed is None else float(s.feed), s.role is Role.RAPID))
+    return tuple(out)
+
+
+@dataclass(frozen=True)
+class Stretch:
+    """Moving segments ``k0 .. k1 - 1`` of an :class:`ExactPath`, from a stop to the
+    next, at path positions ``s0 .. s1``."""
+
+    k0: int
+    k1: int
+    s0: float
+    s1: float
+
+
+def stops(exact: ExactPath) -> np.ndarray:
+    """Indices of the segment boundaries of ``exact`` where the planners stop: both
+    ends, every tangent break and every dwell (the zero speed caps of
+    :func:`ccopt.feed.junction.boundary_speed_caps` without junction deviation;
+    the tests check that they agree)."""
+    K = len(exact.segments)
+    cut = exact.tangent_break.copy()
+    cut[0] = cut[K] = True
+    if exact.dwells:
+        cut[np.searchsorted(exact.offsets, [d.s for d in exact.dwells])] = True
+    return np.flatnonzero(cut)
+
+
+def stretches(exact: ExactPath) -> list[Stretch]:
+    """The stretches of ``exact`` between consecutive stops (see the module docstring)."""
+    if not exact.segments:
+        return []
+    cuts = stops(exact)
+    return [Stretch(int(i), int(j), float(exact.offsets[i]), float(exact.offsets[j]))
+            for i, j in zip(cuts[:-1], cuts[1:]) if j > i]
+
+
+def _subpath(exact: ExactPath, st: Stretch) -> ToolPath:
+    tp = exact.toolpath
+    return ToolPath(tuple(exact.segments[st.k0:st.k1]), plane=tp.plane, style=tp.style,
+                    radius=tp.radius, units=tp.units)
+
+
+def _ratio(prof) -> float:
+    return float(prof.sample(prof.affordable_dt(RATIO_DT)).axis_acceleration_ratio
+                 .max(initial=0.0))
+
+
+def plan_whole(path: ToolPath | ExactPath, limits: AxisLimits):
+    """``(profile, max_acc_ratio)`` of the whole path under :func:`planner_for`."""
+    prof = plan_feed(path, limits, planner=planner_for(limits))
+    return prof, _ratio(prof)
+
+
+@dataclass
+class StretchTimes:
+    """Stretch times known so far, by :func:`stretch_key`: ``(seconds, max_acc_ratio)``.
+
+    Built from the reference's whole-path profile (:meth:`from_reference`);
+    :meth:`time` plans only the stretches of a path it does not know. Plain
+    data: it goes to worker processes.
+    """
+
+    limits: AxisLimits
+    known: dict = field(default_factory=dict)
+
+    @classmethod
+    def from_reference(cls, reference: ToolPath, limits: AxisLimits):
+        """``(StretchTimes, duration, max_acc_ratio)``: the reference planned whole
+        (its figures are those of the whole-path profile) and cut at its stops."""
+        exact = feed_planning.ExactPath(reference)
+        prof, ratio = plan_whole(exact, limits)
+        out = cls(limits)
+        smp = prof.sample(prof.affordable_dt(RATIO_DT))
+        acc = smp.axis_acceleration_ratio
+        stops = np.flatnonzero(prof.sd == 0.0)
+        tol = STOP_MATCH_REL * max(exact.length, 1.0)
+        for st in stretches(exact):
+            key = stretch_key(exact.segments[st.k0:st.k1])
+            before = stops[prof.s[stops] <= st.s0 + tol]
+            after = stops[prof.s[stops] >= st.s1 - tol]
+            if key is None or not before.size or not after.size:
+                continue
+            t0, t1 = float(prof.t[before[-1]]), float(prof.t[after[0]])
+            inside = acc[(smp.t >= t0) & (smp.t <= t1)]
+            out.known[key] = (t1 - t0, float(inside.max(initial=0.0)))
+        return out, prof.duration, ratio
+
+    def time(self, path: ToolPath) -> tuple[float, float]:
+        """``(duration, max_acc_ratio)`` of ``path``: known stretches looked up, the
+        others planned alone (and remembered); dwells added. Raises the
+        planner's :class:`~ccopt.errors.CcoptError`."""
+        exact = feed_planning.ExactPath(path)
+        total = float(sum(d.seconds for d in exact.dwells))
+        ratio = 0.0
+        for st in stretches(exact):
+            key = stretch_key(exact.segments[st.k0:st.k1])
+            got = self.known.get(key) if key is not None else None
+            if got is None:
+                prof = plan_feed(_subpath(exact, st), self.limits,
+                                 planner=planner_for(self.limits))
+                got = (prof.duration, _ratio(prof))
+                if key is not None:
+                    self.known[key] = got
+            total += got[0]
+            ratio = max(ratio, got[1])
+        return total, ratio
+
+    def copy(self) -> "StretchTimes":
+        """A copy to time one variant with: every variant starts from the
+        reference's stretches alone, so its figures do not depend on which
+        variants ran before it (serial and parallel runs agree)."""
+        return StretchTimes(self.limits, dict(self.known))
+
+
+def duration_figures(path: ToolPath, limits: AxisLimits | None,
+                     times: StretchTimes | None = None):
+    """``(duration, max_acc_ratio, message)`` of ``path``: by stretches with
+    ``times``, else the whole path planned; ``message`` is the planner's
+    refusal (then no figures)."""
+    if limits is None:
+        return None, None, None
+    try:
+        if times is not None:
+            d, r = times.time(path)
+            return d, r, None
+        prof, r = plan_whole(path, limits)
+        return prof.duration, r, None
+    except CcoptError as exc:
+        return None, None, f"feed: {exc}"
+
+
+__all__ = ["RATIO_DT", "StretchTimes", "Stretch", "duration_figures", "plan_whole",
+           "planner_for", "stops", "stretch_key", "stretches"]

@@ -1,0 +1,125 @@
+"""Cycle times by stretches between stops (ccopt.compare.timing), workers and progress.
+
+The stretch rule is checked against the planner's own stop caps, and the
+windowed cycle time of each variant against TOPPRA (or the jerk planner) run
+on that variant's whole path, planned here independently.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import ccopt
+from ccopt.cases import find_case
+from ccopt.compare import compare
+from ccopt.compare.timing import StretchTimes, stops, stretch_key, stretches
+from ccopt.feed import ExactPath
+from ccopt.feed.junction import boundary_speed_caps
+
+#: toppra's own margin: its forward pass lowers squared speeds by up to 1e-8,
+#: "a few 1e-7 of the duration at most" (ccopt.feed.toppra_planner); a stretch
+#: planned alone runs in another time unit, so the two agree to that margin.
+TOPPRA_MARGIN = 1e-6
+
+VARIANTS = ["pmac", "linuxcnc", "fagor-g139-g137", "tangent-arc", "line-arc"]
+
+
+def _case(name):
+    c = find_case(name)
+    return c, ccopt.read_program(c.program)
+
+
+@pytest.mark.parametrize("name", ["z-plunges", "pocket", "fagor-g136-g138", "leadin-inside-line"])
+def test_stops_are_the_planner_zero_speed_caps(name):
+    c, prog = _case(name)
+    exact = ExactPath(ccopt.compensate(prog, "pmac", radius=c.radius))
+    limits = ccopt.AxisLimits(c.vmax, c.amax)
+    _, a = limits.in_plane(exact.toolpath.plane, exact.dof)
+    caps = boundary_speed_caps(exact, a, None)
+    assert list(stops(exact)) == list(np.flatnonzero(caps == 0.0))
+    # the stretches tile the path, each between two consecutive stops
+    st = stretches(exact)
+    assert st[0].s0 == 0.0 and st[-1].s1 == pytest.approx(exact.length, abs=0.0)
+    assert all(a.s1 == b.s0 for a, b in zip(st[:-1], st[1:]))
+
+
+def test_reference_stretch_times_add_up_to_the_whole_path():
+    # z-plunges: 3-D moves and a dwell (its seconds are added once)
+    c, prog = _case("z-plunges")
+    ref = ccopt.compensate(prog, "pmac", radius=c.radius)
+    limits = ccopt.AxisLimits(c.vmax, c.amax)
+    times, duration, _ = StretchTimes.from_reference(ref, limits)
+    whole = ccopt.plan_feed(ref, limits)
+    assert duration == whole.duration
+    exact = ExactPath(ref)
+    dwell = sum(d.seconds for d in exact.dwells)
+    assert dwell > 0
+    parts = [times.known[stretch_key(exact.segments[s.k0:s.k1])] for s in stretches(exact)]
+    assert sum(p[0] for p in parts) + dwell == pytest.approx(whole.duration, rel=1e-12)
+    assert times.copy().time(ref)[0] == pytest.approx(whole.duration, rel=1e-12)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["z-plunges", "leadin-inside-line"])
+def test_windowed_variant_time_equals_its_whole_path_time(name):
+    c, prog = _case(name)
+    limits = ccopt.AxisLimits(c.vmax, c.amax)
+    cmp = compare(prog, VARIANTS, limits=limits, radius=c.radius)
+    checked = 0
+    for row in cmp:
+        if row.toolpath is None:
+            continue
+        whole = ccopt.plan_feed(row.toolpath, limits).duration
+        assert row.figures["duration"] == pytest.approx(whole, rel=TOPPRA_MARGIN), row.name
+        checked += 1
+    assert checked >= 4
+
+
+@pytest.mark.slow
+def test_jerk_limits_give_jerk_planner_cycle_times():
+    c, prog = _case("leadin-inside-line")
+    limits = ccopt.AxisLimits(c.vmax, c.amax, j=(20000.0, 20000.0))
+    cmp = compare(prog, ["pmac", "tangent-arc"], limits=limits, radius=c.radius)
+    assert cmp.to_json()["planner"] == "jerk"
+    ref = ccopt.compensate(prog, "pmac", radius=c.radius)
+    jerk = ccopt.plan_feed(ref, limits, planner="jerk").duration
+    toppra = ccopt.plan_feed(ref, limits).duration
+    assert cmp["pmac"].figures["duration"] == pytest.approx(jerk, rel=1e-12)
+    assert cmp["pmac"].figures["duration"] > toppra      # more limits, more time
+    # the lead variant, planned whole by the jerk planner; its windows group the
+    # stretches differently, and its rounds stop at BHAT_TOL = 2e-3 on b
+    whole = ccopt.plan_feed(cmp["tangent-arc"].toolpath, limits, planner="jerk").duration
+    assert cmp["tangent-arc"].figures["duration"] == pytest.approx(whole, rel=2e-3)
+
+
+def _rows(cmp):
+    out = []
+    for v in cmp.to_json()["variants"]:
+        v = dict(v)
+        v.pop("solve_time", None)
+        v.get("info", {}).pop("solve_time", None)
+        out.append(v)
+    return out
+
+
+@pytest.mark.slow
+def test_workers_give_the_serial_rows():
+    c, prog = _case("leadin-outside-line")
+    limits = ccopt.AxisLimits(c.vmax, c.amax)
+    names = ["pmac", "linuxcnc", "tangent-arc", "line-arc", "fagor-g138"]
+    serial = compare(prog, names, limits=limits, radius=c.radius)
+    lines = []
+    parallel = compare(prog, names, limits=limits, radius=c.radius, workers=2,
+                       progress=lines.append)
+    assert _rows(parallel) == _rows(serial)
+    assert [v.name for v in parallel] == names
+    # one line per variant, the reference's first
+    assert lines[0] == "variant 1/5 pmac" and len(lines) == 5
+
+
+def test_progress_names_each_variant_in_turn():
+    c, prog = _case("leadin-outside-line")
+    lines = []
+    compare(prog, ["pmac", "tangent-arc"], limits=ccopt.AxisLimits(c.vmax, c.amax),
+            radius=c.radius, progress=lines.append)
+    assert lines == ["variant 1/2 pmac", "variant 2/2 tangent-arc"]
