@@ -24,6 +24,12 @@ CHORD_TOL = 0.003
 #: Samples of theta per radian when measuring a chord's sagitta.
 SAMPLES_PER_RAD = 4000
 FEED = 200.0
+#: Turns (degrees) no vertex may make: between the turn whose outside corner PMAC
+#: extends to r / cos(turn / 2) = r + 1e-4 (0.936 degrees at r = 3) and its break
+#: angle acos(0.9998) = 1.146 degrees, above which it adds an arc instead (with a margin
+#: for the written decimals): the bundled cases keep every extended corner within
+#: 1e-4 of the cutter radius (tests/verify/test_verify_faults.py).
+AVOIDED_TURN = (0.92, 1.16)
 
 
 def rho(t: float) -> float:
@@ -68,8 +74,39 @@ def chord_parameters() -> list[float]:
     return ts
 
 
+def _written(t: float) -> tuple[float, float]:
+    x, y = point(t)
+    return round(x, 4), round(y, 4)
+
+
+def _turn(a, b, c) -> float:
+    """Turn (degrees) of the polyline a -> b -> c at b."""
+    u = (b[0] - a[0], b[1] - a[1])
+    v = (c[0] - b[0], c[1] - b[1])
+    return abs(math.degrees(math.atan2(u[0] * v[1] - u[1] * v[0], u[0] * v[0] + u[1] * v[1])))
+
+
+def avoid_turns(ts: list[float]) -> list[float]:
+    """``ts`` with a chord split in two (at its middle parameter: both halves keep
+    within the tolerance) next to every vertex whose written turn is in
+    :data:`AVOIDED_TURN`, the longer of its two chords, until none is."""
+    lo, hi = AVOIDED_TURN
+    ts = list(ts)
+    changed = True
+    while changed:
+        changed = False
+        pts = [_written(t) for t in ts]
+        for k in range(1, len(ts) - 1):
+            if lo <= _turn(pts[k - 1], pts[k], pts[k + 1]) <= hi:
+                i = k - 1 if ts[k - 1] - ts[k] > ts[k] - ts[k + 1] else k
+                ts.insert(i + 1, 0.5 * (ts[i] + ts[i + 1]))
+                changed = True
+                break
+    return ts
+
+
 def program() -> str:
-    ts = chord_parameters()
+    ts = avoid_turns(chord_parameters())
     x0, y0 = point(0.0)
     lines = [
         "; A freeform boss as CAM output for a high-speed finishing pass: its contour",
