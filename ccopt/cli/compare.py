@@ -19,7 +19,7 @@ from ccopt.compare.registry import load as load_blend
 from ccopt.compensate import compensate
 from ccopt.errors import ProgramError
 from ccopt.export import ExportResult, export
-from ccopt.feed import AxisLimits
+from ccopt.feed import AxisLimits, FeedError, plan_feed
 from ccopt.feed.bounds import feed_limited_time
 from ccopt.program.model import Program
 from ccopt.run import compare_extras
@@ -150,7 +150,29 @@ def _smoothed(blend: Blend, work: Job, prog: Program,
            **{k: fig.get(k) for k in SMOOTH_FIGURES},
            "joins": info.get("joins", []), "certificate": row.certificate.to_json(),
            "toolpath": path.to_json()}
+    if limits.j is not None:
+        doc.update(_jerk_figures(path, ref, limits, doc["feed_floor"]))
     return doc, path, row.certificate.ok
+
+
+def _jerk_figures(path: ToolPath, ref: ToolPath, limits: AxisLimits,
+                  floor: float | None) -> dict:
+    """Cycle times (s) of the smoothed and PMAC's path under the jerk planner, their
+    ratio, and the share of the possible gain reached: ``(T_pmac - T_smooth) /
+    (T_pmac - floor)`` with ``floor`` the smoothed path's feed-limited time (what no
+    smoothing can beat). A path the planner fails on gets ``None`` and its message."""
+    out: dict = {}
+    for key, p in (("jerk_duration", path), ("pmac_jerk_duration", ref)):
+        try:
+            out[key] = plan_feed(p, limits, planner="jerk").duration
+        except FeedError as exc:
+            out[key], out[key + "_message"] = None, str(exc)
+    t, t_ref = out["jerk_duration"], out["pmac_jerk_duration"]
+    both = t is not None and t_ref is not None
+    out["jerk_duration_ratio"] = t / t_ref if both else None
+    out["jerk_share_of_gain"] = (t_ref - t) / (t_ref - floor) if both and floor is not None \
+        and t_ref > floor else None
+    return out
 
 
 def cmd_smooth(args: argparse.Namespace) -> int:
@@ -205,6 +227,13 @@ def _print_smoothed(doc: dict, prog: Program, exported: ExportResult | None) -> 
         f"; feed-limited floor {floor:.4f} s ({floor / doc['pmac_duration']:.4f})")
     print(f"  cycle time {figure(doc['duration'])} s vs PMAC {figure(doc['pmac_duration'])} s "
           f"(ratio {figure(doc['duration_ratio'])}){floor_txt}")
+    if "jerk_duration" in doc:
+        print(f"  under jerk limits: {figure(doc['jerk_duration'])} s vs PMAC "
+              f"{figure(doc['pmac_jerk_duration'])} s (ratio {figure(doc['jerk_duration_ratio'])}, "
+              f"share of the possible gain {figure(doc['jerk_share_of_gain'])})")
+        for key in ("jerk_duration_message", "pmac_jerk_duration_message"):
+            if key in doc:
+                print(f"  jerk planner: {doc[key]}")
     print(f"  certified {figure(doc['certified'])}, min clearance "
           f"{figure(doc['min_clearance'], '{:.9f}')}, max deviation "
           f"{figure(doc['max_deviation'], '{:.6f}')} (bound "
