@@ -21,7 +21,7 @@ import pytest
 from scipy.spatial import cKDTree
 
 import ccopt
-import ccopt.feed.jerk_planner as jerk_planner
+import ccopt.feed.jerk_windows as jerk_windows
 from ccopt.cases import find_case
 from ccopt.compare import BlendProblem
 from ccopt.feed import feed_limited_time
@@ -69,7 +69,7 @@ def one_window(monkeypatch):
     windows (stretches over WINDOW_POINTS gridpoints, which a smoothed path is from its
     lead-in to its lead-out) report an infeasible LP on these paths (reported to the
     lead: ccopt.feed is not this work's); one window is the planner's own exact model."""
-    monkeypatch.setattr(jerk_planner, "WINDOW_POINTS", 10 ** 6)
+    monkeypatch.setattr(jerk_windows, "WINDOW_POINTS", 10 ** 6)
 
 
 @pytest.mark.slow
