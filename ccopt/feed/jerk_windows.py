@@ -155,21 +155,36 @@ def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float) -> list[tupl
     """Every window of a chain in turn, each starting from the last one's
     kept end: per window ``(i0, i1, keep, b, alpha, rounds)`` (``b, alpha``
     scaled, on ``i0..keep``), or ``(i0, i1, keep, None, rest_to_rest, 0)`` for
-    a window whose LP failed (the chain stops there)."""
-    out = []
-    b0 = a0 = 0.0
-    for i0, i1, keep in chain:
-        start = None if g.stop[i0] else (b0, a0)
+    a window whose LP failed (the chain stops there).
+
+    A window that starts from the state the previous one left can be
+    infeasible where the whole stretch is not (that state was planned against
+    a speed bound the window no longer has): it is then merged with the
+    previous window and the two planned again as one, back to the chain's
+    first window (from rest) if need be: one window over the stretch is the
+    planner's exact model."""
+    out: list[tuple] = []
+    chain = list(chain)
+    k = 0
+    while k < len(chain):
+        i0, i1, keep = chain[k]
+        start = None if g.stop[i0] or not out else (float(out[-1][3][-1]),
+                                                     float(out[-1][4][-1]))
         res = solve_rounds(g, i0, i1, cap[i0:i1 + 1], start, scale)
         rest_to_rest = start is None and bool(g.stop[i1])
         if res is not None and rest_to_rest and np.any(res[0][~g.stop[i0:i1 + 1]] <= 0.0):
             res = None        # a stall (speed 0 away from a stop): as a failed LP
+        if res is None and out:
+            chain[k - 1:k + 1] = [(chain[k - 1][0], i1, keep)]
+            out.pop()
+            k -= 1
+            continue
         if res is None:
             out.append((i0, i1, keep, None, rest_to_rest, 0))
             break
         n = keep - i0 + 1
         out.append((i0, i1, keep, res[0][:n], res[1][:n], res[2]))
-        b0, a0 = float(res[0][n - 1]), float(res[1][n - 1])
+        k += 1
     return out
 
 
