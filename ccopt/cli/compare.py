@@ -5,13 +5,12 @@ import argparse
 import time
 
 from ccopt.cases import Job
-from ccopt.cli.inputs import job
+from ccopt.cli.inputs import limits_text, reading
 from ccopt.cli.options import (add_limit_options, add_output_option, add_program,
                                add_quiet_option, add_radius_side, add_reading_options,
                                add_ts_option, add_variants_option, add_workers_option,
                                chosen_variants, describe, positive_float)
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, aligned, emit_json, figure
-from ccopt.cli.progress import stage_progress
 from ccopt.compare import REFERENCE, BlendOutcome, BlendProblem, available, compare, measure
 from ccopt.compare.plot import plot_comparison
 from ccopt.compare.registry import Blend, require_known
@@ -75,11 +74,7 @@ def cmd_compare(args: argparse.Namespace) -> int:
     names = chosen_variants(args)
     if names:
         require_known(names, args.program)
-    say = stage_progress(args, "compare")
-    try:
-        work = job(args.program, args)
-        say("read")
-        prog = work.read()
+    with reading(args, "compare") as (work, prog, say):
         limits = work.limits()
         options = {}
         if args.lead_radius is not None:
@@ -88,8 +83,6 @@ def cmd_compare(args: argparse.Namespace) -> int:
         extra = compare_extras(say, args.workers or default_workers(), work.ts)
         cmp = compare(prog, names, limits=limits, delta=work.delta, radius=work.radius,
                       side=work.side, options=options, **extra)
-    finally:
-        say.close()
     doc = cmp.to_json()
     if args.output:
         doc["plot"] = plot_comparison(cmp, args.output, f"{work.label}: variants")
@@ -98,10 +91,8 @@ def cmd_compare(args: argparse.Namespace) -> int:
         return EXIT_OK
     if args.quiet:
         return EXIT_OK
-    jerk = f" j={list(limits.j)}" if limits.j is not None else ""
     print(f"{prog.file}: reference pmac, cutter radius {figure(doc['radius'], '{:g}')} "
-          f"{prog.units}, limits v={list(limits.v)} a={list(limits.a)}{jerk} "
-          f"({work.limits_note()})")
+          f"{prog.units}, {limits_text(limits, work)}")
     rows = [[h for h, _, _ in COLUMNS]]
     for v in doc["variants"]:
         rows.append([figure(v.get(k), f) for _, k, f in COLUMNS])
@@ -179,11 +170,7 @@ def cmd_smooth(args: argparse.Namespace) -> int:
     """G2 blends at every corner within ``--delta``, certified, timed against
     PMAC's path and exported with ``-o`` (exit 1 when the certificate or the
     exported file's read-back fails)."""
-    say = stage_progress(args, "smooth")
-    try:
-        work = job(args.program, args)
-        say("read")
-        prog = work.read()
+    with reading(args, "smooth") as (work, prog, say):
         limits = work.limits()
         try:
             blend = load_blend("smooth")
@@ -198,8 +185,6 @@ def cmd_smooth(args: argparse.Namespace) -> int:
             say("export")
             exported = _export_smoothed(path, args.output, prog)
             doc["export"] = exported.to_json()
-    finally:
-        say.close()
     if args.json:
         emit_json(doc)
     elif not args.quiet:

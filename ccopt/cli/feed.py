@@ -6,12 +6,11 @@ import math
 from pathlib import Path
 
 from ccopt import feed as feed_planning
-from ccopt.cli.inputs import job
+from ccopt.cli.inputs import limits_text, reading
 from ccopt.cli.options import (add_limit_options, add_output_option, add_program,
                                add_quiet_option, add_reading_options, add_style_options,
                                add_ts_option, describe, positive_float)
 from ccopt.cli.output import EXIT_OK, emit_json
-from ccopt.cli.progress import stage_progress
 from ccopt.atomic import write_text_atomic
 from ccopt.feed import AxisLimits, plan_feed
 from ccopt.toolpath import ToolPath
@@ -63,18 +62,12 @@ def chosen_planners(groups, limits: AxisLimits) -> list[str]:
 
 def cmd_feed(args: argparse.Namespace) -> int:
     """Feed profiles of the compensated path: TOPPRA and/or the baselines."""
-    say = stage_progress(args, "feed")
-    try:
-        work = job(args.program, args)
-        say("read")
-        prog = work.read()
+    with reading(args, "feed") as (work, prog, say):
         say("compensate")
         path = work.compensate(prog)
         limits = work.limits(args.tangential_acc, args.centripetal_acc)
         planners = chosen_planners(args.planner, limits)
         out = _plan(path, limits, planners, args, say)
-    finally:
-        say.close()
     first = out[planners[0]]
     if args.json:
         emit_json({"program": str(work.program), "style": path.style, "units": path.units,
@@ -85,9 +78,8 @@ def cmd_feed(args: argparse.Namespace) -> int:
                                             "max_feed_ratio")},
                    "planners": out})
     elif not args.quiet:
-        jerk = f" j={list(limits.j)}" if limits.j is not None else ""
         print(f"{prog.file}: style {path.style}, tool path {path.length:.4f} {path.units}, "
-              f"limits v={list(limits.v)} a={list(limits.a)}{jerk} ({work.limits_note()})")
+              f"{limits_text(limits, work)}")
         print("planner   duration_s  vs_first  max_vel_ratio  max_acc_ratio  max_jerk_ratio  "
               "max_feed_ratio")
         for name, r in out.items():

@@ -8,8 +8,16 @@ the defaults (the same resolution ``ccopt run`` and :mod:`ccopt.run` use).
 from __future__ import annotations
 
 import argparse
+from collections.abc import Iterator
+from contextlib import contextmanager
+from typing import TYPE_CHECKING
 
 from ccopt.cases import DEFAULT_LIMITS, Case, Job, Overrides, ReadOptions, resolve_input
+from ccopt.cli.progress import stage_progress
+
+if TYPE_CHECKING:  # annotations only
+    from ccopt.feed.limits import AxisLimits
+    from ccopt.program.model import Program
 
 #: the command-line options (argparse dests) that are compensation style options of the same name
 STYLE_OPTIONS = ("break_cos", "ccbuf")
@@ -40,3 +48,26 @@ def job(what: str | Case, args: argparse.Namespace,
     by one rule (``--vmax/--amax``, else the case's ``[limits]``, else
     :data:`ccopt.cases.DEFAULT_LIMITS`, which the output names)."""
     return resolve_input(what, overrides(args), default_limits)
+
+
+@contextmanager
+def reading(args: argparse.Namespace, command: str) -> Iterator[tuple[Job, Program, object]]:
+    """The preamble every command that works on one program shares: its
+    stage progress (:func:`ccopt.cli.progress.stage_progress`), its :class:`Job`
+    (:func:`job`) and the program read; yields ``(job, program, say)``, ``say``
+    naming the next stage on the progress line, which closes on the way out
+    (an error included)."""
+    say = stage_progress(args, command)
+    try:
+        work = job(args.program, args)
+        say("read")
+        yield work, work.read(), say
+    finally:
+        say.close()
+
+
+def limits_text(limits: AxisLimits, work: Job) -> str:
+    """``limits v=[...] a=[...] j=[...] (where they come from)``, as every
+    command prints the limits it used (units of the program, per second)."""
+    jerk = f" j={list(limits.j)}" if limits.j is not None else ""
+    return f"limits v={list(limits.v)} a={list(limits.a)}{jerk} ({work.limits_note()})"

@@ -3,12 +3,11 @@ from __future__ import annotations
 
 import argparse
 
-from ccopt.cli.inputs import job
+from ccopt.cli.inputs import reading
 from ccopt.cli.options import (add_limit_options, add_program, add_quiet_option,
                                add_reading_options, add_style_options, describe, nonneg_float,
                                positive_float)
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, emit_json
-from ccopt.cli.progress import stage_progress
 from ccopt.feed import certified_planner, plan_feed
 from ccopt.tolerances import VERIFY_EPS
 from ccopt.toolpath_json import read_toolpath_json
@@ -43,11 +42,7 @@ EXAMPLE = """\
 def cmd_verify(args: argparse.Namespace) -> int:
     """Compensate (or read ``--toolpath``), then certify the radius offset and,
     with ``--feed``, the feed limits of TOPPRA's profile (exit 1 when a check fails)."""
-    say = stage_progress(args, "verify")
-    try:
-        work = job(args.program, args)
-        say("read")
-        prog = work.read()
+    with reading(args, "verify") as (work, prog, say):
         say("compensate")
         path = read_toolpath_json(args.toolpath, prog) if args.toolpath else \
             work.compensate(prog)
@@ -61,8 +56,6 @@ def cmd_verify(args: argparse.Namespace) -> int:
         say("verify")
         cert = verify(path, prog, profile, eps=args.eps, radius=work.radius, side=work.side,
                       limits_tol=args.limits_tol, part_lines=args.part_lines)
-    finally:
-        say.close()
     report = cert.to_json()
     agree = True
     if args.crosscheck:
