@@ -138,9 +138,15 @@ def remove_temps_of(pids: Iterable[int], folders: Iterable[Path]) -> list[Path]:
 def run_in_workers(work: Callable[[Any, Callable[[str], None]], Any], items: Sequence,
                    workers: int, on_progress: Callable[[int, str], None] | None = None,
                    on_done: Callable[[int, Any], None] | None = None,
-                   temp_folders: Sequence[Path] = ()) -> list:
+                   temp_folders: Sequence[Path] = (),
+                   order: Sequence[int] | None = None) -> list:
     """``[work(item, progress) for item in items]``, computed by ``workers``
     child processes (at most one per item).
+
+    ``order``: the indices of ``items`` in the order the workers take them
+    (default: as given); the results keep the order of ``items``. Giving the
+    longest jobs first keeps both workers busy to the end (a long job taken
+    last leaves the other worker idle for its whole length).
 
     ``work`` and the results cross process boundaries: ``work`` must be a
     module-level function (or picklable) when the platform cannot fork, and
@@ -153,8 +159,8 @@ def run_in_workers(work: Callable[[Any, Callable[[str], None]], Any], items: Seq
         return []
     ctx = _context()
     tasks, results = ctx.Queue(), ctx.Queue()
-    for task in enumerate(items):
-        tasks.put(task)
+    for index in (order if order is not None else range(len(items))):
+        tasks.put((index, items[index]))
     n = max(1, min(workers, len(items)))
     for _ in range(n):
         tasks.put(None)

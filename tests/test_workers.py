@@ -36,6 +36,27 @@ def test_results_in_item_order_with_their_progress():
     assert sorted(heard) == [(n, f"squaring {n}") for n in items]
 
 
+def test_order_is_the_order_taken_and_results_keep_item_order():
+    # one worker takes the items exactly in the order given; the results come
+    # back indexed as the items were
+    done = []
+    items = [10, 11, 12, 13]
+    got = run_in_workers(_square_slowly, items, 1, on_done=lambda i, r: done.append(i),
+                         order=[2, 0, 3, 1])
+    assert got == [(n, n * n) for n in items]
+    assert done == [2, 0, 3, 1]
+
+
+def test_run_takes_the_largest_program_first(tmp_path):
+    from ccopt.cases import resolve_input
+    from ccopt.run import longest_first
+    sizes = {"a.nc": 30, "b.nc": 500, "c.nc": 120}
+    for name, n in sizes.items():
+        (tmp_path / name).write_text("G0 X0\n" + "(pad)\n" * (n // 7))
+    jobs = [resolve_input(str(tmp_path / name)) for name in sizes]
+    assert longest_first(jobs) == [1, 2, 0]
+
+
 def test_more_workers_than_items_and_no_items():
     assert run_in_workers(_square_slowly, [4], 8) == [(4, 16)]
     assert run_in_workers(_square_slowly, [], 2) == []
