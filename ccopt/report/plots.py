@@ -59,6 +59,13 @@ def _png(fig) -> bytes:
     return buf.getvalue()
 
 
+def _legend_outside(ax) -> None:
+    """The legend beside the axes, top right outside: it never hides the path or a
+    curve, and placing it costs nothing (``loc="best"`` searches every plotted
+    point for the emptiest corner, a third of a plan view's drawing time)."""
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+
+
 def _samples(geom, step: float) -> np.ndarray:
     n = max(2, int(np.ceil(geom.length / step)) + 1)
     return geom.point(np.linspace(0.0, geom.length, n))
@@ -106,7 +113,7 @@ def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
             ax.plot([w[0]], [w[1]], "x", color="red", ms=10, mew=2)
     ax.set_aspect("equal")
     ax.set_title(plot_text(title))
-    ax.legend(fontsize=7, loc="best")
+    _legend_outside(ax)
     ax.grid(alpha=0.3)
     return _png(fig)
 
@@ -188,6 +195,6 @@ def speed_time_plot(profiles: dict, title: str = "") -> bytes:
     ax.set_xlabel("time (s)")
     ax.set_ylabel("feed (units/s)" + ("; rapids dotted, clipped" if clipped else ""))
     ax.set_title(plot_text(title))
-    ax.legend(fontsize=7)
+    _legend_outside(ax)
     ax.grid(alpha=0.3)
     return _png(fig)
