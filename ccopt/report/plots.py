@@ -71,6 +71,24 @@ def _samples(geom, step: float) -> np.ndarray:
     return geom.point(np.linspace(0.0, geom.length, n))
 
 
+def _polyline(segments, step: float) -> np.ndarray | None:
+    """The samples of ``segments`` (those of zero length left out) as one
+    polyline, a NaN row where one segment does not start where the last ended:
+    one matplotlib line for a whole role, not one per block (a 300-block
+    program otherwise spends most of its plot drawing line objects)."""
+    parts = []
+    end = None
+    for seg in segments:
+        if seg.length <= 0:
+            continue
+        p = _samples(seg.geom, step)
+        if end is not None and np.hypot(*(p[0, :2] - end[:2])) > POINT_EPS:
+            parts.append(np.full((1, p.shape[1]), np.nan))
+        parts.append(p)
+        end = p[-1]
+    return np.concatenate(parts) if parts else None
+
+
 def _step(path: ToolPath) -> float:
     total = max(path.length, POINT_EPS)
     return total / 2000
@@ -84,18 +102,13 @@ def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
     fig, ax = _plan_figure(x0, x1, y0 - radius, y1 + radius)
     step = _step(path)
     if contour is not None:
-        for seg in contour.segments:
-            if seg.length > 0 and seg.role is not Role.RAPID:
-                p = _samples(seg.geom, step)
-                ax.plot(p[:, 0], p[:, 1], color="black", lw=1.0)
-    seen = set()
-    for seg in path.segments:
-        if seg.length <= 0:
-            continue
-        p = _samples(seg.geom, step)
-        label = seg.role.value if seg.role not in seen else None
-        seen.add(seg.role)
-        ax.plot(p[:, 0], p[:, 1], label=label, **ROLE_STYLE[seg.role])
+        p = _polyline([s for s in contour.segments if s.role is not Role.RAPID], step)
+        if p is not None:
+            ax.plot(p[:, 0], p[:, 1], color="black", lw=1.0)
+    # one line per role, in the order the roles first appear (the legend's order)
+    for role in dict.fromkeys(seg.role for seg in path.segments if seg.length > 0):
+        p = _polyline([s for s in path.segments if s.role is role], step)
+        ax.plot(p[:, 0], p[:, 1], label=role.value, **ROLE_STYLE[role])
     if radius > 0:
         from matplotlib.patches import Circle  # deferred: matplotlib is heavy and optional
         cut = [s for s in path.segments if s.role is not Role.RAPID and s.length > 0]
