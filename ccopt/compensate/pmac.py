@@ -25,9 +25,9 @@ from ccopt.compensate.corners import (
     tool_geometry, turn,
 )
 from ccopt.compensate.batch import (
-    ARC, SPIRAL, ElementArrays, classify_turn, corner_turn, nearest_corner_points,
-    offset_points, tool_segments,
+    ARC, SPIRAL, ElementArrays, classify_turn, corner_turn, nearest_corner_points, offset_points,
 )
+from ccopt.compensate.emit import class_codes, emit_columns
 from ccopt.compensate.planes import by_plane
 from ccopt.compensate.scan import ScanResult, scan_program
 from ccopt.geometry import Arc, Line
@@ -236,10 +236,8 @@ class PmacStyle:
 
 def classes_of(k: np.ndarray) -> list[str]:
     """Class of each in-plane move from the side in force before and for it."""
-    prev = np.r_[0, k[:-1]] if len(k) else np.zeros(0, int)
-    codes = np.where(k == 0, np.where(prev == 0, 0, 3), np.where(prev == 0, 1, 2))
     names = (UNCOMP, LEAD_IN, COMP, LEAD_OUT)
-    return [names[c] for c in codes]
+    return [names[c] for c in class_codes(k).tolist()]
 
 
 @dataclass
@@ -253,6 +251,9 @@ class Joints:
     ends: np.ndarray
     corners: dict[int, list] = field(default_factory=dict)
     tail_return: tuple | None = None
+    #: corner arcs decided in bulk: (move indices, rows ``(cu, cv, radius,
+    #: theta0, sweep)``), one arc after each of those moves
+    arc_rows: tuple = (np.zeros(0, np.int64), np.zeros((0, 5)))
 
 
 def check_arc_offsets(scan: ScanResult, arr: ElementArrays, classes: list[str]) -> None:
@@ -282,9 +283,12 @@ def _batch_joints(style, scan: ScanResult, arr: ElementArrays, classes: list[str
     done, e_prev, s_next, arcs = style.batch_corners(arr, ia)
     joints.ends[ia[done]] = e_prev[done]
     joints.starts[ia[done] + 1] = s_next[done]
-    for q in np.flatnonzero(done & arcs["has"]):
-        joints.corners[int(ia[q])] = [Arc(_pt(arr.E[ia[q]]), float(scan.r[ia[q]]),
-                                          float(arcs["theta0"][q]), float(arcs["sweep"][q]))]
+    q = np.flatnonzero(done & arcs["has"])
+    rows = np.c_[arr.E[ia[q]], scan.r[ia[q]], arcs["theta0"][q], arcs["sweep"][q]]
+    bad = ~(np.isfinite(rows).all(axis=1) & (rows[:, 2] > 0.0))
+    for c in rows[bad].tolist():        # the checked constructor says what is wrong
+        Arc((c[0], c[1]), c[2], c[3], c[4])
+    joints.arc_rows = (ia[q], rows)
     handled = np.zeros(n - 1, bool)
     handled[ia[done]] = True
     return np.flatnonzero(~handled)
@@ -320,23 +324,11 @@ def decide_joints(style, scan: ScanResult, arr: ElementArrays, classes: list[str
     return joints
 
 
-def tool_geometries(scan: ScanResult, arr: ElementArrays, joints: Joints,
-                    vectorised: bool) -> list:
-    """The exact tool geometry of every move between its joints: lines and
-    arcs in bulk (:func:`batch.tool_segments`) when ``vectorised``, spirals
-    and whatever the bulk route leaves through :func:`corners.tool_geometry`."""
-    n = len(scan)
-    geoms: list = [None] * n
-    fast = np.flatnonzero(arr.kind != SPIRAL) if vectorised else np.zeros(0, int)
-    made = tool_segments(arr, fast, joints.starts, joints.ends)
-    if fast.size == n:
-        geoms = made
-    else:
-        for i, g in zip(fast.tolist(), made):
-            geoms[i] = g
-    for i in [i for i, g in enumerate(geoms) if g is None]:
-        geoms[i] = tool_geometry(scan.element(i), joints.starts[i], joints.ends[i])
-    return geoms
+def tool_geometries(scan: ScanResult, joints: Joints) -> list:
+    """The exact tool geometry of every move between its joints, one at a
+    time (:func:`corners.tool_geometry`: the reference route)."""
+    return [tool_geometry(scan.element(i), joints.starts[i], joints.ends[i])
+            for i in range(len(scan))]
 
 
 class SegmentList:
@@ -426,6 +418,8 @@ def assemble(style, scan: ScanResult, program: Program, vectorised: bool = True)
     """
     n, k, r = len(scan), scan.k, scan.r
     out = SegmentList()
+    radius = float(r[k != 0].max()) if n and (k != 0).any() else 0.0
+    meta = {"break_cos": getattr(style, "break_cos", None)}
     if n == 0:
         out.gap(scan.gaps[0], np.asarray(scan.start_uv, float), False)
     else:
@@ -433,10 +427,13 @@ def assemble(style, scan: ScanResult, program: Program, vectorised: bool = True)
         arr = ElementArrays.from_blocks(scan.blocks, scan.plane, k, r)
         check_arc_offsets(scan, arr, classes)
         joints = decide_joints(style, scan, arr, classes, vectorised)
-        geoms = tool_geometries(scan, arr, joints, vectorised)
-        emit_moves(out, scan, classes, geoms, joints)
+        if vectorised:
+            # the path as columns: no object per segment until asked for
+            columns, dwells = emit_columns(scan, arr, joints)
+            return ToolPath.from_columns(columns, plane=scan.plane, style=style.name,
+                                         radius=radius, dwells=dwells, units=program.units,
+                                         meta=meta)
+        emit_moves(out, scan, classes, tool_geometries(scan, joints), joints)
         emit_tail(out, scan, joints)
-    radius = float(r[k != 0].max()) if n and (k != 0).any() else 0.0
     return ToolPath(tuple(out.segs), plane=scan.plane, style=style.name, radius=radius,
-                    dwells=tuple(out.dwells), units=program.units,
-                    meta={"break_cos": getattr(style, "break_cos", None)})
+                    dwells=tuple(out.dwells), units=program.units, meta=meta)
