@@ -23,6 +23,7 @@ import numpy as np
 
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral, translated
+from ccopt.geometry.columns import paused_gc
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
 from ccopt.tolerances import POINT_EPS, SPIRAL_RADIUS_REL_TOL
 
@@ -236,6 +237,10 @@ class SegmentColumns:
 
     def materialise(self) -> tuple[PathSegment, ...]:
         """Every row as its :class:`PathSegment`, in order."""
+        with paused_gc():       # two objects per row, none in a cycle: see paused_gc
+            return self._materialise()
+
+    def _materialise(self) -> tuple[PathSegment, ...]:
         blocks, objects = self.blocks, self.objects
         trusted, line = PathSegment.trusted, Line.trusted
         roles = [ROLES[c] for c in self.role.tolist()]

@@ -84,20 +84,32 @@ class ElementArrays:
     rapid: np.ndarray | None = None
 
     @classmethod
-    def from_blocks(cls, blocks: list[Block], plane: str, k: np.ndarray, r: np.ndarray):
+    def from_blocks(cls, blocks: list[Block], plane: str, k: np.ndarray, r: np.ndarray,
+                    columns: dict | None = None):
+        """The arrays of ``blocks`` in ``plane``; ``columns`` (``start``,
+        ``end``, ``motions`` of these blocks, as a bulk scan read them) saves
+        reading them again."""
         i, j, w = PLANE_AXES[plane]
         n = len(blocks)
         # the blocks' fields straight into arrays (fromiter over flattened
         # tuples: no per-block list or tuple-of-tuples conversion)
-        st = _column3(map(attrgetter("start"), blocks), n)
-        en = _column3(map(attrgetter("end"), blocks), n)
-        nan3 = (math.nan, math.nan, math.nan)
-        ce = _column3((nan3 if c is None else c for c in map(attrgetter("center"), blocks)), n)
-        motions = list(map(attrgetter("motion"), blocks))
+        if columns is None:
+            st = _column3(map(attrgetter("start"), blocks), n)
+            en = _column3(map(attrgetter("end"), blocks), n)
+            motions = list(map(attrgetter("motion"), blocks))
+        else:
+            st, en, motions = columns["start"], columns["end"], columns["motions"]
         motion_arc = np.fromiter(map(_ARC_MOTIONS.__contains__, motions), bool, n)
         ccw = np.fromiter(map(_CCW.__contains__, motions), bool, n)
         rapid = np.fromiter(map(_RAPID.__contains__, motions), bool, n)
-        turns = np.fromiter(map(attrgetter("turns"), blocks), float, n)
+        # centres and extra turns belong to arcs alone: read for those
+        ce = np.full((n, 3), math.nan)
+        turns = np.zeros(n)
+        arcs = np.flatnonzero(motion_arc).tolist()
+        if arcs:
+            nan3 = (math.nan, math.nan, math.nan)
+            ce[arcs] = [nan3 if blocks[q].center is None else blocks[q].center for q in arcs]
+            turns[arcs] = [blocks[q].turns for q in arcs]
         S, E, C = st[:, [i, j]], en[:, [i, j]], ce[:, [i, j]]
         R0 = np.hypot(*(S - C).T)
         R1 = np.hypot(*(E - C).T)

@@ -29,7 +29,7 @@ from ccopt.toolpath import ARC_ROW, LINE_ROW, OBJECT_ROW, ROLE_CODE, Role, Segme
 #: Class codes of :func:`class_codes` -> role of the move's own segment.
 CLASS_ROLE = np.array([ROLE_CODE[Role.UNCOMPENSATED], ROLE_CODE[Role.LEAD_IN],
                        ROLE_CODE[Role.COMPENSATED], ROLE_CODE[Role.LEAD_OUT]], np.int8)
-LEAD_IN_CODE = 1
+LEAD_IN_CODE, COMP_CODE = 1, 2
 
 
 def class_codes(k: np.ndarray) -> np.ndarray:
@@ -110,7 +110,7 @@ def _moves(scan, arr: ElementArrays, joints):
 
 def _gap_counts(gaps) -> dict[int, int]:
     """Index -> number of non-dwell blocks of every non-empty gap."""
-    return {i: sum(blk.motion is not Motion.DWELL for blk in g) for i, g in enumerate(gaps) if g}
+    return {i: sum(blk.motion is not Motion.DWELL for blk in g) for i, g in gaps.items()}
 
 
 def emit_columns(scan, arr: ElementArrays, joints) -> tuple[SegmentColumns, tuple]:

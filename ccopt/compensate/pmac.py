@@ -27,7 +27,7 @@ from ccopt.compensate.corners import (
 from ccopt.compensate.batch import (
     ARC, SPIRAL, ElementArrays, classify_turn, corner_turn, nearest_corner_points, offset_points,
 )
-from ccopt.compensate.emit import class_codes, emit_columns
+from ccopt.compensate.emit import COMP_CODE, class_codes, emit_columns
 from ccopt.compensate.planes import by_plane
 from ccopt.compensate.scan import ScanResult, scan_program
 from ccopt.geometry import Arc, Line
@@ -37,6 +37,10 @@ from ccopt.tolerances import PMAC_BREAK_COS, POINT_EPS
 from ccopt.toolpath import PathSegment, Role, ToolPath
 
 UNCOMP, LEAD_IN, COMP, LEAD_OUT = "uncompensated", "lead-in", "compensated", "lead-out"
+#: Programs of fewer in-plane moves are written segment by segment: the
+#: column route's fixed cost (some sixty numpy calls, about 0.1 ms) is more
+#: than making a few dozen segments costs.
+COLUMNS_MIN_MOVES = 64
 ROLE_OF = {UNCOMP: Role.UNCOMPENSATED, LEAD_IN: Role.LEAD_IN, COMP: Role.COMPENSATED,
            LEAD_OUT: Role.LEAD_OUT}
 
@@ -261,7 +265,7 @@ def check_arc_offsets(scan: ScanResult, arr: ElementArrays, classes: list[str]) 
     lead-in and lead-out arcs are spirals that only reach the offset at one
     end. Raises CompensationError at the first arc whose offset vanishes."""
     k, r = scan.k, scan.r
-    comp = np.array([c == COMP for c in classes], bool)
+    comp = class_codes(k) == COMP_CODE
     vanishes = (comp & (arr.kind == ARC) & (k != 0)
                 & (arr.offset_radius(np.arange(len(scan)), k, r) <= POINT_EPS))
     for i in np.flatnonzero(comp & ((arr.kind == SPIRAL) | vanishes)):
@@ -274,8 +278,8 @@ def _batch_joints(style, scan: ScanResult, arr: ElementArrays, classes: list[str
     compensated on one side, no gap, no spiral); the joints left to
     ``style.joint`` one at a time."""
     n, k = len(scan), scan.k
-    comp = np.array([c == COMP for c in classes], bool)
-    gap_counts = np.array([len(g) for g in scan.gaps[1:n]], int)
+    comp = class_codes(k) == COMP_CODE
+    gap_counts = scan.gaps.sizes()[1:n]
     ia = np.flatnonzero(comp[:-1] & comp[1:] & (k[:-1] == k[1:]) & (gap_counts == 0)
                         & (arr.kind[:-1] != SPIRAL) & (arr.kind[1:] != SPIRAL))
     if not len(ia):
@@ -408,13 +412,17 @@ def emit_tail(out: SegmentList, scan: ScanResult, joints: Joints) -> None:
     out.gap(trailing[split:], end, False)
 
 
-def assemble(style, scan: ScanResult, program: Program, vectorised: bool = True) -> ToolPath:
+def assemble(style, scan: ScanResult, program: Program, vectorised: bool = True,
+             columns: bool | None = None) -> ToolPath:
     """Turn the scanned moves into a ToolPath using ``style.joint``.
 
     With ``vectorised`` (the default) the joints a style can decide in bulk
-    (``style.batch_corners``, when it has one) and the line/arc tool segments
-    go through :mod:`.batch`; every other joint and segment through the
-    one-at-a-time reference. Both routes give the same path (tested).
+    (``style.batch_corners``, when it has one) go through :mod:`.batch`, and
+    with ``columns`` the path is written as columns (:mod:`.emit`: tool
+    segments in bulk, no object per segment until asked for); every other
+    joint and segment through the one-at-a-time reference. ``columns=None``:
+    with ``vectorised``, for programs of at least :data:`COLUMNS_MIN_MOVES`
+    moves. All routes give the same path (tested).
     """
     n, k, r = len(scan), scan.k, scan.r
     out = SegmentList()
@@ -424,15 +432,20 @@ def assemble(style, scan: ScanResult, program: Program, vectorised: bool = True)
         out.gap(scan.gaps[0], np.asarray(scan.start_uv, float), False)
     else:
         classes = classes_of(k)
-        arr = ElementArrays.from_blocks(scan.blocks, scan.plane, k, r)
+        arr = ElementArrays.from_blocks(scan.blocks, scan.plane, k, r, scan.columns)
         check_arc_offsets(scan, arr, classes)
         joints = decide_joints(style, scan, arr, classes, vectorised)
-        if vectorised:
+        if columns is None:
+            columns = vectorised and n >= COLUMNS_MIN_MOVES
+        if columns:
             # the path as columns: no object per segment until asked for
-            columns, dwells = emit_columns(scan, arr, joints)
-            return ToolPath.from_columns(columns, plane=scan.plane, style=style.name,
+            rows, dwells = emit_columns(scan, arr, joints)
+            return ToolPath.from_columns(rows, plane=scan.plane, style=style.name,
                                          radius=radius, dwells=dwells, units=program.units,
                                          meta=meta)
+        arc_at, arc_rows = joints.arc_rows
+        for i, (cu, cv, radius_i, theta0, sweep) in zip(arc_at.tolist(), arc_rows.tolist()):
+            joints.corners[i] = [Arc((cu, cv), radius_i, theta0, sweep)]
         emit_moves(out, scan, classes, tool_geometries(scan, joints), joints)
         emit_tail(out, scan, joints)
     return ToolPath(tuple(out.segs), plane=scan.plane, style=style.name, radius=radius,

@@ -12,12 +12,16 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
 
+from ccopt.cases import bundled_cases
 from ccopt.compensate import compensate, decisions
 from ccopt.compensate.pmac import PmacStyle, assemble
 from ccopt.compensate.scan import scan_program
-from ccopt.program import read_text
+from ccopt.errors import CcoptError
+from ccopt.program import read_program, read_text
 from ccopt.toolpath import Role
+from test_pmac_invariants import closed_contours, contour_program
 
 TOL = 1e-9
 Z_PLUNGES = (
@@ -30,9 +34,11 @@ def pmac(text: str):
 
 
 def both_routes(prog):
+    """The path written as columns (bulk scan, batch joints) and by the
+    one-at-a-time reference route (block-by-block scan)."""
     style = PmacStyle()
-    fast = assemble(style, scan_program(prog), prog, vectorised=True)
-    ref = assemble(style, scan_program(prog), prog, vectorised=False)
+    fast = assemble(style, scan_program(prog, bulk=True), prog, vectorised=True, columns=True)
+    ref = assemble(style, scan_program(prog, bulk=False), prog, vectorised=False)
     return fast, ref
 
 
@@ -115,3 +121,53 @@ def test_other_plane_as_columns():
     fast, ref = both_routes(pmac(text))
     assert fast.planes == ref.planes == ("ZX",) and fast.plane == "ZX"
     same_segments(fast.segments, ref.segments)
+
+
+@settings(max_examples=60, deadline=None)
+@given(closed_contours())
+def test_random_contours_as_columns_equal_the_reference(contour):
+    fast, ref = both_routes(contour_program(*contour))
+    assert fast.columns is not None
+    same_segments(fast.segments, ref.segments)
+
+
+def _scans_equal(a, b):
+    assert a.blocks == b.blocks and a.plane == b.plane and a.start_uv == b.start_uv
+    assert a.k.tolist() == b.k.tolist() and a.r.tolist() == b.r.tolist()
+    assert len(a.gaps) == len(b.gaps) == len(a.blocks) + 1
+    assert [list(a.gaps[i]) for i in range(len(a.gaps))] == \
+        [list(b.gaps[i]) for i in range(len(b.gaps))]
+
+
+@pytest.mark.parametrize("case", bundled_cases(), ids=lambda c: c.name)
+def test_bulk_scan_equals_block_by_block_scan(case):
+    prog = read_program(case.program)
+    for style in ("pmac", "fagor"):
+        try:
+            ref = scan_program(prog, style=style, bulk=False)
+        except CcoptError as exc:
+            with pytest.raises(type(exc)) as again:
+                scan_program(prog, style=style, bulk=True)
+            assert str(again.value) == str(exc)
+            continue
+        _scans_equal(scan_program(prog, style=style, bulk=True), ref)
+
+
+@pytest.mark.parametrize("text", [
+    Z_PLUNGES,
+    # a TM move (refused while on) and a plane change: the bulk scan hands
+    # over to the block-by-block one, which raises, located
+    "LINEAR ABS F10\nCCR1 CC1\nX10 Y0\nTM100 X20 Y0\n",
+    "LINEAR ABS F10\nX10 Y0\nNORMAL J-1\nX10 Z10\n",
+    "LINEAR ABS F10\nCC1\nX10 Y0\nX20 Y0\n",
+])
+def test_bulk_scan_hands_over_or_agrees(text):
+    prog = pmac(text)
+    try:
+        ref = scan_program(prog, bulk=False)
+    except CcoptError as exc:
+        with pytest.raises(type(exc)) as again:
+            scan_program(prog, bulk=True)
+        assert str(again.value) == str(exc) and ":" in str(exc)
+        return
+    _scans_equal(scan_program(prog, bulk=True), ref)
