@@ -47,7 +47,6 @@ def wrap_pi(a: np.ndarray) -> np.ndarray:
 
 
 _ARC_MOTIONS = frozenset((Motion.ARC_CW, Motion.ARC_CCW))
-_CCW = frozenset((Motion.ARC_CCW,))
 _RAPID = frozenset((Motion.RAPID,))
 
 
@@ -97,15 +96,18 @@ class ElementArrays:
             st = _column3(map(attrgetter("start"), blocks), n)
             en = _column3(map(attrgetter("end"), blocks), n)
             motions = list(map(attrgetter("motion"), blocks))
+            motion_arc = np.fromiter(map(_ARC_MOTIONS.__contains__, motions), bool, n)
+            rapid = np.fromiter(map(_RAPID.__contains__, motions), bool, n)
         else:
             st, en, motions = columns["start"], columns["end"], columns["motions"]
-        motion_arc = np.fromiter(map(_ARC_MOTIONS.__contains__, motions), bool, n)
-        ccw = np.fromiter(map(_CCW.__contains__, motions), bool, n)
-        rapid = np.fromiter(map(_RAPID.__contains__, motions), bool, n)
+            motion_arc, rapid = columns["arc"], columns["rapid"]
+        ccw = np.zeros(n, bool)
+        arcs = np.flatnonzero(motion_arc).tolist()
+        if arcs:
+            ccw[arcs] = [motions[q] is Motion.ARC_CCW for q in arcs]
         # centres and extra turns belong to arcs alone: read for those
         ce = np.full((n, 3), math.nan)
         turns = np.zeros(n)
-        arcs = np.flatnonzero(motion_arc).tolist()
         if arcs:
             nan3 = (math.nan, math.nan, math.nan)
             ce[arcs] = [nan3 if blocks[q].center is None else blocks[q].center for q in arcs]

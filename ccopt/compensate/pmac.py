@@ -241,7 +241,7 @@ class PmacStyle:
 def classes_of(k: np.ndarray) -> list[str]:
     """Class of each in-plane move from the side in force before and for it."""
     names = (UNCOMP, LEAD_IN, COMP, LEAD_OUT)
-    return [names[c] for c in class_codes(k).tolist()]
+    return list(map(names.__getitem__, class_codes(k).tolist()))
 
 
 @dataclass

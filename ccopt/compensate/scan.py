@@ -40,8 +40,8 @@ class ScanResult:
     plane: str
     start_uv: tuple[float, float]
     _cache: dict = field(default_factory=dict, repr=False)
-    #: the moves' start and end ``(n, 3)`` machine coordinates and motions,
-    #: when the scan read them in bulk (:class:`batch.ElementArrays` reuses them)
+    #: the moves' start and end ``(n, 3)`` machine coordinates, motions and
+    #: arc and rapid flags, when the scan read them in bulk (:class:`batch.ElementArrays` reuses them)
     columns: dict | None = None
 
     def __len__(self) -> int:
@@ -244,8 +244,8 @@ def _scan_columns(program: Program, radius: float | None, side: int | None,
     for q in np.flatnonzero(~in_plane).tolist():
         gaps.setdefault(int(before[q]), []).append(blocks[q])
     start = blocks[0].uvw(program.start)[:2]
-    columns = {"start": st[idx], "end": en[idx], "motions": [motions[q] for q in idx.tolist()]
-               if idx.size < n else motions}
+    columns = {"start": st[idx], "end": en[idx], "arc": arc[idx], "rapid": rapid[idx],
+               "motions": [motions[q] for q in idx.tolist()] if idx.size < n else motions}
     return ScanResult(moves, k[idx], r[idx], GapList(gaps, idx.size + 1), plane,
                       (float(start[0]), float(start[1])), columns=columns)
 
