@@ -17,6 +17,7 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass, field, replace
+from operator import attrgetter
 from typing import Any, Iterator, Sequence
 
 import numpy as np
@@ -190,6 +191,7 @@ _set_geom, _set_role, _set_block, _set_w0, _set_w1, _set_feed, _set_plane = (
     PathSegment.__dict__[name].__set__
     for name in ("geom", "role", "block", "w0", "w1", "feed", "plane"))
 
+_FEED, _PLANE = attrgetter("feed"), attrgetter("modal.plane")
 #: Row kinds of :class:`SegmentColumns`.
 LINE_ROW, ARC_ROW, OBJECT_ROW = 0, 1, 2
 #: Role codes of :class:`SegmentColumns` (index into this tuple).
@@ -241,22 +243,23 @@ class SegmentColumns:
             return self._materialise()
 
     def _materialise(self) -> tuple[PathSegment, ...]:
-        blocks, objects = self.blocks, self.objects
-        trusted, line = PathSegment.trusted, Line.trusted
-        roles = [ROLES[c] for c in self.role.tolist()]
-        out = []
-        rows = zip(self.kind.tolist(), self.geom.tolist(), roles, self.block.tolist(),
-                   self.w[:, 0].tolist(), self.w[:, 1].tolist())
-        for q, (kind, (a, b, c, d, e), role, bi, w0, w1) in enumerate(rows):
-            blk = blocks[bi]
-            if kind == LINE_ROW:
-                geom = line(a, b, c, d)
-            elif kind == ARC_ROW:
-                geom = Arc((a, b), c, d, e)
-            else:
-                geom = objects[q]
-            out.append(trusted(geom, role, blk, w0, w1, blk.feed, blk.modal.plane))
-        return tuple(out)
+        # column by column with map (the loops run in C): the geometries,
+        # then the blocks, their feeds and planes, then the segments
+        geoms: list = [None] * len(self)
+        lines = np.flatnonzero(self.kind == LINE_ROW)
+        g = self.geom[lines]
+        for q, line in zip(lines.tolist(), map(Line.trusted, g[:, 0].tolist(), g[:, 1].tolist(),
+                                                g[:, 2].tolist(), g[:, 3].tolist())):
+            geoms[q] = line
+        arcs = np.flatnonzero(self.kind == ARC_ROW)
+        for q, (a, b, c, d, e) in zip(arcs.tolist(), self.geom[arcs].tolist()):
+            geoms[q] = Arc((a, b), c, d, e)
+        for q, obj in self.objects.items():
+            geoms[q] = obj
+        blocks = list(map(self.blocks.__getitem__, self.block.tolist()))
+        return tuple(map(PathSegment.trusted, geoms, map(ROLES.__getitem__, self.role.tolist()),
+                         blocks, self.w[:, 0].tolist(), self.w[:, 1].tolist(),
+                         map(_FEED, blocks), map(_PLANE, blocks)))
 
     def planes(self) -> tuple[str, ...]:
         """The rows' planes (their blocks') in the order they first appear."""
