@@ -17,10 +17,14 @@ from __future__ import annotations
 import enum
 import math
 from dataclasses import dataclass, field, replace
-from typing import Any, Iterator
+from operator import attrgetter
+from typing import Any, Iterator, Sequence
+
+import numpy as np
 
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral, translated
+from ccopt.geometry.columns import paused_gc
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
 from ccopt.tolerances import POINT_EPS, SPIRAL_RADIUS_REL_TOL
 
@@ -133,6 +137,23 @@ class PathSegment:
         u, v = self.end
         return machine_point(self.plane or "XY", u, v, float(self.w1))
 
+    @classmethod
+    def trusted(cls, geom, role: Role, block: Block | None, w0: float, w1: float,
+                feed: float | None, plane: str) -> "PathSegment":
+        """The segment with every field given, ``plane`` included: the same
+        object as the constructor makes, without the frozen dataclass's
+        per-field ``__setattr__`` round trips (a column tool path makes its
+        segments this way, one per row, when they are first asked for)."""
+        obj = object.__new__(cls)
+        _set_geom(obj, geom)
+        _set_role(obj, role)
+        _set_block(obj, block)
+        _set_w0(obj, w0)
+        _set_w1(obj, w1)
+        _set_feed(obj, feed)
+        _set_plane(obj, plane)
+        return obj
+
     def to_json(self) -> dict:
         """The segment as the tool-path JSON schema (README, ``ccopt compensate``):
         in-plane ``start``/``end`` in its ``plane``, machine ``start_xyz``/``end_xyz``."""
@@ -163,6 +184,88 @@ class PathSegment:
         if self.feed is not None:
             out["feed"] = self.feed
         return out
+
+
+# the slots' own descriptors (PathSegment.trusted): no frozen __setattr__
+_set_geom, _set_role, _set_block, _set_w0, _set_w1, _set_feed, _set_plane = (
+    PathSegment.__dict__[name].__set__
+    for name in ("geom", "role", "block", "w0", "w1", "feed", "plane"))
+
+_FEED, _PLANE = attrgetter("feed"), attrgetter("modal.plane")
+#: Row kinds of :class:`SegmentColumns`.
+LINE_ROW, ARC_ROW, OBJECT_ROW = 0, 1, 2
+#: Role codes of :class:`SegmentColumns` (index into this tuple).
+ROLES: tuple[Role, ...] = tuple(Role)
+ROLE_CODE = {role: code for code, role in enumerate(ROLES)}
+
+
+@dataclass(frozen=True, eq=False)
+class SegmentColumns:
+    """A tool path's segments as columns, one row per segment, in order.
+
+    What compensation of a long program makes: numbers in arrays, no Python
+    object per segment; :class:`PathSegment` objects are made from the rows
+    when the path's segments are first asked for (:meth:`materialise`).
+
+    Attributes
+    ----------
+    kind: ``(n,)`` int, :data:`LINE_ROW`, :data:`ARC_ROW` or :data:`OBJECT_ROW`.
+    geom: ``(n, 5)`` float, in-plane program units and radians: a line's
+        ``(u0, v0, u1, v1, -)``, an arc's ``(cu, cv, radius, theta0, sweep)``
+        (``sweep > 0`` counter-clockwise, as :class:`~ccopt.geometry.Arc`);
+        unused for object rows.
+    objects: row -> geometry object of the :data:`OBJECT_ROW` rows (spirals,
+        curves, anything made one at a time).
+    role: ``(n,)`` int, index into :data:`ROLES`.
+    block: ``(n,)`` int, index into ``blocks`` of the source block (each
+        segment's feed and plane are its block's).
+    blocks: the source blocks (shared with the program, not copied).
+    w: ``(n, 2)`` float, out-of-plane coordinate at start and end.
+
+    Rows of lines and arcs must already be valid (finite, radius > 0): the
+    maker checks them in bulk.
+    """
+
+    kind: np.ndarray
+    geom: np.ndarray
+    objects: dict
+    role: np.ndarray
+    block: np.ndarray
+    blocks: Sequence[Block]
+    w: np.ndarray
+
+    def __len__(self) -> int:
+        return int(self.kind.shape[0])
+
+    def materialise(self) -> tuple[PathSegment, ...]:
+        """Every row as its :class:`PathSegment`, in order."""
+        with paused_gc():       # two objects per row, none in a cycle: see paused_gc
+            return self._materialise()
+
+    def _materialise(self) -> tuple[PathSegment, ...]:
+        # column by column with map (the loops run in C): the geometries,
+        # then the blocks, their feeds and planes, then the segments
+        geoms: list = [None] * len(self)
+        lines = np.flatnonzero(self.kind == LINE_ROW)
+        g = self.geom[lines]
+        for q, line in zip(lines.tolist(), map(Line.trusted, g[:, 0].tolist(), g[:, 1].tolist(),
+                                                g[:, 2].tolist(), g[:, 3].tolist())):
+            geoms[q] = line
+        arcs = np.flatnonzero(self.kind == ARC_ROW)
+        for q, (a, b, c, d, e) in zip(arcs.tolist(), self.geom[arcs].tolist()):
+            geoms[q] = Arc((a, b), c, d, e)
+        for q, obj in self.objects.items():
+            geoms[q] = obj
+        blocks = list(map(self.blocks.__getitem__, self.block.tolist()))
+        return tuple(map(PathSegment.trusted, geoms, map(ROLES.__getitem__, self.role.tolist()),
+                         blocks, self.w[:, 0].tolist(), self.w[:, 1].tolist(),
+                         map(_FEED, blocks), map(_PLANE, blocks)))
+
+    def planes(self) -> tuple[str, ...]:
+        """The rows' planes (their blocks') in the order they first appear."""
+        _, first = np.unique(self.block, return_index=True)
+        used = self.block[np.sort(first)].tolist()
+        return tuple(dict.fromkeys(self.blocks[i].modal.plane for i in used))
 
 
 @dataclass(frozen=True)
@@ -198,10 +301,52 @@ class ToolPath:
         if segs and segs[0].plane != self.plane:
             object.__setattr__(self, "plane", segs[0].plane)
 
+    @classmethod
+    def from_columns(cls, columns: SegmentColumns, *, style: str, radius: float,
+                     dwells: tuple = (), units: str = "mm", meta: dict | None = None,
+                     plane: str = "XY") -> "ToolPath":
+        """The tool path of ``columns`` (every row has a block); its
+        :attr:`segments` are made from them on first use. ``plane`` is used
+        only when there are no rows (otherwise the first row's block's)."""
+        path = object.__new__(cls)
+        if len(columns):
+            plane = columns.blocks[int(columns.block[0])].modal.plane
+        for name, value in (("plane", plane), ("style", style), ("radius", radius),
+                            ("dwells", dwells), ("units", units),
+                            ("meta", {} if meta is None else meta), ("_columns", columns)):
+            object.__setattr__(path, name, value)
+        return path
+
+    def __getattr__(self, name: str):
+        # Only reached for attributes not set: the segments of a path made
+        # from columns, made (once) when first asked for.
+        if name == "segments":
+            columns = self.__dict__.get("_columns")
+            if columns is not None:
+                segments = columns.materialise()
+                object.__setattr__(self, "segments", segments)
+                return segments
+        raise AttributeError(f"{type(self).__name__!r} object has no attribute {name!r}")
+
+    def __getstate__(self) -> dict:
+        # a column path pickles as its columns (its segments are remade)
+        state = dict(self.__dict__)
+        if "_columns" in state:
+            state.pop("segments", None)
+        return state
+
+    @property
+    def columns(self) -> SegmentColumns | None:
+        """The segments as columns when the path was made from them, else ``None``."""
+        return self.__dict__.get("_columns")
+
     def __iter__(self) -> Iterator[PathSegment]:
         return iter(self.segments)
 
     def __len__(self) -> int:
+        columns = self.__dict__.get("_columns")
+        if columns is not None and "segments" not in self.__dict__:
+            return len(columns)
         return len(self.segments)
 
     def __getitem__(self, i):
@@ -215,6 +360,9 @@ class ToolPath:
     def planes(self) -> tuple[str, ...]:
         """The segments' planes in the order they first appear (``(plane,)``
         for a path without segments)."""
+        columns = self.__dict__.get("_columns")
+        if columns is not None and "segments" not in self.__dict__:
+            return columns.planes() or (self.plane,)
         return tuple(dict.fromkeys(s.plane for s in self.segments)) or (self.plane,)
 
     def to_json(self) -> dict:

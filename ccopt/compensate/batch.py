@@ -26,6 +26,7 @@ from ccopt.program.model import PLANE_AXES, Block, Motion
 from ccopt.tolerances import (
     OFFSET_CIRCLE_REL_TOL, POINT_EPS, SPIRAL_RADIUS_REL_TOL, TOOL_ARC_SAME_RADIUS_REL_TOL, TURN_EPS,
 )
+from ccopt.toolpath import ARC_ROW, LINE_ROW, OBJECT_ROW
 
 LINE, ARC, SPIRAL = 0, 1, 2
 #: An arc whose end meets its start within this length (relative to max(1, R))
@@ -46,7 +47,7 @@ def wrap_pi(a: np.ndarray) -> np.ndarray:
 
 
 _ARC_MOTIONS = frozenset((Motion.ARC_CW, Motion.ARC_CCW))
-_CCW = frozenset((Motion.ARC_CCW,))
+_RAPID = frozenset((Motion.RAPID,))
 
 
 def _column3(triples, n: int) -> np.ndarray:
@@ -61,7 +62,8 @@ class ElementArrays:
     kind: LINE/ARC/SPIRAL; S, E: start/end points; C: centre (nan for lines);
     R: start radius; sgn: +1 counter-clockwise, -1 clockwise, 0 line;
     theta0, sweep: programmed start angle and signed sweep; ts, te: unit
-    tangents at start and end; k, r: side and radius in force.
+    tangents at start and end; k, r: side and radius in force; w0, w1:
+    out-of-plane coordinate at start and end; rapid: the move is a rapid.
     """
 
     kind: np.ndarray
@@ -76,21 +78,40 @@ class ElementArrays:
     te: np.ndarray
     k: np.ndarray
     r: np.ndarray
+    w0: np.ndarray | None = None
+    w1: np.ndarray | None = None
+    rapid: np.ndarray | None = None
 
     @classmethod
-    def from_blocks(cls, blocks: list[Block], plane: str, k: np.ndarray, r: np.ndarray):
-        i, j, _ = PLANE_AXES[plane]
+    def from_blocks(cls, blocks: list[Block], plane: str, k: np.ndarray, r: np.ndarray,
+                    columns: dict | None = None):
+        """The arrays of ``blocks`` in ``plane``; ``columns`` (``start``,
+        ``end``, ``motions`` of these blocks, as a bulk scan read them) saves
+        reading them again."""
+        i, j, w = PLANE_AXES[plane]
         n = len(blocks)
         # the blocks' fields straight into arrays (fromiter over flattened
         # tuples: no per-block list or tuple-of-tuples conversion)
-        st = _column3(map(attrgetter("start"), blocks), n)
-        en = _column3(map(attrgetter("end"), blocks), n)
-        nan3 = (math.nan, math.nan, math.nan)
-        ce = _column3((nan3 if c is None else c for c in map(attrgetter("center"), blocks)), n)
-        motions = list(map(attrgetter("motion"), blocks))
-        motion_arc = np.fromiter(map(_ARC_MOTIONS.__contains__, motions), bool, n)
-        ccw = np.fromiter(map(_CCW.__contains__, motions), bool, n)
-        turns = np.fromiter(map(attrgetter("turns"), blocks), float, n)
+        if columns is None:
+            st = _column3(map(attrgetter("start"), blocks), n)
+            en = _column3(map(attrgetter("end"), blocks), n)
+            motions = list(map(attrgetter("motion"), blocks))
+            motion_arc = np.fromiter(map(_ARC_MOTIONS.__contains__, motions), bool, n)
+            rapid = np.fromiter(map(_RAPID.__contains__, motions), bool, n)
+        else:
+            st, en, motions = columns["start"], columns["end"], columns["motions"]
+            motion_arc, rapid = columns["arc"], columns["rapid"]
+        ccw = np.zeros(n, bool)
+        arcs = np.flatnonzero(motion_arc).tolist()
+        if arcs:
+            ccw[arcs] = [motions[q] is Motion.ARC_CCW for q in arcs]
+        # centres and extra turns belong to arcs alone: read for those
+        ce = np.full((n, 3), math.nan)
+        turns = np.zeros(n)
+        if arcs:
+            nan3 = (math.nan, math.nan, math.nan)
+            ce[arcs] = [nan3 if blocks[q].center is None else blocks[q].center for q in arcs]
+            turns[arcs] = [blocks[q].turns for q in arcs]
         S, E, C = st[:, [i, j]], en[:, [i, j]], ce[:, [i, j]]
         R0 = np.hypot(*(S - C).T)
         R1 = np.hypot(*(E - C).T)
@@ -121,7 +142,7 @@ class ElementArrays:
         ts = np.where(is_line, t_line, t_arc_s)
         te = np.where(is_line, t_line, t_arc_e)
         return cls(kind, S, E, C, R0, sgn, th0, sweep, ts, te,
-                   np.asarray(k, float), np.asarray(r, float))
+                   np.asarray(k, float), np.asarray(r, float), st[:, w], en[:, w], rapid)
 
     def offset_radius(self, idx: np.ndarray, k: np.ndarray, r: np.ndarray) -> np.ndarray:
         """Offset arc radius ``R - k*r`` counter-clockwise, ``R + k*r`` clockwise."""
@@ -202,44 +223,38 @@ def tool_arc_sweeps(theta0, sweep, th_s, th_e) -> np.ndarray:
     return np.where(ccw, 1.0, -1.0) * (gap + TWO_PI * extra)
 
 
-def tool_segments(arr: ElementArrays, idx: np.ndarray, starts: np.ndarray, ends: np.ndarray):
+def tool_rows(arr: ElementArrays, idx: np.ndarray, starts: np.ndarray, ends: np.ndarray):
     """Exact tool geometry of line and arc elements ``idx`` between corner
-    points, as :func:`corners.tool_geometry` builds it one at a time.
+    points, as :func:`corners.tool_geometry` builds it one at a time, as rows
+    of a :class:`~ccopt.toolpath.SegmentColumns` (no object per segment).
 
-    Returns a list of geometry objects, or ``None`` at positions the caller
-    must build with the reference (an arc through its own centre).
+    Returns ``(kind, geom, objects)``: ``kind`` and ``geom`` one row per
+    element (``LINE_ROW`` ``(u0, v0, u1, v1, -)``, ``ARC_ROW`` ``(cu, cv,
+    radius, theta0, sweep)``), ``objects`` position -> geometry of the
+    ``OBJECT_ROW`` rows: a spiral, or ``None`` where the caller must build
+    it with the reference (an arc through its own centre). Lines and arcs
+    are checked finite here in bulk; a bad one is made with the checked
+    constructor, which says what is wrong.
     """
-    out: list = [None] * len(idx)
-    kind = arr.kind[idx]
-    lines = kind == LINE
-    q_line = np.flatnonzero(lines)
-    s, e = starts[idx[q_line]], ends[idx[q_line]]
-    if np.isfinite(s).all() and np.isfinite(e).all():
-        # Lines in bulk: end points checked finite once here, then built
-        # without re-validation (Line.trusted) from Python floats (tolist, not
-        # per-item numpy scalars): the per-segment checks and conversions were
-        # most of the time on long programs.
-        made = map(Line.trusted, s[:, 0].tolist(), s[:, 1].tolist(),
-                   e[:, 0].tolist(), e[:, 1].tolist())
-        if q_line.size == len(idx):
-            out = list(made)
-        else:
-            for q, g in zip(q_line.tolist(), made):
-                out[q] = g
-    else:
-        for q in q_line.tolist():   # the checked constructor says what is wrong
-            out[q] = Line((float(starts[idx[q], 0]), float(starts[idx[q], 1])),
-                          (float(ends[idx[q], 0]), float(ends[idx[q], 1])))
+    m = len(idx)
+    kind = np.full(m, OBJECT_ROW, np.int8)
+    geom = np.zeros((m, 5))
+    objects: dict = {}
+    lines = arr.kind[idx] == LINE
+    s, e = starts[idx[lines]], ends[idx[lines]]
+    kind[lines] = LINE_ROW
+    geom[lines, 0:2], geom[lines, 2:4] = s, e
+    bad = ~(np.isfinite(s).all(axis=1) & np.isfinite(e).all(axis=1))
+    for q in np.flatnonzero(bad).tolist():
+        Line((float(s[q, 0]), float(s[q, 1])), (float(e[q, 0]), float(e[q, 1])))
     q_arc = np.flatnonzero(~lines)
     if q_arc.size:
-        for q, g in zip(q_arc.tolist(), _arc_segments(arr, idx[q_arc], starts, ends)):
-            out[q] = g
-    return out
+        _arc_rows(arr, idx[q_arc], starts, ends, q_arc, kind, geom, objects)
+    return kind, geom, objects
 
 
-def _arc_segments(arr: ElementArrays, idx: np.ndarray, starts: np.ndarray, ends: np.ndarray):
-    """:func:`tool_segments` of arc elements ``idx``: arcs, spirals, or ``None``."""
-    out: list = [None] * len(idx)
+def _arc_rows(arr: ElementArrays, idx, starts, ends, at, kind, geom, objects) -> None:
+    """:func:`tool_rows` of arc elements ``idx``, written at positions ``at``."""
     s, e = starts[idx], ends[idx]
     C = arr.C[idx]
     rs = np.hypot(*(s - C).T)
@@ -253,17 +268,20 @@ def _arc_segments(arr: ElementArrays, idx: np.ndarray, starts: np.ndarray, ends:
     on = arr.offset_radius(idx, arr.k[idx], arr.r[idx])
     tol = OFFSET_CIRCLE_REL_TOL * np.maximum(1.0, on)
     on_offset = (on > 0) & (np.abs(rs - on) <= tol) & (np.abs(re - on) <= tol)
-    for q in range(len(idx)):
-        if rs[q] > POINT_EPS and re[q] > POINT_EPS:
-            c = (float(C[q, 0]), float(C[q, 1]))
-            if on_offset[q]:
-                out[q] = Arc(c, float(on[q]), float(th_s[q]), float(sweep[q]))
-            elif same_r[q]:
-                out[q] = Arc(c, float(rs[q]), float(th_s[q]), float(sweep[q]))
-            else:
-                out[q] = Spiral(c, float(rs[q]), float(re[q]), float(th_s[q]), float(sweep[q]))
-    return out
+    away = (rs > POINT_EPS) & (re > POINT_EPS)
+    radius = np.where(on_offset, on, rs)
+    is_arc = away & (on_offset | same_r)
+    rows = np.c_[C, radius, th_s, sweep]
+    fine = np.isfinite(rows).all(axis=1)
+    kind[at[is_arc & fine]] = ARC_ROW
+    geom[at[is_arc]] = rows[is_arc]
+    for q in np.flatnonzero(is_arc & ~fine).tolist():     # says what is wrong
+        Arc((float(C[q, 0]), float(C[q, 1])), float(radius[q]), float(th_s[q]), float(sweep[q]))
+    for q in np.flatnonzero(~is_arc).tolist():
+        objects[int(at[q])] = (Spiral((float(C[q, 0]), float(C[q, 1])), float(rs[q]),
+                                      float(re[q]), float(th_s[q]), float(sweep[q]))
+                               if away[q] else None)
 
 
 __all__ = ["ARC", "ElementArrays", "LINE", "SPIRAL", "classify_turn", "corner_turn",
-           "nearest_corner_points", "offset_points", "tool_segments", "wrap_pi"]
+           "nearest_corner_points", "offset_points", "tool_rows", "wrap_pi"]

@@ -23,6 +23,7 @@ from __future__ import annotations
 import math
 from dataclasses import replace
 from functools import wraps
+from operator import attrgetter
 
 import numpy as np
 
@@ -71,6 +72,9 @@ def change_plane(interp, blk: Block, was_on: bool) -> bool:
     return False
 
 
+_PLANE_OF = attrgetter("modal.plane")
+
+
 def plane_sections(program: Program) -> list[list[Block]]:
     """The program's blocks cut where the plane changes (one list per run of
     blocks in one plane, in order; one list for a one-plane program)."""
@@ -117,6 +121,9 @@ def by_plane(compensate):
     @wraps(compensate)
     def run(self, program: Program, radius: float | None = None,
             side: int | None = None) -> ToolPath:
+        if len(set(map(_PLANE_OF, program.blocks))) <= 1:
+            # one plane (most programs): no sections to cut, nothing to check
+            return compensate(self, program, radius=radius, side=side)
         sections = plane_sections(program)
         if len(sections) <= 1:
             return compensate(self, program, radius=radius, side=side)

@@ -25,9 +25,9 @@ from ccopt.compensate.corners import (
     tool_geometry, turn,
 )
 from ccopt.compensate.batch import (
-    ARC, SPIRAL, ElementArrays, classify_turn, corner_turn, nearest_corner_points,
-    offset_points, tool_segments,
+    ARC, SPIRAL, ElementArrays, classify_turn, corner_turn, nearest_corner_points, offset_points,
 )
+from ccopt.compensate.emit import COMP_CODE, class_codes, emit_columns
 from ccopt.compensate.planes import by_plane
 from ccopt.compensate.scan import ScanResult, scan_program
 from ccopt.geometry import Arc, Line
@@ -37,6 +37,10 @@ from ccopt.tolerances import PMAC_BREAK_COS, POINT_EPS
 from ccopt.toolpath import PathSegment, Role, ToolPath
 
 UNCOMP, LEAD_IN, COMP, LEAD_OUT = "uncompensated", "lead-in", "compensated", "lead-out"
+#: Programs of fewer in-plane moves are written segment by segment: the
+#: column route's fixed cost (some sixty numpy calls, about 0.1 ms) is more
+#: than making a few dozen segments costs.
+COLUMNS_MIN_MOVES = 64
 ROLE_OF = {UNCOMP: Role.UNCOMPENSATED, LEAD_IN: Role.LEAD_IN, COMP: Role.COMPENSATED,
            LEAD_OUT: Role.LEAD_OUT}
 
@@ -236,10 +240,8 @@ class PmacStyle:
 
 def classes_of(k: np.ndarray) -> list[str]:
     """Class of each in-plane move from the side in force before and for it."""
-    prev = np.r_[0, k[:-1]] if len(k) else np.zeros(0, int)
-    codes = np.where(k == 0, np.where(prev == 0, 0, 3), np.where(prev == 0, 1, 2))
     names = (UNCOMP, LEAD_IN, COMP, LEAD_OUT)
-    return [names[c] for c in codes]
+    return list(map(names.__getitem__, class_codes(k).tolist()))
 
 
 @dataclass
@@ -253,6 +255,9 @@ class Joints:
     ends: np.ndarray
     corners: dict[int, list] = field(default_factory=dict)
     tail_return: tuple | None = None
+    #: corner arcs decided in bulk: (move indices, rows ``(cu, cv, radius,
+    #: theta0, sweep)``), one arc after each of those moves
+    arc_rows: tuple = (np.zeros(0, np.int64), np.zeros((0, 5)))
 
 
 def check_arc_offsets(scan: ScanResult, arr: ElementArrays, classes: list[str]) -> None:
@@ -260,7 +265,7 @@ def check_arc_offsets(scan: ScanResult, arr: ElementArrays, classes: list[str]) 
     lead-in and lead-out arcs are spirals that only reach the offset at one
     end. Raises CompensationError at the first arc whose offset vanishes."""
     k, r = scan.k, scan.r
-    comp = np.array([c == COMP for c in classes], bool)
+    comp = class_codes(k) == COMP_CODE
     vanishes = (comp & (arr.kind == ARC) & (k != 0)
                 & (arr.offset_radius(np.arange(len(scan)), k, r) <= POINT_EPS))
     for i in np.flatnonzero(comp & ((arr.kind == SPIRAL) | vanishes)):
@@ -273,8 +278,8 @@ def _batch_joints(style, scan: ScanResult, arr: ElementArrays, classes: list[str
     compensated on one side, no gap, no spiral); the joints left to
     ``style.joint`` one at a time."""
     n, k = len(scan), scan.k
-    comp = np.array([c == COMP for c in classes], bool)
-    gap_counts = np.array([len(g) for g in scan.gaps[1:n]], int)
+    comp = class_codes(k) == COMP_CODE
+    gap_counts = scan.gaps.sizes()[1:n]
     ia = np.flatnonzero(comp[:-1] & comp[1:] & (k[:-1] == k[1:]) & (gap_counts == 0)
                         & (arr.kind[:-1] != SPIRAL) & (arr.kind[1:] != SPIRAL))
     if not len(ia):
@@ -282,9 +287,12 @@ def _batch_joints(style, scan: ScanResult, arr: ElementArrays, classes: list[str
     done, e_prev, s_next, arcs = style.batch_corners(arr, ia)
     joints.ends[ia[done]] = e_prev[done]
     joints.starts[ia[done] + 1] = s_next[done]
-    for q in np.flatnonzero(done & arcs["has"]):
-        joints.corners[int(ia[q])] = [Arc(_pt(arr.E[ia[q]]), float(scan.r[ia[q]]),
-                                          float(arcs["theta0"][q]), float(arcs["sweep"][q]))]
+    q = np.flatnonzero(done & arcs["has"])
+    rows = np.c_[arr.E[ia[q]], scan.r[ia[q]], arcs["theta0"][q], arcs["sweep"][q]]
+    bad = ~(np.isfinite(rows).all(axis=1) & (rows[:, 2] > 0.0))
+    for c in rows[bad].tolist():        # the checked constructor says what is wrong
+        Arc((c[0], c[1]), c[2], c[3], c[4])
+    joints.arc_rows = (ia[q], rows)
     handled = np.zeros(n - 1, bool)
     handled[ia[done]] = True
     return np.flatnonzero(~handled)
@@ -320,23 +328,11 @@ def decide_joints(style, scan: ScanResult, arr: ElementArrays, classes: list[str
     return joints
 
 
-def tool_geometries(scan: ScanResult, arr: ElementArrays, joints: Joints,
-                    vectorised: bool) -> list:
-    """The exact tool geometry of every move between its joints: lines and
-    arcs in bulk (:func:`batch.tool_segments`) when ``vectorised``, spirals
-    and whatever the bulk route leaves through :func:`corners.tool_geometry`."""
-    n = len(scan)
-    geoms: list = [None] * n
-    fast = np.flatnonzero(arr.kind != SPIRAL) if vectorised else np.zeros(0, int)
-    made = tool_segments(arr, fast, joints.starts, joints.ends)
-    if fast.size == n:
-        geoms = made
-    else:
-        for i, g in zip(fast.tolist(), made):
-            geoms[i] = g
-    for i in [i for i, g in enumerate(geoms) if g is None]:
-        geoms[i] = tool_geometry(scan.element(i), joints.starts[i], joints.ends[i])
-    return geoms
+def tool_geometries(scan: ScanResult, joints: Joints) -> list:
+    """The exact tool geometry of every move between its joints, one at a
+    time (:func:`corners.tool_geometry`: the reference route)."""
+    return [tool_geometry(scan.element(i), joints.starts[i], joints.ends[i])
+            for i in range(len(scan))]
 
 
 class SegmentList:
@@ -416,27 +412,41 @@ def emit_tail(out: SegmentList, scan: ScanResult, joints: Joints) -> None:
     out.gap(trailing[split:], end, False)
 
 
-def assemble(style, scan: ScanResult, program: Program, vectorised: bool = True) -> ToolPath:
+def assemble(style, scan: ScanResult, program: Program, vectorised: bool = True,
+             columns: bool | None = None) -> ToolPath:
     """Turn the scanned moves into a ToolPath using ``style.joint``.
 
     With ``vectorised`` (the default) the joints a style can decide in bulk
-    (``style.batch_corners``, when it has one) and the line/arc tool segments
-    go through :mod:`.batch`; every other joint and segment through the
-    one-at-a-time reference. Both routes give the same path (tested).
+    (``style.batch_corners``, when it has one) go through :mod:`.batch`, and
+    with ``columns`` the path is written as columns (:mod:`.emit`: tool
+    segments in bulk, no object per segment until asked for); every other
+    joint and segment through the one-at-a-time reference. ``columns=None``:
+    with ``vectorised``, for programs of at least :data:`COLUMNS_MIN_MOVES`
+    moves. All routes give the same path (tested).
     """
     n, k, r = len(scan), scan.k, scan.r
     out = SegmentList()
+    radius = float(r[k != 0].max()) if n and (k != 0).any() else 0.0
+    meta = {"break_cos": getattr(style, "break_cos", None)}
     if n == 0:
         out.gap(scan.gaps[0], np.asarray(scan.start_uv, float), False)
     else:
         classes = classes_of(k)
-        arr = ElementArrays.from_blocks(scan.blocks, scan.plane, k, r)
+        arr = ElementArrays.from_blocks(scan.blocks, scan.plane, k, r, scan.columns)
         check_arc_offsets(scan, arr, classes)
         joints = decide_joints(style, scan, arr, classes, vectorised)
-        geoms = tool_geometries(scan, arr, joints, vectorised)
-        emit_moves(out, scan, classes, geoms, joints)
+        if columns is None:
+            columns = vectorised and n >= COLUMNS_MIN_MOVES
+        if columns:
+            # the path as columns: no object per segment until asked for
+            rows, dwells = emit_columns(scan, arr, joints)
+            return ToolPath.from_columns(rows, plane=scan.plane, style=style.name,
+                                         radius=radius, dwells=dwells, units=program.units,
+                                         meta=meta)
+        arc_at, arc_rows = joints.arc_rows
+        for i, (cu, cv, radius_i, theta0, sweep) in zip(arc_at.tolist(), arc_rows.tolist()):
+            joints.corners[i] = [Arc((cu, cv), radius_i, theta0, sweep)]
+        emit_moves(out, scan, classes, tool_geometries(scan, joints), joints)
         emit_tail(out, scan, joints)
-    radius = float(r[k != 0].max()) if n and (k != 0).any() else 0.0
     return ToolPath(tuple(out.segs), plane=scan.plane, style=style.name, radius=radius,
-                    dwells=tuple(out.dwells), units=program.units,
-                    meta={"break_cos": getattr(style, "break_cos", None)})
+                    dwells=tuple(out.dwells), units=program.units, meta=meta)

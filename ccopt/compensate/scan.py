@@ -10,6 +10,8 @@ Conditions no style can compensate are reported here, located.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from itertools import chain
+from operator import attrgetter
 
 import numpy as np
 
@@ -34,10 +36,13 @@ class ScanResult:
     blocks: list[Block]
     k: np.ndarray
     r: np.ndarray
-    gaps: list[list[Block]]
+    gaps: "GapList"
     plane: str
     start_uv: tuple[float, float]
     _cache: dict = field(default_factory=dict, repr=False)
+    #: the moves' start and end ``(n, 3)`` machine coordinates, motions and
+    #: arc and rapid flags, when the scan read them in bulk (:class:`batch.ElementArrays` reuses them)
+    columns: dict | None = None
 
     def __len__(self) -> int:
         return len(self.blocks)
@@ -53,17 +58,77 @@ class ScanResult:
         return [self.element(i) for i in range(len(self.blocks))]
 
 
+class GapList:
+    """``gaps[i]``, ``i`` in ``0..n`` (negative counts from the end): the
+    non-plane blocks before move ``i`` (``gaps[n]``: the trailing ones), an
+    empty tuple where there are none. Held sparse: most moves of a long
+    program have no gap."""
+
+    __slots__ = ("_gaps", "_size")
+
+    def __init__(self, gaps: dict[int, list[Block]], size: int):
+        self._gaps, self._size = gaps, size
+
+    @classmethod
+    def from_lists(cls, lists: list[list[Block]]) -> "GapList":
+        return cls({i: g for i, g in enumerate(lists) if g}, len(lists))
+
+    def __len__(self) -> int:
+        return self._size
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return [self[q] for q in range(*i.indices(self._size))]
+        if i < 0:
+            i += self._size
+        if not 0 <= i < self._size:
+            raise IndexError("gap index out of range")
+        return self._gaps.get(i, ())
+
+    def items(self):
+        """``(i, blocks)`` of the non-empty gaps, in order."""
+        return sorted(self._gaps.items())
+
+    def sizes(self) -> np.ndarray:
+        """Number of blocks of every gap, ``(len(self),)``."""
+        out = np.zeros(self._size, np.int64)
+        for i, g in self._gaps.items():
+            out[i] = len(g)
+        return out
+
+
+#: Programs of fewer blocks are scanned one block at a time: the bulk scan's
+#: fixed cost (numpy calls, about 40 us) is more than the loop's there.
+BULK_MIN_BLOCKS = 64
+
+
 def _err(block: Block, message: str) -> CompensationError:
     s = block.source
     return CompensationError(message, s.file, s.line, s.col)
 
 
 def scan_program(program: Program, radius: float | None = None, side: int | None = None,
-                 style: str = "pmac") -> ScanResult:
+                 style: str = "pmac", bulk: bool | None = None) -> ScanResult:
+    """The program's in-plane moves with their side and radius, and the
+    gaps between them; raises :class:`CompensationError`, located, on what
+    no style can compensate. With ``bulk`` (``None``: programs of at least
+    :data:`BULK_MIN_BLOCKS` blocks), a program in one plane with no ``TM``
+    move and nothing to refuse is read in bulk (:func:`_scan_columns`);
+    anything else one block at a time (:func:`_scan_blocks`, the reference).
+    Both give the same scan (tested)."""
     if radius is not None and radius < 0:
         raise CompensationError(f"--radius {radius:g} must be >= 0", program.file)
     if side not in (None, 1, -1):
         raise CompensationError("side must be left (+1) or right (-1)", program.file)
+    if bulk is None:
+        bulk = len(program.blocks) >= BULK_MIN_BLOCKS
+    fast = _scan_columns(program, radius, side, style) if bulk else None
+    return fast if fast is not None else _scan_blocks(program, radius, side, style)
+
+
+def _scan_blocks(program: Program, radius: float | None, side: int | None,
+                 style: str) -> ScanResult:
+    """:func:`scan_program` one block at a time."""
     moves: list[Block] = []
     ks: list[int] = []
     rs: list[float] = []
@@ -108,11 +173,86 @@ def scan_program(program: Program, radius: float | None = None, side: int | None
         else:
             gaps[-1].append(blk)
     start = program.blocks[0].uvw(program.start)[:2] if program.blocks else (0.0, 0.0)
-    return ScanResult(moves, np.array(ks, dtype=int), np.array(rs, dtype=float), gaps, plane,
-                      (float(start[0]), float(start[1])))
+    return ScanResult(moves, np.array(ks, dtype=int), np.array(rs, dtype=float),
+                      GapList.from_lists(gaps), plane, (float(start[0]), float(start[1])))
+
+
+def _column3(triples, n: int) -> np.ndarray:
+    """``(n, 3)`` float array of ``n`` coordinate triples."""
+    return np.fromiter(chain.from_iterable(triples), float, 3 * n).reshape(n, 3)
+
+
+def _side_radius_by_modal(blocks, modals, radius, side, plane: str):
+    """Side and radius of every block (one look-up per run of blocks that
+    share a modal state), or ``None`` when a look-up refuses (the
+    one-at-a-time scan then raises it, in program order) or a state is in
+    another plane than ``plane``."""
+    n = len(blocks)
+    ids = np.fromiter(map(id, modals), np.int64, n)
+    first = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]])
+    in_force: dict[int, tuple[int, float]] = {}
+    ks, rs = [], []
+    for q in first.tolist():
+        kr = in_force.get(id(modals[q]))
+        if kr is None:
+            if modals[q].plane != plane:
+                return None
+            try:
+                kr = in_force[id(modals[q])] = effective_side_radius(blocks[q], radius, side)
+            except CompensationError:
+                return None
+        ks.append(kr[0])
+        rs.append(kr[1])
+    runs = np.diff(np.r_[first, n])
+    return np.repeat(np.array(ks, int), runs), np.repeat(np.array(rs, float), runs)
+
+
+def _scan_columns(program: Program, radius: float | None, side: int | None,
+                  style: str) -> ScanResult | None:
+    """:func:`scan_program` in bulk (the blocks' fields read once each into
+    arrays), or ``None`` when the program needs the one-at-a-time scan: more
+    than one plane, a ``TM`` move, or a block it refuses."""
+    blocks = program.blocks
+    n = len(blocks)
+    if n == 0:
+        return None
+    if any(t is not None for t in set(map(attrgetter("move_time"), blocks))):
+        return None
+    modals = list(map(attrgetter("modal"), blocks))
+    plane = modals[0].plane
+    kr = _side_radius_by_modal(blocks, modals, radius, side, plane)
+    if kr is None:
+        return None
+    k, r = kr
+    motions = list(map(attrgetter("motion"), blocks))
+    dwell = np.fromiter(map(_DWELL.__contains__, motions), bool, n)
+    arc = np.fromiter(map(_ARCS.__contains__, motions), bool, n)
+    rapid = np.fromiter(map(_RAPID.__contains__, motions), bool, n)
+    st = _column3(map(attrgetter("start"), blocks), n)
+    en = _column3(map(attrgetter("end"), blocks), n)
+    i, j, _ = PLANE_AXES[plane]
+    in_plane = ~dwell & (arc | (st[:, i] != en[:, i]) | (st[:, j] != en[:, j]))
+    if style == "pmac" and not decisions.PMAC_OFFSET_RAPIDS:
+        # A rapid runs uncompensated: the move before it ends as for a
+        # lead-out, the move after it is a lead-in.
+        k = np.where(in_plane & rapid, 0, k)
+        r = np.where(in_plane & rapid, 0.0, r)
+    idx = np.flatnonzero(in_plane)
+    moves = list(blocks) if idx.size == n else [blocks[q] for q in idx.tolist()]
+    gaps: dict[int, list[Block]] = {}
+    before = np.cumsum(in_plane) if idx.size < n else None
+    for q in np.flatnonzero(~in_plane).tolist():
+        gaps.setdefault(int(before[q]), []).append(blocks[q])
+    start = blocks[0].uvw(program.start)[:2]
+    columns = {"start": st[idx], "end": en[idx], "arc": arc[idx], "rapid": rapid[idx],
+               "motions": [motions[q] for q in idx.tolist()] if idx.size < n else motions}
+    return ScanResult(moves, k[idx], r[idx], GapList(gaps, idx.size + 1), plane,
+                      (float(start[0]), float(start[1])), columns=columns)
 
 
 _ARCS = frozenset((Motion.ARC_CW, Motion.ARC_CCW))
+_DWELL = frozenset((Motion.DWELL,))
+_RAPID = frozenset((Motion.RAPID,))
 
 
 def _in_plane(blocks) -> list[bool]:
