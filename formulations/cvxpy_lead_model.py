@@ -228,8 +228,8 @@ class ConvexLeadModel:
     def __init__(self, setup: LeadSetup, problem, lam: float, m: int = M_SAMPLES):
         self.setup = setup
         arcs = sum(el.kind == "arc" for el in setup.elements)
-        self.shape = ModelShape(setup.degree, len(sample_t(m)), len(setup.elements), min(arcs, C_MAX),
-                                setup.sigma_hi > setup.sigma_lo)
+        self.shape = ModelShape(setup.degree, len(sample_t(m)), len(setup.elements),
+                                min(arcs, C_MAX), setup.sigma_hi > setup.sigma_lo)
         self.model = compiled(self.shape)
         self.ref_pts = reference_points(setup, problem)
         xk = setup.initial()
