@@ -101,6 +101,11 @@ STEP_EPS = 1e-5
 #: converged for practical purposes (the tail of the iteration creeps towards the
 #: curvature bound: on leadin-inside-line it changes the lead's time by 1e-4).
 OBJ_RTOL = 1e-3
+#: An iteration whose clearance slack stayed above STALL_SHARE of what it was STALL
+#: subproblems before gives up (on the Fagor cases' open-end episodes the slack stays
+#: at the clearance itself, 2 mm, for all MAX_ITER subproblems of both weights).
+STALL = 3
+STALL_SHARE = 0.9
 #: Slack and exact clearance violation the final iterate may have and still be
 #: feasible (looser than SLACK_EPS: the last solve may be "optimal_inaccurate").
 FEASIBLE_EPS = 1e-7
@@ -121,7 +126,8 @@ def scp(setup: LeadSetup, problem: BlendProblem, lam: float, solver: str = "CLAR
 
     Stopping rule: no slack and a step of at most :data:`STEP_EPS` ``L0`` or an
     optimum within :data:`OBJ_RTOL` of the last, or :data:`MAX_ITER` subproblems,
-    or a trust radius below :data:`TRUST_MIN` ``L0``."""
+    or a trust radius below :data:`TRUST_MIN` ``L0``, or a clearance slack that
+    does not fall (:data:`STALL`)."""
     xk = setup.initial() if x0 is None else np.asarray(x0, float)
     if model is None:
         model = lead_model(setup, problem, lam)
@@ -129,6 +135,7 @@ def scp(setup: LeadSetup, problem: BlendProblem, lam: float, solver: str = "CLAR
     L0 = setup.L0
     delta = TRUST_START * L0
     status, it, slack_max, bound_max, last = None, 0, math.inf, math.inf, math.inf
+    stuck = []      # clearance slack of the iterations so far
     for it in range(1, MAX_ITER + 1):
         model.update(xk, delta)
         status = model.solve(solver)
@@ -139,6 +146,10 @@ def scp(setup: LeadSetup, problem: BlendProblem, lam: float, solver: str = "CLAR
                 break
             continue
         slack_max, bound_max = model.slack_max(), model.bound_slack_max()
+        stuck.append(slack_max)
+        if len(stuck) > STALL and min(stuck[-STALL:]) > STALL_SHARE * stuck[-STALL - 1] and \
+                min(stuck[-STALL:]) > FEASIBLE_EPS * L0:
+            break       # the clearance cannot be met from here: no use iterating on
         step = float(np.max(np.abs(xn - xk)))
         # the linearised rows are safe, but cases may change over a step: check exactly
         if slack_max <= SLACK_EPS * L0 and \
