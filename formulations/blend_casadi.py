@@ -17,8 +17,8 @@ warm start); the solver is a CasADi NLP plug-in (``ipopt`` by default,
                clearance from every element within reach at m_clear samples,
                  by the case of each (ccopt_formulations.clearance): n . p >= n . A + r
                  alongside a line, |p - c|^2 <= (R - r)^2 or >= (R + r)^2 alongside
-                 an arc, |p - E|^2 >= r^2 beyond an end E (beyond a line's open
-                 end too, and u . p >= u . E, u its direction out of E),
+                 an arc, |p - E|^2 >= r^2 beyond an end E (beyond an open end
+                 too, and u . p >= u . E, u the element's direction out of E),
                |r'(t_i)| >= v_min (a regular curve),
                |r'(t_i) x r''(t_i)| <= 0.8 kappa_max |r'(t_i)|^3 (the curvature bound,
                  :func:`ccopt_formulations.lead_setup.curvature_bound`),
@@ -26,8 +26,10 @@ warm start); the solver is a CasADi NLP plug-in (``ipopt`` by default,
 so the path and its speed are optimised together (a small time-optimal
 parametrisation inside the NLP, with the machine's own axis limits; TOPPRA
 on the exact path gives the reported cycle time). The clearance cases are
-taken at the first guess and re-taken at each solution until they no longer
-change (at most :data:`MAX_ROUNDS` rounds).
+taken at the first guess (:func:`ccopt_formulations.lead_setup.first_guess`: one
+that keeps these rows) and re-taken at each solution until they no longer
+change (at most :data:`MAX_ROUNDS` rounds, each after the first warm-started
+from the previous one's multipliers).
 """
 from __future__ import annotations
 

@@ -201,6 +201,23 @@ def exempt_ends(el: Element, vec: np.ndarray) -> np.ndarray:
                     np.asarray(el.geom.end, float))
 
 
+def row_margin(el: Element, p: np.ndarray, cases=None) -> np.ndarray:
+    """How far each point keeps the models' row of ``el`` (>= 0 kept; units): the
+    distance less the clearance, or beyond an open end of a line or an arc the
+    smaller of ``u . p - u . E`` and ``|p - E| - r``; ``inf`` beyond an open end of
+    another kind (no row). ``cases``: :func:`classify` at ``p``, if known."""
+    kind, vec, scal = classify(el, p) if cases is None else cases
+    m = element_distance(el, p) - el.clearance
+    ex = kind == EXEMPT
+    if el.kind in ("line", "arc") and ex.any():
+        E = exempt_ends(el, vec[ex])
+        m[ex] = np.minimum(np.einsum("ij,ij->i", vec[ex], p[ex]) - scal[ex],
+                           np.hypot(*(p[ex] - E).T) - el.clearance)
+    else:
+        m[ex] = np.inf
+    return m
+
+
 def linear_rows(el: Element, p: np.ndarray):
     """Rows ``G . p >= h`` at points ``p`` (``(n, 2)``, ``(n,)``) and the mask of
     points left to a concave cone (their row is void: ``G = 0, h = -inf``)."""

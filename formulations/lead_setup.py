@@ -45,8 +45,7 @@ from ccopt.compare.leads import Lead, LeadGeometry, splice
 from ccopt.geometry import Arc, BezierCurve, Line
 from ccopt.geometry.bezier import DIVISION_FLOOR, g2_end, jerk_gram, speed_profile_time
 from ccopt.geometry.curve import bernstein, derivative_matrix
-from ccopt_formulations.clearance import (EXEMPT, checked_distance, classify, contour_elements,
-                                          element_distance, exempt_ends, near)
+from ccopt_formulations.clearance import checked_distance, contour_elements, near, row_margin
 
 DEGREE = 5
 
@@ -237,16 +236,7 @@ def _model_violation(setup: LeadSetup, pts: np.ndarray) -> np.ndarray:
     flat = pts.reshape(-1, 2)
     worst = np.full(N, -np.inf)
     for el in setup.elements:
-        kind, vec, scal = classify(el, flat)
-        v = el.clearance - element_distance(el, flat)
-        ex = kind == EXEMPT
-        if el.kind in ("line", "arc") and ex.any():
-            E = exempt_ends(el, vec[ex])
-            v[ex] = np.maximum(scal[ex] - np.einsum("ij,ij->i", vec[ex], flat[ex]),
-                               el.clearance - np.hypot(*(flat[ex] - E).T))
-        else:
-            v[ex] = -np.inf
-        worst = np.maximum(worst, np.max(v.reshape(N, m), axis=1))
+        worst = np.maximum(worst, np.max(-row_margin(el, flat).reshape(N, m), axis=1))
     return worst
 
 
