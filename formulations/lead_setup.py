@@ -286,7 +286,7 @@ def first_guess(setup: LeadSetup, m: int = GUESS_SAMPLES) -> np.ndarray:
     """Where a model starts: :meth:`LeadSetup.initial` when it keeps the models'
     clearance rows and is regular at ``m`` samples, else the fastest of
     :func:`guess_grid` that does and turns within the imposed curvature (by the
-    time proxy of :func:`_screen`), else the one nearest to that.
+    time proxy of :func:`_shape`), else the one nearest to that.
 
     (The models take the clearance case of every sample at their first guess: a
     guess through the band of an element, or round the wrong side of an end, can
@@ -298,7 +298,7 @@ def first_guess(setup: LeadSetup, m: int = GUESS_SAMPLES) -> np.ndarray:
         return x
     X = guess_grid(setup)
     pts, regular, bent, T = _shape(setup, X, m)
-    # the fastest shapely candidate that keeps the clearance rows, judged in order
+    # the fastest regular, bounded candidate keeping the clearance rows, judged in order
     # of time, a block at a time (most of the cost is the clearance)
     order = np.flatnonzero(regular & bent)
     order = order[np.argsort(T[order], kind="stable")]
@@ -308,7 +308,8 @@ def first_guess(setup: LeadSetup, m: int = GUESS_SAMPLES) -> np.ndarray:
         if ok.any():
             return X[rows[np.argmax(ok)]]
     viol = _model_violation(setup, pts[:, 1:-1])
-    return X[np.argmin(np.maximum(viol, 0.0) + setup.L0 * (~regular + ~bent))]
+    misfit = (~regular).astype(float) + (~bent).astype(float)
+    return X[np.argmin(np.maximum(viol, 0.0) + setup.L0 * misfit)]
 
 
 def lead_setup(problem: BlendProblem, lead: Lead, *, join: str = "start",
