@@ -17,8 +17,8 @@ warm start); the solver is a CasADi NLP plug-in (``ipopt`` by default,
                clearance from every element within reach at m_clear samples,
                  by the case of each (ccopt_formulations.clearance): n . p >= n . A + r
                  alongside a line, |p - c|^2 <= (R - r)^2 or >= (R + r)^2 alongside
-                 an arc, |p - E|^2 >= r^2 beyond an end E (beyond a line's open
-                 end too, and u . p >= u . E, u its direction out of E),
+                 an arc, |p - E|^2 >= r^2 beyond an end E (beyond an open end
+                 too, and u . p >= u . E, u the element's direction out of E),
                |r'(t_i)| >= v_min (a regular curve),
                |r'(t_i) x r''(t_i)| <= 0.8 kappa_max |r'(t_i)|^3 (the curvature bound,
                  :func:`ccopt_formulations.lead_setup.curvature_bound`),
@@ -26,8 +26,10 @@ warm start); the solver is a CasADi NLP plug-in (``ipopt`` by default,
 so the path and its speed are optimised together (a small time-optimal
 parametrisation inside the NLP, with the machine's own axis limits; TOPPRA
 on the exact path gives the reported cycle time). The clearance cases are
-taken at the first guess and re-taken at each solution until they no longer
-change (at most :data:`MAX_ROUNDS` rounds).
+taken at the first guess (:func:`ccopt_formulations.lead_setup.first_guess`: one
+that keeps these rows) and re-taken at each solution until they no longer
+change (at most :data:`MAX_ROUNDS` rounds, each after the first warm-started
+from the previous one's multipliers).
 """
 from __future__ import annotations
 
@@ -39,9 +41,10 @@ import numpy as np
 from ccopt.compare.contract import BlendProblem
 from ccopt.geometry.bezier import DIVISION_FLOOR, curve_samples, end_acceleration, jerk_gram
 from ccopt.geometry.curve import bernstein, derivative_matrix
-from ccopt_formulations.clearance import CONCAVE, CONVEX, END, EXEMPT, LINE, classify
+from ccopt_formulations.clearance import (CONCAVE, CONVEX, END, EXEMPT, LINE, classify,
+                                          exempt_ends)
 from ccopt_formulations.lead_setup import (CURVATURE_MODEL_SHARE, V_MIN_FRACTION, LeadSetup,
-                                           run_leads)
+                                           first_guess, run_leads)
 
 #: Rounds of "solve, re-classify the clearance cases at the solution".
 MAX_ROUNDS = 4
@@ -67,6 +70,23 @@ IPOPT_TOL = 1e-9
 #: 220-240); a lead still unsolved after this many keeps PMAC's (with 1000, two
 #: such leads took 3/4 of opt-casadi's time on fagor-g136-g138).
 IPOPT_MAX_ITER = 500
+#: IPOPT's first barrier parameter (its default is 0.1). The model has about a
+#: thousand inequality rows and an objective of a few seconds: at 0.1 the first
+#: barrier problems are all barrier, whose centre lies where the rows are slack,
+#: far out (|p - E| >= r has no upper side): IPOPT took Newton steps of 1e5 mm
+#: cut to a thousandth, 500 iterations without converging on
+#: fagor-seed-line-cancel, and 200-240 on the z-plunge and sidechange lead-ins.
+#: At 1e-3 every bundled lead solves in 22 to 82 iterations (3,322 in all against
+#: 7,651), to the same or a lower objective but for two leads (+0.04 % and +0.1 %).
+IPOPT_MU_INIT = 1e-3
+#: IPOPT's options for a round warm-started from the previous round's solution
+#: and multipliers (the rows are the same, only the clearance cases of a few
+#: samples change): a small barrier parameter and small pushes off the bounds, so
+#: that IPOPT stays where it is instead of re-centring (a round started from
+#: its own converged point took 187 iterations on fagor-g136-g138 without them).
+IPOPT_WARM = {"ipopt.warm_start_init_point": "yes", "ipopt.mu_init": 1e-6,
+              "ipopt.warm_start_bound_push": 1e-9, "ipopt.warm_start_slack_bound_push": 1e-9,
+              "ipopt.warm_start_mult_bound_push": 1e-9}
 
 
 def classes_at(setup: LeadSetup, x, m_clear: int):
@@ -83,18 +103,18 @@ class ModelShape:
 
     host_kind: str      # "line" | "arc"
     degree: int
+    n_free: int         # free control points (LeadSetup.n_free)
+    nx: int             # length of the decision vector (LeadSetup.nx)
     elements: int       # contour elements constrained
     m_clear: int
     m_time: int
     solver: str
 
-    @property
-    def n_free(self) -> int:
-        return self.degree - 3
-
-    @property
-    def nx(self) -> int:
-        return 2 * self.n_free + 3
+    @classmethod
+    def of(cls, setup: LeadSetup, m_clear: int, m_time: int, solver: str) -> "ModelShape":
+        """The shape of ``setup``'s NLP (its sizes as :class:`LeadSetup` defines them)."""
+        return cls(setup.host_kind, setup.degree, setup.n_free, setup.nx,
+                   len(setup.elements), m_clear, m_time, solver)
 
 
 class _Symbols:
@@ -213,12 +233,14 @@ def clearance_numbers(setup: LeadSetup, classes):
 
     alongside a line ``n . p >= n . A + r``; alongside a concave arc
     ``-|p - c|^2 >= -(R - r)^2``; a convex one ``|p - c|^2 >= (R + r)^2``;
-    beyond an end ``E`` ``|p - E|^2 >= r^2``; beyond a line's *open* end ``E``
-    ``u . p >= u . E`` and ``|p - E|^2 >= r^2`` (the verifier checks no point
-    there, but one just inside the end it does, and a sample left free would
-    drift into the band along the line, where the next round, with its case
-    re-taken, could not move it out); beyond an arc's open end: free (both rows
-    void, lower bound ``-inf``).
+    beyond an end ``E`` ``|p - E|^2 >= r^2``; beyond an *open* end ``E`` of a
+    line or an arc ``u . p >= u . E`` and ``|p - E|^2 >= r^2`` (the verifier
+    checks no point there, but one just inside the end it does, and a sample
+    left free would drift into the band along the element, where the next
+    round, with its case re-taken, could not move it out: beyond an arc's open
+    end, left free, samples crossed its end radius inside the band between two
+    samples on fagor-g136-g138, round after round); beyond an open end of
+    another kind: free (both rows void, lower bound ``-inf``).
     """
     rows1, rows2, lo1, lo2 = [], [], [], []
     for el, (kind, vec, scal) in zip(setup.elements, classes):
@@ -233,12 +255,10 @@ def clearance_numbers(setup: LeadSetup, classes):
             k = kind == case
             C1[k, 2], C1[k, 3:5], C1[k, 5] = sign, vec[k], sign * scal[k] ** 2
         k = kind == EXEMPT
-        if el.kind == "line" and k.any():
-            d = np.subtract(el.geom.p1, el.geom.p0)
-            at_start = vec[k] @ d < 0.0
+        if el.kind in ("line", "arc") and k.any():
             C1[k, 0:2], C1[k, 5] = vec[k], scal[k]
             C2[k, 0] = 1.0
-            C2[k, 1:3] = np.where(at_start[:, None], el.geom.p0, el.geom.p1)
+            C2[k, 1:3] = exempt_ends(el, vec[k])
             C2[k, 3] = el.clearance ** 2
             l2[k] = 0.0
         else:
@@ -247,6 +267,8 @@ def clearance_numbers(setup: LeadSetup, classes):
         rows2.append(C2)
         lo1.append(l1)
         lo2.append(l2)
+    if not rows1:        # no element within reach: no clearance rows
+        return np.zeros((0, ROW1)), np.zeros((0, ROW2)), np.zeros(0), np.zeros(0)
     return np.vstack(rows1), np.vstack(rows2), np.concatenate(lo1), np.concatenate(lo2)
 
 
@@ -323,7 +345,8 @@ def lead_solver(shape: ModelShape, options: dict | None = None) -> LeadSolver:
     if key not in _SOLVERS:
         opts = {"ipopt.print_level": 0, "print_time": False, "ipopt.sb": "yes",
                 "ipopt.tol": IPOPT_TOL, "ipopt.constr_viol_tol": IPOPT_TOL,
-                "ipopt.max_iter": IPOPT_MAX_ITER} if shape.solver == "ipopt" else {}
+                "ipopt.max_iter": IPOPT_MAX_ITER, "ipopt.mu_init": IPOPT_MU_INIT} \
+            if shape.solver == "ipopt" else {}
         opts.update(options or {})
         _SOLVERS[key] = LeadSolver(shape, ca.nlpsol("lead", shape.solver, _lead_nlp(shape),
                                                     opts))
@@ -346,12 +369,15 @@ def speed_squares(setup: LeadSetup, x, m: int) -> np.ndarray:
 
 
 def solve_round(setup: LeadSetup, classes, m_clear: int, solver: str = "ipopt",
-                options: dict | None = None, x0=None, m_time: int = M_TIME):
-    """One solve of the lead's NLP with the clearance cases ``classes``: ``(X, stats)``
-    (``X``: the decision vector and the squared speeds)."""
-    shape = ModelShape(setup.host_kind, setup.degree, len(setup.elements), m_clear, m_time,
-                       solver)
-    ls = lead_solver(shape, options)
+                options: dict | None = None, x0=None, m_time: int = M_TIME, duals=None):
+    """One solve of the lead's NLP with the clearance cases ``classes``: ``(X, stats,
+    duals)`` (``X``: the decision vector and the squared speeds; ``duals``: the
+    multipliers of the bounds and of the rows). Given the ``duals`` of an earlier
+    round of the same shape (and IPOPT), the solve is warm-started from them
+    (:data:`IPOPT_WARM`)."""
+    shape = ModelShape.of(setup, m_clear, m_time, solver)
+    warm = duals is not None and solver == "ipopt"
+    ls = lead_solver(shape, {**IPOPT_WARM, **(options or {})} if warm else options)
     C1, C2, lo1, lo2 = clearance_numbers(setup, classes)
     p = np.r_[_Symbols.values(setup), C1.ravel(order="F"), C2.ravel(order="F")]
     lbg, ubg = ls.bounds_g(setup, lo1, lo2, m_time)
@@ -362,12 +388,15 @@ def solve_round(setup: LeadSetup, classes, m_clear: int, solver: str = "ipopt",
         xi = setup.initial()
         x0 = np.r_[xi, speed_squares(setup, xi, m_time)]
     S = ls.function
-    res = S(x0=x0, p=p, lbx=np.r_[lo, np.zeros(m_time)], ubx=np.r_[hi, bhi], lbg=lbg, ubg=ubg)
+    extra = {"lam_x0": duals[0], "lam_g0": duals[1]} if warm else {}
+    res = S(x0=x0, p=p, lbx=np.r_[lo, np.zeros(m_time)], ubx=np.r_[hi, bhi], lbg=lbg, ubg=ubg,
+            **extra)
     st = S.stats()
     return np.asarray(res["x"]).ravel(), {"solver": solver, "status": st.get("return_status"),
                                           "success": bool(st.get("success")),
                                           "iterations": int(st.get("iter_count", -1)),
-                                          "objective": float(res["f"])}
+                                          "objective": float(res["f"])}, \
+        (np.asarray(res["lam_x"]).ravel(), np.asarray(res["lam_g"]).ravel())
 
 
 def solve_lead(setup: LeadSetup, solver: str = "ipopt"):
@@ -385,11 +414,12 @@ def solve_lead(setup: LeadSetup, solver: str = "ipopt"):
     """
     t0 = time.perf_counter()
     m_clear = M_CLEAR * setup.refine
-    x = setup.initial()
+    x = first_guess(setup)
     classes = classes_at(setup, x, m_clear)
-    X, stats, rounds = None, {}, 0
+    X, stats, rounds, duals = None, {}, 0, None
     for rounds in range(1, MAX_ROUNDS + 1):
-        X_new, st = solve_round(setup, classes, m_clear, solver, x0=X)
+        x0 = X if X is not None else np.r_[x, speed_squares(setup, x, M_TIME)]
+        X_new, st, duals_new = solve_round(setup, classes, m_clear, solver, x0=x0, duals=duals)
         if not st["success"]:
             if X is None:
                 raise RuntimeError(f"IPOPT: {st['status']}")
@@ -397,7 +427,7 @@ def solve_lead(setup: LeadSetup, solver: str = "ipopt"):
                              f"{st['status']}; round {rounds - 1}'s solution kept")
             rounds -= 1
             break
-        X, stats = X_new, st
+        X, stats, duals = X_new, st, duals_new
         x = X[:setup.nx]
         new = classes_at(setup, x, m_clear)
         if all(np.array_equal(a[0], b[0]) for a, b in zip(new, classes)):

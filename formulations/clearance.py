@@ -12,10 +12,11 @@ distance to the element is exactly one of (by where the foot of ``p`` lies):
 - ``EXEMPT``: the foot beyond an *open* end, where the contour stops (the
   verifier's decision ``OPEN_END_EXEMPTION``, :mod:`ccopt.verify.decisions`:
   such points are not checked against that element). :func:`classify` gives,
-  beyond a line's open end ``E``, the half-plane ``u . p >= u . E`` (``u`` the
-  line's direction out of that end: exactly the exempt region), which the
-  CasADi model imposes there together with ``|p - E| >= r``; the convex rows
-  leave exempt points free.
+  beyond an open end ``E``, the half-plane ``u . p >= u . E`` (``u`` the
+  element's direction out of that end: beyond a line's end exactly the exempt
+  region; beyond an arc's, the half-plane past the end's radius, which holds
+  every exempt point nearer that end), which the CasADi model imposes there
+  together with ``|p - E| >= r``; the convex rows leave exempt points free.
 
 :func:`classify` says which, at a given set of points (the models re-classify
 at every iterate; on the boundary between two cases both give the same
@@ -117,8 +118,8 @@ def checked_distance(el: Element, pts: np.ndarray) -> np.ndarray:
 def classify(el: Element, p: np.ndarray):
     """``(kind, vec, scal)`` per point (see the module docstring): for ``LINE`` the
     unit normal and ``n . A + r``; for ``CONCAVE``/``CONVEX`` the centre and
-    ``R -/+ r``; for ``END`` the end point and ``r``; for ``EXEMPT`` beyond a
-    line's open end ``u`` and ``u . E`` (beyond an arc's: unused)."""
+    ``R -/+ r``; for ``END`` the end point and ``r``; for ``EXEMPT`` beyond an
+    open end ``u`` and ``u . E`` (``u`` the direction out of that end)."""
     p = np.asarray(p, float)
     n = len(p)
     kind = np.full(n, END)
@@ -163,15 +164,58 @@ def classify(el: Element, p: np.ndarray):
         e0, e1 = np.asarray(g.start, float), np.asarray(g.end, float)
         near0 = np.hypot(*(p - e0).T) <= np.hypot(*(p - e1).T)
         vec[~inside] = np.where(near0[~inside, None], e0, e1)
-        if el.open_start:
-            kind[~inside & near0] = EXEMPT
-        if el.open_end:
-            kind[~inside & ~near0] = EXEMPT
+        # beyond an open end: the half-plane past the end's radius, u . p >= u . E with
+        # u the arc's direction out of that end (every point beyond that end, nearer
+        # it than the other end, lies there: it spans 180 degrees from the end's ray)
+        u0, u1 = out_directions(el)
+        for is_open, m, E, u in ((el.open_start, ~inside & near0, e0, u0),
+                                 (el.open_end, ~inside & ~near0, e1, u1)):
+            if is_open:
+                kind[m], vec[m], scal[m] = EXEMPT, u, float(u @ E)
         return kind, vec, scal
     q = _dense(el, 2049)
     k = np.argmin(np.hypot(p[:, None, 0] - q[None, :, 0], p[:, None, 1] - q[None, :, 1]), axis=1)
     vec[:] = q[k]
     return kind, vec, scal
+
+
+def out_directions(el: Element):
+    """Unit directions ``(u0, u1)`` of a line or arc element out of its start and out
+    of its end (the ``vec`` :func:`classify` gives beyond an open end)."""
+    g = el.geom
+    if el.kind == "line":
+        d = np.subtract(g.p1, g.p0) / max(float(g.length), DIVISION_FLOOR)
+        return -d, d
+    s = math.copysign(1.0, g.sweep)
+    t0, t1 = g.theta0, g.theta0 + g.sweep
+    return (-s * np.array([-math.sin(t0), math.cos(t0)]),
+            s * np.array([-math.sin(t1), math.cos(t1)]))
+
+
+def exempt_ends(el: Element, vec: np.ndarray) -> np.ndarray:
+    """The open end (``(n, 2)``) each exempt point of :func:`classify` lies beyond,
+    from its direction ``vec`` out of that end."""
+    u0, u1 = out_directions(el)
+    at_start = np.hypot(*(vec - u0).T) <= np.hypot(*(vec - u1).T)
+    return np.where(at_start[:, None], np.asarray(el.geom.start, float),
+                    np.asarray(el.geom.end, float))
+
+
+def row_margin(el: Element, p: np.ndarray, cases=None) -> np.ndarray:
+    """How far each point keeps the models' row of ``el`` (>= 0 kept; units): the
+    distance less the clearance, or beyond an open end of a line or an arc the
+    smaller of ``u . p - u . E`` and ``|p - E| - r``; ``inf`` beyond an open end of
+    another kind (no row). ``cases``: :func:`classify` at ``p``, if known."""
+    kind, vec, scal = classify(el, p) if cases is None else cases
+    m = element_distance(el, p) - el.clearance
+    ex = kind == EXEMPT
+    if el.kind in ("line", "arc") and ex.any():
+        E = exempt_ends(el, vec[ex])
+        m[ex] = np.minimum(np.einsum("ij,ij->i", vec[ex], p[ex]) - scal[ex],
+                           np.hypot(*(p[ex] - E).T) - el.clearance)
+    else:
+        m[ex] = np.inf
+    return m
 
 
 def linear_rows(el: Element, p: np.ndarray):

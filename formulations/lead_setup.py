@@ -43,9 +43,9 @@ from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.figures import FEED_ROLES, curvature_samples
 from ccopt.compare.leads import Lead, LeadGeometry, splice
 from ccopt.geometry import Arc, BezierCurve, Line
-from ccopt.geometry.bezier import g2_end, jerk_gram, speed_profile_time
-from ccopt.geometry.curve import bernstein
-from ccopt_formulations.clearance import checked_distance, contour_elements, near
+from ccopt.geometry.bezier import DIVISION_FLOOR, g2_end, jerk_gram, speed_profile_time
+from ccopt.geometry.curve import bernstein, derivative_matrix
+from ccopt_formulations.clearance import checked_distance, contour_elements, near, row_margin
 
 DEGREE = 5
 
@@ -196,6 +196,122 @@ class LeadSetup:
                    for el in self.elements)
 
 
+# --------------------------------------------------------------------------- first guess
+
+
+#: The first guesses :func:`first_guess` tries when :meth:`LeadSetup.initial`
+#: does not do: each free point at ``A + along (J - A) + across |J - A| n``
+#: (``J`` the join, ``n`` the unit normal of ``J - A``), the legs ``a`` at these
+#: multiples of ``|J - A|``, ``e = 0``. Beyond ``J`` (``along`` > 1) and to either
+#: side, so that a guess can go round an open end of the contour or make a U-turn
+#: onto the host (fagor-g136-g138's 170 degree episodes need both).
+GUESS_ALONG = (0.1, 0.4, 0.7, 1.0, 1.3)
+GUESS_ACROSS = (-0.6, -0.3, 0.0, 0.3, 0.6)
+GUESS_LEGS = (0.1, 0.2, 0.4)
+
+
+def guess_grid(setup: LeadSetup) -> np.ndarray:
+    """Candidate decision vectors (rows; see :data:`GUESS_ALONG`): the first and the
+    last free point on the grid, those between them evenly between."""
+    sigma = 0.5 * (setup.sigma_lo + setup.sigma_hi)
+    J = setup.host_frame(sigma)[0]
+    d = float(np.linalg.norm(J - setup.A))
+    u = (J - setup.A) / max(d, DIVISION_FLOOR)
+    nrm = np.array([-u[1], u[0]])
+    grid = np.array([setup.A + al * (J - setup.A) + ac * d * nrm
+                     for al in GUESS_ALONG for ac in GUESS_ACROSS])
+    first, last = np.repeat(grid, len(grid), axis=0), np.tile(grid, (len(grid), 1))
+    w = np.linspace(0.0, 1.0, setup.n_free) if setup.n_free > 1 else np.zeros(1)
+    free = first[:, None, :] + w[None, :, None] * (last - first)[:, None, :]
+    rows = [np.c_[free.reshape(len(first), -1), np.full((len(first), 3), (leg * d, 0.0, sigma))]
+            for leg in GUESS_LEGS]
+    return np.vstack(rows)
+
+
+def _model_violation(setup: LeadSetup, pts: np.ndarray) -> np.ndarray:
+    """Largest violation of the models' clearance rows (``clearance - distance``; beyond
+    an open end of a line or an arc the half-plane and ``|p - E| >= r``) at the points
+    ``pts`` (``(N, m, 2)``), per row ``N``."""
+    N, m = pts.shape[:2]
+    flat = pts.reshape(-1, 2)
+    worst = np.full(N, -np.inf)
+    for el in setup.elements:
+        worst = np.maximum(worst, np.max(-row_margin(el, flat).reshape(N, m), axis=1))
+    return worst
+
+
+def _shape(setup: LeadSetup, X: np.ndarray, m: int):
+    """``(samples, regular, within the curvature the models impose, time proxy)`` of
+    the candidate rows ``X`` at ``m`` samples (``(N, m, 2)``, then per row); the time
+    proxy runs each sample's piece at the feed or at the speed its curvature
+    allows, ``sqrt(a / kappa)``."""
+    n = setup.degree
+    P = _controls_many(setup, X)
+    t = np.linspace(0.0, 1.0, m)
+    pts = bernstein(t, n) @ P                                  # (N, m, 2)
+    d1 = (bernstein(t, n - 1) @ derivative_matrix(n, 1)) @ P
+    d2 = (bernstein(t, n - 2) @ derivative_matrix(n, 2)) @ P
+    sp = np.hypot(d1[..., 0], d1[..., 1])
+    kappa = np.abs(d1[..., 0] * d2[..., 1] - d1[..., 1] * d2[..., 0]) / np.maximum(
+        sp, DIVISION_FLOOR) ** 3
+    regular = np.all(sp >= V_MIN_FRACTION * setup.L0, axis=1)
+    bent = np.all(kappa <= CURVATURE_MODEL_SHARE * setup.kappa_max, axis=1)
+    v = np.minimum(setup.feed, np.sqrt(float(np.min(setup.acc)) / np.maximum(kappa,
+                                                                              DIVISION_FLOOR)))
+    ds = np.hypot(*np.moveaxis(np.diff(pts, axis=1), -1, 0))
+    T = np.sum(2.0 * ds / (v[:, :-1] + v[:, 1:]), axis=1)
+    return pts, regular, bent, T
+
+
+def _controls_many(setup: LeadSetup, X: np.ndarray) -> np.ndarray:
+    """:meth:`LeadSetup.controls` of many rows ``X`` (``(N, n+1, 2)``)."""
+    N = len(X)
+    P = np.empty((N, setup.degree + 1, 2))
+    P[:, 0] = setup.A
+    P[:, 1:setup.n_free + 1] = X[:, :2 * setup.n_free].reshape(N, -1, 2)
+    for key in {tuple(r) for r in X[:, -3:]}:
+        rows = np.all(X[:, -3:] == key, axis=1)
+        J, t, k = setup.host_frame(key[2])
+        P[rows, setup.n_free + 1:] = g2_end(J, t, k, key[0], key[1], setup.degree)
+    return P
+
+
+#: Curve samples at which :func:`first_guess` judges a guess (the models' own
+#: clearance samples before any refinement), and candidates judged at once.
+GUESS_SAMPLES = 61
+GUESS_BLOCK = 128
+
+
+def first_guess(setup: LeadSetup, m: int = GUESS_SAMPLES) -> np.ndarray:
+    """Where a model starts: :meth:`LeadSetup.initial` when it keeps the models'
+    clearance rows and is regular at ``m`` samples, else the fastest of
+    :func:`guess_grid` that does and turns within the imposed curvature (by the
+    time proxy of :func:`_shape`), else the one nearest to that.
+
+    (The models take the clearance case of every sample at their first guess: a
+    guess through the band of an element, or round the wrong side of an end, can
+    leave them no feasible point near it: fagor-g136-g138's 170 degree episodes,
+    leadin-outside-arc's lead-in, fagor-seed-line-cancel's lead-in.)"""
+    x = setup.initial()
+    pts, regular, _, _ = _shape(setup, x[None, :], m)
+    if regular[0] and _model_violation(setup, pts[:, 1:-1])[0] <= 0.0:
+        return x
+    X = guess_grid(setup)
+    pts, regular, bent, T = _shape(setup, X, m)
+    # the fastest regular, bounded candidate keeping the clearance rows, judged in order
+    # of time, a block at a time (most of the cost is the clearance)
+    order = np.flatnonzero(regular & bent)
+    order = order[np.argsort(T[order], kind="stable")]
+    for k in range(0, len(order), GUESS_BLOCK):
+        rows = order[k:k + GUESS_BLOCK]
+        ok = _model_violation(setup, pts[rows, 1:-1]) <= 0.0
+        if ok.any():
+            return X[rows[np.argmax(ok)]]
+    viol = _model_violation(setup, pts[:, 1:-1])
+    misfit = (~regular).astype(float) + (~bent).astype(float)
+    return X[np.argmin(np.maximum(viol, 0.0) + setup.L0 * misfit)]
+
+
 def lead_setup(problem: BlendProblem, lead: Lead, *, join: str = "start",
                refine: int = 1, w_jerk: float = W_JERK, degree: int = DEGREE) -> LeadSetup:
     """Numbers for one lead of ``problem.reference`` (see the module docstring)."""
@@ -295,13 +411,26 @@ def too_tight(setup: "LeadSetup", geom) -> str | None:
 ATTEMPTS = (1, 3, 9)
 
 
-def _made(path, cand) -> list[int]:
+def _made(path, cand, neighbours: bool = True) -> list[int]:
     """The segments of ``cand`` the splice made, and their neighbours (a lead-out's
     blend is the curve reversed, a new object, so it is found by what is new, not
-    by the curve)."""
+    by the curve); ``neighbours=False``: the made ones alone."""
     old = {id(s) for s in path.segments}
     made = [i for i, s in enumerate(cand.segments) if id(s) not in old]
+    if not neighbours:
+        return made
     return sorted({j for i in made for j in (i - 1, i, i + 1) if 0 <= j < len(cand.segments)})
+
+
+def _beside(problem: BlendProblem, path, cand) -> bool:
+    """Whether a rejected ``cand`` passes on the segments the splice made alone: its
+    violation then lies on a neighbour the splice left as it was (PMAC's own host
+    gouging, as on sidechange-reversal), which no denser samples can move."""
+    try:
+        problem.accept(cand, _made(path, cand, neighbours=False))
+    except BlendRejected:
+        return False
+    return True
 
 
 def run_leads(problem: BlendProblem, solve_lead, name: str,
@@ -361,6 +490,8 @@ def run_leads(problem: BlendProblem, solve_lead, name: str,
                 cert = problem.accept(cand, _made(path, cand))
             except BlendRejected as exc:
                 last_err = str(exc)
+                if _beside(problem, path, cand):
+                    break
                 continue
             path, path_cert = cand, cert
             entry.update({f"solver_{k}": v for k, v in info.items()})
