@@ -33,6 +33,7 @@ import numpy as np
 from ccopt.geometry import Arc, Line, point_arc, point_segment
 from ccopt.geometry.bezier_arclength import ARC_LENGTH_REL_TOL
 from ccopt.geometry.curve import curvature_bound
+from ccopt.geometry.point_distance import point_segment_cols
 from ccopt.tolerances import POINT_EPS, VERIFY_EPS, VERIFY_TANGENT_BREAK
 from ccopt.toolpath import Role, ToolPath
 
@@ -202,7 +203,7 @@ class _Distances:
         d = np.full(len(pts), math.inf)
         for g in geoms:
             if isinstance(g, Line):
-                d = np.minimum(d, point_segment(pts, g.p0, g.p1)[0])
+                d = np.minimum(d, point_segment_cols(pts[:, 0], pts[:, 1], *g.p0, *g.p1)[0])
             elif isinstance(g, Arc):
                 d = np.minimum(d, point_arc(pts, g.center, g.radius, g.theta0, g.sweep)[0])
             else:
@@ -210,8 +211,10 @@ class _Distances:
                 near, k = tree.query(pts)
                 k0 = np.clip(k - 1, 0, len(q) - 2)
                 k1 = np.clip(k, 0, len(q) - 2)
-                chord = np.minimum(point_segment(pts, q[k0], q[k0 + 1])[0],
-                                   point_segment(pts, q[k1], q[k1 + 1])[0])
+                px, py = pts[:, 0], pts[:, 1]
+                chord = np.minimum(
+                    point_segment_cols(px, py, *q[k0].T, *q[k0 + 1].T)[0],
+                    point_segment_cols(px, py, *q[k1].T, *q[k1 + 1].T)[0])
                 d = np.minimum(d, np.minimum(near, chord + gap))
         return d
 
@@ -314,8 +317,12 @@ def _one_side(src: ToolPath, dst: ToolPath, h: float):
         top = max(top, float(d.max()))
         best = np.argsort(d)[-5:]
         cand += [(float(d[i]), pts[i], local) for i in best]
-    cand.sort(key=lambda c: c[0])
-    est = max(min(dist.exact(p, local, dd + h), dd) for dd, p, local in cand[-20:])
+    cand.sort(key=lambda c: c[0], reverse=True)
+    est = 0.0
+    for dd, p, local in cand[:20]:
+        if dd <= est:       # min(exact, dd) cannot raise the estimate any more
+            break
+        est = max(est, min(dist.exact(p, local, dd + h), dd))
     return est, bound
 
 

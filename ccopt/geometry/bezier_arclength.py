@@ -167,11 +167,15 @@ class ArcLengthTable:
         """``t`` with ``|s(t) - s| <= tol`` for each ``s`` (1-D array, clipped to
         ``[0, length]``); ``0`` and ``length`` give ``t = 0`` and ``1`` exactly."""
         s = np.clip(np.asarray(s, float).reshape(-1), 0.0, self.length)
+        # the ends by definition: the curve's end points come out exactly
+        t = np.where(s >= self.length, 1.0, 0.0)
+        active = np.flatnonzero((s > 0.0) & (s < self.length))
+        if not active.size:
+            return t
         last = len(self.knots_t) - 2
         j = np.clip(np.searchsorted(self.knots_s, s, side="right") - 1, 0, last)
-        t = self._guess(j, s)
-        lo, hi = self.knots_t[j].copy(), self.knots_t[j + 1].copy()
-        active = np.arange(s.size)
+        t[active] = self._guess(j[active], s[active])
+        lo, hi = self.knots_t[j], self.knots_t[j + 1]      # fancy indexing: copies
         for _ in range(MAX_INVERSION_ROUNDS):
             ja, ta = j[active], t[active]
             res = (self.knots_s[ja] + gauss_legendre(self._C1, self.knots_t[ja], ta)
@@ -193,7 +197,4 @@ class ArcLengthTable:
             active = active[~stuck]
             if not active.size:
                 break
-        # the ends by definition: the curve's end points come out exactly
-        t[s <= 0.0] = 0.0
-        t[s >= self.length] = 1.0
         return t

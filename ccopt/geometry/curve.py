@@ -274,6 +274,10 @@ def inflections(ctrl) -> list[float]:
 #: points|)`` on the check grid is not regular (the arc-length map needs it > 0).
 REGULAR_SPEED_REL = 1e-12
 
+#: Inversions ``s -> t`` a curve keeps for reuse (the feed planners evaluate up to
+#: four orders, on both sides of the gridpoints, at the same arc lengths).
+RECENT_INVERSIONS = 8
+
 #: Speed samples of the regularity check (equal steps of ``t``, ends included).
 REGULAR_CHECK_SAMPLES = 2049
 
@@ -302,9 +306,10 @@ class BezierCurve:
     _D2: np.ndarray = field(init=False, repr=False)
     _D3: np.ndarray = field(init=False, repr=False)
     _table: ArcLengthTable = field(init=False, repr=False)
-    # the last inversion (s as bytes, t): toppra and the profile sampler ask for
-    # the point and its derivatives at the same s one order at a time
-    _last: tuple = field(init=False, repr=False)
+    # recent inversions {s as bytes: t}: toppra and the profile sampler ask for the
+    # point and its derivatives at the same s one order (and one side) at a time
+    _recent: dict = field(init=False, repr=False)
+    _box: tuple | None = field(init=False, repr=False)
 
     def __post_init__(self):
         P = np.asarray(self.control_points, dtype=float)
@@ -325,7 +330,8 @@ class BezierCurve:
         if speed_check.min() <= REGULAR_SPEED_REL * max(1.0, float(np.abs(P).max())):
             raise ValueError("the Bezier curve is not regular (its speed vanishes)")
         object.__setattr__(self, "_table", ArcLengthTable(D1))
-        object.__setattr__(self, "_last", (None, None))
+        object.__setattr__(self, "_recent", {})
+        object.__setattr__(self, "_box", None)
 
     def __reduce__(self):
         # only the control points travel (to worker processes): the rest is rebuilt
@@ -337,15 +343,18 @@ class BezierCurve:
         return len(self._P) - 1
 
     def _t(self, s) -> np.ndarray:
-        """Parameters at arc lengths ``s`` (1-D, clipped); the last answer is reused."""
+        """Parameters at arc lengths ``s`` (1-D, clipped); the last
+        :data:`RECENT_INVERSIONS` answers are reused (read-only arrays)."""
         s = np.clip(np.atleast_1d(np.asarray(s, dtype=float)).reshape(-1), 0.0, self.length)
         key = s.tobytes()
-        last_key, last_t = self._last
-        if last_key == key:
-            return last_t
-        t = self._table.t_of_s(s)
-        t.setflags(write=False)
-        object.__setattr__(self, "_last", (key, t))
+        recent = self._recent
+        t = recent.get(key)
+        if t is None:
+            t = self._table.t_of_s(s)
+            t.setflags(write=False)
+            if len(recent) >= RECENT_INVERSIONS:
+                recent.pop(next(iter(recent)))      # the oldest (dicts keep insertion order)
+            recent[key] = t
         return t
 
     def t_of_s(self, s) -> np.ndarray:
@@ -427,7 +436,13 @@ class BezierCurve:
         return self._out(dkappa[:, None] * N - (kappa * kappa)[:, None] * T, s)
 
     def bbox(self) -> tuple[float, float, float, float]:
-        """Exact bounding box: end points and the roots of each derivative component."""
+        """Exact bounding box: end points and the roots of each derivative component
+        (computed once)."""
+        if self._box is None:
+            object.__setattr__(self, "_box", self._bbox())
+        return self._box
+
+    def _bbox(self) -> tuple[float, float, float, float]:
         ts = [0.0, 1.0]
         n1 = len(self._D1) - 1
         for axis in range(2):
