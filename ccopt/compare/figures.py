@@ -30,9 +30,10 @@ import math
 
 import numpy as np
 
-from ccopt.geometry import Arc, Line, point_arc, point_segment
+from ccopt.geometry import Arc, Line, point_segment
 from ccopt.geometry.bezier_arclength import ARC_LENGTH_REL_TOL
 from ccopt.geometry.curve import curvature_bound
+from ccopt.geometry.columns import PreparedArcs
 from ccopt.geometry.point_distance import point_segment_cols
 from ccopt.tolerances import POINT_EPS, VERIFY_EPS, VERIFY_TANGENT_BREAK
 from ccopt.toolpath import Role, ToolPath
@@ -197,25 +198,24 @@ class _Distances:
             self._curves[key] = (g, s, q, cKDTree(q), _curvature_cap(g) * step * step / 8.0)
         return self._curves[key][1:]
 
-    def upper(self, pts: np.ndarray, geoms) -> np.ndarray:
-        """``(N,)``: an upper bound of the distance from each point to ``geoms``
-        (exact where they are lines and arcs)."""
+    def upper(self, pts: np.ndarray, near: "_Near") -> np.ndarray:
+        """``(N,)``: an upper bound of the distance from each point to the primitives
+        of ``near`` (exact where they are lines and arcs)."""
         d = np.full(len(pts), math.inf)
-        for g in geoms:
-            if isinstance(g, Line):
-                d = np.minimum(d, point_segment_cols(pts[:, 0], pts[:, 1], *g.p0, *g.p1)[0])
-            elif isinstance(g, Arc):
-                d = np.minimum(d, point_arc(pts, g.center, g.radius, g.theta0, g.sweep)[0])
-            else:
-                s, q, tree, gap = self.curve(g)
-                near, k = tree.query(pts)
-                k0 = np.clip(k - 1, 0, len(q) - 2)
-                k1 = np.clip(k, 0, len(q) - 2)
-                px, py = pts[:, 0], pts[:, 1]
-                chord = np.minimum(
-                    point_segment_cols(px, py, *q[k0].T, *q[k0 + 1].T)[0],
-                    point_segment_cols(px, py, *q[k1].T, *q[k1 + 1].T)[0])
-                d = np.minimum(d, np.minimum(near, chord + gap))
+        px, py = pts[:, :1], pts[:, 1:]
+        if near.lines is not None:
+            d = np.minimum(d, point_segment_cols(px, py, *near.lines)[0].min(axis=1))
+        if near.arcs is not None:
+            d = np.minimum(d, _arc_distances(px, py, near.arcs).min(axis=1))
+        px, py = pts[:, 0], pts[:, 1]
+        for g in near.curves:
+            s, q, tree, gap = self.curve(g)
+            dk, k = tree.query(pts)
+            k0 = np.clip(k - 1, 0, len(q) - 2)
+            k1 = np.clip(k, 0, len(q) - 2)
+            chord = np.minimum(point_segment_cols(px, py, *q[k0].T, *q[k0 + 1].T)[0],
+                               point_segment_cols(px, py, *q[k1].T, *q[k1 + 1].T)[0])
+            d = np.minimum(d, np.minimum(dk, chord + gap))
         return d
 
     def exact(self, p: np.ndarray, geoms, reach: float) -> float:
@@ -228,7 +228,7 @@ class _Distances:
             if p[0] < x0 - reach or p[0] > x1 + reach or p[1] < y0 - reach or p[1] > y1 + reach:
                 continue
             if isinstance(g, (Line, Arc)):
-                d = min(d, float(self.upper(p[None], [g])[0]))
+                d = min(d, float(self.upper(p[None], _Near([g]))[0]))
                 continue
             s, _, tree, _ = self.curve(g)
             k = int(tree.query(p)[1])
@@ -236,6 +236,38 @@ class _Distances:
             d = min(d, float(np.min(point_segment(np.repeat(p[None], len(q) - 1, 0),
                                                   q[:-1], q[1:])[0])))
         return d
+
+
+class _Near:
+    """Primitives as arrays for :meth:`_Distances.upper`: ``lines`` (the columns
+    ``ax, ay, bx, by``, each ``(1, m)``), ``arcs`` (:class:`PreparedArcs` of
+    ``(1, m)`` columns), ``None`` when there are none; ``curves`` the others."""
+
+    def __init__(self, geoms):
+        lines = [g for g in geoms if isinstance(g, Line)]
+        arcs = [g for g in geoms if isinstance(g, Arc)]
+        self.curves = [g for g in geoms if not isinstance(g, (Line, Arc))]
+        self.lines = None
+        if lines:
+            ends = np.array([(*g.p0, *g.p1) for g in lines], float).T
+            self.lines = tuple(col[None, :] for col in ends)
+        self.arcs = None
+        if arcs:
+            cols = np.array([(*g.center, g.radius, g.theta0, g.sweep) for g in arcs], float).T
+            self.arcs = PreparedArcs(*(col[None, :] for col in cols))
+
+
+def _arc_distances(px, py, arcs: PreparedArcs) -> np.ndarray:
+    """Distances from points ``(px, py)`` (``(N, 1)``) to arcs (``(1, m)``): radial,
+    ``|rho - R|``, where the point's polar angle is on the arc, else to the nearer
+    end point (as :func:`ccopt.geometry.point_arc`)."""
+    vx = px - arcs.cx
+    vy = py - arcs.cy
+    rho = np.hypot(vx, vy)
+    radial = arcs.contains(np.arctan2(vy, vx)) & (rho > 0.0)
+    to_end = np.minimum(np.hypot(px - arcs.e0x, py - arcs.e0y),
+                        np.hypot(px - arcs.e1x, py - arcs.e1y))
+    return np.where(radial, np.abs(rho - arcs.R), to_end)
 
 
 def _points_between(g, s0: float, s1: float, n: int) -> np.ndarray:
@@ -254,7 +286,7 @@ def _box_gap(a, b) -> float:
 BOUND_SLACK_SHARE = 0.125
 
 
-def _along(g, local, dist: _Distances, h: float, coarse_h: float, known: float):
+def _along(g, local: "_Near", dist: _Distances, h: float, coarse_h: float, known: float):
     """``(bound, pts, d)``: an upper bound of the distance from the primitive ``g`` to
     ``local``, and the samples it rests on (points and their distance bounds).
 
@@ -312,7 +344,7 @@ def _one_side(src: ToolPath, dst: ToolPath, h: float):
         box = g.bbox()
         reach = float(np.max(coarse.query(_samples([g], coarse_h))[0])) + coarse_h
         local = [d for d, b in zip(dst_geoms, dst_boxes) if _box_gap(box, b) <= reach]
-        b, pts, d = _along(g, local, dist, h, coarse_h, top)
+        b, pts, d = _along(g, _Near(local), dist, h, coarse_h, top)
         bound = max(bound, b)
         top = max(top, float(d.max()))
         best = np.argsort(d)[-5:]

@@ -18,7 +18,10 @@ units), and each approximation has a stated tolerance:
   guess of ``t(s)`` inside the piece (``dt/ds = 1/|r'|`` at both knots),
   then Newton steps ``t -= (s(t) - s) / |r'(t)|`` kept inside a bracket that
   shrinks with every residual (a step leaving it is replaced by bisection),
-  each point stopping as soon as its residual is within the tolerance.
+  each point stopping as soon as its residual is within the tolerance, or
+  after a Newton step ``delta`` whose Taylor remainder
+  ``max|r''| delta^2 / 2`` (``|s''(t)| = |r'.r''|/|r'| <= |r''|``, bounded
+  by the largest control point of ``r''``) is within half of it.
 
 :func:`bernstein_basis` is the Bernstein basis as a matrix (``t`` values by
 ``n + 1``), so evaluating a curve or its hodographs at many ``t`` is one
@@ -117,6 +120,9 @@ class ArcLengthTable:
     def __init__(self, D1: np.ndarray):
         """``D1``: control points of the hodograph ``r'(t)`` (program units)."""
         self._C1 = C1 = power_coefficients(D1)
+        # max |r''(t)| <= the largest control point of r'' (a convex combination of them)
+        D2 = hodograph(D1) if len(D1) > 1 else np.zeros((1, 2))
+        self._acc = float(np.max(np.hypot(D2[:, 0], D2[:, 1])))
         edges = np.linspace(0.0, 1.0, FIRST_PIECES + 1)
         a, b = edges[:-1], edges[1:]
         coarse = gauss_legendre(C1, a, b)
@@ -187,14 +193,17 @@ class ArcLengthTable:
             below = res < 0.0
             lo[active] = np.where(below, ta, lo[active])
             hi[active] = np.where(below, hi[active], ta)
-            step = ta - res / speed_at(self._C1, ta)
+            delta = res / speed_at(self._C1, ta)
+            step = ta - delta
             la, ha = lo[active], hi[active]
             inside = (step > la) & (step < ha)
             new = np.where(inside, step, 0.5 * (la + ha))
             # a bracket down to adjacent floats: t is as good as a double gets
             stuck = (new <= la) | (new >= ha) | (new == ta)
+            # Taylor: a Newton step leaves |s(t) - s| <= max|s''| delta^2 / 2 (s'' = r'.r''/|r'|)
+            converged = inside & (0.5 * self._acc * delta * delta <= 0.5 * self.tol)
             t[active] = np.where(stuck, ta, new)
-            active = active[~stuck]
+            active = active[~(stuck | converged)]
             if not active.size:
                 break
         return t
