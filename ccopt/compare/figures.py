@@ -176,6 +176,11 @@ def _curvature_cap(g) -> float:
     return 1.01 * float(np.max(np.abs(curvature_samples(g))))
 
 
+#: Values per block of the point-to-primitive tables (``(points, primitives)``):
+#: bounds the memory of a long primitive measured against many.
+CHUNK_CELLS = 1 << 18
+
+
 class _Distances:
     """Distances from points to primitives: lines and arcs exactly (closed form);
     another curve by its samples every ``h`` of arc length (a k-d tree, built once
@@ -202,11 +207,15 @@ class _Distances:
         """``(N,)``: an upper bound of the distance from each point to the primitives
         of ``near`` (exact where they are lines and arcs)."""
         d = np.full(len(pts), math.inf)
-        px, py = pts[:, :1], pts[:, 1:]
-        if near.lines is not None:
-            d = np.minimum(d, point_segment_cols(px, py, *near.lines)[0].min(axis=1))
-        if near.arcs is not None:
-            d = np.minimum(d, _arc_distances(px, py, near.arcs).min(axis=1))
+        # points by blocks: a block times the primitives stays near CHUNK_CELLS values
+        block = max(1, CHUNK_CELLS // max(1, near.size))
+        for i in range(0, len(pts), block):
+            px, py = pts[i:i + block, :1], pts[i:i + block, 1:]
+            if near.lines is not None:
+                d[i:i + block] = point_segment_cols(px, py, *near.lines)[0].min(axis=1)
+            if near.arcs is not None:
+                d[i:i + block] = np.minimum(d[i:i + block],
+                                            _arc_distances(px, py, near.arcs).min(axis=1))
         px, py = pts[:, 0], pts[:, 1]
         for g in near.curves:
             s, q, tree, gap = self.curve(g)
@@ -251,6 +260,7 @@ class _Near:
         if lines:
             ends = np.array([(*g.p0, *g.p1) for g in lines], float).T
             self.lines = tuple(col[None, :] for col in ends)
+        self.size = len(lines) + len(arcs)
         self.arcs = None
         if arcs:
             cols = np.array([(*g.center, g.radius, g.theta0, g.sweep) for g in arcs], float).T
