@@ -16,9 +16,10 @@ Positions and derivatives come from the exact primitives
     q''(s) = (geom.d2(l) * (L / S)^2, 0)
     q'''(s) = (d3(l) * (L / S)^3, 0)      (order 3, for the jerk)
 
-``d3`` is exact on lines (0) and arcs (``-d1 / R^2``); on other curves it is
-the central difference of ``d2`` over :data:`D3_STEP` of the in-plane length
-(relative), one-sided within ``[0, L]`` at the ends.
+``d3`` is exact on lines (0), arcs (``-d1 / R^2``) and curves that give it
+(``geom.d3``: Bezier curves); on other curves (spirals) it is the central
+difference of ``d2`` over :data:`D3_STEP` of the in-plane length (relative),
+one-sided within ``[0, L]`` at the ends.
 
 with ``sigma = s - offset`` the 3-D arc length into the segment and
 ``l = sigma * L / S`` the in-plane arc length. Lines and arcs are evaluated by
@@ -241,6 +242,8 @@ class ExactPath(AbstractGeometricPath):
                     out[rows, :2] = geom.d1(lam[rows]) * r
                 elif order == 2:
                     out[rows, :2] = geom.d2(lam[rows]) * (r * r)
+                elif hasattr(geom, "d3"):  # exact where the curve has it (Bezier curves)
+                    out[rows, :2] = geom.d3(lam[rows]) * r ** 3
                 else:
                     out[rows, :2] = _d3_by_difference(geom, lam[rows], self._L[kk]) * r ** 3
         if self._dof == 3:

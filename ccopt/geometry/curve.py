@@ -5,14 +5,19 @@ quintic Bezier matches position, tangent and curvature at both ends). To sit
 in a tool path beside lines, arcs and spirals, :class:`BezierCurve` offers the
 same interface, parameterised by **arc length** ``s``:
 
+* the curve itself stays the exact polynomial of its control points;
 * the Bezier parameter ``t`` in [0, 1] maps to arc length through
-  ``s(t) = integral |r'(t)| dt``, computed by Gauss-Legendre quadrature on
-  ``PIECES`` equal pieces of ``t`` (``ORDER`` nodes each): for the smooth,
-  non-vanishing speed of a regular curve this is accurate to rounding;
-* ``s -> t`` is inverted by safeguarded Newton (``dt/ds = 1/|r'|``) to 1e-14;
-* derivatives by ``s`` follow from those by ``t``:
-  ``dp/ds = r'/|r'|``, ``d2p/ds2 = (r'' - (r''.T) T)/|r'|^2``, curvature
-  ``(r' x r'')/|r'|^3`` (> 0 turning left).
+  ``s(t) = integral |r'(t)| dt``; the length and ``s -> t`` come from the
+  table and safeguarded Newton of :mod:`ccopt.geometry.bezier_arclength`,
+  which hold ``|s(t) - s|`` within
+  :data:`~ccopt.geometry.bezier_arclength.ARC_LENGTH_REL_TOL` times the
+  length, vectorised over arrays of ``s``;
+* derivatives by ``s`` follow from those by ``t`` (Bernstein basis matrices,
+  one product per array): ``dp/ds = r'/|r'|``,
+  ``d2p/ds2 = (r'' - (r''.T) T)/|r'|^2 = kappa N``, curvature
+  ``kappa = (r' x r'')/|r'|^3`` (> 0 turning left), and
+  ``d3p/ds3 = kappa_s N - kappa^2 T`` with
+  ``kappa_s = ((r' x r''')/|r'|^3 - 3 (r' x r'')(r' . r'')/|r'|^5) / |r'|``.
 
 The curve must be regular (``|r'(t)| > 0``); the constructor checks it on a
 dense grid and on the derivative's control polygon (a sufficient condition
@@ -30,9 +35,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-PIECES = 32
-ORDER = 8
-_GL_X, _GL_W = np.polynomial.legendre.leggauss(ORDER)
+from ccopt.geometry.bezier_arclength import ArcLengthTable, bernstein_basis, hodograph
 
 
 # --------------------------------------------------------------------------- Bernstein basics
@@ -68,21 +71,6 @@ def subdivision_matrix(n: int, t0: float, t1: float) -> np.ndarray:
             coeff = (1.0 - u) * coeff[:-1] + u * coeff[1:]
         S[i] = coeff[0]
     return S
-
-
-def _bernstein_eval(ctrl: np.ndarray, t: np.ndarray) -> np.ndarray:
-    """Points of the Bezier curve with control points ``ctrl`` at ``t`` (de Casteljau)."""
-    pts = np.broadcast_to(ctrl, (len(t),) + ctrl.shape).copy()
-    tt = t[:, None]
-    for r in range(1, len(ctrl)):
-        pts[:, : len(ctrl) - r] = (1 - tt)[:, :, None] * pts[:, : len(ctrl) - r] + \
-            tt[:, :, None] * pts[:, 1: len(ctrl) - r + 1]
-    return pts[:, 0]
-
-
-def _hodograph(ctrl: np.ndarray) -> np.ndarray:
-    n = len(ctrl) - 1
-    return n * np.diff(ctrl, axis=0)
 
 
 # --------------------------------------------------------------------------- certified bounds
@@ -286,13 +274,21 @@ def inflections(ctrl) -> list[float]:
 #: points|)`` on the check grid is not regular (the arc-length map needs it > 0).
 REGULAR_SPEED_REL = 1e-12
 
-#: Newton for ``s -> t`` stops once every step in ``t`` (in [0, 1]) is at most
-#: this: a few ulps of ``t``.
-T_NEWTON_STEP = 1e-15
+#: Inversions ``s -> t`` a curve keeps for reuse (the feed planners evaluate up to
+#: four orders, on both sides of the gridpoints, at the same arc lengths).
+RECENT_INVERSIONS = 8
+
+#: Speed samples of the regularity check (equal steps of ``t``, ends included).
+REGULAR_CHECK_SAMPLES = 2049
 
 #: A root of a hodograph component is real when its imaginary part is below
 #: this (the roots of the low-degree hodographs used here are well separated).
 BBOX_ROOT_IMAG_TOL = 1e-12
+
+
+def _at(ctrl: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Points of the Bezier ``ctrl`` at parameters ``t`` (1-D): one basis product."""
+    return bernstein_basis(t, len(ctrl) - 1) @ ctrl
 
 
 @dataclass(frozen=True, eq=False)
@@ -300,14 +296,20 @@ class BezierCurve:
     """Planar Bezier curve of ``degree`` = len(control_points) - 1, by arc length.
 
     ``control_points`` are in program units. Immutable; equality is identity.
+    Arc lengths ``s`` are clipped to ``[0, length]``; a scalar ``s`` gives one
+    point ``(2,)`` (or a float), an array ``(N,)`` gives ``(N, 2)`` (or ``(N,)``).
     """
 
     control_points: tuple
     _P: np.ndarray = field(init=False, repr=False)
     _D1: np.ndarray = field(init=False, repr=False)
     _D2: np.ndarray = field(init=False, repr=False)
-    _knots_t: np.ndarray = field(init=False, repr=False)
-    _knots_s: np.ndarray = field(init=False, repr=False)
+    _D3: np.ndarray = field(init=False, repr=False)
+    _table: ArcLengthTable = field(init=False, repr=False)
+    # recent inversions {s as bytes: t}: toppra and the profile sampler ask for the
+    # point and its derivatives at the same s one order (and one side) at a time
+    _recent: dict = field(init=False, repr=False)
+    _box: tuple | None = field(init=False, repr=False)
 
     def __post_init__(self):
         P = np.asarray(self.control_points, dtype=float)
@@ -317,56 +319,54 @@ class BezierCurve:
             raise ValueError("control points must be finite")
         object.__setattr__(self, "control_points", tuple(map(tuple, P.tolist())))
         object.__setattr__(self, "_P", P)
-        D1 = _hodograph(P)
-        D2 = _hodograph(D1) if len(D1) > 1 else np.zeros((1, 2))
+        D1 = hodograph(P)
+        D2 = hodograph(D1) if len(D1) > 1 else np.zeros((1, 2))
+        D3 = hodograph(D2) if len(D2) > 1 else np.zeros((1, 2))
         object.__setattr__(self, "_D1", D1)
         object.__setattr__(self, "_D2", D2)
-        tk = np.linspace(0.0, 1.0, PIECES + 1)
-        speed_check = np.hypot(*_bernstein_eval(D1, np.linspace(0, 1, 64 * PIECES + 1)).T)
+        object.__setattr__(self, "_D3", D3)
+        grid = np.linspace(0.0, 1.0, REGULAR_CHECK_SAMPLES)
+        speed_check = np.hypot(*_at(D1, grid).T)
         if speed_check.min() <= REGULAR_SPEED_REL * max(1.0, float(np.abs(P).max())):
             raise ValueError("the Bezier curve is not regular (its speed vanishes)")
-        seg = np.array([self._quad(a, b) for a, b in zip(tk[:-1], tk[1:])])
-        object.__setattr__(self, "_knots_t", tk)
-        object.__setattr__(self, "_knots_s", np.r_[0.0, np.cumsum(seg)])
+        object.__setattr__(self, "_table", ArcLengthTable(D1))
+        object.__setattr__(self, "_recent", {})
+        object.__setattr__(self, "_box", None)
+
+    def __reduce__(self):
+        # only the control points travel (to worker processes): the rest is rebuilt
+        return (BezierCurve, (self.control_points,))
 
     # -- parameter t --------------------------------------------------------------
     @property
     def degree(self) -> int:
         return len(self._P) - 1
 
-    def _speed(self, t):
-        return np.hypot(*_bernstein_eval(self._D1, np.atleast_1d(t)).T)
-
-    def _quad(self, a: float, b: float) -> float:
-        x = 0.5 * (b - a) * _GL_X + 0.5 * (b + a)
-        return float(0.5 * (b - a) * np.dot(_GL_W, self._speed(x)))
+    def _t(self, s) -> np.ndarray:
+        """Parameters at arc lengths ``s`` (1-D, clipped); the last
+        :data:`RECENT_INVERSIONS` answers are reused (read-only arrays)."""
+        s = np.clip(np.atleast_1d(np.asarray(s, dtype=float)).reshape(-1), 0.0, self.length)
+        key = s.tobytes()
+        recent = self._recent
+        t = recent.get(key)
+        if t is None:
+            t = self._table.t_of_s(s)
+            t.setflags(write=False)
+            if len(recent) >= RECENT_INVERSIONS:
+                recent.pop(next(iter(recent)))      # the oldest (dicts keep insertion order)
+            recent[key] = t
+        return t
 
     def t_of_s(self, s) -> np.ndarray:
-        """Bezier parameter at arc length ``s`` (vectorised, clipped to [0, length])."""
-        s = np.clip(np.atleast_1d(np.asarray(s, dtype=float)), 0.0, self.length)
-        piece = np.clip(np.searchsorted(self._knots_s, s, side="right") - 1, 0, PIECES - 1)
-        t0 = self._knots_t[piece]
-        t1 = self._knots_t[piece + 1]
-        s0 = self._knots_s[piece]
-        ds = self._knots_s[piece + 1] - s0
-        t = t0 + (t1 - t0) * np.where(ds > 0, (s - s0) / np.where(ds > 0, ds, 1.0), 0.0)
-        for _ in range(30):
-            # arc length from the piece start to t by Gauss-Legendre on [t0, t]
-            x = 0.5 * (t - t0)[:, None] * _GL_X[None, :] + 0.5 * (t + t0)[:, None]
-            sp = np.hypot(*_bernstein_eval(self._D1, x.ravel()).T).reshape(x.shape)
-            st = s0 + 0.5 * (t - t0) * (sp @ _GL_W)
-            step = (st - s) / self._speed(t)
-            t_new = np.clip(t - step, t0, t1)
-            if np.all(np.abs(t_new - t) <= T_NEWTON_STEP):
-                t = t_new
-                break
-            t = t_new
-        return t
+        """Bezier parameter at arc length ``s`` (vectorised, clipped to [0, length]):
+        ``|s(t) - s|`` at most :data:`~ccopt.geometry.bezier_arclength.ARC_LENGTH_REL_TOL`
+        times the length."""
+        return self._t(s).copy()
 
     # -- interface shared with Line / Arc / Spiral -----------------------------------
     @property
     def length(self) -> float:
-        return float(self._knots_s[-1])
+        return self._table.length
 
     @property
     def start(self):
@@ -377,7 +377,7 @@ class BezierCurve:
         return tuple(map(float, self._P[-1]))
 
     def _tangent_t(self, t):
-        d = _bernstein_eval(self._D1, np.atleast_1d(t))
+        d = _at(self._D1, np.atleast_1d(t))
         return d / np.hypot(*d.T)[:, None]
 
     @property
@@ -392,23 +392,24 @@ class BezierCurve:
         return arr[0] if np.ndim(s) == 0 else arr
 
     def point(self, s):
-        return self._out(_bernstein_eval(self._P, self.t_of_s(s)), s)
+        return self._out(_at(self._P, self._t(s)), s)
 
     def tangent(self, s):
-        return self._out(self._tangent_t(self.t_of_s(s)), s)
+        return self._out(self._tangent_t(self._t(s)), s)
 
     d1 = tangent
 
     def normal(self, s):
-        t = self.tangent(s)
-        t = np.atleast_2d(t)
+        t = np.atleast_2d(self.tangent(s))
         return self._out(np.c_[-t[:, 1], t[:, 0]], s)
 
-    def _derivs(self, s):
-        t = self.t_of_s(s)
-        r1 = _bernstein_eval(self._D1, t)
-        r2 = _bernstein_eval(self._D2, t) if self.degree >= 2 else np.zeros_like(r1)
-        return r1, r2
+    def _derivs(self, s, order: int = 2):
+        """``r'``, ``r''`` (and ``r'''`` for ``order`` 3) at arc lengths ``s``."""
+        t = self._t(s)
+        out = [_at(self._D1, t)]
+        for D, k in ((self._D2, 2), (self._D3, 3))[: order - 1]:
+            out.append(_at(D, t) if self.degree >= k else np.zeros_like(out[0]))
+        return out
 
     def curvature(self, s):
         r1, r2 = self._derivs(s)
@@ -422,8 +423,26 @@ class BezierCurve:
         acc = (r2 - np.einsum("ij,ij->i", r2, T)[:, None] * T) / v2[:, None]
         return self._out(acc, s)
 
+    def d3(self, s):
+        """``d3p/ds3 = kappa_s N - kappa^2 T`` (units^-2; see the module docstring)."""
+        r1, r2, r3 = self._derivs(s, 3)
+        v = np.hypot(r1[:, 0], r1[:, 1])
+        T = r1 / v[:, None]
+        N = np.c_[-T[:, 1], T[:, 0]]
+        c12 = r1[:, 0] * r2[:, 1] - r1[:, 1] * r2[:, 0]
+        c13 = r1[:, 0] * r3[:, 1] - r1[:, 1] * r3[:, 0]
+        kappa = c12 / v ** 3
+        dkappa = (c13 / v ** 3 - 3.0 * c12 * np.einsum("ij,ij->i", r1, r2) / v ** 5) / v
+        return self._out(dkappa[:, None] * N - (kappa * kappa)[:, None] * T, s)
+
     def bbox(self) -> tuple[float, float, float, float]:
-        """Exact bounding box: end points and the roots of each derivative component."""
+        """Exact bounding box: end points and the roots of each derivative component
+        (computed once)."""
+        if self._box is None:
+            object.__setattr__(self, "_box", self._bbox())
+        return self._box
+
+    def _bbox(self) -> tuple[float, float, float, float]:
         ts = [0.0, 1.0]
         n1 = len(self._D1) - 1
         for axis in range(2):
@@ -436,12 +455,12 @@ class BezierCurve:
                 for root in np.roots(coeffs[::-1]):
                     if abs(root.imag) < BBOX_ROOT_IMAG_TOL and 0.0 < root.real < 1.0:
                         ts.append(float(root.real))
-        pts = _bernstein_eval(self._P, np.array(ts))
+        pts = _at(self._P, np.array(ts))
         return (float(pts[:, 0].min()), float(pts[:, 1].min()),
                 float(pts[:, 0].max()), float(pts[:, 1].max()))
 
     def split(self, s: float) -> tuple["BezierCurve", "BezierCurve"]:
-        t = float(self.t_of_s(s)[0])
+        t = float(self._t(s)[0])
         left, right = [], []
         pts = self._P.copy()
         while len(pts):

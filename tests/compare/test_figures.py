@@ -69,3 +69,41 @@ def test_duration_keeps_the_limits_on_a_tight_curve():
     duration, ratio, message = _duration(path, AxisLimits((100.0, 100.0), (1000.0, 1000.0)))
     assert message is None and duration > 0
     assert 0.999 < ratio <= 1.001
+
+
+def test_deviation_of_a_parabolic_bump():
+    # reference: the straight line y = 0 from x = -5 to 15; variant: its middle part
+    # [0, 10] replaced by the quadratic Bezier (0, 0), (5, 2), (10, 0), the parabola
+    # y = 4 t (1 - t), x = 10 t, whose top (5, 1) is 1 from the line. Every point of
+    # the line is at most 1 from the bump (its vertical distance), so the
+    # Hausdorff distance is 1.
+    from ccopt.geometry import BezierCurve
+    left, right = Line((-5, 0), (0, 0)), Line((10, 0), (15, 0))
+    ref = ToolPath((seg(left), seg(Line((0, 0), (10, 0))), seg(right)))
+    var = ToolPath((seg(left), seg(BezierCurve([(0, 0), (5, 2), (10, 0)]), Role.CORNER),
+                    seg(right)))
+    h = 1e-3
+    est, bound = max_deviation(var, ref, h)
+    assert est == pytest.approx(1.0, abs=1e-9)
+    assert 1.0 <= bound <= 1.0 + h / 8 + 1e-9
+
+
+def test_deviation_between_translated_curves():
+    # the reference's corner is the parabola of the previous test, the variant's the
+    # same parabola 0.3 higher, with lines 0.3 apart on both sides. Both parabolas
+    # bend with radius 12.5 at their tops (y = 1 - 0.04 (x - 5)^2), far above 0.3,
+    # so the tops are 0.3 apart, and no point is farther than 0.3 (its vertical
+    # distance) from the other path: the Hausdorff distance is 0.3, on both sides.
+    from ccopt.geometry import BezierCurve
+    up = 0.3
+    P = [(0, 0), (5, 2), (10, 0)]
+    ref = ToolPath((seg(Line((-5, 0), (0, 0))), seg(BezierCurve(P), Role.CORNER),
+                    seg(Line((10, 0), (15, 0)))))
+    var = ToolPath((seg(Line((-5, up), (0, up))),
+                    seg(BezierCurve([(x, y + up) for x, y in P]), Role.CORNER),
+                    seg(Line((10, up), (15, up)))))
+    h = 1e-3
+    for a, b in ((var, ref), (ref, var)):
+        est, bound = max_deviation(a, b, h)
+        assert est == pytest.approx(up, abs=1e-9)
+        assert up <= bound <= up + h / 8 + 1e-6
