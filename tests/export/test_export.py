@@ -5,6 +5,7 @@ import math
 import os
 
 import numpy as np
+from scipy.spatial import cKDTree
 import pytest
 
 import ccopt
@@ -50,6 +51,7 @@ def distance_bound(pts: np.ndarray, geoms) -> np.ndarray:
     on it, an upper bound of the distance (the right direction for asserting
     it is small)."""
     best = np.full(len(pts), np.inf)
+    sampled = []
     for g in geoms:
         m = len(pts)
         if isinstance(g, Line):
@@ -58,9 +60,13 @@ def distance_bound(pts: np.ndarray, geoms) -> np.ndarray:
             d = point_arc(pts, np.tile(g.center, (m, 1)), np.full(m, g.radius),
                           np.full(m, g.theta0), np.full(m, g.sweep))[0]
         else:
-            q = g.point(np.linspace(0, g.length, 4001))
-            d = np.min(np.hypot(pts[:, None, 0] - q[None, :, 0], pts[:, None, 1] - q[None, :, 1]),
-                       axis=1)
+            sampled.append(g.point(np.linspace(0, g.length, 4001))[:, :2])
+            continue
+        best = np.minimum(best, d)
+    if sampled:
+        # the nearest of all the spirals' samples at once (a k-d tree: the same
+        # minimum as point by point, without a points x samples matrix per spiral)
+        d, _ = cKDTree(np.vstack(sampled)).query(pts[:, :2])
         best = np.minimum(best, d)
     return best
 
