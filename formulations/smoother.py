@@ -435,12 +435,16 @@ class Smoother:
         return jn
 
 
-def smooth(problem: BlendProblem, delta: float | None = None, solver: str = "CLARABEL"):
+def smooth(problem: BlendProblem, delta: float | None = None, solver: str = "CLARABEL",
+           deviation: bool = True):
     """Smooth ``problem.reference`` within ``delta`` (default :attr:`BlendProblem.band`).
 
     Returns ``(toolpath, info)``; ``info["joins"]`` says what became of each join
     (``segment``: the index in PMAC's path of the segment that starts at the join,
-    or of the corner arc an absorbed corner replaced).
+    or of the corner arc an absorbed corner replaced). ``deviation``: also measure
+    the Hausdorff distance to PMAC's path (``info["max_deviation"]`` and its bound;
+    :func:`smooth_variant` leaves it to :func:`ccopt.compare.core.measure`, which
+    measures every variant so).
     """
     t0 = time.perf_counter()
     delta = float(problem.band if delta is None else delta)
@@ -472,7 +476,9 @@ def smooth(problem: BlendProblem, delta: float | None = None, solver: str = "CLA
         out_origin = []
         path = assemble(sm.path, joins, origin=out_origin)
     origin = sm.chain.origin
-    dev, dev_bound = windowed_deviation(path, sm.ref, [origin[i] for i in out_origin])
+    dev = dev_bound = None
+    if deviation:
+        dev, dev_bound = windowed_deviation(path, sm.ref, [origin[i] for i in out_origin])
     info = {
         "delta": delta,
         "joins_found": len(joins),
@@ -507,7 +513,10 @@ def _segment_of(path: ToolPath, curve) -> int | None:
 def smooth_variant(problem: BlendProblem) -> BlendOutcome:
     """Entry point ``smooth`` (group ``ccopt.blends``): the smoother at ``problem.band``.
     Option ``conic_solver``: the CVXPY solver name (default ``"CLARABEL"``)."""
-    path, info = smooth(problem, solver=str(problem.options.get("conic_solver", "CLARABEL")))
+    path, info = smooth(problem, solver=str(problem.options.get("conic_solver", "CLARABEL")),
+                        deviation=False)
+    for key in ("max_deviation", "max_deviation_bound"):
+        info.pop(key)
     if info["joins_found"] and not info["joins_blended"]:
         raise BlendRejected("no join could be blended within the band")
     return BlendOutcome(path, info)
