@@ -63,6 +63,7 @@ def _bezier_curvature(curve: BezierCurve, n: int = 4001) -> np.ndarray:
     return np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]) / np.hypot(a[:, 0], a[:, 1]) ** 3
 
 
+@pytest.mark.slow
 def test_boss_corner_arcs_absorbed_and_certified(boss):
     prog, ref, delta, path, info = boss
     # 180/2 chords, so 89 vertices between chords, each an outside corner turning by
@@ -80,6 +81,7 @@ def test_boss_corner_arcs_absorbed_and_certified(boss):
     assert len(left) == 1 and left[0].geom.center == arcs[0].geom.center
 
 
+@pytest.mark.slow
 def test_boss_blends_keep_outside_and_in_the_band(boss):
     prog, ref, delta, path, info = boss
     blends = _chord_blends(path)
@@ -97,13 +99,16 @@ def test_boss_blends_keep_outside_and_in_the_band(boss):
     assert float(cKDTree(ref_pts).query(pts)[0].max()) <= delta
     # an outside corner is not cut: the blend passes within the apex gap of the corner
     # arc's apex (the arc's middle point), outside its circle
+    # (the distance to the nearest blend sample is never below the true one)
+    near = cKDTree(pts)
     segs = ref.segments
     for a, s, b in zip(segs[:-2], segs[1:-1], segs[2:]):
         if s.role is Role.CORNER and a.role is b.role is Role.COMPENSATED:
-            mid = np.asarray(s.geom.point(0.5 * s.length), float)[None, :]
-            assert float(bc.dist_to(mid, blends)[0]) <= delta
+            mid = np.asarray(s.geom.point(0.5 * s.length), float)
+            assert float(near.query(mid)[0]) <= delta
 
 
+@pytest.mark.slow
 def test_boss_blend_curvature_is_a_corner_not_a_hook(boss):
     _, _, _, path, _ = boss
     # each chord turns by 2 degrees; a blend spans about a chord (0.70 mm) and turns by
