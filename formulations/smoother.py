@@ -14,9 +14,11 @@ and curvature of both at its ends (G2), and that stays in the band:
   cuts off, the corner or the old join, is within ``delta`` of the blend: the
   material a blend leaves in a corner is at most ``delta``).
 
-Each blend is a small convex problem (:class:`CornerModel`, CVXPY with
-parameters, compiled once and solved with Clarabel; :func:`solve_model` is
-the solver call). In coordinates centred on the join and scaled by the blend
+Each blend is first the closed form of :mod:`ccopt_formulations.smoother_joins`
+(sized in closed form and checked, no solver; steps below). Where none passes,
+it is a small convex problem (:class:`CornerModel`, CVXPY with parameters,
+compiled on first need and solved with Clarabel; :func:`solve_model` is the
+solver call). In coordinates centred on the join and scaled by the blend
 size, with ``x = [a0, e0, a1, e1, P3, P4]`` (the legs and offsets of the
 G2 end conditions, :func:`ccopt.geometry.bezier.g2_start` / ``g2_end``, and the
 two free control points):
@@ -49,9 +51,13 @@ How a join is blended (:func:`solve_join`), cheapest first:
    (``(5/16) l sin(theta/2) = delta'``, capped by what the segments leave), and
    it is only checked (clearance, band, cover, curvature bound:
    :func:`ccopt_formulations.smoother_joins.exact_ok`); at other joins the size
-   is searched by shrinking and growing, each try one closed form and one check.
-3. Only where no closed form passes (a transition into a convex arc of the
-   tool path, where a blend must keep outside the arc), the convex model above,
+   is searched by shrinking and growing, each try one closed form and one check
+   (at a curvature jump with its middle points lifted towards the arc's centre
+   by a few fixed shares of its size, in turn: into a concave arc of the tool
+   path it must turn more sharply than the arc); then the same one-sided (the
+   blend ends at the join point).
+3. Only where no closed form passes (none of the bundled cases today), the
+   convex model above,
    re-linearised up to :data:`SCP_ITERATIONS` times, at sizes halving from the
    estimate and then bisected (:func:`largest_feasible`).
 
