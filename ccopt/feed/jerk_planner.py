@@ -94,11 +94,11 @@ from ccopt.feed.grid import GridOptions, gridpoints
 from ccopt.feed.jerk_lp import FROM_REST, SLINEAR, TO_REST, JerkGrid, piece_times
 from ccopt.feed.jerk_profile import CUBIC, JerkProfile, slinear_time
 from ccopt.feed.jerk_profile import SLINEAR as PIECE_SLINEAR
-from ccopt.feed.jerk_windows import plan_windows
+from ccopt.feed.jerk_bound import StretchBound, speed_bound
+from ccopt.feed.jerk_windows import plan_windows, split
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.feed.planners import DEFAULT_TS
-from ccopt.feed.toppra_planner import plan_toppra
 
 #: Ratio of consecutive interval lengths in the geometric refinement at stops.
 STOP_RATIO = 1.06
@@ -191,15 +191,20 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
     if not path.segments:
         return JerkProfile.empty(path, limits, "jerk")
     g = build_grid(path, limits, ts, grid)
-    no_jerk = AxisLimits(limits.v, limits.a, limits.tangential_acc, limits.centripetal_acc)
-    upper = plan_toppra(path, no_jerk, grid=grid).speed_at(g.s) ** 2
-    upper = np.where(g.stop, 0.0, np.minimum(upper, g.bmax))
-    scale = float(np.max(upper[np.isfinite(upper)], initial=1.0)) or 1.0
-    cap = upper / scale
+    if split(g):
+        # each task computes its stretch's bound (jerk_bound): scale from the box bound
+        scale, cap = _scale(g.bmax), None
+
+        def bound_of(i0, i1):
+            return StretchBound.of(path, limits, grid, g.s[i0], g.s[i1])
+    else:
+        upper = speed_bound(path, limits, grid, g.s, g.stop, g.bmax)
+        scale, bound_of = _scale(upper), None
+        cap = upper / scale
     b = np.zeros(g.s.size)
     alpha = np.zeros(g.s.size)
     total_rounds = failed = 0
-    results, n_windows, workers = plan_windows(g, cap, scale)
+    results, n_windows, workers = plan_windows(g, cap, scale, bound_of)
     for i0, i1, keep, bw, aw, rounds in results:
         if bw is None and aw:
             # rest to rest: the S-curve per block stands in (see _best_per_stretch)
@@ -216,6 +221,11 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
     info = {"gridpoints": int(g.s.size), "windows": n_windows, "lp_rounds": total_rounds,
             "ts": ts, "lp_failed_windows": failed, "workers": workers}
     return _profile(path, limits, g, b, alpha, info)
+
+
+def _scale(upper: np.ndarray) -> float:
+    """The squared speed the LPs are scaled by: the largest finite of ``upper``."""
+    return float(np.max(upper[np.isfinite(upper)], initial=1.0)) or 1.0
 
 
 def _profile(path, limits, g: JerkGrid, b, alpha, info) -> JerkProfile:

@@ -53,6 +53,10 @@ WINDOW_OVERLAP = 0.5
 #: about a second to import ccopt).
 WORKERS: int | None = None
 PARALLEL_MIN_POINTS = 50_000
+#: The fewest gridpoints from which each task computes the speed bound of its
+#: own stretch (:func:`split`); TOPPRA over the whole path would otherwise run
+#: alone before the processes start (12 of 60 s on 10,000 blocks).
+SPLIT_BOUND_POINTS = 50_000
 #: Gridpoints per task handed to a process (several chains each, so the
 #: grid's arrays cross in few messages and the processes stay evenly loaded).
 TASK_POINTS = 20_000
@@ -188,14 +192,21 @@ def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float) -> list[tupl
     return out
 
 
-def _solve_task(g: JerkGrid, cap: np.ndarray, chains, scale: float) -> list[tuple]:
-    """:func:`_solve_chain` on each of ``chains`` (indices local to ``g``)."""
+def _solve_task(g: JerkGrid, cap: np.ndarray | None, chains, scale: float,
+                bound=None) -> list[tuple]:
+    """:func:`_solve_chain` on each of ``chains`` (indices local to ``g``);
+    ``cap`` None: it is ``bound(s, stop, bmax) / scale`` (the speed bound of
+    the task's own stretch, :class:`~ccopt.feed.jerk_bound.StretchBound`)."""
+    if cap is None:
+        cap = bound(g.s, g.stop, g.bmax) / scale
     return [r for chain in chains for r in _solve_chain(g, cap, chain, scale)]
 
 
-def _tasks(g: JerkGrid, cap: np.ndarray, chains, scale: float):
+def _tasks(g: JerkGrid, cap: np.ndarray | None, chains, scale: float, bound_of=None):
     """Chains gathered into tasks of about :data:`TASK_POINTS` gridpoints, each
-    with its own slice of the grid: ``(offset, args of _solve_task)``."""
+    with its own slice of the grid: ``(offset, args of _solve_task)``; with
+    ``cap`` None, each with ``bound_of(i0, i1)``, the speed bound of its
+    gridpoints ``i0..i1`` instead of a slice of ``cap``."""
     groups: list[list] = [[]]
     size = 0
     for chain in chains:
@@ -207,7 +218,19 @@ def _tasks(g: JerkGrid, cap: np.ndarray, chains, scale: float):
     for group in groups:
         lo, hi = group[0][0][0], group[-1][-1][1]
         local = [[(i0 - lo, i1 - lo, keep - lo) for i0, i1, keep in chain] for chain in group]
-        yield lo, (_grid_slice(g, lo, hi), cap[lo:hi + 1], local, scale)
+        if cap is None:
+            yield lo, (_grid_slice(g, lo, hi), None, local, scale, bound_of(lo, hi))
+        else:
+            yield lo, (_grid_slice(g, lo, hi), cap[lo:hi + 1], local, scale)
+
+
+def split(g: JerkGrid) -> bool:
+    """Whether the speed bound of ``g`` is computed per task
+    (:class:`~ccopt.feed.jerk_bound.StretchBound`, in the processes that solve
+    the tasks' windows): a program of :data:`SPLIT_BOUND_POINTS` gridpoints or
+    more, with more than one chain. A decision on the program alone: the
+    result never depends on how many processes solve it."""
+    return g.s.size >= SPLIT_BOUND_POINTS and len(_chains(windows(g), g.stop)) >= 2
 
 
 def _workers(points: int, n_chains: int) -> int:
@@ -223,18 +246,27 @@ def _workers(points: int, n_chains: int) -> int:
     return max(1, min(n, n_chains))
 
 
-def plan_windows(g: JerkGrid, cap: np.ndarray, scale: float):
+def plan_windows(g: JerkGrid, cap: np.ndarray | None, scale: float, bound_of=None):
     """Every window of ``g`` solved (see the module docstring): ``(results,
     n_windows, workers)``, ``results`` as :func:`_solve_chain`'s, with global
-    gridpoint indices, in order along the path."""
+    gridpoint indices, in order along the path.
+
+    ``cap``: the scaled speed bound at every gridpoint, or None on a
+    :func:`split` program: then ``bound_of(i0, i1)`` gives each task the
+    callable that computes it on the task's gridpoints ``i0..i1``."""
     wins = windows(g)
     chains = _chains(wins, g.stop)
     workers = _workers(g.s.size, len(chains))
-    if workers == 1:
+    if workers == 1 and cap is not None:
         return _solve_task(g, cap, chains, scale), len(wins), 1
-    tasks = list(_tasks(g, cap, chains, scale))
+    tasks = list(_tasks(g, cap, chains, scale, bound_of))
+    workers = min(workers, len(tasks))
+    if workers == 1:
+        parts = [_solve_task(*args) for _, args in tasks]
+    else:
+        parts = _run_in_processes([args for _, args in tasks], workers)
     results: list[tuple] = []
-    for (lo, _), part in zip(tasks, _run_in_processes([args for _, args in tasks], workers)):
+    for (lo, _), part in zip(tasks, parts):
         results.extend((i0 + lo, i1 + lo, keep + lo, *rest) for i0, i1, keep, *rest in part)
     return results, len(wins), workers
 
