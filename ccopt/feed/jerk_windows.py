@@ -32,10 +32,12 @@ from ccopt.feed.jerk_lp import JerkGrid, WindowLP
 BHAT_TOL = 2e-3
 #: ... or a window's duration estimate changing by less than DURATION_TOL
 #: (relative) in each of SETTLED_ROUNDS rounds in a row; at most MAX_ROUNDS
-#: rounds (on the 1,000-block pocket of bench/feed.py, 8 rounds gave the
-#: shortest total of any fixed number from 3 to 12, within 0.5 % of taking
-#: each window's best round; later rounds wander, as the LP's optimum jumps
-#: between vertices when bhat moves, and 12 rounds ended 0.4 % slower).
+#: rounds. On the 1,000-block pocket of bench/feed.py (one window per
+#: stretch) 4, 5, 6, 7, 8 and 10 rounds planned 160.36, 158.54, 157.47,
+#: 156.93, 157.54 and 160.48 s: later rounds wander, as the LP's optimum
+#: jumps between vertices when bhat moves (and 10 left two windows
+#: infeasible); but the pure-jerk 2 mm diagonal of test_jerk_planner comes
+#: within 0.52, 0.44 and 0.40 % of its closed form with 6, 7 and 8 rounds.
 DURATION_TOL = 1e-3
 SETTLED_ROUNDS = 2
 MAX_ROUNDS = 8
@@ -45,7 +47,11 @@ BHAT_FALL = 0.1
 BHAT_RISE = 1.5
 #: Gridpoints per LP window of stop-to-stop stretches gathered together; of a
 #: stretch with no stop; and how much further such a window plans than it keeps.
-BATCH_POINTS = 800
+#: (A window's rounds end together, and a failed window takes the S-curve on
+#: all its stretches: on the 1,000-block pocket, whose stretches have about
+#: 300 gridpoints, windows of 200 (a stretch each) planned 157.54 s in 15 %
+#: less CPU than windows of 800 (158.40 s), and 1,600 planned 161.15 s.)
+BATCH_POINTS = 200
 WINDOW_POINTS = 3000
 WINDOW_OVERLAP = 0.5
 #: Processes for the chains (None: as many as the CPUs this process may use),
