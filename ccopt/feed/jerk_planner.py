@@ -85,6 +85,7 @@ to its grid), so the planner is never slower than that baseline.
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -204,7 +205,12 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
     b = np.zeros(g.s.size)
     alpha = np.zeros(g.s.size)
     total_rounds = failed = 0
-    results, n_windows, workers = plan_windows(g, cap, scale, bound_of)
+    with ThreadPoolExecutor(1) as pool:
+        # the S-curve per block (for _best_per_stretch) while the worker
+        # processes solve the windows, instead of after them
+        scurve = pool.submit(scurve_pieces, path, limits) if cap is None else None
+        results, n_windows, workers = plan_windows(g, cap, scale, bound_of)
+        scurve = scurve_pieces(path, limits) if scurve is None else scurve.result()
     for i0, i1, keep, bw, aw, rounds in results:
         if bw is None and aw:
             # rest to rest: the S-curve per block stands in (see _best_per_stretch)
@@ -220,7 +226,7 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         alpha[i0:keep + 1] = aw * scale
     info = {"gridpoints": int(g.s.size), "windows": n_windows, "lp_rounds": total_rounds,
             "ts": ts, "lp_failed_windows": failed, "workers": workers}
-    return _profile(path, limits, g, b, alpha, info)
+    return _profile(path, limits, g, b, alpha, info, scurve)
 
 
 def _scale(upper: np.ndarray) -> float:
@@ -228,8 +234,9 @@ def _scale(upper: np.ndarray) -> float:
     return float(np.max(upper[np.isfinite(upper)], initial=1.0)) or 1.0
 
 
-def _profile(path, limits, g: JerkGrid, b, alpha, info) -> JerkProfile:
-    """The :class:`JerkProfile` of the LP's ``(b, alpha)`` at the gridpoints."""
+def _profile(path, limits, g: JerkGrid, b, alpha, info, scurve: dict) -> JerkProfile:
+    """The :class:`JerkProfile` of the LP's ``(b, alpha)`` at the gridpoints
+    (``scurve``: the S-curve per block's pieces, :func:`scurve_pieces`)."""
     b = np.where(g.stop, 0.0, b)
     moving = ~g.stop
     if np.any(b[moving] <= 0.0):
@@ -249,7 +256,7 @@ def _profile(path, limits, g: JerkGrid, b, alpha, info) -> JerkProfile:
     pieces = {"kind": np.where(rest, CUBIC, PIECE_SLINEAR), "s0": g.s[:-1], "h": h,
               "v0": v[:-1], "v1": v[1:], "a0": a0, "a1": alpha[1:], "j": sigma, "dt": dt,
               "segment": path.locate(0.5 * (g.s[:-1] + g.s[1:]))}
-    pieces, info["scurve_stretches"] = _best_per_stretch(pieces, scurve_pieces(path, limits),
+    pieces, info["scurve_stretches"] = _best_per_stretch(pieces, scurve,
                                                          g.s[g.stop])
     return JerkProfile.from_pieces(path, limits, "jerk", pieces, info)
 
