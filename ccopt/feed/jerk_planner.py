@@ -75,7 +75,10 @@ that is planned in overlapping windows: a window plans
 keeps, and the next starts from the kept end's ``(b, alpha)``; ``b`` stays
 under TOPPRA's speed there, so the braking it still needs is within reach.
 Windows that start at a stop are independent of those before, and on a long
-program are solved in several processes (``info["workers"]``).
+program are solved in several processes (``info["workers"]``); there each
+task also computes TOPPRA's bound on its own stretch, stop to stop
+(:mod:`ccopt.feed.jerk_bound`), rather than one TOPPRA over the whole path
+running alone first.
 
 Last, on every stretch between two stops the profile is the faster of the
 LP's and the jerk-limited stop baseline's (an S-curve per block: feasible,

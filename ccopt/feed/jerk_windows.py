@@ -61,7 +61,8 @@ WORKERS: int | None = None
 PARALLEL_MIN_POINTS = 50_000
 #: The fewest gridpoints from which each task computes the speed bound of its
 #: own stretch (:func:`split`); TOPPRA over the whole path would otherwise run
-#: alone before the processes start (12 of 60 s on 10,000 blocks).
+#: alone before the processes start (12 CPU s on the 10,000-block pocket of
+#: bench/feed.py, a fifth of the wall time on 2 cores).
 SPLIT_BOUND_POINTS = 50_000
 #: Gridpoints per task handed to a process (several chains each, so the
 #: grid's arrays cross in few messages and the processes stay evenly loaded).
