@@ -75,7 +75,10 @@ that is planned in overlapping windows: a window plans
 keeps, and the next starts from the kept end's ``(b, alpha)``; ``b`` stays
 under TOPPRA's speed there, so the braking it still needs is within reach.
 Windows that start at a stop are independent of those before, and on a long
-program are solved in several processes (``info["workers"]``).
+program are solved in several processes (``info["workers"]``); there each
+task also computes TOPPRA's bound on its own stretch, stop to stop
+(:mod:`ccopt.feed.jerk_bound`), rather than one TOPPRA over the whole path
+running alone first.
 
 Last, on every stretch between two stops the profile is the faster of the
 LP's and the jerk-limited stop baseline's (an S-curve per block: feasible,
@@ -85,6 +88,7 @@ to its grid), so the planner is never slower than that baseline.
 from __future__ import annotations
 
 import math
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -94,11 +98,11 @@ from ccopt.feed.grid import GridOptions, gridpoints
 from ccopt.feed.jerk_lp import FROM_REST, SLINEAR, TO_REST, JerkGrid, piece_times
 from ccopt.feed.jerk_profile import CUBIC, JerkProfile, slinear_time
 from ccopt.feed.jerk_profile import SLINEAR as PIECE_SLINEAR
-from ccopt.feed.jerk_windows import plan_windows
+from ccopt.feed.jerk_bound import StretchBound, speed_bound
+from ccopt.feed.jerk_windows import plan_windows, split
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.feed.planners import DEFAULT_TS
-from ccopt.feed.toppra_planner import plan_toppra
 
 #: Ratio of consecutive interval lengths in the geometric refinement at stops.
 STOP_RATIO = 1.06
@@ -191,15 +195,25 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
     if not path.segments:
         return JerkProfile.empty(path, limits, "jerk")
     g = build_grid(path, limits, ts, grid)
-    no_jerk = AxisLimits(limits.v, limits.a, limits.tangential_acc, limits.centripetal_acc)
-    upper = plan_toppra(path, no_jerk, grid=grid).speed_at(g.s) ** 2
-    upper = np.where(g.stop, 0.0, np.minimum(upper, g.bmax))
-    scale = float(np.max(upper[np.isfinite(upper)], initial=1.0)) or 1.0
-    cap = upper / scale
+    if split(g):
+        # each task computes its stretch's bound (jerk_bound): scale from the box bound
+        scale, cap = _scale(g.bmax), None
+
+        def bound_of(i0, i1):
+            return StretchBound.of(path, limits, grid, g.s[i0], g.s[i1])
+    else:
+        upper = speed_bound(path, limits, grid, g.s, g.stop, g.bmax)
+        scale, bound_of = _scale(upper), None
+        cap = upper / scale
     b = np.zeros(g.s.size)
     alpha = np.zeros(g.s.size)
     total_rounds = failed = 0
-    results, n_windows, workers = plan_windows(g, cap, scale)
+    with ThreadPoolExecutor(1) as pool:
+        # the S-curve per block (for _best_per_stretch) while the worker
+        # processes solve the windows, instead of after them
+        scurve = pool.submit(scurve_pieces, path, limits) if cap is None else None
+        results, n_windows, workers = plan_windows(g, cap, scale, bound_of)
+        scurve = scurve_pieces(path, limits) if scurve is None else scurve.result()
     for i0, i1, keep, bw, aw, rounds in results:
         if bw is None and aw:
             # rest to rest: the S-curve per block stands in (see _best_per_stretch)
@@ -215,11 +229,17 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         alpha[i0:keep + 1] = aw * scale
     info = {"gridpoints": int(g.s.size), "windows": n_windows, "lp_rounds": total_rounds,
             "ts": ts, "lp_failed_windows": failed, "workers": workers}
-    return _profile(path, limits, g, b, alpha, info)
+    return _profile(path, limits, g, b, alpha, info, scurve)
 
 
-def _profile(path, limits, g: JerkGrid, b, alpha, info) -> JerkProfile:
-    """The :class:`JerkProfile` of the LP's ``(b, alpha)`` at the gridpoints."""
+def _scale(upper: np.ndarray) -> float:
+    """The squared speed the LPs are scaled by: the largest finite of ``upper``."""
+    return float(np.max(upper[np.isfinite(upper)], initial=1.0)) or 1.0
+
+
+def _profile(path, limits, g: JerkGrid, b, alpha, info, scurve: dict) -> JerkProfile:
+    """The :class:`JerkProfile` of the LP's ``(b, alpha)`` at the gridpoints
+    (``scurve``: the S-curve per block's pieces, :func:`scurve_pieces`)."""
     b = np.where(g.stop, 0.0, b)
     moving = ~g.stop
     if np.any(b[moving] <= 0.0):
@@ -239,7 +259,7 @@ def _profile(path, limits, g: JerkGrid, b, alpha, info) -> JerkProfile:
     pieces = {"kind": np.where(rest, CUBIC, PIECE_SLINEAR), "s0": g.s[:-1], "h": h,
               "v0": v[:-1], "v1": v[1:], "a0": a0, "a1": alpha[1:], "j": sigma, "dt": dt,
               "segment": path.locate(0.5 * (g.s[:-1] + g.s[1:]))}
-    pieces, info["scurve_stretches"] = _best_per_stretch(pieces, scurve_pieces(path, limits),
+    pieces, info["scurve_stretches"] = _best_per_stretch(pieces, scurve,
                                                          g.s[g.stop])
     return JerkProfile.from_pieces(path, limits, "jerk", pieces, info)
 

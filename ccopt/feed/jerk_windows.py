@@ -32,10 +32,12 @@ from ccopt.feed.jerk_lp import JerkGrid, WindowLP
 BHAT_TOL = 2e-3
 #: ... or a window's duration estimate changing by less than DURATION_TOL
 #: (relative) in each of SETTLED_ROUNDS rounds in a row; at most MAX_ROUNDS
-#: rounds (on the 1,000-block pocket of bench/feed.py, 8 rounds gave the
-#: shortest total of any fixed number from 3 to 12, within 0.5 % of taking
-#: each window's best round; later rounds wander, as the LP's optimum jumps
-#: between vertices when bhat moves, and 12 rounds ended 0.4 % slower).
+#: rounds. On the 1,000-block pocket of bench/feed.py (one window per
+#: stretch) 4, 5, 6, 7, 8 and 10 rounds planned 160.36, 158.54, 157.47,
+#: 156.93, 157.54 and 160.48 s: later rounds wander, as the LP's optimum
+#: jumps between vertices when bhat moves (and 10 left two windows
+#: infeasible); but the pure-jerk 2 mm diagonal of test_jerk_planner comes
+#: within 0.52, 0.44 and 0.40 % of its closed form with 6, 7 and 8 rounds.
 DURATION_TOL = 1e-3
 SETTLED_ROUNDS = 2
 MAX_ROUNDS = 8
@@ -45,7 +47,11 @@ BHAT_FALL = 0.1
 BHAT_RISE = 1.5
 #: Gridpoints per LP window of stop-to-stop stretches gathered together; of a
 #: stretch with no stop; and how much further such a window plans than it keeps.
-BATCH_POINTS = 800
+#: (A window's rounds end together, and a failed window takes the S-curve on
+#: all its stretches: on the 1,000-block pocket, whose stretches have about
+#: 300 gridpoints, windows of 200 (a stretch each) planned 157.54 s in 15 %
+#: less CPU than windows of 800 (158.40 s), and 1,600 planned 161.15 s.)
+BATCH_POINTS = 200
 WINDOW_POINTS = 3000
 WINDOW_OVERLAP = 0.5
 #: Processes for the chains (None: as many as the CPUs this process may use),
@@ -53,6 +59,11 @@ WINDOW_OVERLAP = 0.5
 #: about a second to import ccopt).
 WORKERS: int | None = None
 PARALLEL_MIN_POINTS = 50_000
+#: The fewest gridpoints from which each task computes the speed bound of its
+#: own stretch (:func:`split`); TOPPRA over the whole path would otherwise run
+#: alone before the processes start (12 CPU s on the 10,000-block pocket of
+#: bench/feed.py, a fifth of the wall time on 2 cores).
+SPLIT_BOUND_POINTS = 50_000
 #: Gridpoints per task handed to a process (several chains each, so the
 #: grid's arrays cross in few messages and the processes stay evenly loaded).
 TASK_POINTS = 20_000
@@ -188,14 +199,21 @@ def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float) -> list[tupl
     return out
 
 
-def _solve_task(g: JerkGrid, cap: np.ndarray, chains, scale: float) -> list[tuple]:
-    """:func:`_solve_chain` on each of ``chains`` (indices local to ``g``)."""
+def _solve_task(g: JerkGrid, cap: np.ndarray | None, chains, scale: float,
+                bound=None) -> list[tuple]:
+    """:func:`_solve_chain` on each of ``chains`` (indices local to ``g``);
+    ``cap`` None: it is ``bound(s, stop, bmax) / scale`` (the speed bound of
+    the task's own stretch, :class:`~ccopt.feed.jerk_bound.StretchBound`)."""
+    if cap is None:
+        cap = bound(g.s, g.stop, g.bmax) / scale
     return [r for chain in chains for r in _solve_chain(g, cap, chain, scale)]
 
 
-def _tasks(g: JerkGrid, cap: np.ndarray, chains, scale: float):
+def _tasks(g: JerkGrid, cap: np.ndarray | None, chains, scale: float, bound_of=None):
     """Chains gathered into tasks of about :data:`TASK_POINTS` gridpoints, each
-    with its own slice of the grid: ``(offset, args of _solve_task)``."""
+    with its own slice of the grid: ``(offset, args of _solve_task)``; with
+    ``cap`` None, each with ``bound_of(i0, i1)``, the speed bound of its
+    gridpoints ``i0..i1`` instead of a slice of ``cap``."""
     groups: list[list] = [[]]
     size = 0
     for chain in chains:
@@ -207,7 +225,19 @@ def _tasks(g: JerkGrid, cap: np.ndarray, chains, scale: float):
     for group in groups:
         lo, hi = group[0][0][0], group[-1][-1][1]
         local = [[(i0 - lo, i1 - lo, keep - lo) for i0, i1, keep in chain] for chain in group]
-        yield lo, (_grid_slice(g, lo, hi), cap[lo:hi + 1], local, scale)
+        if cap is None:
+            yield lo, (_grid_slice(g, lo, hi), None, local, scale, bound_of(lo, hi))
+        else:
+            yield lo, (_grid_slice(g, lo, hi), cap[lo:hi + 1], local, scale)
+
+
+def split(g: JerkGrid) -> bool:
+    """Whether the speed bound of ``g`` is computed per task
+    (:class:`~ccopt.feed.jerk_bound.StretchBound`, in the processes that solve
+    the tasks' windows): a program of :data:`SPLIT_BOUND_POINTS` gridpoints or
+    more, with more than one chain. A decision on the program alone: the
+    result never depends on how many processes solve it."""
+    return g.s.size >= SPLIT_BOUND_POINTS and len(_chains(windows(g), g.stop)) >= 2
 
 
 def _workers(points: int, n_chains: int) -> int:
@@ -223,18 +253,27 @@ def _workers(points: int, n_chains: int) -> int:
     return max(1, min(n, n_chains))
 
 
-def plan_windows(g: JerkGrid, cap: np.ndarray, scale: float):
+def plan_windows(g: JerkGrid, cap: np.ndarray | None, scale: float, bound_of=None):
     """Every window of ``g`` solved (see the module docstring): ``(results,
     n_windows, workers)``, ``results`` as :func:`_solve_chain`'s, with global
-    gridpoint indices, in order along the path."""
+    gridpoint indices, in order along the path.
+
+    ``cap``: the scaled speed bound at every gridpoint, or None on a
+    :func:`split` program: then ``bound_of(i0, i1)`` gives each task the
+    callable that computes it on the task's gridpoints ``i0..i1``."""
     wins = windows(g)
     chains = _chains(wins, g.stop)
     workers = _workers(g.s.size, len(chains))
-    if workers == 1:
+    if workers == 1 and cap is not None:
         return _solve_task(g, cap, chains, scale), len(wins), 1
-    tasks = list(_tasks(g, cap, chains, scale))
+    tasks = list(_tasks(g, cap, chains, scale, bound_of))
+    workers = min(workers, len(tasks))
+    if workers == 1:
+        parts = [_solve_task(*args) for _, args in tasks]
+    else:
+        parts = _run_in_processes([args for _, args in tasks], workers)
     results: list[tuple] = []
-    for (lo, _), part in zip(tasks, _run_in_processes([args for _, args in tasks], workers)):
+    for (lo, _), part in zip(tasks, parts):
         results.extend((i0 + lo, i1 + lo, keep + lo, *rest) for i0, i1, keep, *rest in part)
     return results, len(wins), workers
 
