@@ -83,7 +83,7 @@ def test_spiral_derivative_bounds_hold_against_finite_differences():
     kappa = np.hypot(*d2.T)
     dkappa = np.gradient(kappa, s)
     inner = slice(10, -10)
-    K2, K3, _, k1, _ = derivative_bounds([Spiral((0.0, 0.0), rho0, rho1, 0.0, sweep)])[0]
+    K2, K3, _, k1, _, _ = derivative_bounds([Spiral((0.0, 0.0), rho0, rho1, 0.0, sweep)])[0]
     assert kappa[inner].max() <= K2 * (1 + 1e-6)
     assert np.hypot(*d3[inner].T).max() <= K3 * (1 + 1e-6)
     assert np.abs(dkappa[inner]).max() <= k1 * (1 + 1e-6)
