@@ -40,6 +40,7 @@ from ccopt.geometry.distance import (
     point_arc, point_segment, segment_arc, segment_segment,
 )
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
+from ccopt.verify.concentric import farthest_concentric, polar_gap, same_angle
 from ccopt.verify.maxdist import max_distance as exact_max_distance
 
 #: Pieces per pair are never more than this (the bound is then reported with its gap).
@@ -53,16 +54,6 @@ _NEAR_CHORDS = 8
 _KD_TREE_CHORDS = 2048
 #: Chords on each side of a seed searched for the nearest (see _near_chords).
 _NEAR_WINDOW = 4
-
-#: Radians: how far a curve's ends may lie outside another's sweep, and the
-#: angle between them read through the other's parameter differ from its own
-#: sweep, for :func:`_concentric_max` (a few 1e-7 when a controller's arc ends
-#: are off their radius; far from a wrap of 2 pi; the bound pays for it).
-ANGLE_SLACK = 1e-6
-
-#: How far past the angle where a chord about a common centre reaches the
-#: radial gap the concentric bound of :func:`_concentric_max` looks (a factor).
-CHORD_ANGLE_MARGIN = 1.01
 
 #: The first cut of a curve's parameter range: this many equal pieces ...
 FIRST_PIECES = 8
@@ -346,27 +337,11 @@ def _bound_pieces(pa: Param, b, pb: Param | None, pieces, exempt):
         if isinstance(pa, SpiralParam) and isinstance(pb, SpiralParam) \
                 and np.array_equal(pa.c, pb.c):
             ang = pa.th0 + pa.sg * (ua0 + ta * (ua1 - ua0))
-            dq, qb = _same_angle(qa, ang, dq, qb, pb.eval, pb.th0, pb.sg, pb.U)
+            dq, qb = same_angle(qa, ang, dq, qb, pb.eval, pb.th0, pb.sg, pb.U)
     ok_ub = ~skip
     if exempt is not None:
         ok_ub &= ~exempt[1](qa)
     return lb, ~skip, dq, qa, qb, ok_ub
-
-
-def _same_angle(qa, ang, dq, qb, eval_b, th0_b, sg_b, U_b):
-    """``(dq, qb)`` improved, for spirals about one centre, by the point of ``b``
-    at the polar angle ``ang`` of each ``qa`` where ``b`` has one (a genuine
-    pair of curve points, so still an upper bound). The chord witnesses of
-    two nearly parallel chords sit at their ends, angles apart; the radial
-    pair is within ``|b|`` times the pieces' angle of the distance, so a
-    spiral against its concentric offset converges in one round instead of
-    cutting both into thousands of pieces."""
-    u = np.mod((ang - th0_b) * sg_b, 2.0 * math.pi)
-    ok = u <= U_b
-    q2 = eval_b(np.minimum(u, U_b))
-    d2 = np.hypot(*(qa - q2).T)
-    better = ok & (d2 < dq)
-    return np.where(better, d2, dq), np.where(better[:, None], q2, qb)
 
 
 def _radius_range(p: "SpiralParam", u0, u1):
@@ -387,6 +362,9 @@ def _radial_gap(pa: Param, ua0, ua1, b, pb: Param | None, ub0, ub1):
         lo_b = hi_b = float(b.radius)
     elif isinstance(pb, SpiralParam) and np.array_equal(pa.c, pb.c):
         lo_b, hi_b = _radius_range(pb, ub0, ub1)
+        lo_a, hi_a = _radius_range(pa, ua0, ua1)
+        return np.maximum(np.maximum(np.maximum(lo_a - hi_b, lo_b - hi_a), 0.0),
+                          polar_gap(pa, ua0, ua1, pb, ub0, ub1))
     else:
         return 0.0
     lo_a, hi_a = _radius_range(pa, ua0, ua1)
@@ -484,56 +462,6 @@ def _poly_dist(q, e0, e1):
     return best
 
 
-def _concentric_max(pt: SpiralParam, pe: SpiralParam, tol: float) -> Bound | None:
-    """``max dist(q in t, e)`` in closed form for a spiral or arc ``t`` about the
-    centre of ``e`` whose angles lie in ``e``'s sweep (to :data:`ANGLE_SLACK`): a
-    tool segment and its element, offset radially. ``None`` when that does not
-    apply or the bounds are not within ``tol`` (the caller then cuts chords).
-
-    Upper bound: each ``q`` is within ``|rho_t - rho_e|`` of the point of ``e``
-    at its polar angle, both radii affine in the angle, so the largest is at
-    an end of ``t`` (an end past ``e``'s by ``delta`` radians adds at most
-    ``(rho_t + |b_t|) delta``). Lower bound, at an end ``q`` of ``t`` (a genuine
-    point, the witness), with ``g = |rho_q - rho_e|`` at its angle (``e``'s end
-    when past it): a point of ``e`` within ``x`` radians of that angle is at
-    least ``g - |b_e| x`` away
-    (radii: ``|q - p| >= ||q - c| - |p - c||``), one farther round at least the
-    chord ``2 sqrt(rho_q rho_e,min) sin(x / 2)`` (when ``e`` sweeps at most
-    ``2 pi - x``); ``x`` is chosen just past the angle where the chord reaches
-    ``g``, so the second does not bind."""
-    if not np.array_equal(pt.c, pe.c):
-        return None
-    ends = np.array([0.0, pt.U])
-    ang = pt.th0 + pt.sg * ends
-    ue = np.mod((ang - pe.th0) * pe.sg, 2.0 * math.pi)
-    ue = np.where(ue > pe.U + ANGLE_SLACK, ue - 2.0 * math.pi, ue)   # just before e's start
-    over = float(max(0.0, -ue.min(), ue.max() - pe.U))
-    # within the slack of e's sweep, and no wrap between the ends (e's parameter
-    # runs affinely along t)
-    if over > ANGLE_SLACK or abs((ue[1] - ue[0]) - pe.sg * pt.sg * pt.U) > ANGLE_SLACK:
-        return None
-    rho_t = pt.rho0 + pt.b * ends
-    g = np.abs(rho_t - (pe.rho0 + pe.b * np.clip(ue, 0.0, pe.U)))
-    # past e's end by up to `over` radians: from e's end point, radially and round
-    hi_e = max(pe.rho0, pe.rho0 + pe.b * pe.U)
-    ub = float(max(g.max(), math.sqrt((g.max() + abs(pt.b) * over) ** 2
-                                      + rho_t.max() * hi_e * over * over)))
-    lo_e = min(pe.rho0, pe.rho0 + pe.b * pe.U)
-    # the angle where the chord reaches the radial gap, and a little more
-    reach = float(g.max() / (2.0 * math.sqrt(rho_t.min() * lo_e)))
-    x = min(2.0 * math.pi - pe.U - over, CHORD_ANGLE_MARGIN * 2.0 * math.asin(min(reach, 1.0)))
-    if not x > 0.0:
-        return None
-    chord = 2.0 * np.sqrt(rho_t * lo_e) * math.sin(0.5 * x)
-    lbs = np.maximum(np.minimum(g - abs(pe.b) * x, chord), 0.0)
-    k = int(np.argmax(lbs))
-    lb = float(lbs[k])
-    if ub - lb > tol:
-        return None
-    q = pt.eval(ends[k:k + 1])[0]
-    return Bound(lb, ub, (float(q[0]), float(q[1])), None, True, 1)
-
-
 def max_distance(t, e, tol: float, max_rounds: int = 16, n0: int = 16) -> Bound:
     """Certified bounds of ``max_{q in t} dist(q, e)`` (contact), ``t`` or ``e`` curved.
 
@@ -549,9 +477,9 @@ def max_distance(t, e, tol: float, max_rounds: int = 16, n0: int = 16) -> Bound:
     e_exact = is_exact(e)
     pe = None if e_exact else param_of(e)
     if isinstance(pt, SpiralParam) and isinstance(e, (Arc, Spiral)):
-        radial = _concentric_max(pt, param_of(e), tol)
+        radial = farthest_concentric(pt, param_of(e), tol)
         if radial is not None:
-            return radial
+            return Bound(radial[0], radial[1], radial[2], None, True, 1)
     n = n0
     lb = -math.inf
     ubv = math.inf

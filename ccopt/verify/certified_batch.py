@@ -24,8 +24,9 @@ import numpy as np
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.distance import point_arc, point_segment, segment_arc, segment_segment
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
+from ccopt.verify.concentric import polar_gap, same_angle
 from ccopt.verify.certified import (
-    MAX_PIECES, Bound, SpiralParam, _first_pieces, _fraction, _same_angle, is_exact,
+    MAX_PIECES, Bound, SpiralParam, _first_pieces, _fraction, is_exact,
 )
 
 
@@ -190,7 +191,7 @@ def _run(A: _Spirals, bs, sel, curved: bool, tol: float, caps, max_rounds: int) 
             if c.size:
                 k = pid[c]
                 ang = A.th0[ka[c]] + A.sg[ka[c]] * (ua0[c] + ta[c] * (ua1[c] - ua0[c]))
-                dq[c], qb[c] = _same_angle(qa[c], ang, dq[c], qb[c],
+                dq[c], qb[c] = same_angle(qa[c], ang, dq[c], qb[c],
                                            lambda u, k=k: B.eval(k, u), B.th0[k], B.sg[k],
                                            B.U[k])
         else:
@@ -252,7 +253,19 @@ def _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb, curved):
     else:
         lo_b = hi_b = Rb[pid]
     gap = np.maximum(np.maximum(lo_a - hi_b, lo_b - hi_a), 0.0)
+    if curved:
+        k = np.flatnonzero(c)
+        a = _View(A, ka[k])
+        b = _View(B, pid[k])
+        gap[k] = np.maximum(gap[k], polar_gap(a, ua0[k], ua1[k], b, ub0[k], ub1[k]))
     return np.where(c, gap, 0.0)
+
+
+class _View:
+    """The spiral parameters of each piece's curve, as :func:`polar_gap` reads them."""
+
+    def __init__(self, S: _Spirals, k):
+        self.th0, self.sg, self.rho0, self.b = S.th0[k], S.sg[k], S.rho0[k], S.b[k]
 
 
 def _halve(pid, ua0, ua1, ub0, ub1, keep, curved: bool):

@@ -11,6 +11,7 @@ from scipy.optimize import minimize_scalar
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.verify import certified
 from ccopt.verify.certified_batch import batchable, min_distances
+from ccopt.verify.concentric import polar_gap
 
 
 def spiral_point(sp: Spiral, phi):
@@ -102,3 +103,34 @@ def test_farthest_distance_about_a_common_centre_in_closed_form(t, e):
     assert b.lb <= ref + 1e-9 and ref <= b.ub + 1e-9 and b.ub - b.lb <= 1e-7
     # the witness is a genuine point of t at distance >= lb from e
     assert dist_to_spiral(np.array(b.wa), e) >= b.lb - 1e-9
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_polar_gap_is_below_the_distance_of_the_pieces(seed):
+    rng = np.random.default_rng(40 + seed)
+    c = (0.3, -0.2)
+    th = rng.uniform(-3, 3)
+    a = certified.param_of(Spiral(c, rng.uniform(1, 2), rng.uniform(1, 2), th, 2.0))
+    b = certified.param_of(Spiral(c, rng.uniform(1.2, 2.2), rng.uniform(1.2, 2.2),
+                                  th + rng.uniform(-0.2, 0.2), 2.0))
+    ua0 = rng.uniform(0, 1.8, 20)
+    ua1 = ua0 + rng.uniform(0.01, 0.2, 20)
+    ub0 = np.clip(ua0 + rng.uniform(-0.3, 0.3, 20), 0, 1.8)
+    ub1 = ub0 + rng.uniform(0.01, 0.2, 20)
+    gap = polar_gap(a, ua0, ua1, b, ub0, ub1)
+    assert (gap > 0).any()
+    for k in range(20):
+        P = a.eval(np.linspace(ua0[k], ua1[k], 801))
+        Q = b.eval(np.linspace(ub0[k], ub1[k], 801))
+        d = np.hypot(P[:, None, 0] - Q[None, :, 0], P[:, None, 1] - Q[None, :, 1]).min()
+        assert gap[k] <= d + 1e-12
+
+
+def test_offset_spirals_with_a_larger_radius_change_settle_quickly():
+    # inside-corners' kind: arc ends 1e-4 off their radius, offset by 0.075
+    e = Spiral((1.0341, 3.548), 0.26020808980506355, 0.26032352947822446, -2.7169689, -2.0088653)
+    t = Spiral((1.0341, 3.548), 0.18520808985960727, 0.1853235294782246, -2.7169819, -2.0088523)
+    b = certified.min_distance(t, e, 1e-7, cap=0.07501)
+    true = min(dist_to_spiral(spiral_point(t, f), e) for f in np.linspace(0, 2.0088523, 41))
+    assert b.converged and b.lb <= true + 1e-12 and b.ub - b.lb <= 1e-7
+    assert b.pieces < 1000
