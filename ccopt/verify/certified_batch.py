@@ -12,8 +12,8 @@ and every number are those of :func:`~ccopt.verify.certified.min_distance`
 bit (tested).
 
 Pairs covered: a spiral or arc ``a`` (the curved one) against a line or arc
-``b`` (exact) or a spiral or arc ``b`` (curved), without an open-end
-exemption; :func:`batchable` says which. Other curves go one at a time.
+``b`` (exact, with or without an open-end exemption) or a spiral or arc ``b``
+(curved); :func:`batchable` says which. Other curves go one at a time.
 """
 from __future__ import annotations
 
@@ -122,19 +122,23 @@ class _Exact:
         return d, wb
 
 
-def min_distances(pairs, tol: float, caps, max_rounds: int = VERIFY_CERTIFIED_MAX_ROUNDS
-                  ) -> list[Bound]:
-    """:func:`ccopt.verify.certified.min_distance` ``(a, b, tol, cap)`` of every
-    ``(a, b)`` in ``pairs`` (each :func:`batchable`) with ``caps[i]``, at once."""
+def min_distances(pairs, tol: float, caps, exempts=None,
+                  max_rounds: int = VERIFY_CERTIFIED_MAX_ROUNDS) -> list[Bound]:
+    """:func:`ccopt.verify.certified.min_distance` ``(a, b, tol, cap, exempt)`` of
+    every ``(a, b)`` in ``pairs`` (each :func:`batchable`) with ``caps[i]`` and
+    ``exempts[i]`` (``None``: no exemption; only with an exact ``b``), at once."""
     if not pairs:
         return []
+    exempts = [None] * len(pairs) if exempts is None else list(exempts)
     A = _Spirals([a for a, _ in pairs])
     curved = np.array([not is_exact(b) for _, b in pairs], bool)
+    if any(ex is not None for ex, c in zip(exempts, curved) if c):
+        raise ValueError("exemptions apply to pairs with an exact second element")
     out: list[Bound | None] = [None] * len(pairs)
     for sel in (np.flatnonzero(~curved), np.flatnonzero(curved)):
         if sel.size:
             res = _run(A, [pairs[i][1] for i in sel], sel, bool(curved[sel[0]]), tol,
-                       np.asarray(caps, float)[sel], max_rounds)
+                       np.asarray(caps, float)[sel], max_rounds, [exempts[i] for i in sel])
             for i, r in zip(sel, res):
                 out[i] = r
     return out
@@ -155,70 +159,126 @@ def _concentric_b(A: _Spirals, sel, bs, curved: bool):
     return conc, Rb
 
 
-def _run(A: _Spirals, bs, sel, curved: bool, tol: float, caps, max_rounds: int) -> list[Bound]:
-    P = len(bs)
+def _run(A: _Spirals, bs, sel, curved: bool, tol: float, caps, max_rounds: int,
+         exempts) -> list[Bound]:
+    """The branch and bound of the pairs ``(A[sel[m]], bs[m])``, all ``b`` exact or all curved."""
     B = _Spirals(bs) if curved else _Exact(bs)
-    conc, Rb = _concentric_b(A, sel, bs, curved)
-    pid, ua0, ua1, ub0, ub1 = _first(A, B, sel, curved)
-    best = np.full(P, math.inf)
-    wa = np.full((P, 2), np.nan)
-    wb = np.full((P, 2), np.nan)
-    dropped = np.full(P, math.inf)
-    remaining = np.full(P, math.inf)
-    npieces = np.zeros(P, np.int64)
+    geo = (A, B, sel, curved) + _concentric_b(A, sel, bs, curved)
+    pieces = _first(A, B, sel, curved)
+    state = _State(len(bs))
     rounds = 0
-    while pid.size:
+    while pieces[0].size:
         rounds += 1
-        ka = sel[pid]
-        c0, c1 = A.eval(ka, ua0), A.eval(ka, ua1)
-        da = A.delta(ka, ua0, ua1)
-        if curved:
-            e0, e1 = B.eval(pid, ub0), B.eval(pid, ub1)
-            db = B.delta(pid, ub0, ub1)
-            d, w_a, w_b = segment_segment(c0, c1, e0, e1)
-        else:
-            db = 0.0
-            d, w_a, w_b = B.chords_to(pid, c0, c1)
-        lb = np.maximum(d - da - db, _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb,
-                                                 curved))
-        ta = _fraction(w_a, c0, c1)
-        qa = A.eval(ka, ua0 + ta * (ua1 - ua0))
-        if curved:
-            tb = _fraction(w_b, e0, e1)
-            qb = B.eval(pid, ub0 + tb * (ub1 - ub0))
-            dq = np.hypot(*(qa - qb).T)
-            c = np.flatnonzero(conc[pid])
-            if c.size:
-                k = pid[c]
-                ang = A.th0[ka[c]] + A.sg[ka[c]] * (ua0[c] + ta[c] * (ua1[c] - ua0[c]))
-                dq[c], qb[c] = same_angle(qa[c], ang, dq[c], qb[c],
-                                           lambda u, k=k: B.eval(k, u), B.th0[k], B.sg[k],
-                                           B.U[k])
-        else:
-            dq, qb = B.points_to(pid, qa)
-        # each pair's smallest dq (its first in piece order on ties, as argmin)
-        order = np.lexsort((dq, pid))
+        lb, dq, qa, qb, live, ok = _round(geo, pieces, exempts)
+        go = state.update(pieces[0], lb, dq, qa, qb, live, ok, tol, caps,
+                          rounds >= max_rounds, curved)
+        pieces = _halve(*pieces, go, curved)
+    return state.bounds(tol, caps)
+
+
+class _State:
+    """Each pair's best upper bound and its witnesses, the least lower bound of
+    its dropped pieces and of its remaining ones, and its piece count."""
+
+    def __init__(self, P: int):
+        self.P = P
+        self.best = np.full(P, math.inf)
+        self.wa = np.full((P, 2), np.nan)
+        self.wb = np.full((P, 2), np.nan)
+        self.dropped = np.full(P, math.inf)
+        self.remaining = np.full(P, math.inf)
+        self.npieces = np.zeros(P, np.int64)
+
+    def update(self, pid, lb, dq, qa, qb, live, ok, tol, caps, last: bool, curved: bool):
+        """One round of :func:`ccopt.verify.certified.min_distance` for every pair;
+        the pieces to halve."""
+        P = self.P
+        # each pair's smallest genuine dq (its first in piece order on ties, as argmin)
+        dqm = np.where(ok, dq, np.inf)
+        order = np.lexsort((dqm, pid))
         first = order[np.r_[True, pid[order][1:] != pid[order][:-1]]]
-        better = dq[first] < best[pid[first]]
+        better = dqm[first] < self.best[pid[first]]
         upd, at = pid[first][better], first[better]
-        best[upd], wa[upd], wb[upd] = dq[at], qa[at], qb[at]
-        npieces[np.unique(pid)] = np.bincount(pid, minlength=P)[np.unique(pid)]
-        keep = (lb < best[pid] - tol) & (lb < caps[pid])
-        gone = ~keep
-        np.minimum.at(dropped, pid[gone], lb[gone])
-        live = np.unique(pid)
+        self.best[upd], self.wa[upd], self.wb[upd] = dq[at], qa[at], qb[at]
+        present = np.unique(pid)
+        self.npieces[present] = np.bincount(pid, minlength=P)[present]
+        keep = live & (lb < self.best[pid] - tol) & (lb < caps[pid])
+        gone = live & ~keep
+        np.minimum.at(self.dropped, pid[gone], lb[gone])
         kept = np.bincount(pid[keep], minlength=P)
-        remaining[live] = math.inf
-        np.minimum.at(remaining, pid[keep], lb[keep])
-        stop = (rounds >= max_rounds) | (2 * kept * (2 if curved else 1) > MAX_PIECES)
-        go = keep & ~stop[pid]
-        pid, ua0, ua1, ub0, ub1 = _halve(pid, ua0, ua1, ub0, ub1, go, curved)
-    lbv = np.minimum(np.minimum(dropped, remaining), best)
-    conv = (best - lbv <= tol) | (lbv >= caps)
-    return [Bound(float(lbv[i]), float(best[i]),
-                  None if math.isinf(best[i]) else (float(wa[i, 0]), float(wa[i, 1])),
-                  None if math.isinf(best[i]) else (float(wb[i, 0]), float(wb[i, 1])),
-                  bool(conv[i]), int(npieces[i])) for i in range(P)]
+        self.remaining[present] = math.inf
+        np.minimum.at(self.remaining, pid[keep], lb[keep])
+        stop = last | (2 * kept * (2 if curved else 1) > MAX_PIECES)
+        return keep & ~stop[pid]
+
+    def bounds(self, tol: float, caps) -> list[Bound]:
+        best = self.best
+        lbv = np.minimum(np.minimum(self.dropped, self.remaining), best)
+        with np.errstate(invalid="ignore"):     # inf - inf: a pair wholly exempt
+            conv = (best - lbv <= tol) | (lbv >= caps)
+        return [Bound(float(lbv[i]), float(best[i]),
+                      None if math.isinf(best[i]) else (float(self.wa[i, 0]),
+                                                         float(self.wa[i, 1])),
+                      None if math.isinf(best[i]) else (float(self.wb[i, 0]),
+                                                         float(self.wb[i, 1])),
+                      bool(conv[i]), int(self.npieces[i])) for i in range(self.P)]
+
+
+def _round(geo, pieces, exempts):
+    """Bounds of every live piece (pair): ``(lb, dq, qa, qb, live, ok)`` as
+    :func:`ccopt.verify.certified._bound_pieces` gives them (``ok``: ``dq`` is a
+    genuine distance outside the pair's exemption)."""
+    A, B, sel, curved, conc, Rb = geo
+    pid, ua0, ua1, ub0, ub1 = pieces
+    ka = sel[pid]
+    c0, c1 = A.eval(ka, ua0), A.eval(ka, ua1)
+    da = A.delta(ka, ua0, ua1)
+    if curved:
+        e0, e1 = B.eval(pid, ub0), B.eval(pid, ub1)
+        db = B.delta(pid, ub0, ub1)
+        d, w_a, w_b = segment_segment(c0, c1, e0, e1)
+    else:
+        db = 0.0
+        d, w_a, w_b = B.chords_to(pid, c0, c1)
+    lb = np.maximum(d - da - db, _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb,
+                                             curved))
+    ta = _fraction(w_a, c0, c1)
+    qa = A.eval(ka, ua0 + ta * (ua1 - ua0))
+    if curved:
+        tb = _fraction(w_b, e0, e1)
+        qb = B.eval(pid, ub0 + tb * (ub1 - ub0))
+        dq = np.hypot(*(qa - qb).T)
+        c = np.flatnonzero(conc[pid])
+        if c.size:
+            k = pid[c]
+            ang = A.th0[ka[c]] + A.sg[ka[c]] * (ua0[c] + ta[c] * (ua1[c] - ua0[c]))
+            dq[c], qb[c] = same_angle(qa[c], ang, dq[c], qb[c],
+                                      lambda u, k=k: B.eval(k, u), B.th0[k], B.sg[k], B.U[k])
+    else:
+        dq, qb = B.points_to(pid, qa)
+    live, ok = _exempt(pid, c0, c1, da, qa, exempts)
+    return lb, dq, qa, qb, live, ok
+
+
+def _exempt(pid, c0, c1, da, qa, exempts):
+    """``(live, ok)`` of each piece: not skipped as inside its pair's open-end
+    exemption by its chord deviation, and its witness outside the exemption
+    (all True for pairs without one)."""
+    live = np.ones(pid.size, bool)
+    ok = np.ones(pid.size, bool)
+    with_ex = [m for m, ex in enumerate(exempts) if ex is not None]
+    if not with_ex:
+        return live, ok
+    order = np.argsort(pid, kind="stable")
+    edges = np.searchsorted(pid[order], np.arange(len(exempts) + 1))
+    for m in with_ex:
+        idx = order[edges[m]:edges[m + 1]]
+        if idx.size:
+            inside_by, contains = exempts[m]
+            skip = inside_by(c0[idx], da[idx]) & inside_by(c1[idx], da[idx])
+            live[idx] = ~skip
+            ok[idx] = ~skip & ~contains(qa[idx])
+    return live, ok
 
 
 def _first(A: _Spirals, B, sel, curved: bool):

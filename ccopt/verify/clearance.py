@@ -450,33 +450,14 @@ def pair_distances(tool: Packed, contour: Contour, eps: float,
 def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: float, out):
     """Certified bounds of the ``pairs`` (indices into ``it``, ``je``) with a
     spiral or curve, written into ``out = (d, ub, wt, we)``: lower bound, upper
-    bound and witnesses. Spiral, arc and line pairs without an open-end
-    exemption go through one vectorised branch and bound
-    (:mod:`.certified_batch`, the same bounds as one at a time); the rest one
-    by one."""
+    bound and witnesses. Spiral, arc and line pairs go through one vectorised
+    branch and bound (:mod:`.certified_batch`, the same bounds as one at a
+    time); other curves one by one."""
     d, ub, wt, we = out
     E = contour.elements
     open_elem = contour.open_start | contour.open_end
-    one_by_one = []
-    batch = []          # (q, curved, other, swapped)
+    one_by_one, batch = [], []          # batch: (q, curved, other, swapped, exemption)
     for q in pairs:
-        j = int(je[q])
-        tg, eg = tool.geom(it[q]), E.geom(j)
-        exempt = open_elem[j] and certified.is_exact(eg)
-        swapped = certified.is_exact(tg) and not certified.is_exact(eg)
-        a, b = (eg, tg) if swapped else (tg, eg)
-        if not exempt and batchable(a, b):
-            batch.append((q, a, b, swapped))
-        else:
-            one_by_one.append(q)
-    # every pair of spirals, arcs and lines in one vectorised branch and bound
-    bounds = min_distances([(a, b) for _, a, b, _ in batch], tol,
-                           [float(reach[je[q]]) for q, *_ in batch])
-    for (q, _, _, swapped), b in zip(batch, bounds):
-        d[q], ub[q] = b.lb, b.ub
-        if b.wa is not None:
-            wt[q], we[q] = (b.wb, b.wa) if swapped else (b.wa, b.wb)
-    for q in one_by_one:
         j = int(je[q])
         tg, eg = tool.geom(it[q]), E.geom(j)
         regions = exempt_regions(contour, j) if open_elem[j] and certified.is_exact(eg) else []
@@ -484,11 +465,22 @@ def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: 
         if regions:
             ex = (lambda pts, m, R=regions: in_regions(R, pts, m),
                   lambda pts, R=regions: in_regions(R, pts))
-        if certified.is_exact(tg) and not certified.is_exact(eg):
-            b = certified.min_distance(eg, tg, tol, cap=float(reach[j]))
-            b = certified.Bound(b.lb, b.ub, b.wb, b.wa, b.converged, b.pieces)
+        # the curved one first (an exact element only ever has the exemption)
+        swapped = certified.is_exact(tg) and not certified.is_exact(eg)
+        a, b = (eg, tg) if swapped else (tg, eg)
+        if batchable(a, b):
+            batch.append((q, a, b, swapped, ex))
         else:
-            b = certified.min_distance(tg, eg, tol, cap=float(reach[j]), exempt=ex)
+            one_by_one.append((q, a, b, swapped, ex))
+    # every pair of spirals, arcs and lines in one vectorised branch and bound
+    bounds = min_distances([(a, b) for _, a, b, _, _ in batch], tol,
+                           [float(reach[je[q]]) for q, *_ in batch],
+                           [ex for *_, ex in batch])
+    results = list(zip(batch, bounds))
+    results += [((q, a, b, swapped, ex),
+                 certified.min_distance(a, b, tol, cap=float(reach[je[q]]), exempt=ex))
+                for q, a, b, swapped, ex in one_by_one]
+    for (q, _, _, swapped, _), b in results:
         d[q], ub[q] = b.lb, b.ub
         if b.wa is not None:
-            wt[q], we[q] = b.wa, b.wb
+            wt[q], we[q] = (b.wb, b.wa) if swapped else (b.wa, b.wb)

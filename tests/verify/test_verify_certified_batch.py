@@ -134,3 +134,19 @@ def test_offset_spirals_with_a_larger_radius_change_settle_quickly():
     true = min(dist_to_spiral(spiral_point(t, f), e) for f in np.linspace(0, 2.0088523, 41))
     assert b.converged and b.lb <= true + 1e-12 and b.ub - b.lb <= 1e-7
     assert b.pieces < 1000
+
+
+def test_batch_with_open_end_exemptions_gives_the_one_at_a_time_bounds():
+    # a half-plane x <= x0 exempt (what an open end of a line makes): pieces
+    # inside it by their chord deviation skipped, witnesses in it not counted
+    def half_plane(x0):
+        return (lambda pts, m: pts[:, 0] <= x0 - m, lambda pts: pts[:, 0] <= x0)
+
+    pairs = [p for p in random_pairs(7, 30) if certified.is_exact(p[1])]
+    exempts = [half_plane(x0) if k % 2 else None
+               for k, x0 in enumerate(np.linspace(-3, 3, len(pairs)))]
+    one = [certified.min_distance(a, b, 1e-7, exempt=ex) for (a, b), ex in zip(pairs, exempts)]
+    assert min_distances(pairs, 1e-7, [math.inf] * len(pairs), exempts) == one
+    with pytest.raises(ValueError, match="exact second"):
+        sp = Spiral((0, 0), 2.0, 3.0, 0.0, 1.0)
+        min_distances([(sp, sp)], 1e-7, [math.inf], [half_plane(0.0)])
