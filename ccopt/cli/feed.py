@@ -94,8 +94,9 @@ def cmd_feed(args: argparse.Namespace) -> int:
 
 def _plan(path: ToolPath, limits: AxisLimits, planners: list[str],
           args: argparse.Namespace, say) -> dict[str, dict]:
-    """Each planner's summary sampled every ``--dt`` s, its samples written as
-    CSV when ``-o``/``--csv`` asks (``FILE.<planner>.csv`` when several)."""
+    """Each planner's summary (figures to a stated bound, ``FeedProfile.summary``),
+    its samples every ``--dt`` s written as CSV when ``-o``/``--csv`` asks
+    (``FILE.<planner>.csv`` when several)."""
     # ccopt.feed loads ExactPath (and toppra, ~2 s) on first use, so `ccopt show` stays fast
     exact = feed_planning.ExactPath(path)
     out: dict = {}
@@ -104,7 +105,8 @@ def _plan(path: ToolPath, limits: AxisLimits, planners: list[str],
         say(f"plan: {name} ({k} of {len(planners)})")
         prof = plan_feed(exact, limits, planner=name, junction_deviation=args.junction_deviation,
                          ts=args.ts)
-        smp = prof.sample(args.dt)
+        # the figures need no dt grid (FeedProfile.figure_samples); the CSV does
+        smp = prof.sample(args.dt) if target else None
         out[name] = prof.summary(args.dt, smp)
         if target:
             csv = Path(target)

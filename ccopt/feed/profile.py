@@ -34,6 +34,7 @@ import numpy as np
 
 from ccopt.atomic import write_text_atomic
 from ccopt.feed.errors import FeedError
+from ccopt.feed.figures import derivative_bounds, piece_steps, piece_times
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.tolerances import ACTIVE_RATIO, MAX_FEED_SAMPLES
@@ -282,6 +283,15 @@ class FeedProfile:
 
         :class:`FeedError` when that is more than :data:`MAX_FEED_SAMPLES`
         samples (a larger ``dt`` is needed)."""
+        n = self.sample_count(dt)
+        times = np.arange(n) * dt
+        times[-1] = min(times[-1], self.duration)
+        return self.at(times)
+
+    def sample_count(self, dt: float) -> int:
+        """How many samples :meth:`sample` ``(dt)`` gives (without making them):
+        every ``dt`` from 0 and the final instant. :class:`FeedError` when that
+        is more than :data:`MAX_FEED_SAMPLES` (a larger ``dt`` is needed)."""
         if not dt > 0:
             raise ValueError("dt must be > 0")
         T = self.duration
@@ -290,10 +300,7 @@ class FeedProfile:
                             f"than {MAX_FEED_SAMPLES:g}: use a larger dt (at least "
                             f"{self.affordable_dt(dt):.3g} s)", self.path.source_file)
         n = int(np.floor(T / dt + _SAMPLE_COUNT_SLACK)) + 1
-        times = np.arange(n) * dt
-        if times[-1] < T:
-            times = np.append(times, T)
-        return self.at(times)
+        return n + 1 if (n - 1) * dt < T else n
 
     def motion(self, times: np.ndarray):
         """``(s, sd, sdd, sddd, segment)`` at ``times`` (inside ``[0, duration]``):
@@ -330,6 +337,15 @@ class FeedProfile:
                                self.limits.tangential_acc, self.limits.centripetal_acc,
                                np.zeros((n, dof)), jlim)
         s, v, u, w, seg = self.motion(times)
+        return self._samples(times, s, v, u, w, seg)
+
+    def _samples(self, times, s, v, u, w, seg) -> FeedSamples:
+        """Samples from the motion ``(s, v, u, w, seg)`` at ``times`` (see :meth:`motion`)."""
+        path = self.path
+        dof = path.dof
+        axes = self.limits.axis_names(path.frame, dof)
+        vlim, alim = self.limits.in_plane(path.frame, dof)
+        jlim = self.limits.jerk_in_plane(path.frame, dof)
         seg_eval = np.where(seg >= 0, seg, path.locate(s))
         q = path.eval_segments(seg_eval, s, 0)
         q1 = path.eval_segments(seg_eval, s, 1)
@@ -345,18 +361,68 @@ class FeedProfile:
                            u, np.linalg.norm(q2, axis=1), feed_cap, axes, vlim, alim,
                            self.limits.tangential_acc, self.limits.centripetal_acc, jerk, jlim)
 
+    def figure_samples(self, dt: float = 1e-3) -> tuple[FeedSamples, np.ndarray]:
+        """Samples whose maxima are the profile's to :data:`~ccopt.feed.figures.FIGURE_TOL`
+        of each limit, and each sample's share of the time (s, summing to the duration).
+
+        Pieces of constant path acceleration (this class's :meth:`motion`) are
+        sampled at both ends and at a step set by the geometry and the motion,
+        :mod:`ccopt.feed.figures` (the bound is stated there); pieces on curves
+        with no derivative bounds, and profiles with other pieces (jerk-limited
+        ones override :meth:`motion`), every ``dt`` as :meth:`sample`.
+        """
+        if (type(self).motion is not FeedProfile.motion or self.sdd.size == 0
+                or not self.path.segments):
+            smp = self.sample(dt)
+            return smp, _time_shares(smp.t)
+        path = self.path
+        dof = path.dof
+        vlim, alim = self.limits.in_plane(path.frame, dof)
+        jlim = self.limits.jerk_in_plane(path.frame, dof)
+        speed = np.maximum(self.sd[:-1], self.sd[1:])
+        steps = piece_steps(self._derivative_bounds(), self.segment, speed, np.abs(self.sdd),
+                            float(np.min(vlim)), float(np.min(alim)),
+                            None if jlim is None else float(np.min(jlim)),
+                            self.limits.centripetal_acc, dt)
+        piece, tau = piece_times(self.t, steps)
+        if piece.size >= MAX_FEED_SAMPLES:
+            raise FeedError(f"the profile's figures need {piece.size:.3g} samples, more than "
+                            f"{MAX_FEED_SAMPLES:g}", self.path.source_file)
+        u = self.sdd[piece]
+        v = np.maximum(self.sd[piece] + u * tau, 0.0)
+        s = np.clip(self.s[piece] + self.sd[piece] * tau + 0.5 * u * tau * tau,
+                    self.s[piece], self.s[piece + 1])
+        times = self.t[piece] + tau
+        smp = self._samples(times, s, v, u, np.zeros_like(u), self.segment[piece])
+        # each step's time, half to either end (a piece's samples cover it exactly)
+        share = np.zeros(piece.size)
+        inner = np.flatnonzero(piece[1:] == piece[:-1])
+        step = np.diff(tau)[inner]
+        np.add.at(share, inner, 0.5 * step)
+        np.add.at(share, inner + 1, 0.5 * step)
+        return smp, share
+
+    def _derivative_bounds(self) -> np.ndarray:
+        return derivative_bounds([sg.geom for sg in self.path.segments])
+
     # -- reports -------------------------------------------------------------
 
     def summary(self, dt: float = 1e-3, samples: FeedSamples | None = None) -> dict:
-        """``duration``, ``samples`` (how many at ``dt``), the largest axis
-        velocity and acceleration ratios ``|value| / limit`` seen in them, the
-        largest feed ratio, and planner details."""
-        smp = self.sample(dt) if samples is None else samples
+        """``duration``, ``samples`` (how many :meth:`sample` ``(dt)`` gives), the
+        largest axis velocity, acceleration and jerk ratios ``|value| / limit``
+        and feed ratio over the profile (:meth:`figure_samples`: within
+        :data:`~ccopt.feed.figures.FIGURE_TOL` of the true maxima, or at the
+        ``dt`` samples where no bound is known), ``active_share`` (share of the
+        time each limit is the active one, at those samples) and planner
+        details. ``samples``: the ``dt`` samples when the caller has them
+        (counted, not searched: the figures come from :meth:`figure_samples`)."""
+        count = len(samples) if samples is not None else self.sample_count(dt)
+        smp, share = self.figure_samples(dt)
         out = {
             "planner": self.planner,
             "duration": self.duration,
             "dwell_time": self.dwell_time,
-            "samples": len(smp),
+            "samples": count,
             "dt": dt,
             "max_axis_vel_ratio": float(smp.axis_velocity_ratio.max(initial=0.0)),
             "max_axis_acc_ratio": float(smp.axis_acceleration_ratio.max(initial=0.0)),
@@ -368,8 +434,11 @@ class FeedProfile:
             "axes": list(smp.axes),
         }
         names = np.array(smp.limit_names, dtype=object)
-        counts = np.bincount(smp.active, minlength=len(names))
-        out["active_share"] = {str(names[i]): round(float(c) / max(len(smp), 1), 6)
+        total = float(share.sum())
+        if not total > 0.0:
+            share, total = np.ones(len(smp)), float(max(len(smp), 1))
+        counts = np.bincount(smp.active, weights=share, minlength=len(names))
+        out["active_share"] = {str(names[i]): round(float(c) / total, 6)
                                for i, c in enumerate(counts) if c}
         out.update({k: v for k, v in self.info.items() if isinstance(v, (int, float, str))})
         return out
@@ -377,3 +446,9 @@ class FeedProfile:
     def to_csv(self, file, dt: float = 1e-3) -> None:
         """Write :meth:`sample` ``(dt)`` as CSV, atomically."""
         write_text_atomic(file, self.sample(dt).to_csv_text())
+
+
+def _time_shares(t: np.ndarray) -> np.ndarray:
+    """Each sample's share of the time (s): half of the step on either side."""
+    step = np.diff(t)
+    return np.r_[0.5 * step, 0.0] + np.r_[0.0, 0.5 * step]

@@ -40,6 +40,7 @@ from ccopt.geometry.distance import (
     point_arc, point_segment, segment_arc, segment_segment,
 )
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
+from ccopt.verify.concentric import farthest_concentric, polar_gap, same_angle
 from ccopt.verify.maxdist import max_distance as exact_max_distance
 
 #: Pieces per pair are never more than this (the bound is then reported with its gap).
@@ -333,6 +334,10 @@ def _bound_pieces(pa: Param, b, pb: Param | None, pieces, exempt):
         tb = _fraction(w_b, e0, e1)
         qb = pb.eval(ub0 + tb * (ub1 - ub0))
         dq = np.hypot(*(qa - qb).T)
+        if isinstance(pa, SpiralParam) and isinstance(pb, SpiralParam) \
+                and np.array_equal(pa.c, pb.c):
+            ang = pa.th0 + pa.sg * (ua0 + ta * (ua1 - ua0))
+            dq, qb = same_angle(qa, ang, dq, qb, pb.eval, pb.th0, pb.sg, pb.U)
     ok_ub = ~skip
     if exempt is not None:
         ok_ub &= ~exempt[1](qa)
@@ -357,6 +362,9 @@ def _radial_gap(pa: Param, ua0, ua1, b, pb: Param | None, ub0, ub1):
         lo_b = hi_b = float(b.radius)
     elif isinstance(pb, SpiralParam) and np.array_equal(pa.c, pb.c):
         lo_b, hi_b = _radius_range(pb, ub0, ub1)
+        lo_a, hi_a = _radius_range(pa, ua0, ua1)
+        return np.maximum(np.maximum(np.maximum(lo_a - hi_b, lo_b - hi_a), 0.0),
+                          polar_gap(pa, ua0, ua1, pb, ub0, ub1))
     else:
         return 0.0
     lo_a, hi_a = _radius_range(pa, ua0, ua1)
@@ -468,6 +476,10 @@ def max_distance(t, e, tol: float, max_rounds: int = 16, n0: int = 16) -> Bound:
     pt = param_of(t)
     e_exact = is_exact(e)
     pe = None if e_exact else param_of(e)
+    if isinstance(pt, SpiralParam) and isinstance(e, (Arc, Spiral)):
+        radial = farthest_concentric(pt, param_of(e), tol)
+        if radial is not None:
+            return Bound(radial[0], radial[1], radial[2], None, True, 1)
     n = n0
     lb = -math.inf
     ubv = math.inf

@@ -33,6 +33,7 @@ from ccopt.geometry.angles import TWO_PI, angle_along, sweep_sign
 from ccopt.tolerances import VERIFY_CERTIFIED_GAP
 from ccopt.verify import certified, decisions
 from ccopt.verify.broadphase import candidate_pairs
+from ccopt.verify.certified_batch import batchable, min_distances
 from ccopt.verify.contour import Contour
 
 #: Units of clearance given up per unit past an open end
@@ -420,22 +421,7 @@ def pair_distances(tool: Packed, contour: Contour, eps: float,
     ub = d.copy()
     tol = VERIFY_CERTIFIED_GAP * eps
     open_elem = contour.open_start | contour.open_end
-    for q in np.flatnonzero(~exact):
-        j = int(je[q])
-        tg, eg = tool.geom(it[q]), E.geom(j)
-        regions = exempt_regions(contour, j) if open_elem[j] and certified.is_exact(eg) else []
-        ex = None
-        if regions:
-            ex = (lambda pts, m, R=regions: in_regions(R, pts, m),
-                  lambda pts, R=regions: in_regions(R, pts))
-        if certified.is_exact(tg) and not certified.is_exact(eg):
-            b = certified.min_distance(eg, tg, tol, cap=float(reach[j]))
-            b = certified.Bound(b.lb, b.ub, b.wb, b.wa, b.converged, b.pieces)
-        else:
-            b = certified.min_distance(tg, eg, tol, cap=float(reach[j]), exempt=ex)
-        d[q], ub[q] = b.lb, b.ub
-        if b.wa is not None:
-            wt[q], we[q] = b.wa, b.wb
+    _certified_pairs(tool, contour, it, je, np.flatnonzero(~exact), reach, tol, (d, ub, wt, we))
     # open ends for exact pairs: recompute without the exempt part of the tool
     # segment (d), and the part past an open end by its tapered distance (f)
     f = d.copy()
@@ -460,3 +446,41 @@ def pair_distances(tool: Packed, contour: Contour, eps: float,
     cnt = np.ones(n, bool) if counted is None else np.asarray(counted, bool)[it]
     return PairDistances(it[keep], je[keep], d[keep], ub[keep], wt[keep], we[keep],
                          exact[keep], margin[keep], cnt[keep], reach, tapered[keep])
+
+def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: float, out):
+    """Certified bounds of the ``pairs`` (indices into ``it``, ``je``) with a
+    spiral or curve, written into ``out = (d, ub, wt, we)``: lower bound, upper
+    bound and witnesses. Spiral, arc and line pairs go through one vectorised
+    branch and bound (:mod:`.certified_batch`, the same bounds as one at a
+    time); other curves one by one."""
+    d, ub, wt, we = out
+    E = contour.elements
+    open_elem = contour.open_start | contour.open_end
+    one_by_one, batch = [], []          # batch: (q, curved, other, swapped, exemption)
+    for q in pairs:
+        j = int(je[q])
+        tg, eg = tool.geom(it[q]), E.geom(j)
+        regions = exempt_regions(contour, j) if open_elem[j] and certified.is_exact(eg) else []
+        ex = None
+        if regions:
+            ex = (lambda pts, m, R=regions: in_regions(R, pts, m),
+                  lambda pts, R=regions: in_regions(R, pts))
+        # the curved one first (an exact element only ever has the exemption)
+        swapped = certified.is_exact(tg) and not certified.is_exact(eg)
+        a, b = (eg, tg) if swapped else (tg, eg)
+        if batchable(a, b):
+            batch.append((q, a, b, swapped, ex))
+        else:
+            one_by_one.append((q, a, b, swapped, ex))
+    # every pair of spirals, arcs and lines in one vectorised branch and bound
+    bounds = min_distances([(a, b) for _, a, b, _, _ in batch], tol,
+                           [float(reach[je[q]]) for q, *_ in batch],
+                           [ex for *_, ex in batch])
+    results = list(zip(batch, bounds))
+    results += [((q, a, b, swapped, ex),
+                 certified.min_distance(a, b, tol, cap=float(reach[je[q]]), exempt=ex))
+                for q, a, b, swapped, ex in one_by_one]
+    for (q, _, _, swapped, _), b in results:
+        d[q], ub[q] = b.lb, b.ub
+        if b.wa is not None:
+            wt[q], we[q] = (b.wb, b.wa) if swapped else (b.wa, b.wb)

@@ -12,6 +12,8 @@ check makes sure) stays on one side, so its middle point decides for all of it.
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from ccopt.geometry import Line
@@ -20,6 +22,7 @@ from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
 from ccopt.toolpath import Role
 from ccopt.verify import certified
 from ccopt.verify.certificate import CERTIFIED, EXACT, Check, Violation
+from ccopt.verify.certified_batch import batchable, min_distances
 from ccopt.verify.contour import Contour
 from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed
 
@@ -83,9 +86,15 @@ def check_side(tool: Packed, contour: Contour, eps: float, lengths, info, table)
         w[ar] = point_arc(q[ar], E.arr.center[a], E.arr.radius[a], E.arr.theta0[a], E.arr.sweep[a])[2]
     exact = ln | ar
     tol = VERIFY_CERTIFIED_GAP * eps
-    for m in np.flatnonzero(~exact):
-        b = certified.min_distance(E.geom(ej[m]), Line(tuple(q[m]), tuple(q[m])), tol)
+    # the nearest point of each curved element: spirals and arcs all at once
+    items = [(m, E.geom(ej[m]), Line(tuple(q[m]), tuple(q[m]))) for m in np.flatnonzero(~exact)]
+    batch = [it for it in items if batchable(it[1], it[2])]
+    found = min_distances([(g, p) for _, g, p in batch], tol, [math.inf] * len(batch))
+    for (m, _, _), b in zip(batch, found):
         w[m] = b.wa
+    for m, g, p in items:
+        if not batchable(g, p):
+            w[m] = certified.min_distance(g, p, tol).wa
     t = _tangent_at(E, ej, w)
     v = q - w
     signed = contour.side[ej] * (t[:, 0] * v[:, 1] - t[:, 1] * v[:, 0])

@@ -1,0 +1,342 @@
+"""Certified minimum distances of many spiral pairs at once.
+
+:func:`ccopt.verify.certified.min_distance` runs one pair's branch and bound
+at a time: a program with hundreds of spirals (LinuxCNC's crazy-paths, whose
+arcs end a few 1e-7 off their radius) pays a dozen small numpy calls per
+round per pair. :func:`min_distances` runs the same branch and bound for
+every pair together: each round evaluates the live pieces of all pairs in
+one vectorised pass, and each pair keeps its own best upper bound, dropped
+lower bound, round count and piece limit. Per pair the pieces, their order
+and every number are those of :func:`~ccopt.verify.certified.min_distance`
+(the kernels work element by element), so the bounds are the same, bit for
+bit (tested).
+
+Pairs covered: a spiral or arc ``a`` (the curved one) against a line or arc
+``b`` (exact, with or without an open-end exemption) or a spiral or arc ``b``
+(curved); :func:`batchable` says which. Other curves go one at a time.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ccopt.geometry import Arc, Line, Spiral
+from ccopt.geometry.distance import point_arc, point_segment, segment_arc, segment_segment
+from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
+from ccopt.verify.concentric import polar_gap, same_angle
+from ccopt.verify.certified import (
+    MAX_PIECES, Bound, SpiralParam, _first_pieces, _fraction, is_exact,
+)
+
+
+def batchable(a, b) -> bool:
+    """True when :func:`min_distances` handles ``(a, b)`` (``a`` curved)."""
+    return (isinstance(a, (Arc, Spiral)) and not is_exact(a)
+            and isinstance(b, (Line, Arc, Spiral)))
+
+
+class _Spirals:
+    """The :class:`SpiralParam` of many curves as arrays, evaluated per piece's pair."""
+
+    def __init__(self, geoms):
+        ps = [SpiralParam(g) for g in geoms]
+        self.c = np.array([p.c for p in ps], float).reshape(-1, 2)
+        self.rho0 = np.array([p.rho0 for p in ps], float)
+        self.b = np.array([p.b for p in ps], float)
+        self.th0 = np.array([p.th0 for p in ps], float)
+        self.sg = np.array([p.sg for p in ps], float)
+        self.U = np.array([p.U for p in ps], float)
+        self.params = ps
+
+    def eval(self, k, u):
+        rho = self.rho0[k] + self.b[k] * u
+        ang = self.th0[k] + self.sg[k] * u
+        out = np.empty((u.size, 2))
+        np.multiply(rho, np.cos(ang), out=out[:, 0])
+        np.multiply(rho, np.sin(ang), out=out[:, 1])
+        out += self.c[k]
+        return out
+
+    def delta(self, k, u0, u1):
+        rho = np.maximum(self.rho0[k] + self.b[k] * u0, self.rho0[k] + self.b[k] * u1)
+        d2 = np.sqrt(rho * rho + 4.0 * self.b[k] * self.b[k])
+        h = u1 - u0
+        return d2 * h * h / 8.0
+
+    def radius_range(self, k, u0, u1):
+        r0 = self.rho0[k] + self.b[k] * u0
+        r1 = self.rho0[k] + self.b[k] * u1
+        return np.minimum(r0, r1), np.maximum(r0, r1)
+
+
+class _Exact:
+    """Lines and arcs ``b`` as arrays (a line's arc fields unused and vice versa)."""
+
+    def __init__(self, geoms):
+        n = len(geoms)
+        self.line = np.array([isinstance(g, Line) for g in geoms], bool)
+        self.p0 = np.zeros((n, 2))
+        self.p1 = np.zeros((n, 2))
+        self.c = np.zeros((n, 2))
+        self.R = np.ones(n)
+        self.th0 = np.zeros(n)
+        self.sw = np.zeros(n)
+        for i, g in enumerate(geoms):
+            if self.line[i]:
+                self.p0[i], self.p1[i] = g.p0, g.p1
+            else:
+                self.c[i], self.R[i], self.th0[i], self.sw[i] = (g.center, g.radius, g.theta0,
+                                                                 g.sweep)
+
+    def chords_to(self, k, c0, c1):
+        d = np.empty(k.size)
+        wa = np.empty((k.size, 2))
+        wb = np.empty((k.size, 2))
+        ln = self.line[k]
+        for sel, line in ((np.flatnonzero(ln), True), (np.flatnonzero(~ln), False)):
+            if not sel.size:
+                continue
+            kk = k[sel]
+            if line:
+                r = segment_segment(c0[sel], c1[sel], self.p0[kk], self.p1[kk])
+            else:
+                r = segment_arc(c0[sel], c1[sel], self.c[kk], self.R[kk], self.th0[kk],
+                                self.sw[kk])
+            d[sel], wa[sel], wb[sel] = r
+        return d, wa, wb
+
+    def points_to(self, k, q):
+        d = np.empty(k.size)
+        wb = np.empty((k.size, 2))
+        ln = self.line[k]
+        for sel, line in ((np.flatnonzero(ln), True), (np.flatnonzero(~ln), False)):
+            if not sel.size:
+                continue
+            kk = k[sel]
+            if line:
+                r = point_segment(q[sel], self.p0[kk], self.p1[kk])
+            else:
+                r = point_arc(q[sel], self.c[kk], self.R[kk], self.th0[kk], self.sw[kk])
+            d[sel], wb[sel] = r[0], r[2]
+        return d, wb
+
+
+def min_distances(pairs, tol: float, caps, exempts=None,
+                  max_rounds: int = VERIFY_CERTIFIED_MAX_ROUNDS) -> list[Bound]:
+    """:func:`ccopt.verify.certified.min_distance` ``(a, b, tol, cap, exempt)`` of
+    every ``(a, b)`` in ``pairs`` (each :func:`batchable`) with ``caps[i]`` and
+    ``exempts[i]`` (``None``: no exemption; only with an exact ``b``), at once."""
+    if not pairs:
+        return []
+    exempts = [None] * len(pairs) if exempts is None else list(exempts)
+    A = _Spirals([a for a, _ in pairs])
+    curved = np.array([not is_exact(b) for _, b in pairs], bool)
+    if any(ex is not None for ex, c in zip(exempts, curved) if c):
+        raise ValueError("exemptions apply to pairs with an exact second element")
+    out: list[Bound | None] = [None] * len(pairs)
+    for sel in (np.flatnonzero(~curved), np.flatnonzero(curved)):
+        if sel.size:
+            res = _run(A, [pairs[i][1] for i in sel], sel, bool(curved[sel[0]]), tol,
+                       np.asarray(caps, float)[sel], max_rounds, [exempts[i] for i in sel])
+            for i, r in zip(sel, res):
+                out[i] = r
+    return out
+
+
+def _concentric_b(A: _Spirals, sel, bs, curved: bool):
+    """Per pair: whether ``b`` shares ``a``'s centre (a polar radius gap is then a
+    lower bound, :func:`ccopt.verify.certified._radial_gap`), and for an arc ``b``
+    its radius."""
+    conc = np.zeros(len(bs), bool)
+    Rb = np.zeros(len(bs))
+    for m, (i, b) in enumerate(zip(sel, bs)):
+        if curved:
+            conc[m] = np.array_equal(A.c[i], SpiralParam(b).c)
+        elif isinstance(b, Arc):
+            conc[m] = tuple(A.c[i]) == tuple(map(float, b.center))
+            Rb[m] = float(b.radius)
+    return conc, Rb
+
+
+def _run(A: _Spirals, bs, sel, curved: bool, tol: float, caps, max_rounds: int,
+         exempts) -> list[Bound]:
+    """The branch and bound of the pairs ``(A[sel[m]], bs[m])``, all ``b`` exact or all curved."""
+    B = _Spirals(bs) if curved else _Exact(bs)
+    geo = (A, B, sel, curved) + _concentric_b(A, sel, bs, curved)
+    pieces = _first(A, B, sel, curved)
+    state = _State(len(bs))
+    rounds = 0
+    while pieces[0].size:
+        rounds += 1
+        lb, dq, qa, qb, live, ok = _round(geo, pieces, exempts)
+        go = state.update(pieces[0], lb, dq, qa, qb, live, ok, tol, caps,
+                          rounds >= max_rounds, curved)
+        pieces = _halve(*pieces, go, curved)
+    return state.bounds(tol, caps)
+
+
+class _State:
+    """Each pair's best upper bound and its witnesses, the least lower bound of
+    its dropped pieces and of its remaining ones, and its piece count."""
+
+    def __init__(self, P: int):
+        self.P = P
+        self.best = np.full(P, math.inf)
+        self.wa = np.full((P, 2), np.nan)
+        self.wb = np.full((P, 2), np.nan)
+        self.dropped = np.full(P, math.inf)
+        self.remaining = np.full(P, math.inf)
+        self.npieces = np.zeros(P, np.int64)
+
+    def update(self, pid, lb, dq, qa, qb, live, ok, tol, caps, last: bool, curved: bool):
+        """One round of :func:`ccopt.verify.certified.min_distance` for every pair;
+        the pieces to halve."""
+        P = self.P
+        # each pair's smallest genuine dq (its first in piece order on ties, as argmin)
+        dqm = np.where(ok, dq, np.inf)
+        order = np.lexsort((dqm, pid))
+        first = order[np.r_[True, pid[order][1:] != pid[order][:-1]]]
+        better = dqm[first] < self.best[pid[first]]
+        upd, at = pid[first][better], first[better]
+        self.best[upd], self.wa[upd], self.wb[upd] = dq[at], qa[at], qb[at]
+        present = np.unique(pid)
+        self.npieces[present] = np.bincount(pid, minlength=P)[present]
+        keep = live & (lb < self.best[pid] - tol) & (lb < caps[pid])
+        gone = live & ~keep
+        np.minimum.at(self.dropped, pid[gone], lb[gone])
+        kept = np.bincount(pid[keep], minlength=P)
+        self.remaining[present] = math.inf
+        np.minimum.at(self.remaining, pid[keep], lb[keep])
+        stop = last | (2 * kept * (2 if curved else 1) > MAX_PIECES)
+        return keep & ~stop[pid]
+
+    def bounds(self, tol: float, caps) -> list[Bound]:
+        best = self.best
+        lbv = np.minimum(np.minimum(self.dropped, self.remaining), best)
+        with np.errstate(invalid="ignore"):     # inf - inf: a pair wholly exempt
+            conv = (best - lbv <= tol) | (lbv >= caps)
+        return [Bound(float(lbv[i]), float(best[i]),
+                      None if math.isinf(best[i]) else (float(self.wa[i, 0]),
+                                                         float(self.wa[i, 1])),
+                      None if math.isinf(best[i]) else (float(self.wb[i, 0]),
+                                                         float(self.wb[i, 1])),
+                      bool(conv[i]), int(self.npieces[i])) for i in range(self.P)]
+
+
+def _round(geo, pieces, exempts):
+    """Bounds of every live piece (pair): ``(lb, dq, qa, qb, live, ok)`` as
+    :func:`ccopt.verify.certified._bound_pieces` gives them (``ok``: ``dq`` is a
+    genuine distance outside the pair's exemption)."""
+    A, B, sel, curved, conc, Rb = geo
+    pid, ua0, ua1, ub0, ub1 = pieces
+    ka = sel[pid]
+    c0, c1 = A.eval(ka, ua0), A.eval(ka, ua1)
+    da = A.delta(ka, ua0, ua1)
+    if curved:
+        e0, e1 = B.eval(pid, ub0), B.eval(pid, ub1)
+        db = B.delta(pid, ub0, ub1)
+        d, w_a, w_b = segment_segment(c0, c1, e0, e1)
+    else:
+        db = 0.0
+        d, w_a, w_b = B.chords_to(pid, c0, c1)
+    lb = np.maximum(d - da - db, _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb,
+                                             curved))
+    ta = _fraction(w_a, c0, c1)
+    qa = A.eval(ka, ua0 + ta * (ua1 - ua0))
+    if curved:
+        tb = _fraction(w_b, e0, e1)
+        qb = B.eval(pid, ub0 + tb * (ub1 - ub0))
+        dq = np.hypot(*(qa - qb).T)
+        c = np.flatnonzero(conc[pid])
+        if c.size:
+            k = pid[c]
+            ang = A.th0[ka[c]] + A.sg[ka[c]] * (ua0[c] + ta[c] * (ua1[c] - ua0[c]))
+            dq[c], qb[c] = same_angle(qa[c], ang, dq[c], qb[c],
+                                      lambda u, k=k: B.eval(k, u), B.th0[k], B.sg[k], B.U[k])
+    else:
+        dq, qb = B.points_to(pid, qa)
+    live, ok = _exempt(pid, c0, c1, da, qa, exempts)
+    return lb, dq, qa, qb, live, ok
+
+
+def _exempt(pid, c0, c1, da, qa, exempts):
+    """``(live, ok)`` of each piece: not skipped as inside its pair's open-end
+    exemption by its chord deviation, and its witness outside the exemption
+    (all True for pairs without one)."""
+    live = np.ones(pid.size, bool)
+    ok = np.ones(pid.size, bool)
+    with_ex = [m for m, ex in enumerate(exempts) if ex is not None]
+    if not with_ex:
+        return live, ok
+    order = np.argsort(pid, kind="stable")
+    edges = np.searchsorted(pid[order], np.arange(len(exempts) + 1))
+    for m in with_ex:
+        idx = order[edges[m]:edges[m + 1]]
+        if idx.size:
+            inside_by, contains = exempts[m]
+            skip = inside_by(c0[idx], da[idx]) & inside_by(c1[idx], da[idx])
+            live[idx] = ~skip
+            ok[idx] = ~skip & ~contains(qa[idx])
+    return live, ok
+
+
+def _first(A: _Spirals, B, sel, curved: bool):
+    """Every pair's first pieces (pairs of pieces for a curved ``b``), pair by pair."""
+    parts = []
+    for m, i in enumerate(sel):
+        a0, a1 = _first_pieces(A.params[i])
+        if curved:
+            b0, b1 = _first_pieces(B.params[m])
+            parts.append((np.full(a0.size * b0.size, m), np.repeat(a0, b0.size),
+                          np.repeat(a1, b1.size), np.tile(b0, a0.size), np.tile(b1, a1.size)))
+        else:
+            parts.append((np.full(a0.size, m), a0, a1, None, None))
+    pid = np.concatenate([p[0] for p in parts]).astype(np.intp)
+    ua0 = np.concatenate([p[1] for p in parts])
+    ua1 = np.concatenate([p[2] for p in parts])
+    if not curved:
+        return pid, ua0, ua1, None, None
+    return (pid, ua0, ua1, np.concatenate([p[3] for p in parts]),
+            np.concatenate([p[4] for p in parts]))
+
+
+def _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb, curved):
+    """:func:`ccopt.verify.certified._radial_gap` of each piece (0 where ``b`` is not
+    about ``a``'s centre)."""
+    c = conc[pid]
+    if not c.any():
+        return 0.0
+    lo_a, hi_a = A.radius_range(ka, ua0, ua1)
+    if curved:
+        lo_b, hi_b = B.radius_range(pid, ub0, ub1)
+    else:
+        lo_b = hi_b = Rb[pid]
+    gap = np.maximum(np.maximum(lo_a - hi_b, lo_b - hi_a), 0.0)
+    if curved:
+        k = np.flatnonzero(c)
+        a = _View(A, ka[k])
+        b = _View(B, pid[k])
+        gap[k] = np.maximum(gap[k], polar_gap(a, ua0[k], ua1[k], b, ub0[k], ub1[k]))
+    return np.where(c, gap, 0.0)
+
+
+class _View:
+    """The spiral parameters of each piece's curve, as :func:`polar_gap` reads them."""
+
+    def __init__(self, S: _Spirals, k):
+        self.th0, self.sg, self.rho0, self.b = S.th0[k], S.sg[k], S.rho0[k], S.b[k]
+
+
+def _halve(pid, ua0, ua1, ub0, ub1, keep, curved: bool):
+    """Kept pieces cut in two (pairs in four), in :func:`certified._halve`'s order per pair."""
+    pid, ua0, ua1 = pid[keep], ua0[keep], ua1[keep]
+    mid = 0.5 * (ua0 + ua1)
+    if not curved:
+        return (np.concatenate((pid, pid)), np.concatenate((ua0, mid)),
+                np.concatenate((mid, ua1)), None, None)
+    ub0, ub1 = ub0[keep], ub1[keep]
+    midb = 0.5 * (ub0 + ub1)
+    return (np.concatenate((pid, pid, pid, pid)), np.concatenate((ua0, ua0, mid, mid)),
+            np.concatenate((mid, mid, ua1, ua1)), np.concatenate((ub0, midb, ub0, midb)),
+            np.concatenate((midb, ub1, midb, ub1)))

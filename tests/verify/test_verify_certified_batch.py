@@ -1,0 +1,152 @@
+"""Certified distances of many spiral pairs at once, and the closed forms for
+spirals about a common centre (a tool segment and its element, offset)."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import minimize_scalar
+
+from ccopt.geometry import Arc, Line, Spiral
+from ccopt.verify import certified
+from ccopt.verify.certified_batch import batchable, min_distances
+from ccopt.verify.concentric import polar_gap
+
+
+def spiral_point(sp: Spiral, phi):
+    """The spiral's point at swept angle ``phi`` (its definition: polar radius
+    linear in the swept angle)."""
+    rho = sp.rho0 + (sp.rho1 - sp.rho0) * phi / abs(sp.sweep)
+    ang = sp.theta0 + math.copysign(1.0, sp.sweep) * phi
+    return np.array([sp.center[0] + rho * math.cos(ang), sp.center[1] + rho * math.sin(ang)])
+
+
+def dist_to_spiral(q, sp: Spiral) -> float:
+    """min |q - p| over the spiral: a fine grid, then a bounded search around its best."""
+    phi = np.linspace(0.0, abs(sp.sweep), 20_001)
+    pts = np.array([spiral_point(sp, f) for f in phi[::20]])
+    k = 20 * int(np.argmin(np.hypot(*(pts - q).T)))
+    lo, hi = phi[max(k - 40, 0)], phi[min(k + 40, phi.size - 1)]
+    res = minimize_scalar(lambda f: float(np.hypot(*(spiral_point(sp, f) - q))),
+                          bounds=(lo, hi), method="bounded", options={"xatol": 1e-13})
+    return float(res.fun)
+
+
+def random_pairs(seed: int, n: int):
+    rng = np.random.default_rng(seed)
+    pairs = []
+    for _ in range(n):
+        c = tuple(rng.uniform(-2, 2, 2))
+        sp = Spiral(c, rng.uniform(2, 6), rng.uniform(2, 6), rng.uniform(-3, 3),
+                    rng.choice([-1, 1]) * rng.uniform(0.5, 5))
+        kind = rng.integers(4)
+        if kind == 0:
+            other = Line(tuple(rng.uniform(-8, 8, 2)), tuple(rng.uniform(-8, 8, 2)))
+        elif kind == 1:
+            other = Arc(tuple(rng.uniform(-1, 1, 2)), rng.uniform(1, 9), rng.uniform(-3, 3),
+                        rng.choice([-1, 1]) * rng.uniform(0.5, 3))
+        elif kind == 2:       # about the same centre: the radial bound applies
+            other = Arc(c, rng.uniform(1, 9), rng.uniform(-3, 3), rng.uniform(-3, 3))
+        else:
+            other = Spiral(c if rng.random() < 0.5 else tuple(rng.uniform(-2, 2, 2)),
+                           rng.uniform(2, 6), rng.uniform(2, 6), rng.uniform(-3, 3),
+                           rng.choice([-1, 1]) * rng.uniform(0.5, 3))
+        pairs.append((sp, other))
+    return pairs
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_batch_gives_the_one_at_a_time_bounds_exactly(seed):
+    pairs = random_pairs(seed, 24)
+    assert all(batchable(a, b) for a, b in pairs)
+    caps = [math.inf if k % 3 else 1.5 for k in range(len(pairs))]
+    one = [certified.min_distance(a, b, 1e-7, cap=c) for (a, b), c in zip(pairs, caps)]
+    assert min_distances(pairs, 1e-7, caps) == one
+
+
+def test_not_batchable():
+    sp = Spiral((0, 0), 2.0, 3.0, 0.0, 1.0)
+    assert not batchable(Arc((0, 0), 2.0, 0.0, 1.0), sp)       # the curved one goes first
+    assert not batchable(sp, object())
+
+
+def test_spiral_and_its_concentric_offset_settle_at_once():
+    # a controller's arc whose end is 1e-6 off its radius, and the tool's offset of
+    # it by r = 0.25 about the same centre: the distance is 0.25 to within
+    # r (1 - cos(pitch)), pitch ~ b / rho ~ 1e-7
+    e = Spiral((3.0, -1.0), 1.5, 1.500001, 0.4, 4.0)
+    t = Spiral((3.0, -1.0), 1.75, 1.750001, 0.4, 4.0)
+    b = certified.min_distance(t, e, 1e-7, cap=0.25001)
+    true = min(dist_to_spiral(spiral_point(t, f), e) for f in np.linspace(0, 4.0, 41))
+    assert b.lb <= true + 1e-12 and b.ub - b.lb <= 1e-7
+    assert b.ub == pytest.approx(0.25, abs=1e-7)
+    assert b.pieces < 1000              # not cut into thousands of piece pairs
+    assert min_distances([(t, e)], 1e-7, [0.25001]) == [b]
+
+
+@pytest.mark.parametrize("t,e", [
+    # a tool arc about a spiral element's centre, inside it by about 0.25
+    (Arc((1.0, 2.0), 4.75, 0.5, 2.0), Spiral((1.0, 2.0), 5.0, 5.0000008, 0.45, 2.1)),
+    # a tool spiral outside its element spiral, clockwise, ends 3e-8 rad past the
+    # element's (the rounding a controller's arc ends leave)
+    (Spiral((0.0, 0.0), 2.25, 2.2500007, 1.0 + 3e-8, -3.0 - 6e-8),
+     Spiral((0.0, 0.0), 2.0, 2.0000007, 1.0, -3.0)),
+])
+def test_farthest_distance_about_a_common_centre_in_closed_form(t, e):
+    pt = certified.param_of(t)
+    # the farthest tool point from e, measured point by point against e itself
+    ref = max(dist_to_spiral(q, e)
+              for q in pt.eval(np.linspace(0.0, pt.U, 61)))
+    b = certified.max_distance(t, e, 1e-7)
+    assert b.converged and b.pieces == 1          # the closed form, no chords
+    assert b.lb <= ref + 1e-9 and ref <= b.ub + 1e-9 and b.ub - b.lb <= 1e-7
+    # the witness is a genuine point of t at distance >= lb from e
+    assert dist_to_spiral(np.array(b.wa), e) >= b.lb - 1e-9
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_polar_gap_is_below_the_distance_of_the_pieces(seed):
+    rng = np.random.default_rng(40 + seed)
+    c = (0.3, -0.2)
+    th = rng.uniform(-3, 3)
+    a = certified.param_of(Spiral(c, rng.uniform(1, 2), rng.uniform(1, 2), th, 2.0))
+    b = certified.param_of(Spiral(c, rng.uniform(1.2, 2.2), rng.uniform(1.2, 2.2),
+                                  th + rng.uniform(-0.2, 0.2), 2.0))
+    ua0 = rng.uniform(0, 1.8, 20)
+    ua1 = ua0 + rng.uniform(0.01, 0.2, 20)
+    ub0 = np.clip(ua0 + rng.uniform(-0.3, 0.3, 20), 0, 1.8)
+    ub1 = ub0 + rng.uniform(0.01, 0.2, 20)
+    gap = polar_gap(a, ua0, ua1, b, ub0, ub1)
+    assert (gap > 0).any()
+    for k in range(20):
+        P = a.eval(np.linspace(ua0[k], ua1[k], 801))
+        Q = b.eval(np.linspace(ub0[k], ub1[k], 801))
+        d = np.hypot(P[:, None, 0] - Q[None, :, 0], P[:, None, 1] - Q[None, :, 1]).min()
+        assert gap[k] <= d + 1e-12
+
+
+def test_offset_spirals_with_a_larger_radius_change_settle_quickly():
+    # inside-corners' kind: arc ends 1e-4 off their radius, offset by 0.075
+    e = Spiral((1.0341, 3.548), 0.26020808980506355, 0.26032352947822446, -2.7169689, -2.0088653)
+    t = Spiral((1.0341, 3.548), 0.18520808985960727, 0.1853235294782246, -2.7169819, -2.0088523)
+    b = certified.min_distance(t, e, 1e-7, cap=0.07501)
+    true = min(dist_to_spiral(spiral_point(t, f), e) for f in np.linspace(0, 2.0088523, 41))
+    assert b.converged and b.lb <= true + 1e-12 and b.ub - b.lb <= 1e-7
+    assert b.pieces < 1000
+
+
+def test_batch_with_open_end_exemptions_gives_the_one_at_a_time_bounds():
+    # a half-plane x <= x0 exempt (what an open end of a line makes): pieces
+    # inside it by their chord deviation skipped, witnesses in it not counted
+    def half_plane(x0):
+        return (lambda pts, m: pts[:, 0] <= x0 - m, lambda pts: pts[:, 0] <= x0)
+
+    pairs = [p for p in random_pairs(7, 30) if certified.is_exact(p[1])]
+    exempts = [half_plane(x0) if k % 2 else None
+               for k, x0 in enumerate(np.linspace(-3, 3, len(pairs)))]
+    one = [certified.min_distance(a, b, 1e-7, exempt=ex) for (a, b), ex in zip(pairs, exempts)]
+    assert min_distances(pairs, 1e-7, [math.inf] * len(pairs), exempts) == one
+    with pytest.raises(ValueError, match="exact second"):
+        sp = Spiral((0, 0), 2.0, 3.0, 0.0, 1.0)
+        min_distances([(sp, sp)], 1e-7, [math.inf], [half_plane(0.0)])
