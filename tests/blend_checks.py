@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from ccopt.geometry import Arc, Line
-from ccopt.toolpath import block_geometry
+from ccopt.toolpath import Role, block_geometry
 
 
 def contour(program):
@@ -93,3 +93,45 @@ def join_ok(a, b, tol_t=1e-7, tol_k=1e-6):
     ang = math.atan2(abs(ta[0] * tb[1] - ta[1] * tb[0]), float(ta @ tb))
     jump = abs(end_curvature(a, True) - end_curvature(b, False))
     return gap, ang, jump
+
+
+#: The feed roles of a tool path (rapids left out).
+FEED_ROLES = (Role.LEAD_IN, Role.COMPENSATED, Role.CORNER, Role.LEAD_OUT)
+
+
+def largest_curvature(g) -> float:
+    """Largest |curvature| of a primitive: 0 for a line, 1/R for an arc, other
+    curves sampled from their own derivatives at 4,001 points."""
+    if isinstance(g, Line):
+        return 0.0
+    if isinstance(g, Arc):
+        return 1.0 / g.radius
+    s = np.linspace(0.0, g.length, 4001)
+    return float(np.max(np.abs(g.curvature(s))))
+
+
+def lead_curvature_bound(ref) -> float:
+    """The optimised leads' stated bound, 4 max(1/r, kappa_ref): ``r`` the cutter
+    radius of PMAC's path ``ref``, ``kappa_ref`` the largest curvature of its feed
+    segments."""
+    kref = max((largest_curvature(s.geom) for s in ref.segments
+                if s.role in FEED_ROLES and s.length > 0), default=0.0)
+    return 4.0 * max(1.0 / ref.radius, kref)
+
+
+def _basis(t, n):
+    """Bernstein basis of degree ``n`` at ``t`` (rows)."""
+    k = np.arange(n + 1)
+    return np.array([math.comb(n, i) for i in k]) * t[:, None] ** k * (1 - t[:, None]) ** (n - k)
+
+
+def bezier_max_curvature(g) -> float:
+    """Largest |r' x r''| / |r'|^3 of a Bezier curve at 20,001 values of its
+    parameter (derivatives by the hodograph: differences of the control points)."""
+    P = np.asarray(g.control_points, float)
+    n = len(P) - 1
+    t = np.linspace(0.0, 1.0, 20001)
+    d1 = _basis(t, n - 1) @ (n * np.diff(P, axis=0))
+    d2 = _basis(t, n - 2) @ (n * (n - 1) * np.diff(P, 2, axis=0))
+    return float(np.max(np.abs(d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0])
+                        / np.hypot(d1[:, 0], d1[:, 1]) ** 3))
