@@ -89,37 +89,41 @@ class _Exact:
                 self.c[i], self.R[i], self.th0[i], self.sw[i] = (g.center, g.radius, g.theta0,
                                                                  g.sweep)
 
-    def chords_to(self, k, c0, c1):
-        d = np.empty(k.size)
-        wa = np.empty((k.size, 2))
-        wb = np.empty((k.size, 2))
+    def _each_kind(self, k, on_lines, on_arcs, widths):
+        """``on_lines(sel, kk)`` on the rows ``sel`` of ``k`` whose element is a
+        line (``kk = k[sel]``), ``on_arcs`` on the arcs; the columns they return
+        gathered into arrays of ``k``'s length (``widths``: 0 for one value a
+        row, 2 for a point)."""
+        out = [np.empty(k.size) if w == 0 else np.empty((k.size, w)) for w in widths]
         ln = self.line[k]
-        for sel, line in ((np.flatnonzero(ln), True), (np.flatnonzero(~ln), False)):
-            if not sel.size:
-                continue
-            kk = k[sel]
-            if line:
-                r = segment_segment(c0[sel], c1[sel], self.p0[kk], self.p1[kk])
-            else:
-                r = segment_arc(c0[sel], c1[sel], self.c[kk], self.R[kk], self.th0[kk],
-                                self.sw[kk])
-            d[sel], wa[sel], wb[sel] = r
+        for sel, kernel in ((np.flatnonzero(ln), on_lines), (np.flatnonzero(~ln), on_arcs)):
+            if sel.size:
+                for col, got in zip(out, kernel(sel, k[sel])):
+                    col[sel] = got
+        return out
+
+    def chords_to(self, k, c0, c1):
+        """``(distance, witness on the chord, witness on the element)`` of chords
+        ``c0 -> c1`` to elements ``k``."""
+        d, wa, wb = self._each_kind(
+            k, lambda sel, kk: segment_segment(c0[sel], c1[sel], self.p0[kk], self.p1[kk]),
+            lambda sel, kk: segment_arc(c0[sel], c1[sel], self.c[kk], self.R[kk], self.th0[kk],
+                                        self.sw[kk]), (0, 2, 2))
         return d, wa, wb
 
     def points_to(self, k, q):
-        d = np.empty(k.size)
-        wb = np.empty((k.size, 2))
-        ln = self.line[k]
-        for sel, line in ((np.flatnonzero(ln), True), (np.flatnonzero(~ln), False)):
-            if not sel.size:
-                continue
-            kk = k[sel]
-            if line:
-                r = point_segment(q[sel], self.p0[kk], self.p1[kk])
-            else:
-                r = point_arc(q[sel], self.c[kk], self.R[kk], self.th0[kk], self.sw[kk])
-            d[sel], wb[sel] = r[0], r[2]
+        """``(distance, nearest point on the element)`` of points ``q`` to elements ``k``."""
+        d, wb = self._each_kind(
+            k, lambda sel, kk: _dist_and_witness(
+                point_segment(q[sel], self.p0[kk], self.p1[kk])),
+            lambda sel, kk: _dist_and_witness(
+                point_arc(q[sel], self.c[kk], self.R[kk], self.th0[kk], self.sw[kk])), (0, 2))
         return d, wb
+
+
+def _dist_and_witness(r):
+    """A point kernel's distance and its witness on the element (its 1st and 3rd results)."""
+    return r[0], r[2]
 
 
 def min_distances(pairs, tol: float, caps, exempts=None,
