@@ -55,6 +55,25 @@ def default_workers() -> int:
         return max(1, os.cpu_count() or 1)
 
 
+def die_with_parent(parent: int) -> None:
+    """Make this process (a child of process ``parent``) die when its parent
+    does, even by SIGKILL or SIGTERM, which give the parent no chance to kill
+    its children: Linux's ``PR_SET_PDEATHSIG`` with SIGKILL. Without it a child
+    in the middle of a long solve goes on alone until the solve ends. If the
+    parent is already gone (it died before this call), exit now. Elsewhere
+    (no ``prctl``) nothing is done: the child then ends when it next reads
+    from or writes to its parent."""
+    try:
+        import ctypes
+        libc = ctypes.CDLL(None, use_errno=True)
+        PR_SET_PDEATHSIG = 1
+        libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)
+    except (OSError, AttributeError):
+        return
+    if os.getppid() != parent:
+        os._exit(1)
+
+
 def _context():
     # fork: the children start at once with the parent's modules (ccopt, numpy)
     # already imported; elsewhere the platform's default start method.
@@ -62,10 +81,11 @@ def _context():
     return multiprocessing.get_context("fork" if "fork" in methods else None)
 
 
-def _child(work: Callable, tasks, results) -> None:
-    """A worker's loop: take ``(index, item)`` until ``None``; report progress,
-    results and failures on ``results``."""
+def _child(work: Callable, tasks, results, parent: int) -> None:
+    """A worker's loop (a child of process ``parent``): take ``(index, item)``
+    until ``None``; report progress, results and failures on ``results``."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)   # the parent decides; it kills us
+    die_with_parent(parent)
     try:
         os.setpgrp()    # our own group, so the parent can kill what we start with us
     except OSError:
@@ -164,7 +184,8 @@ def run_in_workers(work: Callable[[Any, Callable[[str], None]], Any], items: Seq
     n = max(1, min(workers, len(items)))
     for _ in range(n):
         tasks.put(None)
-    procs = [ctx.Process(target=_child, args=(work, tasks, results), daemon=False)
+    procs = [ctx.Process(target=_child, args=(work, tasks, results, os.getpid()),
+                         daemon=False)
              for _ in range(n)]
     out: dict[int, Any] = {}
     errors: dict[int, BaseException] = {}

@@ -20,9 +20,10 @@ speed), then ``bhat`` is updated to the geometric mean of itself and the LP's
 new ``b`` until the two agree within
 :data:`~ccopt.feed.jerk_windows.BHAT_TOL` (relative, on ``b``), or the
 window's duration settles (:data:`~ccopt.feed.jerk_windows.DURATION_TOL`),
-at most :data:`~ccopt.feed.jerk_windows.MAX_ROUNDS` rounds; a last round
-imposes ``b <= bhat`` so that ``sqrt(b) <= sqrt(bhat)`` and the jerk bound
-holds exactly at the gridpoints, and that round's solution is the profile.
+at most :data:`~ccopt.feed.jerk_windows.MAX_ROUNDS` rounds; a last round,
+linearised at the larger of ``bhat`` and the last ``b``, imposes
+``b <= bhat`` so that ``sqrt(b) <= sqrt(bhat)`` and the jerk bound holds
+exactly at the gridpoints, and that round's solution is the profile.
 The objective is the duration ``sum h / sqrt(b)`` linearised at ``bhat``:
 maximise ``sum h b / bhat^(3/2)``. Each round is one LP solved by HiGHS's
 simplex (``highspy``, ranged rows). A jerk row divided by its
@@ -44,6 +45,12 @@ one the LP constrained:
   ``alpha_1 = 2 b_1 / (3 h)`` (linear), duration ``3 h / v1`` and jerk
   ``sigma = v1 * 2 b_1 / (9 h^2)``, imposed as ``sqrt(bhat_1) * 2 b_1 / (9 h^2)``;
   an interval that ends at rest is its mirror image.
+
+On an interval whose curvature changes along it (a blend curve, a spiral)
+the jerk is also imposed at its middle, where the model is linear in the
+unknowns too (:func:`~ccopt.feed.jerk_lp._middle_rows`): there every factor
+of the jerk varies along the interval and it bulged 0.87 % over the limit
+between gridpoints that both met it.
 
 What is checked only at gridpoints, and its margin: the axis acceleration on
 curved segments (as TOPPRA's, :mod:`ccopt.feed.grid`, whose gridpoints are
@@ -72,8 +79,12 @@ gridpoints, each solved as its own LP, so the cost grows linearly with the
 length of the program. A stretch between two stops with more gridpoints than
 that is planned in overlapping windows: a window plans
 :data:`~ccopt.feed.jerk_windows.WINDOW_OVERLAP` of its size further than it
-keeps, and the next starts from the kept end's ``(b, alpha)``; ``b`` stays
-under TOPPRA's speed there, so the braking it still needs is within reach.
+keeps, and the next starts from the kept end's ``(b, alpha)`` with the last
+``bhat`` of the one before on their overlap (with a fresh ``bhat`` from
+TOPPRA's speed that state can be infeasible: the jerk rows at the start
+tighten); ``b`` stays under TOPPRA's speed there, so the braking it still
+needs is within reach. A window that is infeasible all the same is merged
+with the one before (``info["merged_windows"]``).
 Windows that start at a stop are independent of those before, and on a long
 program are solved in several processes (``info["workers"]``); there each
 task also computes TOPPRA's bound on its own stretch, stop to stop
@@ -154,7 +165,9 @@ def build_grid(path: ExactPath, limits: AxisLimits, ts: float,
         raise FeedError(f"two stops one grid interval apart at s = {s[i]:.6g}",
                         path.source_file, path.block_line(s[i]))
     a_t = limits.tangential_acc if limits.tangential_acc is not None else np.inf
-    return JerkGrid(s, q[0], q[1], q[2], kind, stop, bmax, a_t, a, j)
+    mid = 0.5 * (s[:-1] + s[1:])
+    m = [path.eval_sided(mid, o, "right") for o in (1, 2, 3)]
+    return JerkGrid(s, q[0], q[1], q[2], kind, stop, bmax, a_t, a, j, *m)
 
 
 def _speed_caps(path, limits, s, q, v, j, ts) -> np.ndarray:
@@ -228,7 +241,8 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         b[i0:keep + 1] = bw * scale
         alpha[i0:keep + 1] = aw * scale
     info = {"gridpoints": int(g.s.size), "windows": n_windows, "lp_rounds": total_rounds,
-            "ts": ts, "lp_failed_windows": failed, "workers": workers}
+            "ts": ts, "lp_failed_windows": failed, "workers": workers,
+            "merged_windows": n_windows - len(results)}
     return _profile(path, limits, g, b, alpha, info, scurve)
 
 

@@ -97,18 +97,24 @@ def windows(g: JerkGrid) -> list[tuple[int, int, int]]:
     return out
 
 
-def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: float):
+def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: float,
+                 bhat0: np.ndarray | None = None):
     """The pseudo-jerk rounds on one window (see :mod:`ccopt.feed.jerk_planner`):
-    ``(b, alpha, rounds)`` scaled, or None when an LP is infeasible.
+    ``(b, alpha, rounds, bhat)`` scaled, or None when an LP is infeasible.
 
-    ``bhat`` starts at ``cap`` (TOPPRA's speed, scaled). The rounds end when
+    ``bhat`` starts at ``cap`` (TOPPRA's speed, scaled), or on the first
+    ``bhat0.size`` gridpoints at ``bhat0`` (the previous window's last bound
+    on the overlap, when the window starts from that one's state), and the
+    result's fourth item is the last ``bhat``. The rounds end when
     ``b`` and ``bhat`` agree within :data:`BHAT_TOL`, or when the window's
     duration (estimated from the speeds at the gridpoints) has changed by less
     than :data:`DURATION_TOL` in each of the last :data:`SETTLED_ROUNDS`
     rounds, or after :data:`MAX_ROUNDS` rounds; then one more round with
     ``b <= bhat`` gives the profile."""
     bhat = cap.copy()
-    lp = WindowLP(g, i0, i1, bhat, start, scale)
+    if bhat0 is not None:
+        bhat[:bhat0.size] = np.minimum(bhat0, cap[:bhat0.size])
+    lp = WindowLP(g, i0, i1, cap, start, scale)
     h = np.diff(g.s[i0:i1 + 1])
     durations: list[float] = []
     rounds = 0
@@ -127,10 +133,16 @@ def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: f
             durations.append(float(np.sum(2.0 * h / (v[1:] + v[:-1]))))
         if rel.max(initial=0.0) < BHAT_TOL or _settled(durations):
             break
+    # the last round linearises at the larger of bhat and the last b: the
+    # last solution then violates only the jerk rows where b rose (by a
+    # factor of at most sqrt(BHAT_RISE)), and HiGHS's simplex repairs it from
+    # that basis in a few hundred iterations; capping b at the old bhat took
+    # it 20,000-30,000 (5-9 s) on a 4,500-gridpoint window of a smoothed path
+    bhat = np.maximum(bhat, b)
     out = lp.solve(bhat, np.minimum(cap, bhat))
     if out is None:
         return None
-    return out[0], out[1], rounds + 1
+    return out[0], out[1], rounds + 1, bhat
 
 
 def _settled(durations: list[float]) -> bool:
@@ -159,7 +171,8 @@ def _grid_slice(g: JerkGrid, i0: int, i1: int) -> JerkGrid:
     """The gridpoints ``i0..i1`` of ``g`` (its intervals between them)."""
     sl = slice(i0, i1 + 1)
     return replace(g, s=g.s[sl], q1=g.q1[:, sl], q2=g.q2[:, sl], q3=g.q3[:, sl],
-                   kind=g.kind[i0:i1], stop=g.stop[sl], bmax=g.bmax[sl])
+                   kind=g.kind[i0:i1], stop=g.stop[sl], bmax=g.bmax[sl],
+                   m1=g.m1[i0:i1], m2=g.m2[i0:i1], m3=g.m3[i0:i1])
 
 
 def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float) -> list[tuple]:
@@ -168,26 +181,29 @@ def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float) -> list[tupl
     scaled, on ``i0..keep``), or ``(i0, i1, keep, None, rest_to_rest, 0)`` for
     a window whose LP failed (the chain stops there).
 
-    A window that starts from the state the previous one left can be
-    infeasible where the whole stretch is not (that state was planned against
-    a speed bound the window no longer has): it is then merged with the
+    A window starts with the previous one's last speed bound ``bhat`` on
+    their overlap (the bound its kept state was planned against). It can
+    still be infeasible where the whole stretch is not: it is then merged with the
     previous window and the two planned again as one, back to the chain's
     first window (from rest) if need be: one window over the stretch is the
     planner's exact model."""
     out: list[tuple] = []
+    carry: list[np.ndarray] = []          # each kept window's last bhat beyond its keep
     chain = list(chain)
     k = 0
     while k < len(chain):
         i0, i1, keep = chain[k]
         start = None if g.stop[i0] or not out else (float(out[-1][3][-1]),
                                                      float(out[-1][4][-1]))
-        res = solve_rounds(g, i0, i1, cap[i0:i1 + 1], start, scale)
+        res = solve_rounds(g, i0, i1, cap[i0:i1 + 1], start, scale,
+                           carry[-1] if start is not None else None)
         rest_to_rest = start is None and bool(g.stop[i1])
         if res is not None and rest_to_rest and np.any(res[0][~g.stop[i0:i1 + 1]] <= 0.0):
             res = None        # a stall (speed 0 away from a stop): as a failed LP
         if res is None and out:
             chain[k - 1:k + 1] = [(chain[k - 1][0], i1, keep)]
             out.pop()
+            carry.pop()
             k -= 1
             continue
         if res is None:
@@ -195,6 +211,7 @@ def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float) -> list[tupl
             break
         n = keep - i0 + 1
         out.append((i0, i1, keep, res[0][:n], res[1][:n], res[2]))
+        carry.append(res[3][n - 1:])
         k += 1
     return out
 
@@ -293,6 +310,7 @@ def _run_in_processes(tasks: list[tuple], workers: int) -> list[list[tuple]]:
     # the ccopt this process runs, first on the path (a source tree, say)
     root = str(Path(__file__).resolve().parents[2])
     env["PYTHONPATH"] = os.pathsep.join([root] + [p for p in [env.get("PYTHONPATH")] if p])
+    env[PARENT_ENV] = str(os.getpid())
 
     def serve():
         try:
@@ -326,6 +344,9 @@ def _run_in_processes(tasks: list[tuple], workers: int) -> list[list[tuple]]:
     return [r if r is not None else _solve_task(*tasks[i]) for i, r in enumerate(results)]
 
 
+#: The environment variable that gives a worker its parent's process id.
+PARENT_ENV = "CCOPT_JERK_PARENT"
+
 #: What a worker process runs (see :func:`_run_in_processes`).
 WORKER_COMMAND = "from ccopt.feed.jerk_windows import _worker_main; _worker_main()"
 
@@ -333,7 +354,12 @@ WORKER_COMMAND = "from ccopt.feed.jerk_windows import _worker_main; _worker_main
 def _worker_main() -> None:
     """A worker process: pickled tasks on stdin, their results on stdout, until
     stdin closes. Anything else written to the standard output (HiGHS's banner
-    from C) goes to the standard error, so the result stream stays clean."""
+    from C) goes to the standard error, so the result stream stays clean.
+    It dies with its parent (:func:`ccopt.workers.die_with_parent`): a parent
+    killed in the middle of a plan leaves no process solving on alone."""
+    from ccopt.workers import die_with_parent
+    if os.environ.get(PARENT_ENV):
+        die_with_parent(int(os.environ[PARENT_ENV]))
     results = os.fdopen(os.dup(1), "wb")
     os.dup2(2, 1)
     sys.stdout = sys.stderr
