@@ -14,9 +14,11 @@ and curvature of both at its ends (G2), and that stays in the band:
   cuts off, the corner or the old join, is within ``delta`` of the blend: the
   material a blend leaves in a corner is at most ``delta``).
 
-Each blend is a small convex problem (:class:`CornerModel`, CVXPY with
-parameters, compiled once and solved with Clarabel; :func:`solve_model` is
-the solver call). In coordinates centred on the join and scaled by the blend
+Each blend is first the closed form of :mod:`ccopt_formulations.smoother_joins`
+(sized in closed form and checked, no solver; steps below). Where none passes,
+it is a small convex problem (:class:`CornerModel`, CVXPY with parameters,
+compiled on first need and solved with Clarabel; :func:`solve_model` is the
+solver call). In coordinates centred on the join and scaled by the blend
 size, with ``x = [a0, e0, a1, e1, P3, P4]`` (the legs and offsets of the
 G2 end conditions, :func:`ccopt.geometry.bezier.g2_start` / ``g2_end``, and the
 two free control points):
@@ -36,12 +38,33 @@ two free control points):
 ``delta' = BAND_FRACTION * delta`` leaves room for what happens between samples.
 The clearance rows are elastic (a slack per sample, priced at
 :data:`SLACK_PENALTY`), so a first guess on the wrong side can move; the exact
-checks afterwards accept only curves that keep the clearance. The model is
-re-linearised a few times (:data:`SCP_ITERATIONS`), and the blend
-size is searched: the largest ``l`` (halving from what the neighbouring joins
-leave, then bisecting) for which the exact curve passes the exact checks
-(distance to every nearby element at dense samples, deviation both ways). The
-whole smoothed path then goes to the verifier; a blend that the verifier
+checks afterwards accept only curves that keep the clearance.
+
+How a join is blended (:func:`solve_join`), cheapest first:
+
+1. Before any blend, :func:`ccopt_formulations.smoother_chain.chain_path`
+   absorbs PMAC's short corner arcs between chords, so a chorded program is a
+   chain of line-line corners (the convex ones blended by an outward closed
+   form that keeps outside both lines).
+2. The closed-form blend (:func:`ccopt_formulations.smoother_joins.initial`):
+   at a line-line corner its size is the one whose cut uses the band
+   (``(5/16) l sin(theta/2) = delta'``, capped by what the segments leave), and
+   it is only checked (clearance, band, cover, curvature bound:
+   :func:`ccopt_formulations.smoother_joins.exact_ok`); at other joins the size
+   is searched by shrinking and growing, each try one closed form and one check
+   (at a curvature jump with its middle points lifted towards the arc's centre
+   by a few fixed shares of its size, in turn: into a concave arc of the tool
+   path it must turn more sharply than the arc); then the same one-sided (the
+   blend ends at the join point).
+3. Only where no closed form passes (none of the bundled cases today), the
+   convex model above,
+   re-linearised up to :data:`SCP_ITERATIONS` times, at sizes halving from the
+   estimate and then bisected (:func:`largest_feasible`).
+
+Every accepted blend keeps its curvature within the bound of
+:mod:`ccopt_formulations.smoother_joins` (:data:`~ccopt_formulations.smoother_joins.CURVATURE_FACTOR`
+times its turn over its length plus its end curvatures): no hooks. The whole
+smoothed path then goes to the verifier once; a blend that the verifier
 faults is solved again smaller, and if that fails the join is left as it was
 (reported).
 """
@@ -50,51 +73,47 @@ from __future__ import annotations
 import math
 import time
 import warnings
-from dataclasses import dataclass, field
 
 import numpy as np
 
 from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
-from ccopt.compare.figures import joins as path_joins, max_deviation
-from ccopt.geometry import BezierCurve
-from ccopt.geometry.bezier import DIVISION_FLOOR, energy_root, g2_end, g2_start
+from ccopt.geometry import BezierCurve, Line
+from ccopt.geometry.bezier import DIVISION_FLOOR, energy_root
 from ccopt.geometry.curve import bernstein, derivative_matrix
-from ccopt.toolpath import PathSegment, Role, ToolPath
-from ccopt_formulations.clearance import (
-    Element, checked_distance, contour_elements, linear_rows, near,
+from ccopt.toolpath import Role, ToolPath
+from ccopt_formulations.clearance import Element, linear_rows, near
+from ccopt_formulations.smoother_chain import chain_path
+from ccopt_formulations.smoother_deviation import windowed_deviation
+from ccopt_formulations.smoother_joins import (  # noqa: F401  (the smoother's vocabulary)
+    CHECK_SAMPLES, DEGREE, LIFTS, BlendFrame, ElementIndex, Join, assemble, closed_blend, exact_ok,
+    contour_inside, find_joins, frame, initial, largest_closed, size_estimate,
 )
 
-DEGREE = 7
 #: Samples of the blend constrained in each model.
 M_SAMPLES = 25
 #: Nearby contour elements per blend (padded), of which concave arcs (SOC rows).
 E_MAX = 6
 C_MAX = 2
-#: Share of ``delta`` the model may use at its samples.
+#: Share of ``delta`` the model may use at its samples, and the closed form's target.
 BAND_FRACTION = 0.85
 #: Curvature-energy weight against the jerk energy.
 LAM = 0.1
 SCP_ITERATIONS = 4
 #: Price of a unit of clearance slack in the scaled model (the energies are O(1..100)).
 SLACK_PENALTY = 1e6
-#: Share of a segment a blend may take when another blend uses its other end.
-SHARED = 0.45
-ALONE = 0.9
-#: Blend size search: at most this many shrinking steps (by SHRINK), growing
-#: steps (by GROW) and then bisection steps.
-SHRINKS = 12
+#: The convex model's size search: at most this many shrinking steps (by SHRINK),
+#: growing steps (by GROW) and then bisection steps.
+SHRINKS = 6
 SHRINK = 0.5
 GROWS = 3
 GROW = 1.6
-BISECTIONS = 3
+BISECTIONS = 2
 #: Distance below the clearance the exact acceptance checks forgive: rounding
 #: only (program units). A blend accepted inside the clearance would use up
 #: the verifier's tolerance and leave nothing for its export's arc fit.
 CHECK_TOL = 1e-12
 #: Shares of the blend size on the incoming and outgoing side, tried in turn.
 SHARES = ((1.0, 1.0), (1.0, 0.0), (0.0, 1.0))
-#: Dense samples for the exact acceptance checks of one blend.
-CHECK_SAMPLES = 801
 #: Central-difference step (in the scaled decision variables, O(1)) of the map
 #: x -> control points: it is smooth, so this balances truncation and rounding.
 JACOBIAN_STEP = 1e-6
@@ -102,115 +121,6 @@ JACOBIAN_STEP = 1e-6
 #: (scaled: rounding) and its step at most CONVERGED_STEP (scaled).
 CONVERGED_SLACK = 1e-12
 CONVERGED_STEP = 1e-6
-#: Smallest turn (rad) and curvature jump (1/program units) the first blend size
-#: divides by: a join barely broken gets the largest size its segments allow.
-MIN_TURN = 1e-3
-MIN_JUMP = 1e-9
-#: A segment trimmed to at most this length (program units) by the blends at both
-#: its ends is gone: the two blends meet.
-TRIMMED_AWAY = 1e-12
-
-
-# --------------------------------------------------------------------------- joins
-
-
-@dataclass
-class Join:
-    """A non-G2 join at segment boundary ``index`` (between ``index - 1`` and ``index``)."""
-
-    index: int
-    kind: str              # "tangent-break" | "curvature-jump"
-    angle: float
-    jump: float
-    lim_in: float = 0.0
-    lim_out: float = 0.0
-    l_in: float = 0.0
-    l_out: float = 0.0
-    curve: BezierCurve | None = None
-    status: str = "pending"
-    info: dict = field(default_factory=dict)
-
-
-def find_joins(path: ToolPath) -> list[Join]:
-    """Every join of feed segments that is G0 or G1 (``gap`` joins are left alone)."""
-    out = []
-    for i, cls, _gap, ang, jump in path_joins(path):
-        if cls in ("G0", "G1"):
-            out.append(Join(i, "tangent-break" if cls == "G0" else "curvature-jump", ang, jump))
-    idx = {j.index for j in out}
-    segs = path.segments
-    for j in out:
-        L_in, L_out = segs[j.index - 1].length, segs[j.index].length
-        j.lim_in = (SHARED if (j.index - 1) in idx else ALONE) * L_in
-        j.lim_out = (SHARED if (j.index + 1) in idx else ALONE) * L_out
-    return out
-
-
-# --------------------------------------------------------------------------- geometry
-
-
-def _end_data(geom, s):
-    p = np.asarray(geom.point(float(s)), float)
-    t = np.asarray(geom.tangent(float(s)), float)
-    k = float(geom.curvature(float(s)))
-    return p, t / np.linalg.norm(t), k
-
-
-@dataclass
-class BlendFrame:
-    """One blend's fixed data in world coordinates, and the scaling used by the model."""
-
-    P0: np.ndarray
-    t0: np.ndarray
-    k0: float
-    P7: np.ndarray
-    t1: np.ndarray
-    k1: float
-    V: np.ndarray           # the reference point the blend cuts off (the join point)
-    S: float                # scale (l_in + l_out)
-    ref_pts: np.ndarray     # dense reference points near the join (world)
-
-    def controls(self, x) -> np.ndarray:
-        """World control points of ``x = [a0, e0, a1, e1, P3x, P3y, P4x, P4y]`` (lengths
-        in units of ``S``, points relative to ``V`` in units of ``S``)."""
-        x = np.asarray(x, float)
-        S = self.S
-        start = g2_start(self.P0, self.t0, self.k0, x[0] * S, x[1] * S, DEGREE)
-        end = g2_end(self.P7, self.t1, self.k1, x[2] * S, x[3] * S, DEGREE)
-        mid = self.V + S * x[4:8].reshape(2, 2)
-        return np.vstack([start, mid, end])
-
-
-def _frame(seg_in: PathSegment, seg_out: PathSegment, l_in: float, l_out: float) -> BlendFrame:
-    L_in = seg_in.length
-    P0, t0, k0 = _end_data(seg_in.geom, L_in - l_in)
-    P7, t1, k1 = _end_data(seg_out.geom, l_out)
-    V = np.asarray(seg_out.start, float)
-    S = l_in + l_out
-    h = S / 400.0
-    a = seg_in.geom.point(np.linspace(max(0.0, L_in - 2.0 * l_in), L_in,
-                                      max(2, int(2 * l_in / h) + 1)))
-    b = seg_out.geom.point(np.linspace(0.0, min(seg_out.length, 2.0 * l_out),
-                                       max(2, int(2 * l_out / h) + 1)))
-    return BlendFrame(P0, t0, k0, P7, t1, k1, V, S, np.vstack([a, b]))
-
-
-def _initial(fr: BlendFrame) -> np.ndarray:
-    a0 = max(np.linalg.norm(fr.V - fr.P0) / (DEGREE / 2.0) / fr.S, 0.05)
-    a1 = max(np.linalg.norm(fr.P7 - fr.V) / (DEGREE / 2.0) / fr.S, 0.05)
-    P3 = (fr.P0 + 3.0 * a0 * fr.S * fr.t0 - fr.V) / fr.S
-    P4 = (fr.P7 - 3.0 * a1 * fr.S * fr.t1 - fr.V) / fr.S
-    return np.r_[a0, 0.0, a1, 0.0, P3, P4]
-
-
-# --------------------------------------------------------------------------- elements
-
-
-def near_elements(problem: BlendProblem, V, reach: float) -> list[Element]:
-    """Contour elements within ``clearance + reach`` of ``V`` (nearest first, at most
-    :data:`E_MAX`)."""
-    return near(contour_elements(problem.contour), np.asarray(V, float)[None, :], reach,
-                limit=E_MAX)
 
 
 # --------------------------------------------------------------------------- the model
@@ -347,33 +257,16 @@ def solve_model(model: CornerModel, solver: str = "CLARABEL", **options):
         return None, st
     return np.asarray(model.x.value, float), st
 
-
 # --------------------------------------------------------------------------- one join
-
-
-def _exact_ok(curve_pts: np.ndarray, elements, fr: BlendFrame, delta: float, tol: float):
-    """Exact checks at dense samples: clearance to every nearby element (ends of the
-    blend excluded, they are the reference's own points) and deviation both ways."""
-    inner = curve_pts[1:-1]
-    for el in elements:
-        if np.min(checked_distance(el, inner)) < el.clearance - tol:
-            return False, "clearance"
-    d = np.hypot(curve_pts[:, None, 0] - fr.ref_pts[None, :, 0],
-                 curve_pts[:, None, 1] - fr.ref_pts[None, :, 1])
-    if np.max(np.min(d, axis=1)) > delta:
-        return False, "band"
-    if np.min(np.hypot(*(curve_pts - fr.V).T)) > delta:
-        return False, "corner"
-    return True, "ok"
 
 
 def solve_blend(model: CornerModel, fr: BlendFrame, elements, delta: float,
                 band_fraction: float = BAND_FRACTION, solver: str = "CLARABEL"):
-    """The blend of the frame ``fr``: the model re-linearised and solved up to
-    :data:`SCP_ITERATIONS` times (trust region shrinking), then the exact checks
-    (:func:`_exact_ok`) on the exact curve. The curve, or ``None`` when there is
-    no solution or it fails a check."""
-    x = _initial(fr)
+    """The blend of the frame ``fr`` by the convex model: re-linearised and solved up
+    to :data:`SCP_ITERATIONS` times (trust region shrinking) from the closed form,
+    then the exact checks (:func:`exact_ok`) on the exact curve. The curve, or
+    ``None`` when there is no solution or it fails a check."""
+    x = initial(fr)
     trust = 0.5 * max(x[0], x[2])
     sol = None
     for it in range(SCP_ITERATIONS):
@@ -390,9 +283,7 @@ def solve_blend(model: CornerModel, fr: BlendFrame, elements, delta: float,
     if sol is None:
         return None
     P = fr.controls(sol)
-    pts = bernstein(np.linspace(0.0, 1.0, CHECK_SAMPLES), DEGREE) @ P
-    ok, _ = _exact_ok(pts, elements, fr, delta, CHECK_TOL)
-    if not ok:
+    if not exact_ok(P, elements, fr, delta, CHECK_TOL)[0]:
         return None
     try:
         return BezierCurve(P)
@@ -439,108 +330,138 @@ def largest_feasible(attempt, start: float, lmax: float):
     return best[1]
 
 
-def solve_join(model: CornerModel, problem: BlendProblem, path: ToolPath, jn: Join, delta: float,
-               band_fraction: float = BAND_FRACTION, solver: str = "CLARABEL"):
-    """The largest feasible blend at ``jn`` (sets ``jn.curve``, ``l_in``, ``l_out``)."""
-    seg_in, seg_out = path.segments[jn.index - 1], path.segments[jn.index]
-    lmax = min(jn.lim_in, jn.lim_out)
-    if lmax <= 0:
-        jn.status = "no room"
-        return jn
-    V = np.asarray(seg_out.start, float)
-    elements = near_elements(problem, V, 2.0 * lmax + delta)
 
-    def attempt(l: float, share):
-        l_in = min(l, jn.lim_in) * share[0]
-        l_out = min(l, jn.lim_out) * share[1]
-        fr = _frame(seg_in, seg_out, l_in, l_out)
-        curve = solve_blend(model, fr, elements, delta, band_fraction, solver)
-        return None if curve is None else (curve, l_in, l_out)
+class Smoother:
+    """What the joins of one path share: the problem, the path being blended (PMAC's
+    with chords chained, :func:`chain_path`), PMAC's path near each join, the
+    contour's element index, and the convex model (built on first need)."""
 
-    # symmetric first; then one-sided (a blend that ends exactly at the join point, as
-    # at an open end of the contour, where the other side has no room inside the band)
-    for share in SHARES:
-        res = largest_feasible(lambda l, share=share: attempt(l, share),
-                               min(lmax, size_estimate(jn, delta)), lmax)
-        if res is not None:
-            jn.curve, jn.l_in, jn.l_out = res
-            jn.status = "blended"
+    def __init__(self, problem: BlendProblem, delta: float, solver: str = "CLARABEL"):
+        self.problem, self.delta, self.solver = problem, delta, solver
+        self.ref = problem.reference
+        self.chain = chain_path(self.ref, BAND_FRACTION * delta)
+        self.path = self.chain.path
+        self.index = ElementIndex(problem.contour)
+        self._model = None
+        self._elements = None
+
+    @property
+    def model(self) -> CornerModel:
+        if self._model is None:
+            self._model = CornerModel()
+        return self._model
+
+    def context(self, k: int):
+        """``(ref_geoms, cover)`` of the join before segment ``k`` of the chained
+        path: PMAC's feed segments from the one before the incoming segment's origin
+        to the one after the outgoing one's, and the points it cuts off (the join
+        point; an absorbed corner arc's ends and middle)."""
+        segs = self.ref.segments
+        lo, hi = self.chain.origin[k - 1], self.chain.origin[k]
+        geoms = [segs[i].geom for i in range(max(0, lo - 1), min(len(segs), hi + 2))
+                 if segs[i].role in (Role.LEAD_IN, Role.COMPENSATED, Role.CORNER, Role.LEAD_OUT)
+                 and segs[i].length > 0]
+        if hi == lo + 1:
+            return geoms, np.asarray(segs[hi].start, float)[None, :], False
+        arc = segs[lo + 1].geom
+        return geoms, np.asarray(arc.point(np.linspace(0.0, arc.length, 5)), float), True
+
+    def solve_join(self, jn: Join, delta: float) -> Join:
+        """The largest blend at ``jn`` that passes the checks: the closed form, else
+        the convex model (module docstring). Sets ``jn.curve``, ``l_in``, ``l_out``."""
+        path = self.path
+        seg_in, seg_out = path.segments[jn.index - 1], path.segments[jn.index]
+        lmax = min(jn.lim_in, jn.lim_out)
+        if lmax <= 0:
+            jn.status = "no room"
+            return jn
+        V = np.asarray(seg_out.start, float)
+        reach = 2.0 * max(jn.lim_in, jn.lim_out) + delta
+        elements = self.index.near(V, reach)
+        ctx = self.context(jn.index)
+        if not ctx[2] and isinstance(seg_in.geom, Line) and isinstance(seg_out.geom, Line) \
+                and contour_inside(V, seg_in.geom.tangent(0.0), seg_out.geom.tangent(0.0),
+                                   elements):
+            ctx = (ctx[0], ctx[1], True)        # a shallow outside corner: outward too
+        target = BAND_FRACTION * delta
+
+        def closed(l: float, share):
+            l_in, l_out = min(l, jn.lim_in) * share[0], min(l, jn.lim_out) * share[1]
+            if ctx[2]:
+                # outward: symmetric legs (the closed form's proof is for those)
+                l_in = l_out = min(l_in, l_out)
+            fr = frame(seg_in, seg_out, l_in, l_out, ctx)
+            P = closed_blend(fr, elements, delta, CHECK_TOL,
+                             LIFTS if jn.kind == "curvature-jump" else (0.0,))
+            return None if P is None else (P, l_in, l_out)
+
+        # outward: the blend does not cut the corner, so its size is what the chords leave
+        start = math.inf if ctx[2] else size_estimate(jn, target)
+        # at a line-line corner the closed-form size is exact (a guess elsewhere)
+        exact = isinstance(seg_in.geom, Line) and isinstance(seg_out.geom, Line)
+        lmax = max(jn.lim_in, jn.lim_out)
+        for share in SHARES[:1] if ctx[2] else SHARES:
+            res = largest_closed(lambda l, share=share: closed(l, share), min(start, lmax), lmax,
+                                 exact)
+            if res is None:
+                continue
+            try:
+                jn.curve = BezierCurve(res[0])
+            except ValueError:  # not regular to BezierCurve's finer test: the model decides
+                break
+            jn.l_in, jn.l_out = res[1], res[2]
+            jn.status, jn.info["method"] = "blended", "closed form"
             jn.info["share"] = list(share)
             return jn
-    jn.status = "no feasible blend"
-    return jn
+        return self._convex(jn, delta, seg_in, seg_out, min(jn.lim_in, jn.lim_out), ctx)
+
+    def _convex(self, jn, delta, seg_in, seg_out, lmax, ctx) -> Join:
+        V = np.asarray(seg_out.start, float)
+        elements = near(self.index.near(V, 2.0 * lmax + delta), V[None, :], 2.0 * lmax + delta,
+                        limit=E_MAX)
+
+        def attempt(l: float, share):
+            l_in = min(l, jn.lim_in) * share[0]
+            l_out = min(l, jn.lim_out) * share[1]
+            fr = frame(seg_in, seg_out, l_in, l_out, ctx, dense=True)
+            curve = solve_blend(self.model, fr, elements, delta, BAND_FRACTION, self.solver)
+            return None if curve is None else (curve, l_in, l_out)
+
+        # symmetric first; then one-sided (a blend that ends exactly at the join point, as
+        # at an open end of the contour, where the other side has no room inside the band)
+        for share in SHARES:
+            res = largest_feasible(lambda l, share=share: attempt(l, share),
+                                   min(lmax, size_estimate(jn, delta)), lmax)
+            if res is not None:
+                jn.curve, jn.l_in, jn.l_out = res
+                jn.status = "blended"
+                jn.info.update(share=list(share), method="convex model")
+                return jn
+        jn.status = "no feasible blend"
+        return jn
 
 
-def size_estimate(jn: Join, delta: float) -> float:
-    """A first blend size: a G2 blend of legs ``l`` cuts a corner turning by ``theta``
-    by about ``l * theta / 6``, and shifts a transition into curvature ``kappa``
-    by about ``l^2 * kappa / 3``, so try ``l`` with that equal to ``delta``."""
-    if jn.kind == "tangent-break":
-        return 6.0 * delta / max(jn.angle, MIN_TURN)
-    return math.sqrt(3.0 * delta / max(jn.jump, MIN_JUMP))
-
-
-# --------------------------------------------------------------------------- the path
-
-
-def assemble(path: ToolPath, joins: list[Join], style: str = "smooth") -> ToolPath:
-    """``path`` with every blended join's curve put in; ``meta["joins"]`` lists
-    every feed join of the result (the smoother answers for all of them)."""
-    segs = path.segments
-    by_index = {j.index: j for j in joins if j.status == "blended"}
-    out: list[PathSegment] = []
-    new_index = {}
-    for i, seg in enumerate(segs):
-        j_start = by_index.get(i)
-        j_end = by_index.get(i + 1)
-        if j_start is not None:
-            jb = j_start
-            src_in = segs[i - 1]
-            feed = min((f for f in (src_in.feed, seg.feed) if f is not None), default=None)
-            w = src_in.w1
-            out.append(PathSegment(jb.curve, Role.CORNER, src_in.block, w, w, feed))
-        s0 = j_start.l_out if j_start is not None else 0.0
-        s1 = seg.length - (j_end.l_in if j_end is not None else 0.0)
-        g = seg.geom
-        if s0 > 0.0 or s1 < seg.length:
-            if s1 - s0 <= TRIMMED_AWAY:
-                g = None
-            else:
-                if s1 < seg.length:
-                    g = g.split(s1)[0]
-                if s0 > 0.0:
-                    g = g.split(s0)[1]
-        if g is not None:
-            L = seg.length
-            w0 = seg.w0 + (seg.w1 - seg.w0) * (s0 / L if L else 0.0)
-            w1 = seg.w0 + (seg.w1 - seg.w0) * (s1 / L if L else 1.0)
-            new_index[i] = len(out)
-            out.append(PathSegment(g, seg.role, seg.block, w0, w1, seg.feed))
-    dwells = []
-    for d, sec, blk in path.dwells:
-        k = min((new_index[i] for i in new_index if i >= d), default=len(out))
-        dwells.append((k, sec, blk))
-    res = ToolPath(tuple(out), plane=path.plane, style=style, radius=path.radius,
-                   dwells=tuple(dwells), units=path.units, meta=dict(path.meta))
-    res.meta["joins"] = [j[0] for j in path_joins(res)]
-    return res
-
-
-def smooth(problem: BlendProblem, delta: float | None = None, solver: str = "CLARABEL"):
+def smooth(problem: BlendProblem, delta: float | None = None, solver: str = "CLARABEL",
+           deviation: bool = True):
     """Smooth ``problem.reference`` within ``delta`` (default :attr:`BlendProblem.band`).
 
-    Returns ``(toolpath, info)``; ``info["joins"]`` says what became of each join.
+    Returns ``(toolpath, info)``; ``info["joins"]`` says what became of each join
+    (``segment``: the index in PMAC's path of the segment that starts at the join,
+    or of the corner arc an absorbed corner replaced). ``deviation``: also measure
+    the Hausdorff distance to PMAC's path (``info["max_deviation"]`` and its bound;
+    :func:`smooth_variant` leaves it to :func:`ccopt.compare.core.measure`, which
+    measures every variant so).
     """
     t0 = time.perf_counter()
     delta = float(problem.band if delta is None else delta)
     if not delta > 0:
         raise BlendRejected(f"delta must be > 0, got {delta!r}")
-    ref = problem.reference
-    joins = find_joins(ref)
-    model = CornerModel()
+    sm = Smoother(problem, delta, solver)
+    joins = find_joins(sm.path)
     for jn in joins:
-        solve_join(model, problem, ref, jn, delta, solver=solver)
-    path = assemble(ref, joins)
+        sm.solve_join(jn, delta)
+    out_origin: list = []
+    path = assemble(sm.path, joins, origin=out_origin)
     # the verifier has the last word: faulted blends are solved again smaller, then dropped
     for round_ in range(3):
         cert = problem.certify(path)
@@ -554,25 +475,38 @@ def smooth(problem: BlendProblem, delta: float | None = None, solver: str = "CLA
             if round_ < 2:
                 jn.lim_in *= 0.5
                 jn.lim_out *= 0.5
-                solve_join(model, problem, ref, jn, 0.5 * delta, solver=solver)
+                sm.solve_join(jn, 0.5 * delta)
                 jn.info["verifier_retries"] = round_ + 1
             else:
                 jn.status, jn.curve = "faulted by the verifier", None
-        path = assemble(ref, joins)
-    dev, dev_bound = max_deviation(path, ref)
+        out_origin = []
+        path = assemble(sm.path, joins, origin=out_origin)
+    origin = sm.chain.origin
+    dev = dev_bound = None
+    if deviation:
+        dev, dev_bound = windowed_deviation(path, sm.ref, [origin[i] for i in out_origin])
     info = {
         "delta": delta,
         "joins_found": len(joins),
         "joins_blended": sum(1 for j in joins if j.status == "blended"),
-        "joins": [{"segment": j.index, "kind": j.kind, "angle": j.angle, "curvature_jump": j.jump,
-                   "status": j.status, "l_in": j.l_in, "l_out": j.l_out, **j.info}
+        "joins": [{"segment": _origin_of(origin, j.index), "kind": j.kind, "angle": j.angle,
+                   "curvature_jump": j.jump, "status": j.status, "l_in": j.l_in,
+                   "l_out": j.l_out, **j.info}
                   for j in joins],
+        "corners_absorbed": len(sm.chain.absorbed),
         "max_deviation": dev,
         "max_deviation_bound": dev_bound,
         "solve_time": time.perf_counter() - t0,
         "certificate": cert,
     }
     return path, info
+
+
+def _origin_of(origin: list, k: int) -> int:
+    """PMAC's segment index for the join before chained segment ``k``: the segment
+    that starts there, or the absorbed corner arc just before it."""
+    o = origin[k]
+    return o - 1 if k >= 1 and origin[k - 1] == o - 2 else o
 
 
 def _segment_of(path: ToolPath, curve) -> int | None:
@@ -585,7 +519,10 @@ def _segment_of(path: ToolPath, curve) -> int | None:
 def smooth_variant(problem: BlendProblem) -> BlendOutcome:
     """Entry point ``smooth`` (group ``ccopt.blends``): the smoother at ``problem.band``.
     Option ``conic_solver``: the CVXPY solver name (default ``"CLARABEL"``)."""
-    path, info = smooth(problem, solver=str(problem.options.get("conic_solver", "CLARABEL")))
+    path, info = smooth(problem, solver=str(problem.options.get("conic_solver", "CLARABEL")),
+                        deviation=False)
+    for key in ("max_deviation", "max_deviation_bound"):
+        info.pop(key)
     if info["joins_found"] and not info["joins_blended"]:
         raise BlendRejected("no join could be blended within the band")
     return BlendOutcome(path, info)

@@ -63,10 +63,7 @@ def _plan_jerk(path, limits):
 
 
 @pytest.mark.slow
-# freeform-hsm (the high-speed case) is not here yet: smoothing its 301
-# chords takes tens of minutes (about 9 size attempts per join), more than the
-# suite can spend; its figure is still to be measured (session note)
-@pytest.mark.parametrize("name", ["pocket-chords"])
+@pytest.mark.parametrize("name", ["pocket-chords", "freeform-hsm"])
 def test_smoother_is_20_percent_faster_under_jerk(name):
     # (the jerk planner's overlapping windows once found this path infeasible
     # from lead-in to lead-out; a failing window is now merged with the one
