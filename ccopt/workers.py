@@ -64,7 +64,7 @@ def die_with_parent(parent: int) -> None:
     (no ``prctl``) nothing is done: the child then ends when it next reads
     from or writes to its parent."""
     try:
-        import ctypes
+        import ctypes        # here: only a child process needs it
         libc = ctypes.CDLL(None, use_errno=True)
         PR_SET_PDEATHSIG = 1
         libc.prctl(PR_SET_PDEATHSIG, signal.SIGKILL, 0, 0, 0)

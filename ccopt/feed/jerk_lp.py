@@ -130,7 +130,6 @@ def _interval_rows(g: JerkGrid, i0: int, i1: int, scale: float, vref: np.ndarray
             jerk_rows.append(rr)
             jerk_at.append(np.stack([mc, mc]))
             r += n
-    # straight intervals: one jerk row each (see above)
     at = np.stack([mov_of[0][straight], mov_of[1][straight]])
     cj = vref[at].max(axis=0) * scale * np.max(np.abs(q1s[straight]) / g.j, axis=1)
     rr = r + np.arange(at.shape[1])
@@ -281,9 +280,10 @@ class WindowLP:
                                                                           A.data)
         self.highs.passModel(lp)
 
-    def solve(self, bhat: np.ndarray, cap: np.ndarray):
+    def solve(self, bhat: np.ndarray, cap: np.ndarray, weights_at: np.ndarray | None = None):
         """``(b, alpha)`` (scaled) maximising the linearised time gain under the
-        pseudo-jerk bound ``bhat``, with ``b <= cap``; None unless optimal."""
+        pseudo-jerk bound ``bhat``, with ``b <= cap``; None unless optimal.
+        The time is linearised at ``weights_at`` (default ``bhat``)."""
         h, nb = self.highs, self.nb
         b_at = np.maximum(bhat[self.jerk_at0], bhat[self.jerk_at1])
         v_at = np.maximum(self.vref[self.jerk_at0], self.vref[self.jerk_at1])
@@ -293,7 +293,8 @@ class WindowLP:
         ub = np.maximum(np.minimum(self.bmax, cap), self.b_low)   # a fixed start stays fixed
         h.changeColsBounds(nb, self.b_cols, self.b_low, ub)
         floor = WEIGHT_FLOOR * max(float(bhat.max(initial=0.0)), np.finfo(float).tiny)
-        w = self.hbar / np.maximum(bhat, floor) ** 1.5
+        at = bhat if weights_at is None else weights_at
+        w = self.hbar / np.maximum(at, floor) ** 1.5
         h.changeColsCost(nb, self.b_cols, -w / w.max())
         h.run()
         if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:

@@ -27,6 +27,7 @@ from pathlib import Path
 import numpy as np
 
 from ccopt.feed.jerk_lp import JerkGrid, WindowLP
+from ccopt.workers import die_with_parent
 
 #: Relative agreement of ``b`` and ``bhat`` that ends the pseudo-jerk rounds.
 BHAT_TOL = 2e-3
@@ -50,9 +51,13 @@ BHAT_RISE = 1.5
 #: (A window's rounds end together, and a failed window takes the S-curve on
 #: all its stretches: on the 1,000-block pocket, whose stretches have about
 #: 300 gridpoints, windows of 200 (a stretch each) planned 157.54 s in 15 %
-#: less CPU than windows of 800 (158.40 s), and 1,600 planned 161.15 s.)
+#: less CPU than windows of 800 (158.40 s), and 1,600 planned 161.15 s. On
+#: freeform-hsm's smoothed path, 53,510 gridpoints with no stop, windows of
+#: 3,000, 1,500, 1,000 and 500 kept gridpoints planned 11.1487, 11.1488,
+#: 11.1494 and 11.1517 s in 57, 46, 46 and 52 CPU s; with 500 the overlap
+#: was too short for 16 windows, merged with the one before.)
 BATCH_POINTS = 200
-WINDOW_POINTS = 3000
+WINDOW_POINTS = 1500
 WINDOW_OVERLAP = 0.5
 #: Processes for the chains (None: as many as the CPUs this process may use),
 #: and the fewest gridpoints worth starting them for (a spawned process takes
@@ -127,19 +132,22 @@ def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: f
         rel = np.abs(b[big] - bhat[big]) / np.maximum(bhat[big], b[big])
         # geometric mean, and never below a tenth of the last bound: a point the
         # LP left at 0 would otherwise pin the next rounds' cap there
+        last = bhat
         bhat = np.sqrt(np.maximum(b, BHAT_FALL * bhat) * bhat)
         v = np.sqrt(b)
         with np.errstate(divide="ignore"):
             durations.append(float(np.sum(2.0 * h / (v[1:] + v[:-1]))))
         if rel.max(initial=0.0) < BHAT_TOL or _settled(durations):
             break
-    # the last round linearises at the larger of bhat and the last b: the
-    # last solution then violates only the jerk rows where b rose (by a
-    # factor of at most sqrt(BHAT_RISE)), and HiGHS's simplex repairs it from
-    # that basis in a few hundred iterations; capping b at the old bhat took
-    # it 20,000-30,000 (5-9 s) on a 4,500-gridpoint window of a smoothed path
-    bhat = np.maximum(bhat, b)
-    out = lp.solve(bhat, np.minimum(cap, bhat))
+    # the last round keeps the last round's bound and objective and only
+    # raises the bound to the last b where b rose above it: the last solution
+    # then violates only those points' jerk rows (by a factor of at most
+    # sqrt(BHAT_RISE)), and HiGHS's simplex repairs it from its basis in a few
+    # dozen iterations. Capping b at the updated bhat took it 20,000-30,000
+    # (5-9 s) on a 4,500-gridpoint window of a smoothed path; max(updated
+    # bhat, b) still 2,000-2,700 on its 750-gridpoint windows
+    bhat = np.maximum(last, b)
+    out = lp.solve(bhat, np.minimum(cap, bhat), weights_at=last)
     if out is None:
         return None
     return out[0], out[1], rounds + 1, bhat
@@ -357,7 +365,6 @@ def _worker_main() -> None:
     from C) goes to the standard error, so the result stream stays clean.
     It dies with its parent (:func:`ccopt.workers.die_with_parent`): a parent
     killed in the middle of a plan leaves no process solving on alone."""
-    from ccopt.workers import die_with_parent
     if os.environ.get(PARENT_ENV):
         die_with_parent(int(os.environ[PARENT_ENV]))
     results = os.fdopen(os.dup(1), "wb")
