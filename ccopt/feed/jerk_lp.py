@@ -280,10 +280,11 @@ class WindowLP:
                                                                           A.data)
         self.highs.passModel(lp)
 
-    def solve(self, bhat: np.ndarray, cap: np.ndarray, weights_at: np.ndarray | None = None):
+    def solve(self, bhat: np.ndarray, cap: np.ndarray, max_iterations: int | None = None):
         """``(b, alpha)`` (scaled) maximising the linearised time gain under the
-        pseudo-jerk bound ``bhat``, with ``b <= cap``; None unless optimal.
-        The time is linearised at ``weights_at`` (default ``bhat``)."""
+        pseudo-jerk bound ``bhat``, with ``b <= cap``; None unless optimal,
+        or when HiGHS's simplex would take more than ``max_iterations``
+        (then the next call starts from where it stopped)."""
         h, nb = self.highs, self.nb
         b_at = np.maximum(bhat[self.jerk_at0], bhat[self.jerk_at1])
         v_at = np.maximum(self.vref[self.jerk_at0], self.vref[self.jerk_at1])
@@ -293,10 +294,16 @@ class WindowLP:
         ub = np.maximum(np.minimum(self.bmax, cap), self.b_low)   # a fixed start stays fixed
         h.changeColsBounds(nb, self.b_cols, self.b_low, ub)
         floor = WEIGHT_FLOOR * max(float(bhat.max(initial=0.0)), np.finfo(float).tiny)
-        at = bhat if weights_at is None else weights_at
-        w = self.hbar / np.maximum(at, floor) ** 1.5
+        w = self.hbar / np.maximum(bhat, floor) ** 1.5
         h.changeColsCost(nb, self.b_cols, -w / w.max())
-        h.run()
+        if max_iterations is not None:
+            h.setOptionValue("simplex_iteration_limit", int(max_iterations))
+            h.run()
+            h.setOptionValue("simplex_iteration_limit", highspy.kHighsIInf)
+            if h.getModelStatus() == highspy.HighsModelStatus.kIterationLimit:
+                return None
+        else:
+            h.run()
         if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
             # rare numerical trouble without presolve: once more, from scratch, with it
             h.setOptionValue("presolve", "on")

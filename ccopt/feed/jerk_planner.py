@@ -20,10 +20,11 @@ speed), then ``bhat`` is updated to the geometric mean of itself and the LP's
 new ``b`` until the two agree within
 :data:`~ccopt.feed.jerk_windows.BHAT_TOL` (relative, on ``b``), or the
 window's duration settles (:data:`~ccopt.feed.jerk_windows.DURATION_TOL`),
-at most :data:`~ccopt.feed.jerk_windows.MAX_ROUNDS` rounds; a last round,
-linearised at the larger of ``bhat`` and the last ``b``, imposes
-``b <= bhat`` so that ``sqrt(b) <= sqrt(bhat)`` and the jerk bound holds
-exactly at the gridpoints, and that round's solution is the profile.
+at most :data:`~ccopt.feed.jerk_windows.MAX_ROUNDS` rounds; a last round
+imposes ``b <= bhat`` so that ``sqrt(b) <= sqrt(bhat)`` and the jerk bound
+holds exactly at the gridpoints, and that round's solution is the profile
+(where HiGHS would take long over it, ``bhat`` is first raised to the last
+``b`` where that rose above it: :func:`~ccopt.feed.jerk_windows.solve_rounds`).
 The objective is the duration ``sum h / sqrt(b)`` linearised at ``bhat``:
 maximise ``sum h b / bhat^(3/2)``. Each round is one LP solved by HiGHS's
 simplex (``highspy``, ranged rows). A jerk row divided by its

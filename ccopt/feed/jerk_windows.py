@@ -42,6 +42,9 @@ BHAT_TOL = 2e-3
 DURATION_TOL = 1e-3
 SETTLED_ROUNDS = 2
 MAX_ROUNDS = 8
+#: Simplex iterations per gridpoint the last round may take before its bound
+#: is raised where the last b rose (see :func:`solve_rounds`).
+FINAL_ITERATIONS = 2
 #: Largest fall of ``bhat`` in one round (a factor), see :func:`solve_rounds`.
 BHAT_FALL = 0.1
 #: Trust region of a round: b may rise at most this factor above bhat.
@@ -54,8 +57,9 @@ BHAT_RISE = 1.5
 #: less CPU than windows of 800 (158.40 s), and 1,600 planned 161.15 s. On
 #: freeform-hsm's smoothed path, 53,510 gridpoints with no stop, windows of
 #: 3,000, 1,500, 1,000 and 500 kept gridpoints planned 11.1487, 11.1488,
-#: 11.1494 and 11.1517 s in 57, 46, 46 and 52 CPU s; with 500 the overlap
-#: was too short for 16 windows, merged with the one before.)
+#: 11.1494 and 11.1517 s in 57, 46, 46 and 52 CPU s (with the last round's
+#: bound always raised, see solve_rounds); with 500 the overlap was too short
+#: for 16 windows, merged with the one before.)
 BATCH_POINTS = 200
 WINDOW_POINTS = 1500
 WINDOW_OVERLAP = 0.5
@@ -132,22 +136,26 @@ def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: f
         rel = np.abs(b[big] - bhat[big]) / np.maximum(bhat[big], b[big])
         # geometric mean, and never below a tenth of the last bound: a point the
         # LP left at 0 would otherwise pin the next rounds' cap there
-        last = bhat
         bhat = np.sqrt(np.maximum(b, BHAT_FALL * bhat) * bhat)
         v = np.sqrt(b)
         with np.errstate(divide="ignore"):
             durations.append(float(np.sum(2.0 * h / (v[1:] + v[:-1]))))
         if rel.max(initial=0.0) < BHAT_TOL or _settled(durations):
             break
-    # the last round keeps the last round's bound and objective and only
-    # raises the bound to the last b where b rose above it: the last solution
-    # then violates only those points' jerk rows (by a factor of at most
-    # sqrt(BHAT_RISE)), and HiGHS's simplex repairs it from its basis in a few
-    # dozen iterations. Capping b at the updated bhat took it 20,000-30,000
-    # (5-9 s) on a 4,500-gridpoint window of a smoothed path; max(updated
-    # bhat, b) still 2,000-2,700 on its 750-gridpoint windows
-    bhat = np.maximum(last, b)
-    out = lp.solve(bhat, np.minimum(cap, bhat), weights_at=last)
+    # the last round: b <= bhat. From the last round's basis HiGHS's simplex
+    # usually needs a few dozen iterations; on the windows of a smoothed path
+    # (blend curves, rows at every gridpoint) it can take 20,000-30,000 (5-9 s
+    # on 4,500 gridpoints). Past FINAL_ITERATIONS per gridpoint the bound is
+    # raised to the last b where b rose above it instead: the last solution
+    # then breaks only those points' jerk rows (by at most sqrt(BHAT_RISE))
+    # and is repaired in a few hundred iterations. Exact either way (b <= bhat
+    # and the jerk rows at that bhat); the first is a little faster to run
+    # (the 1,000-block pocket of bench/feed.py: 157.54 s against 158.46 s
+    # with the raised bound everywhere).
+    out = lp.solve(bhat, np.minimum(cap, bhat), max_iterations=int(FINAL_ITERATIONS * bhat.size))
+    if out is None:
+        bhat = np.maximum(bhat, b)
+        out = lp.solve(bhat, np.minimum(cap, bhat))
     if out is None:
         return None
     return out[0], out[1], rounds + 1, bhat
