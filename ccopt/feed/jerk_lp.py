@@ -130,18 +130,16 @@ def _interval_rows(g: JerkGrid, i0: int, i1: int, scale: float, vref: np.ndarray
             jerk_rows.append(rr)
             jerk_at.append(np.stack([mc, mc]))
             r += n
-    at = np.stack([mov_of[0][straight], mov_of[1][straight]])
-    cj = vref[at].max(axis=0) * scale * np.max(np.abs(q1s[straight]) / g.j, axis=1)
-    rr = r + np.arange(at.shape[1])
-    _straight_rows(add, rr, k[straight], at[0], nb, lin[straight], slope_a[straight],
-                   slope_b[straight], cj)
-    jerk_rows.append(rr), jerk_at.append(at)
-    r += at.shape[1]
+    n_before = sum(x.size for x in jerk_rows)
+    r, rise_straight = _straight_rows(add, g, r, k, h, nb, straight, lin, mov_of, q1s, slope_a,
+                                      slope_b, vref, scale, jerk_rows, jerk_at)
     r = _middle_rows(add, g, i0, i1, k, h, nb, lin & ~straight, vref, scale, r,
                      jerk_rows, jerk_at)
+    rise = np.zeros(sum(x.size for x in jerk_rows))
+    rise[n_before:n_before + rise_straight.size] = rise_straight
     return _assemble(n, r, rows, cols, vals, g.stop[i0:i1 + 1], np.concatenate(acc_rows),
                      np.concatenate(twin), np.concatenate(jerk_rows),
-                     np.concatenate(jerk_at, axis=1))
+                     np.concatenate(jerk_at, axis=1), rise)
 
 
 def _middle_rows(add, g: JerkGrid, i0, i1, k, h, nb, moving, vref, scale, r, jerk_rows,
@@ -192,17 +190,28 @@ def _equality_rows(add, k, h, nb, lin, fr, to) -> None:
     add(k[to], k[to], 2.0 / (3.0 * h[to]))
 
 
-def _straight_rows(add, rr, ks, mov, nb, ls, slope_a, slope_b, cj) -> None:
-    """The one jerk row (``rr``) of each straight interval ``ks``:
+def _straight_rows(add, g: JerkGrid, r, k, h, nb, straight, lin, mov_of, q1s, slope_a, slope_b,
+                   vref, scale, jerk_rows, jerk_at):
+    """The one jerk row of each straight interval (rows from ``r``):
     ``cj * slope * (alpha_k+1 - alpha_k)``, or ``cj * slope * b_mov`` on a rest
     piece; ``cj`` takes the axis of largest ``|q_i'| / J_i`` and the larger
-    ``bhat`` of the two ends (speed points ``at0``, ``at1``)."""
-    add(rr[ls], nb + ks[ls] + 1, slope_a[ls] * cj[ls])
-    add(rr[ls], nb + ks[ls], -slope_a[ls] * cj[ls])
-    add(rr[~ls], mov[~ls], slope_b[~ls] * cj[~ls])
+    ``bhat`` of the two ends (speed points ``at0``, ``at1``). Returns the next
+    free row and each row's rise bound ``Jt h^2`` (``Jt = min_i J_i / |q_i'|``
+    the path jerk limit; 0 on rest pieces), see :meth:`WindowLP.peaks_over`."""
+    at = np.stack([mov_of[0][straight], mov_of[1][straight]])
+    ratio = np.max(np.abs(q1s[straight]) / g.j, axis=1)          # 1 / Jt
+    cj = vref[at].max(axis=0) * scale * ratio
+    rr = r + np.arange(at.shape[1])
+    ks, mov, ls = k[straight], at[0], lin[straight]
+    sa, sb = slope_a[straight], slope_b[straight]
+    add(rr[ls], nb + ks[ls] + 1, sa[ls] * cj[ls])
+    add(rr[ls], nb + ks[ls], -sa[ls] * cj[ls])
+    add(rr[~ls], mov[~ls], sb[~ls] * cj[~ls])
+    jerk_rows.append(rr), jerk_at.append(at)
+    return r + at.shape[1], np.where(ls, h[straight] ** 2 / ratio, 0.0)
 
 
-def _assemble(n, r, rows, cols, vals, stop, acc_rows, twin, jerk_rows, jerk_at):
+def _assemble(n, r, rows, cols, vals, stop, acc_rows, twin, jerk_rows, jerk_at, rise):
     """The matrix of :func:`_interval_rows` without what adds nothing: an
     interval's end acceleration row where ``q'``, ``q''`` are continuous (it is
     the next interval's start row), coefficients of variables fixed at 0
@@ -232,7 +241,8 @@ def _assemble(n, r, rows, cols, vals, stop, acc_rows, twin, jerk_rows, jerk_at):
     kept = used[jerk_rows]
     lo = -np.ones(A.shape[0])
     lo[:n] = 0.0
-    jerk = (new_index[jerk_rows[kept]].astype(np.int32), jerk_at[0, kept], jerk_at[1, kept])
+    jerk = (new_index[jerk_rows[kept]].astype(np.int32), jerk_at[0, kept], jerk_at[1, kept],
+            rise[kept])
     return A, lo, -lo, jerk, -col_hi, col_hi
 
 
@@ -255,7 +265,10 @@ class WindowLP:
         self.scale = scale
         self.vref = np.sqrt(np.where(bref > 0.0, bref, 1.0) * scale)     # units/s
         A, lo, hi, jerk, col_lo, col_hi = _interval_rows(g, i0, i1, scale, self.vref)
-        self.jerk_rows, self.jerk_at0, self.jerk_at1 = jerk
+        self.jerk_rows, self.jerk_at0, self.jerk_at1, self.rise = jerk
+        self.h = np.diff(g.s[i0:i1 + 1])
+        #: jerk rows whose speed factor covers the speed's peak inside their interval
+        self.peaked = np.zeros(self.rise.size, bool)
         stop = g.stop[i0:i1 + 1]
         self.bmax = np.where(stop, 0.0, np.minimum(g.bmax[i0:i1 + 1] / scale, col_hi[:nb]))
         a_t = g.amax_t / scale
@@ -288,8 +301,10 @@ class WindowLP:
         h, nb = self.highs, self.nb
         b_at = np.maximum(bhat[self.jerk_at0], bhat[self.jerk_at1])
         v_at = np.maximum(self.vref[self.jerk_at0], self.vref[self.jerk_at1])
-        with np.errstate(divide="ignore"):
-            jb = np.where(b_at > 0.0, v_at / np.sqrt(np.maximum(b_at, 0.0) * self.scale), np.inf)
+        B = np.maximum(b_at, 0.0) * self.scale
+        with np.errstate(divide="ignore", invalid="ignore"):
+            B = np.where(self.peaked & (B > 0.0), B + self.rise / np.sqrt(B), B)
+            jb = np.where(b_at > 0.0, v_at / np.sqrt(B), np.inf)
         h.changeRowsBounds(self.jerk_rows.size, self.jerk_rows, -jb, jb)
         ub = np.maximum(np.minimum(self.bmax, cap), self.b_low)   # a fixed start stays fixed
         h.changeColsBounds(nb, self.b_cols, self.b_low, ub)
@@ -315,6 +330,35 @@ class WindowLP:
         x = np.asarray(h.getSolution().col_value, dtype=float)
         return np.maximum(x[:nb], 0.0), x[nb:]
 
+
+    def peaks_over(self, b: np.ndarray, alpha: np.ndarray) -> np.ndarray:
+        """The straight intervals' jerk rows whose path jerk, at the speed's
+        peak inside their interval, is over its limit (``b, alpha`` scaled, a
+        solution of :meth:`solve`).
+
+        Where ``alpha`` falls through 0 inside a straight ``SLINEAR``
+        interval (``alpha_k > 0 > alpha_k+1``) the squared speed peaks there at
+        ``b_k + alpha_k^2 h / (alpha_k - alpha_k+1)``, above both ends, and the
+        path jerk ``s' (alpha_k+1 - alpha_k) / h`` with it: 0.17 % over the
+        limit on freeform-hsm's PMAC path. Such a row's speed factor is then
+        ``B + Jt h^2 / sqrt(B)`` instead of ``B = bhat`` (:meth:`solve`), which
+        covers the peak whatever the solution: the rise is at most
+        ``|alpha_k+1 - alpha_k| h <= Jt h^2 / sqrt(B)``."""
+        k = self.jerk_at0
+        lin = (self.rise > 0.0) & (self.jerk_at1 == k + 1)
+        a0, a1 = alpha[k] * self.scale, alpha[np.minimum(k + 1, alpha.size - 1)] * self.scale
+        hk = self.h[np.minimum(k, self.h.size - 1)]
+        fall = lin & (a0 > 0.0) & (a1 < 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            peak = b[k] * self.scale + np.where(fall, a0 * a0 * hk / (a0 - a1), 0.0)
+            jt = np.sqrt(np.where(lin, self.rise, 1.0)) / hk        # Jt
+            over = fall & (np.sqrt(peak) * (a0 - a1) / hk > jt * (1.0 + PEAK_TOL))
+        return over & ~self.peaked
+
+
+#: Relative excess of a straight interval's path jerk at its inner speed peak
+#: that :meth:`WindowLP.peaks_over` lets pass.
+PEAK_TOL = 1e-6
 
 _BANNER_SHOWN = []
 

@@ -55,10 +55,13 @@ between gridpoints that both met it.
 
 What is checked only at gridpoints, and its margin: the axis acceleration on
 curved segments (as TOPPRA's, :mod:`ccopt.feed.grid`, whose gridpoints are
-used) and the speed and jerk where ``alpha`` changes sign inside an interval
-(``b`` then peaks inside, above its ends by at most ``alpha_k^2 h /
+used) and the speed and jerk where ``alpha`` changes sign inside a curved
+interval (``b`` then peaks inside, above its ends by at most ``alpha_k^2 h /
 |alpha_k+1 - alpha_k|``: second order in the grid spacing); the tests sample
-at 10 kHz and find all limits within 0.5 %.
+at 10 kHz and find all limits within 0.5 %. On a straight interval that
+peak is covered exactly where it would break the jerk limit
+(:meth:`~ccopt.feed.jerk_lp.WindowLP.peaks_over`: the row's speed factor
+raised by the largest rise the row allows, and the window solved again).
 
 Where the loss is: inside an interval the path jerk grows with ``s'``, so a
 jerk-limited stretch uses its limit only at the faster end. Near each stop the

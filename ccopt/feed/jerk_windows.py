@@ -45,6 +45,9 @@ MAX_ROUNDS = 8
 #: Simplex iterations per gridpoint the last round may take before its bound
 #: is raised where the last b rose (see :func:`solve_rounds`).
 FINAL_ITERATIONS = 2
+#: Passes of the last round that tighten only the straight intervals where
+#: the speed's inner peak breaks the jerk limit (see :func:`solve_rounds`).
+PEAK_PASSES = 3
 #: Largest fall of ``bhat`` in one round (a factor), see :func:`solve_rounds`.
 BHAT_FALL = 0.1
 #: Trust region of a round: b may rise at most this factor above bhat.
@@ -155,6 +158,17 @@ def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: f
     out = lp.solve(bhat, np.minimum(cap, bhat), max_iterations=int(FINAL_ITERATIONS * bhat.size))
     if out is None:
         bhat = np.maximum(bhat, b)
+        out = lp.solve(bhat, np.minimum(cap, bhat))
+    # the speed peaks inside straight intervals: their rows tightened where
+    # the profile breaks the jerk limit there, and solved again (each pass from
+    # the last basis); after PEAK_PASSES, all of them (exact whatever comes)
+    for k in range(PEAK_PASSES + 1):
+        if out is None:
+            return None
+        over = lp.peaks_over(*out)
+        if not over.any():
+            break
+        lp.peaked |= over if k < PEAK_PASSES else lp.rise > 0.0
         out = lp.solve(bhat, np.minimum(cap, bhat))
     if out is None:
         return None

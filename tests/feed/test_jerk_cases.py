@@ -39,3 +39,17 @@ def test_jerk_planner_on_bundled_case(case):
     toppra = plan_feed(path, AxisLimits(job.vmax, job.amax)).duration
     stop = plan_feed(path, lim, planner="stop").duration
     assert toppra * (1 - ORDER_SLACK) <= prof.duration <= stop * (1 + ORDER_SLACK)
+
+
+@pytest.mark.slow
+def test_straight_interval_speed_peak_within_the_certificates_tolerance():
+    # On freeform-hsm's PMAC path (its own jerk limits) the path acceleration falls
+    # through 0 inside straight grid intervals, where the speed, and the path jerk
+    # with it, peak above both gridpoints: 0.169 % over the jerk limit before such
+    # rows were tightened, which failed `ccopt verify --feed` (tolerance 0.1 %) and so
+    # the main job on this case. The peak is now covered: within rounding at 10 kHz.
+    from ccopt.cases import find_case
+    job = resolve_input(find_case("freeform-hsm"))
+    path = ExactPath(job.compensate(job.read()))
+    prof = plan_feed(path, AxisLimits(job.vmax, job.amax, j=job.jmax), planner="jerk")
+    assert prof.sample(1e-4).axis_jerk_ratio.max() <= 1.0 + 1e-4
