@@ -18,7 +18,7 @@ from ccopt.compare.registry import load as load_blend
 from ccopt.compensate import compensate
 from ccopt.errors import ProgramError
 from ccopt.export import ExportResult, export
-from ccopt.feed import AxisLimits, FeedError, plan_feed
+from ccopt.feed import AxisLimits
 from ccopt.feed.bounds import feed_limited_time
 from ccopt.program.model import Program
 from ccopt.run import compare_extras
@@ -142,22 +142,23 @@ def _smoothed(blend: Blend, work: Job, prog: Program,
            "joins": info.get("joins", []), "certificate": row.certificate.to_json(),
            "toolpath": path.to_json()}
     if limits.j is not None:
-        doc.update(_jerk_figures(path, ref, limits, doc["feed_floor"]))
+        doc.update(_jerk_figures(row, base, doc["feed_floor"]))
     return doc, path, row.certificate.ok
 
 
-def _jerk_figures(path: ToolPath, ref: ToolPath, limits: AxisLimits,
-                  floor: float | None) -> dict:
-    """Cycle times (s) of the smoothed and PMAC's path under the jerk planner, their
-    ratio, and the share of the possible gain reached: ``(T_pmac - T_smooth) /
-    (T_pmac - floor)`` with ``floor`` the smoothed path's feed-limited time (what no
-    smoothing can beat). A path the planner fails on gets ``None`` and its message."""
+def _jerk_figures(row, base, floor: float | None) -> dict:
+    """Cycle times (s) of the smoothed (``row``) and PMAC's path (``base``) under
+    the jerk planner, their ratio, and the share of the possible gain reached:
+    ``(T_pmac - T_smooth) / (T_pmac - floor)`` with ``floor`` the smoothed path's
+    feed-limited time (what no smoothing can beat). Under jerk limits the rows'
+    durations are already the jerk planner's (:func:`ccopt.compare.timing.planner_for`),
+    so nothing is planned again (the smoothed ``freeform-hsm`` takes about a
+    minute). A path the planner failed on gets ``None`` and its message."""
     out: dict = {}
-    for key, p in (("jerk_duration", path), ("pmac_jerk_duration", ref)):
-        try:
-            out[key] = plan_feed(p, limits, planner="jerk").duration
-        except FeedError as exc:
-            out[key], out[key + "_message"] = None, str(exc)
+    for key, r in (("jerk_duration", row), ("pmac_jerk_duration", base)):
+        out[key] = r.figures.get("duration")
+        if out[key] is None and r.message:
+            out[key + "_message"] = r.message
     t, t_ref = out["jerk_duration"], out["pmac_jerk_duration"]
     both = t is not None and t_ref is not None
     out["jerk_duration_ratio"] = t / t_ref if both else None
