@@ -387,11 +387,6 @@ def _new_highs():
     # highspy directly: scipy.optimize.milp runs the MIP machinery around the
     # simplex, ten times slower on these LPs
     h.setOptionValue("solver", "simplex")
-    # Devex pricing: on the windows of freeform-hsm's smoothed path (2,250
-    # gridpoints of blend curves) a cold solve took 0.43 s against 0.55 s with
-    # HiGHS's default choice, and the whole plan 66 s against 78 s; the
-    # 1,000-block pocket of bench/feed.py the same to 0.005 % and no slower
-    h.setOptionValue("simplex_dual_edge_weight_strategy", 1)
     return h
 
 
