@@ -330,7 +330,6 @@ class WindowLP:
         x = np.asarray(h.getSolution().col_value, dtype=float)
         return np.maximum(x[:nb], 0.0), x[nb:]
 
-
     def peaks_over(self, b: np.ndarray, alpha: np.ndarray) -> np.ndarray:
         """The straight intervals' jerk rows whose path jerk, at the speed's
         peak inside their interval, is over its limit (``b, alpha`` scaled, a
@@ -351,7 +350,7 @@ class WindowLP:
         fall = lin & (a0 > 0.0) & (a1 < 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
             peak = b[k] * self.scale + np.where(fall, a0 * a0 * hk / (a0 - a1), 0.0)
-            jt = np.sqrt(np.where(lin, self.rise, 1.0)) / hk        # Jt
+            jt = self.rise / (hk * hk)                            # Jt (rise = Jt h^2)
             over = fall & (np.sqrt(peak) * (a0 - a1) / hk > jt * (1.0 + PEAK_TOL))
         return over & ~self.peaked
 
