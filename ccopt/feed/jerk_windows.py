@@ -122,7 +122,9 @@ def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: f
     duration (estimated from the speeds at the gridpoints) has changed by less
     than :data:`DURATION_TOL` in each of the last :data:`SETTLED_ROUNDS`
     rounds, or after :data:`MAX_ROUNDS` rounds; then one more round with
-    ``b <= bhat`` gives the profile."""
+    ``b <= bhat`` gives the profile (``bhat`` first raised to the last ``b``
+    where that rose above it, on a window that is part of a chain: see the
+    comment below)."""
     bhat = cap.copy()
     if bhat0 is not None:
         bhat[:bhat0.size] = np.minimum(bhat0, cap[:bhat0.size])
@@ -146,16 +148,22 @@ def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: f
         if rel.max(initial=0.0) < BHAT_TOL or _settled(durations):
             break
     # the last round: b <= bhat. From the last round's basis HiGHS's simplex
-    # usually needs a few dozen iterations; on the windows of a smoothed path
-    # (blend curves, rows at every gridpoint) it can take 20,000-30,000 (5-9 s
-    # on 4,500 gridpoints). Past FINAL_ITERATIONS per gridpoint the bound is
-    # raised to the last b where b rose above it instead: the last solution
-    # then breaks only those points' jerk rows (by at most sqrt(BHAT_RISE))
-    # and is repaired in a few hundred iterations. Exact either way (b <= bhat
-    # and the jerk rows at that bhat); the first is a little faster to run
-    # (the 1,000-block pocket of bench/feed.py: 157.54 s against 158.46 s
-    # with the raised bound everywhere).
-    out = lp.solve(bhat, np.minimum(cap, bhat), max_iterations=int(FINAL_ITERATIONS * bhat.size))
+    # needs 0.4 iterations per gridpoint (median) on the rest-to-rest windows
+    # of the 1,000-block pocket of bench/feed.py; on the chained windows of a
+    # smoothed path (blend curves, rows at every gridpoint) 20,000-30,000
+    # (5-9 s on 4,500 gridpoints). There, and past FINAL_ITERATIONS per
+    # gridpoint elsewhere, the bound is raised to the last b where b rose
+    # above it instead: the last solution then breaks only those points' jerk
+    # rows (by at most sqrt(BHAT_RISE)) and is repaired in a few hundred
+    # iterations. Exact either way (b <= bhat and the jerk rows at that bhat).
+    # The pocket plans faster with the cap (157.54 s against 158.46 s with the
+    # raised bound everywhere); freeform-hsm's smoothed path (chained windows
+    # only) as fast with the raised bound (11.1485 s against 11.1494 s) in
+    # 59 CPU s instead of 77, where 29 of its 37 capped rounds ran out of
+    # iterations.
+    chained = start is not None or not g.stop[i1]
+    out = None if chained else lp.solve(bhat, np.minimum(cap, bhat),
+                                        max_iterations=int(FINAL_ITERATIONS * bhat.size))
     if out is None:
         bhat = np.maximum(bhat, b)
         out = lp.solve(bhat, np.minimum(cap, bhat))
