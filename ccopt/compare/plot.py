@@ -1,4 +1,4 @@
-"""A plot of the variants over the contour (matplotlib, Agg).
+"""A plot of the variants over the contour (matplotlib, a figure outside pyplot).
 
 Left: the whole part, programmed contour in grey and every variant's feed
 path. Right: a close-up of the first lead-in (where the variants differ most).
@@ -31,14 +31,16 @@ def _xy(path):
 
 def plot_comparison(comparison, out, title: str | None = None) -> str:
     """Write the plot to ``out`` (PNG/SVG/PDF by suffix); returns the file name."""
-    # deferred: matplotlib is heavy and optional (only plots need it)
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt  # deferred with matplotlib, after its backend is chosen
+    # deferred: matplotlib is heavy and optional (only plots need it). A
+    # Figure of its own, not pyplot: writing the file neither chooses nor
+    # changes the backend of a notebook or program that calls this (its
+    # figures still show inline), and nothing is left open.
+    from matplotlib.figure import Figure
 
     prog = comparison.program
     contour = programmed_path(prog)
-    fig, axes = plt.subplots(1, 2, figsize=(13, 6))
+    fig = Figure(figsize=(13, 6))
+    axes = fig.subplots(1, 2)
     cxy = _xy_all(contour)
     ref = comparison.reference
     focus = None
@@ -66,7 +68,6 @@ def plot_comparison(comparison, out, title: str | None = None) -> str:
     axes[0].legend(fontsize=7, loc="best")
     fig.tight_layout()
     fig.savefig(out, dpi=120)
-    plt.close(fig)
     return str(out)
 
 

@@ -94,3 +94,28 @@ def test_profile_pmac_spiral_lead_gouges(profile):
     for name in ("tangent-arc", "line-arc"):
         assert cmp[name].figures["certified"]
         assert cmp[name].figures["min_clearance"] >= 3.0 - 1e-6
+
+
+def test_plot_keeps_the_callers_backend(tmp_path):
+    """Writing the comparison's plot neither switches matplotlib's backend (a
+    notebook's inline figures would stop showing) nor leaves a pyplot figure
+    open; the file is a PNG with the programmed contour and both variants."""
+    import matplotlib
+    import matplotlib.pyplot as plt
+
+    from ccopt.compare.plot import plot_comparison
+
+    c = find_case("leadin-outside-line")
+    prog = ccopt.read_program(c.program)
+    cmp = compare(prog, ["pmac", "tangent-arc"], limits=ccopt.AxisLimits(c.vmax, c.amax))
+    before = matplotlib.get_backend()
+    matplotlib.use("svg")                    # any backend other than Agg
+    try:
+        out = plot_comparison(cmp, tmp_path / "variants.png")
+        assert matplotlib.get_backend() == "svg"
+        assert plt.get_fignums() == []
+    finally:
+        matplotlib.use(before)
+    data = (tmp_path / "variants.png").read_bytes()
+    assert out == str(tmp_path / "variants.png")
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and len(data) > 10_000
