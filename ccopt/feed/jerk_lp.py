@@ -36,9 +36,9 @@ class JerkGrid:
     left limit, 1 the right); ``kind``: ``(N,)`` interval kinds; ``stop``:
     ``(N + 1,)`` gridpoints where the speed is 0; ``bmax``: ``(N + 1,)`` box
     bound on ``b`` (units^2/s^2); ``amax_t``: bound on ``|alpha|`` or ``inf``;
-    ``v, a, j``: axis limits in plane order; ``m1, m2, m3``: ``(N, dof)``
-    ``q', q'', q'''`` at the middle of every interval (for the middle jerk
-    rows of :func:`_middle_rows`).
+    ``v, a, j``: axis limits in plane order; ``m1, m2, m3``: ``(T, N, dof)``
+    ``q', q'', q'''`` at the fractions :data:`INNER_POINTS` of every interval
+    (for the inner jerk rows of :func:`_middle_rows`).
     """
 
     s: np.ndarray
@@ -56,10 +56,13 @@ class JerkGrid:
     m3: np.ndarray
 
 
-#: An interval gets middle jerk rows where the curvature ``|q''|`` differs
+#: An interval gets inner jerk rows where the curvature ``|q''|`` differs
 #: between its ends by more than this share of the larger (on a blend curve or
 #: a spiral; not on a line or an arc).
 CURVATURE_CHANGE = 1e-6
+#: Where inside such an interval (fractions of its length) the jerk is also
+#: imposed: see :func:`_middle_rows`.
+INNER_POINTS = (0.25, 0.5, 0.75)
 
 
 def _interval_rows(g: JerkGrid, i0: int, i1: int, scale: float, vref: np.ndarray):
@@ -144,35 +147,38 @@ def _interval_rows(g: JerkGrid, i0: int, i1: int, scale: float, vref: np.ndarray
 
 def _middle_rows(add, g: JerkGrid, i0, i1, k, h, nb, moving, vref, scale, r, jerk_rows,
                  jerk_at) -> int:
-    """Jerk rows at the middle of every ``SLINEAR`` interval ``moving`` whose
-    curvature changes along it (:data:`CURVATURE_CHANGE`); returns the next
-    free row index.
+    """Jerk rows inside every ``SLINEAR`` interval ``moving`` whose curvature
+    changes along it (:data:`CURVATURE_CHANGE`), at the fractions
+    :data:`INNER_POINTS` of its length; returns the next free row index.
 
     Why: the axis jerk ``s' (q''' b + 3 q'' alpha + q' alpha')`` is there a
     product of terms that all change along the interval (``q''`` grows from 0
     at a blend's end while ``alpha`` changes), so it bulges between two
     gridpoints that both meet the limit: 0.87 % over it, sampled at 10 kHz,
-    on the smoothed ``pocket-chords`` without these rows. At ``x = h / 2`` the
-    model is linear in the unknowns: ``b = b_k + h (3 alpha_k + alpha_k+1) / 4``,
-    ``alpha = (alpha_k + alpha_k+1) / 2``, ``alpha' = (alpha_k+1 - alpha_k) / h``;
-    the speed factor is the larger ``bhat`` of the two ends, as on a straight
-    interval."""
+    on the smoothed ``pocket-chords`` without these rows. At ``x = theta h``
+    the model is linear in the unknowns: ``alpha = (1 - theta) alpha_k +
+    theta alpha_k+1``, ``b = b_k + h ((2 theta - theta^2) alpha_k + theta^2
+    alpha_k+1)``, ``alpha' = (alpha_k+1 - alpha_k) / h``; the speed factor is
+    the larger ``bhat`` of the two ends, as on a straight interval."""
     q2s, q2e = g.q2[1, i0:i1], g.q2[0, i0 + 1:i1 + 1]
     ks, ke = np.linalg.norm(q2s, axis=1), np.linalg.norm(q2e, axis=1)
     mid = moving & (np.abs(ke - ks) > CURVATURE_CHANGE * np.maximum(ks, ke))
     km, hm = k[mid], h[mid]
     if km.size == 0:
         return r
-    m1, m2, m3 = g.m1[i0:i1][mid], g.m2[i0:i1][mid], g.m3[i0:i1][mid]
     at = np.stack([km, km + 1])
-    for i in range(g.a.size):
-        cj = np.maximum(vref[km], vref[km + 1]) * scale / g.j[i]
-        rr = r + np.arange(km.size)
-        add(rr, km, m3[:, i] * cj)
-        add(rr, nb + km, (0.75 * hm * m3[:, i] + 1.5 * m2[:, i] - m1[:, i] / hm) * cj)
-        add(rr, nb + km + 1, (0.25 * hm * m3[:, i] + 1.5 * m2[:, i] + m1[:, i] / hm) * cj)
-        jerk_rows.append(rr), jerk_at.append(at)
-        r += km.size
+    for t, theta in enumerate(INNER_POINTS):
+        m1, m2, m3 = g.m1[t, i0:i1][mid], g.m2[t, i0:i1][mid], g.m3[t, i0:i1][mid]
+        for i in range(g.a.size):
+            cj = np.maximum(vref[km], vref[km + 1]) * scale / g.j[i]
+            rr = r + np.arange(km.size)
+            add(rr, km, m3[:, i] * cj)
+            add(rr, nb + km, ((2.0 * theta - theta * theta) * hm * m3[:, i]
+                              + 3.0 * (1.0 - theta) * m2[:, i] - m1[:, i] / hm) * cj)
+            add(rr, nb + km + 1, (theta * theta * hm * m3[:, i] + 3.0 * theta * m2[:, i]
+                                  + m1[:, i] / hm) * cj)
+            jerk_rows.append(rr), jerk_at.append(at)
+            r += km.size
     return r
 
 

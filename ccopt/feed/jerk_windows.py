@@ -212,7 +212,7 @@ def _grid_slice(g: JerkGrid, i0: int, i1: int) -> JerkGrid:
     sl = slice(i0, i1 + 1)
     return replace(g, s=g.s[sl], q1=g.q1[:, sl], q2=g.q2[:, sl], q3=g.q3[:, sl],
                    kind=g.kind[i0:i1], stop=g.stop[sl], bmax=g.bmax[sl],
-                   m1=g.m1[i0:i1], m2=g.m2[i0:i1], m3=g.m3[i0:i1])
+                   m1=g.m1[:, i0:i1], m2=g.m2[:, i0:i1], m3=g.m3[:, i0:i1])
 
 
 def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float) -> list[tuple]:
