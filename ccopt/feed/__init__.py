@@ -85,7 +85,9 @@ def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: st
         discontinuity; a length ``delta > 0`` (program units) allows grbl's
         corner speed there instead (an approximation, see
         :mod:`ccopt.feed.junction`). Used by ``toppra`` and ``junction``.
-    grid: gridpoint options for TOPPRA and the jerk planner (:class:`GridOptions`).
+    grid: gridpoint options for TOPPRA and the jerk planner (:class:`GridOptions`;
+        ``None``: TOPPRA's default, and for the jerk planner
+        :data:`~ccopt.feed.jerk_planner.JERK_GRID`, coarser on curves).
     ts: the interpolation period (s) of the ``"jerk"`` planner and of the
         jerk-limited ``"junction"`` baseline, which bounds the acceleration
         step at a curvature break by ``jmax * ts`` (default 1 ms).

@@ -30,8 +30,10 @@ def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: st
     except ValueError as exc:
         raise FeedError(str(exc), path.source_file) from None
     kwargs: dict = {"junction_deviation": junction_deviation}
-    if planner in ("toppra", "jerk"):
+    if planner == "toppra":
         kwargs["grid"] = grid if grid is not None else GridOptions()
+    elif planner == "jerk":
+        kwargs["grid"] = grid           # None: the jerk planner's own default (JERK_GRID)
     if planner in ("jerk", "junction") and ts is not None:
         # the interpolation period caps curvature-break speeds under jerk limits
         kwargs["ts"] = ts
