@@ -215,7 +215,8 @@ def _grid_slice(g: JerkGrid, i0: int, i1: int) -> JerkGrid:
                    m1=g.m1[:, i0:i1], m2=g.m2[:, i0:i1], m3=g.m3[:, i0:i1])
 
 
-def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float) -> list[tuple]:
+def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float,
+                 first: np.ndarray | None = None) -> list[tuple]:
     """Every window of a chain in turn, each starting from the last one's
     kept end: per window ``(i0, i1, keep, b, alpha, rounds)`` (``b, alpha``
     scaled, on ``i0..keep``), or ``(i0, i1, keep, None, rest_to_rest, 0)`` for
@@ -226,7 +227,8 @@ def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float) -> list[tupl
     still be infeasible where the whole stretch is not: it is then merged with the
     previous window and the two planned again as one, back to the chain's
     first window (from rest) if need be: one window over the stretch is the
-    planner's exact model."""
+    planner's exact model. ``first``: the first window's first ``bhat``
+    (scaled, at every gridpoint of ``g``) when not ``cap``."""
     out: list[tuple] = []
     carry: list[np.ndarray] = []          # each kept window's last bhat beyond its keep
     chain = list(chain)
@@ -236,7 +238,8 @@ def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float) -> list[tupl
         start = None if g.stop[i0] or not out else (float(out[-1][3][-1]),
                                                      float(out[-1][4][-1]))
         res = solve_rounds(g, i0, i1, cap[i0:i1 + 1], start, scale,
-                           carry[-1] if start is not None else None)
+                           carry[-1] if start is not None else
+                           None if first is None else first[i0:i1 + 1])
         rest_to_rest = start is None and bool(g.stop[i1])
         if res is not None and rest_to_rest and np.any(res[0][~g.stop[i0:i1 + 1]] <= 0.0):
             res = None        # a stall (speed 0 away from a stop): as a failed LP
@@ -256,14 +259,63 @@ def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float) -> list[tupl
     return out
 
 
+def chained(chain, stop: np.ndarray) -> bool:
+    """Whether ``chain`` plans a stop-free stretch in overlapping windows (more
+    than one window, or one that does not end at a stop), rather than one
+    window from rest to rest."""
+    return len(chain) > 1 or not stop[chain[0][1]]
+
+
+def any_chained(g: JerkGrid) -> bool:
+    """Whether any stretch of ``g`` is planned in overlapping windows (:func:`chained`)."""
+    return any(chained(c, g.stop) for c in _chains(windows(g), g.stop))
+
+
+def rest_bound(s: np.ndarray, stop: np.ndarray, q1: np.ndarray, a: np.ndarray, j: np.ndarray,
+               bmax: np.ndarray) -> np.ndarray:
+    """A first speed bound (squared, units^2/s^2) for a window from rest to
+    rest, at the gridpoints ``s``: at distance ``d`` from the nearest of the
+    ``stop`` gridpoints, the squared speed of straight motion from rest under
+    the path acceleration and jerk ``A``, ``J`` the axes allow along the
+    tangent (``min_i A_i / |q_i'|``; ``q1``: ``(2, N, dof)`` one-sided
+    ``q'``), ``min(2 A d, (J / 2)^(2/3) (6 d)^(4/3))`` (the constant-jerk start
+    and the acceleration-limited one), and at most ``bmax``.
+
+    A start for the pseudo-jerk rounds, not a bound they rely on (``b`` is
+    capped by ``bmax`` and the LP's own rows): where it is low the rounds
+    raise it (by at most :data:`~ccopt.feed.jerk_windows.BHAT_RISE` a
+    round), where high they lower it. It replaces TOPPRA's speed there at no
+    cost, and starts closer on jerk-limited stretches."""
+    at = np.flatnonzero(stop)
+    k = np.clip(np.searchsorted(s[at], s), 1, at.size - 1) if at.size > 1 else np.zeros(s.size, int)
+    d = np.abs(s - s[at[k]]) if at.size else np.full(s.size, np.inf)
+    if at.size > 1:
+        d = np.minimum(d, np.abs(s - s[at[k - 1]]))
+    t = np.abs(q1).max(axis=0)                       # (N, dof), both sides
+    with np.errstate(divide="ignore"):
+        A = np.min(np.where(t > 0, a / np.where(t > 0, t, 1.0), np.inf), axis=1)
+        J = np.min(np.where(t > 0, j / np.where(t > 0, t, 1.0), np.inf), axis=1)
+    out = np.minimum(2.0 * A * d, (0.5 * J) ** (2.0 / 3.0) * (6.0 * d) ** (4.0 / 3.0))
+    return np.where(stop, 0.0, np.minimum(out, bmax))
+
+
 def _solve_task(g: JerkGrid, cap: np.ndarray | None, chains, scale: float,
                 bound=None) -> list[tuple]:
-    """:func:`_solve_chain` on each of ``chains`` (indices local to ``g``);
-    ``cap`` None: it is ``bound(s, stop, bmax) / scale`` (the speed bound of
-    the task's own stretch, :class:`~ccopt.feed.jerk_bound.StretchBound`)."""
-    if cap is None:
+    """:func:`_solve_chain` on each of ``chains`` (indices local to ``g``).
+
+    A window from rest to rest starts from the box bound ``g.bmax`` (0 at
+    stops); a chain of overlapping windows from ``cap``, TOPPRA's speed (see
+    :mod:`ccopt.feed.jerk_planner`), or with ``cap`` None from ``bound(s,
+    stop, bmax) / scale`` (the speed bound of the task's own stretch,
+    :class:`~ccopt.feed.jerk_bound.StretchBound`), computed only when the
+    task has such a chain."""
+    box = np.where(g.stop, 0.0, g.bmax) / scale
+    first = rest_bound(g.s, g.stop, g.q1, g.a, g.j, g.bmax) / scale
+    if cap is None and any(chained(c, g.stop) for c in chains):
         cap = bound(g.s, g.stop, g.bmax) / scale
-    return [r for chain in chains for r in _solve_chain(g, cap, chain, scale)]
+    return [r for chain in chains
+            for r in (_solve_chain(g, cap, chain, scale) if chained(chain, g.stop)
+                      else _solve_chain(g, box, chain, scale, first))]
 
 
 def _tasks(g: JerkGrid, cap: np.ndarray | None, chains, scale: float, bound_of=None):
@@ -283,7 +335,8 @@ def _tasks(g: JerkGrid, cap: np.ndarray | None, chains, scale: float, bound_of=N
         lo, hi = group[0][0][0], group[-1][-1][1]
         local = [[(i0 - lo, i1 - lo, keep - lo) for i0, i1, keep in chain] for chain in group]
         if cap is None:
-            yield lo, (_grid_slice(g, lo, hi), None, local, scale, bound_of(lo, hi))
+            bound = bound_of(lo, hi) if bound_of is not None else None
+            yield lo, (_grid_slice(g, lo, hi), None, local, scale, bound)
         else:
             yield lo, (_grid_slice(g, lo, hi), cap[lo:hi + 1], local, scale)
 
@@ -317,7 +370,9 @@ def plan_windows(g: JerkGrid, cap: np.ndarray | None, scale: float, bound_of=Non
 
     ``cap``: the scaled speed bound at every gridpoint, or None on a
     :func:`split` program: then ``bound_of(i0, i1)`` gives each task the
-    callable that computes it on the task's gridpoints ``i0..i1``."""
+    callable that computes it on the task's gridpoints ``i0..i1``; both None
+    when no window is chained (every window starts from the box bound, see
+    :func:`_solve_task`)."""
     wins = windows(g)
     chains = _chains(wins, g.stop)
     workers = _workers(g.s.size, len(chains))
