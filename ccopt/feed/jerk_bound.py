@@ -1,9 +1,11 @@
 """The speed bound of the ``jerk`` planner: TOPPRA's acceleration-limited speed.
 
-See :mod:`ccopt.feed.jerk_planner`: the pseudo-jerk rounds start from the
-squared speed of the time-optimal profile under the velocity and acceleration
-limits alone (TOPPRA), an upper bound of every jerk-limited speed, and never
-let ``b`` rise above it.
+See :mod:`ccopt.feed.jerk_planner`: on a stretch with no stop, planned in
+overlapping windows, the pseudo-jerk rounds start from the squared speed of
+the time-optimal profile under the velocity and acceleration limits alone
+(TOPPRA), an upper bound of every jerk-limited speed, and never let ``b``
+rise above it (a window from rest to rest needs none of this: it starts from
+:func:`ccopt.feed.jerk_windows.rest_bound`).
 
 On a program planned in worker processes (:mod:`ccopt.feed.jerk_windows`)
 TOPPRA runs in the workers too, one instance per task: a task's gridpoints

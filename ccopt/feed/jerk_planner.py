@@ -15,8 +15,11 @@ axis acceleration is linear in ``(b, alpha)``; the jerk is
 ``s' * (q''' b + 3 q'' alpha + q' alpha')`` (``s''' = s' alpha'``), linear but
 for the factor ``s' = sqrt(b)``. That factor is replaced by ``sqrt(bhat)``, a
 bound on the speed (the *pseudo-jerk* linearisation): first ``bhat`` is the
-box bound on ``b`` (axis velocities, feed, the caps at curvature breaks) on
-a window from rest to rest, or on the overlapping windows of a stretch with
+speed of straight motion from the nearest stop under the acceleration and
+jerk the axes allow along the tangent, capped by the box bound on ``b`` (axis
+velocities, feed, the caps at curvature breaks), on a window from rest to
+rest (:func:`~ccopt.feed.jerk_windows.rest_bound`; ``b`` is capped by the box
+bound there), or on the overlapping windows of a stretch with
 no stop the TOPPRA solution (acceleration-limited, so an upper bound of every
 feasible speed, which also keeps a window's kept end able to brake for what
 lies beyond it), then ``bhat`` is updated to the geometric mean of itself and the LP's
@@ -238,9 +241,10 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         return JerkProfile.empty(path, limits, "jerk")
     g = build_grid(path, limits, ts, grid)
     if not any_chained(g):
-        # every window from rest to rest: no TOPPRA bound needed (its cap was
-        # 14 % of the CPU on the 10,000-block pocket of bench/feed.py; the
-        # 1,000-block one planned 157.72 s with it and 157.34 s without)
+        # every window from rest to rest: no TOPPRA bound needed (it was 14 %
+        # of the CPU on the 10,000-block pocket of bench/feed.py; the
+        # 1,000-block one planned 157.72 s starting from it, 157.34 s from the
+        # box bound and 157.07 s from jerk_windows.rest_bound)
         scale, cap, bound_of = _scale(g.bmax), None, None
     elif split(g):
         # each task computes its stretch's bound (jerk_bound): scale from the box bound

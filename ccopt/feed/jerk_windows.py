@@ -278,8 +278,9 @@ def rest_bound(s: np.ndarray, stop: np.ndarray, q1: np.ndarray, a: np.ndarray, j
     ``stop`` gridpoints, the squared speed of straight motion from rest under
     the path acceleration and jerk ``A``, ``J`` the axes allow along the
     tangent (``min_i A_i / |q_i'|``; ``q1``: ``(2, N, dof)`` one-sided
-    ``q'``), ``min(2 A d, (J / 2)^(2/3) (6 d)^(4/3))`` (the constant-jerk start
-    and the acceleration-limited one), and at most ``bmax``.
+    ``q'``), ``min(2 A d, J^(2/3) (6 d)^(4/3) / 4)`` (the acceleration-limited
+    motion, and the constant-jerk start ``s = J t^3 / 6``, ``v = J t^2 / 2``),
+    and at most ``bmax``.
 
     A start for the pseudo-jerk rounds, not a bound they rely on (``b`` is
     capped by ``bmax`` and the LP's own rows): where it is low the rounds
@@ -295,7 +296,7 @@ def rest_bound(s: np.ndarray, stop: np.ndarray, q1: np.ndarray, a: np.ndarray, j
     with np.errstate(divide="ignore"):
         A = np.min(np.where(t > 0, a / np.where(t > 0, t, 1.0), np.inf), axis=1)
         J = np.min(np.where(t > 0, j / np.where(t > 0, t, 1.0), np.inf), axis=1)
-    out = np.minimum(2.0 * A * d, (0.5 * J) ** (2.0 / 3.0) * (6.0 * d) ** (4.0 / 3.0))
+    out = np.minimum(2.0 * A * d, 0.25 * J ** (2.0 / 3.0) * (6.0 * d) ** (4.0 / 3.0))
     return np.where(stop, 0.0, np.minimum(out, bmax))
 
 
@@ -303,8 +304,9 @@ def _solve_task(g: JerkGrid, cap: np.ndarray | None, chains, scale: float,
                 bound=None) -> list[tuple]:
     """:func:`_solve_chain` on each of ``chains`` (indices local to ``g``).
 
-    A window from rest to rest starts from the box bound ``g.bmax`` (0 at
-    stops); a chain of overlapping windows from ``cap``, TOPPRA's speed (see
+    A window from rest to rest is capped by the box bound ``g.bmax`` (0 at
+    stops) and starts from :func:`rest_bound`; a chain of overlapping
+    windows is capped by and starts from ``cap``, TOPPRA's speed (see
     :mod:`ccopt.feed.jerk_planner`), or with ``cap`` None from ``bound(s,
     stop, bmax) / scale`` (the speed bound of the task's own stretch,
     :class:`~ccopt.feed.jerk_bound.StretchBound`), computed only when the
