@@ -160,3 +160,28 @@ def test_chained_windows_start_from_the_last_ones_state(monkeypatch):
     smp = chained.sample(1e-4)
     assert max(smp.axis_velocity_ratio.max(), smp.axis_acceleration_ratio.max(),
                smp.axis_jerk_ratio.max()) <= 1.005
+
+
+def test_rest_bound_is_motion_from_the_nearest_stop():
+    """The first speed bound of a rest-to-rest window: at distance d from the
+    nearest stop, the squared speed of straight motion from rest, the smaller
+    of the acceleration-limited v^2 = 2 A d and the constant-jerk start
+    (s = J t^3 / 6, v = J t^2 / 2, solved here for t), with A, J the path
+    limits along the tangent: on a 45-degree line each axis sees cos 45 of
+    the path's acceleration and jerk, so the path gets sqrt(2) times theirs."""
+    a, j = np.array([1000.0, 1000.0]), np.array([20000.0, 20000.0])
+    s = np.linspace(0.0, 10.0, 2001)
+    stop = np.zeros(s.size, bool)
+    stop[[0, 1000, -1]] = True                    # stops at 0, 5 and 10 mm
+    u = np.array([1.0, 1.0]) / np.sqrt(2.0)
+    q1 = np.broadcast_to(u, (2, s.size, 2))
+    bmax = np.full(s.size, 900.0)                 # a 30 mm/s feed
+    got = jerk_windows.rest_bound(s, stop, q1, a, j, bmax)
+    A, J = 1000.0 * np.sqrt(2.0), 20000.0 * np.sqrt(2.0)
+    d = np.minimum.reduce([np.abs(s - 0.0), np.abs(s - 5.0), np.abs(s - 10.0)])
+    t = (6.0 * d / J) ** (1.0 / 3.0)
+    want = np.minimum.reduce([2.0 * A * d, (J * t * t / 2.0) ** 2, bmax])
+    assert got[stop] == pytest.approx(0.0, abs=0.0)
+    assert got == pytest.approx(want, rel=1e-12, abs=1e-12)
+    # both regimes and the feed cap are met on this grid
+    assert np.any(want == 2.0 * A * d) and np.any(want == bmax) and np.any(want < 2.0 * A * d)
