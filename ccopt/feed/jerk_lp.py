@@ -38,7 +38,7 @@ class JerkGrid:
     bound on ``b`` (units^2/s^2); ``amax_t``: bound on ``|alpha|`` or ``inf``;
     ``v, a, j``: axis limits in plane order; ``m1, m2, m3``: ``(T, N, dof)``
     ``q', q'', q'''`` at the fractions :data:`INNER_POINTS` of every interval
-    (for the inner jerk rows of :func:`_middle_rows`).
+    (for the inner jerk rows of :func:`_inner_rows`).
     """
 
     s: np.ndarray
@@ -61,7 +61,7 @@ class JerkGrid:
 #: a spiral; not on a line or an arc).
 CURVATURE_CHANGE = 1e-6
 #: Where inside such an interval (fractions of its length) the jerk is also
-#: imposed: see :func:`_middle_rows`.
+#: imposed: see :func:`_inner_rows`.
 INNER_POINTS = (0.25, 0.5, 0.75)
 
 
@@ -136,7 +136,7 @@ def _interval_rows(g: JerkGrid, i0: int, i1: int, scale: float, vref: np.ndarray
     n_before = sum(x.size for x in jerk_rows)
     r, rise_straight = _straight_rows(add, g, r, k, h, nb, straight, lin, mov_of, q1s, slope_a,
                                       slope_b, vref, scale, jerk_rows, jerk_at)
-    r = _middle_rows(add, g, i0, i1, k, h, nb, lin & ~straight, vref, scale, r,
+    r = _inner_rows(add, g, i0, i1, k, h, nb, lin & ~straight, vref, scale, r,
                      jerk_rows, jerk_at)
     rise = np.zeros(sum(x.size for x in jerk_rows))
     rise[n_before:n_before + rise_straight.size] = rise_straight
@@ -145,7 +145,7 @@ def _interval_rows(g: JerkGrid, i0: int, i1: int, scale: float, vref: np.ndarray
                      np.concatenate(jerk_at, axis=1), rise)
 
 
-def _middle_rows(add, g: JerkGrid, i0, i1, k, h, nb, moving, vref, scale, r, jerk_rows,
+def _inner_rows(add, g: JerkGrid, i0, i1, k, h, nb, moving, vref, scale, r, jerk_rows,
                  jerk_at) -> int:
     """Jerk rows inside every ``SLINEAR`` interval ``moving`` whose curvature
     changes along it (:data:`CURVATURE_CHANGE`), at the fractions
@@ -167,10 +167,11 @@ def _middle_rows(add, g: JerkGrid, i0, i1, k, h, nb, moving, vref, scale, r, jer
     if km.size == 0:
         return r
     at = np.stack([km, km + 1])
+    vmax = np.maximum(vref[km], vref[km + 1]) * scale
     for t, theta in enumerate(INNER_POINTS):
         m1, m2, m3 = g.m1[t, i0:i1][mid], g.m2[t, i0:i1][mid], g.m3[t, i0:i1][mid]
         for i in range(g.a.size):
-            cj = np.maximum(vref[km], vref[km + 1]) * scale / g.j[i]
+            cj = vmax / g.j[i]
             rr = r + np.arange(km.size)
             add(rr, km, m3[:, i] * cj)
             add(rr, nb + km, ((2.0 * theta - theta * theta) * hm * m3[:, i]

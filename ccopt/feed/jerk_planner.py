@@ -56,7 +56,7 @@ one the LP constrained:
 On an interval whose curvature changes along it (a blend curve, a spiral)
 the jerk is also imposed at a quarter, half and three quarters of its length,
 where the model is linear in the unknowns too
-(:func:`~ccopt.feed.jerk_lp._middle_rows`): there every factor of the jerk
+(:func:`~ccopt.feed.jerk_lp._inner_rows`): there every factor of the jerk
 varies along the interval and it bulged 0.87 % over the limit between
 gridpoints that both met it. With these rows such curves need a quarter of
 TOPPRA's gridpoints (:data:`JERK_GRID`).

@@ -163,9 +163,9 @@ def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: f
     # only) as fast with the raised bound (11.1485 s against 11.1494 s) in
     # 59 CPU s instead of 77, where 29 of its 37 capped rounds ran out of
     # iterations.
-    chained = start is not None or not g.stop[i1]
-    out = None if chained else lp.solve(bhat, np.minimum(cap, bhat),
-                                        max_iterations=int(FINAL_ITERATIONS * bhat.size))
+    in_chain = start is not None or not g.stop[i1]        # see chained()
+    out = None if in_chain else lp.solve(bhat, np.minimum(cap, bhat),
+                                         max_iterations=int(FINAL_ITERATIONS * bhat.size))
     if out is None:
         bhat = np.maximum(bhat, b)
         out = lp.solve(bhat, np.minimum(cap, bhat))
