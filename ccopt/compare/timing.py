@@ -121,15 +121,43 @@ def stretches(exact: ExactPath) -> list[Stretch]:
             for i, j in zip(cuts[:-1], cuts[1:]) if j > i]
 
 
-def _subpath(exact: ExactPath, st: Stretch) -> ToolPath:
-    tp = exact.toolpath
-    return ToolPath(tuple(exact.segments[st.k0:st.k1]), plane=tp.plane, style=tp.style,
-                    radius=tp.radius, units=tp.units)
-
-
 def _ratio(prof) -> float:
     return float(prof.sample(prof.affordable_dt(RATIO_DT)).axis_acceleration_ratio
                  .max(initial=0.0))
+
+
+def _cut(exact: ExactPath, prof) -> list[tuple[float, float] | None]:
+    """``(seconds, max_acc_ratio)`` of each stretch of ``exact`` read off its
+    whole-path profile ``prof`` between the stops that bound it (``None``
+    where the profile has no stop there)."""
+    smp = prof.sample(prof.affordable_dt(RATIO_DT))
+    acc = smp.axis_acceleration_ratio
+    at_rest = np.flatnonzero(prof.sd == 0.0)
+    tol = STOP_MATCH_REL * max(exact.length, 1.0)
+    out: list[tuple[float, float] | None] = []
+    for st in stretches(exact):
+        before = at_rest[prof.s[at_rest] <= st.s0 + tol]
+        after = at_rest[prof.s[at_rest] >= st.s1 - tol]
+        if not before.size or not after.size:
+            out.append(None)
+            continue
+        t0, t1 = float(prof.t[before[-1]]), float(prof.t[after[0]])
+        inside = acc[(smp.t >= t0) & (smp.t <= t1)]
+        out.append((t1 - t0, float(inside.max(initial=0.0))))
+    return out
+
+
+def _unknown_runs(got: list) -> list[list[int]]:
+    """The runs of consecutive indices where ``got`` is ``None``."""
+    runs: list[list[int]] = []
+    for i, g in enumerate(got):
+        if g is not None:
+            continue
+        if runs and runs[-1][-1] == i - 1:
+            runs[-1].append(i)
+        else:
+            runs.append([i])
+    return runs
 
 
 def plan_whole(path: ToolPath | ExactPath, limits: AxisLimits):
@@ -157,40 +185,53 @@ class StretchTimes:
         exact = feed_planning.ExactPath(reference)
         prof, ratio = plan_whole(exact, limits)
         out = cls(limits)
-        smp = prof.sample(prof.affordable_dt(RATIO_DT))
-        acc = smp.axis_acceleration_ratio
-        stops = np.flatnonzero(prof.sd == 0.0)
-        tol = STOP_MATCH_REL * max(exact.length, 1.0)
-        for st in stretches(exact):
+        for st, got in zip(stretches(exact), _cut(exact, prof)):
             key = stretch_key(exact.segments[st.k0:st.k1])
-            before = stops[prof.s[stops] <= st.s0 + tol]
-            after = stops[prof.s[stops] >= st.s1 - tol]
-            if key is None or not before.size or not after.size:
-                continue
-            t0, t1 = float(prof.t[before[-1]]), float(prof.t[after[0]])
-            inside = acc[(smp.t >= t0) & (smp.t <= t1)]
-            out.known[key] = (t1 - t0, float(inside.max(initial=0.0)))
+            if key is not None and got is not None:
+                out.known[key] = got
         return out, prof.duration, ratio
 
     def time(self, path: ToolPath) -> tuple[float, float]:
         """``(duration, max_acc_ratio)`` of ``path``: known stretches looked up, the
-        others planned alone (and remembered); dwells added. Raises the
-        planner's :class:`~ccopt.errors.CcoptError`."""
+        others planned (and remembered); dwells added. Raises the planner's
+        :class:`~ccopt.errors.CcoptError`.
+
+        Consecutive unknown stretches are planned together, as one path from
+        the first one's start to the last one's end, and cut at its stops as
+        the reference is: on freeform-hsm, where another controller style
+        changes every one of the reference's 302 stretches, one plan instead
+        of 302 (the jerk planner then gathers the short stretches into LP
+        windows, :data:`~ccopt.feed.jerk_windows.BATCH_POINTS`)."""
         exact = feed_planning.ExactPath(path)
         total = float(sum(d.seconds for d in exact.dwells))
-        ratio = 0.0
-        for st in stretches(exact):
-            key = stretch_key(exact.segments[st.k0:st.k1])
-            got = self.known.get(key) if key is not None else None
-            if got is None:
-                prof = plan_feed(_subpath(exact, st), self.limits,
-                                 planner=planner_for(self.limits))
-                got = (prof.duration, _ratio(prof))
-                if key is not None:
-                    self.known[key] = got
-            total += got[0]
-            ratio = max(ratio, got[1])
-        return total, ratio
+        parts = stretches(exact)
+        keys = [stretch_key(exact.segments[st.k0:st.k1]) for st in parts]
+        got = [self.known.get(k) if k is not None else None for k in keys]
+        for run in _unknown_runs(got):
+            for i, fig in zip(run, self._plan_run(exact, [parts[i] for i in run])):
+                got[i] = fig
+                if keys[i] is not None:
+                    self.known[keys[i]] = fig
+        total += sum(g[0] for g in got)
+        return total, max((g[1] for g in got), default=0.0)
+
+    def _plan_run(self, exact: ExactPath, run: list[Stretch]) -> list[tuple[float, float]]:
+        """``(seconds, max_acc_ratio)`` of each of the consecutive stretches ``run``
+        of ``exact``: planned as one path and cut at its stops, or one by one
+        where that path's stops are not the run's (never seen; a safeguard)."""
+        planner = planner_for(self.limits)
+        sub = feed_planning.ExactPath(feed_planning.stretch_path(exact, run[0].s0, run[-1].s1))
+        if len(run) > 1:
+            prof = plan_feed(sub, self.limits, planner=planner)
+            figs = _cut(sub, prof)
+            if len(figs) == len(run) and all(f is not None for f in figs):
+                return figs
+        out = []
+        for st in run:
+            prof = plan_feed(feed_planning.stretch_path(exact, st.s0, st.s1), self.limits,
+                             planner=planner)
+            out.append((prof.duration, _ratio(prof)))
+        return out
 
     def copy(self) -> "StretchTimes":
         """A copy to time one variant with: every variant starts from the
