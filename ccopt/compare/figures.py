@@ -284,11 +284,12 @@ def _points_between(g, s0: float, s1: float, n: int) -> np.ndarray:
     return np.asarray(g.point(np.linspace(s0, s1, n))).reshape(-1, 2)
 
 
-def _box_gap(a, b) -> float:
-    """Distance between two boxes ``(xmin, ymin, xmax, ymax)`` (0 when they overlap)."""
-    dx = max(a[0] - b[2], b[0] - a[2], 0.0)
-    dy = max(a[1] - b[3], b[1] - a[3], 0.0)
-    return math.hypot(dx, dy)
+def _box_gaps(a, boxes: np.ndarray) -> np.ndarray:
+    """Distances from the box ``a`` to each of ``boxes`` (``(m, 4)``), boxes as
+    ``(xmin, ymin, xmax, ymax)`` (0 where they overlap)."""
+    dx = np.maximum(np.maximum(a[0] - boxes[:, 2], boxes[:, 0] - a[2]), 0.0)
+    dy = np.maximum(np.maximum(a[1] - boxes[:, 3], boxes[:, 1] - a[3]), 0.0)
+    return np.hypot(dx, dy)
 
 
 #: The deviation bound stops refining a primitive's samples once every step's
@@ -346,14 +347,14 @@ def _one_side(src: ToolPath, dst: ToolPath, h: float):
         return 0.0, 0.0
     coarse_h = max(50.0 * h, POINT_EPS)
     coarse = cKDTree(_samples(dst_geoms, coarse_h))
-    dst_boxes = [g.bbox() for g in dst_geoms]
+    dst_boxes = np.array([g.bbox() for g in dst_geoms], float).reshape(-1, 4)
     dist = _Distances(h)
     bound, top, cand = 0.0, 0.0, []
     for g in src_geoms:
         # which dst primitives can hold the nearest point: those within the coarse bound
         box = g.bbox()
         reach = float(np.max(coarse.query(_samples([g], coarse_h))[0])) + coarse_h
-        local = [d for d, b in zip(dst_geoms, dst_boxes) if _box_gap(box, b) <= reach]
+        local = [dst_geoms[i] for i in np.flatnonzero(_box_gaps(box, dst_boxes) <= reach)]
         b, pts, d = _along(g, _Near(local), dist, h, coarse_h, top)
         bound = max(bound, b)
         top = max(top, float(d.max()))
