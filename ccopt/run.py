@@ -134,7 +134,7 @@ def _run_stages(job: Job, out: Path | None, opts: RunOptions, row: dict,
     row["min_clearance"] = cert.min_clearance
     if opts.compare:
         clock("compare")
-        row["compare"] = _compare(prog, limits, job, opts, clock.say)
+        row["compare"] = _compare(prog, limits, job, opts, clock.say, profiles[row["planner"]])
     if out is not None:
         clock("export")
         _write_files(out / job.label, job, path, prog, profiles, row, files)
@@ -189,21 +189,26 @@ def _status(expect: str, verified: bool) -> str:
 
 
 def _compare(prog: Program, limits: AxisLimits, job: Job, opts: RunOptions,
-             say: Callable[[str], None]) -> list[dict]:
+             say: Callable[[str], None], reference_profile: FeedProfile | None = None) -> list[dict]:
     """The blend comparison, with the same compensation overrides as the run
     (a case's radius, ``--radius``, ``--side``), so a program that names no
-    radius (e.g. ``G41`` without ``D``) is compared, not refused."""
-    extra = compare_extras(lambda text: say(f"compare: {text}"), opts.compare_workers, job.ts)
+    radius (e.g. ``G41`` without ``D``) is compared, not refused.
+    ``reference_profile``: the run's certified plan of its own path, which
+    the comparison reuses for PMAC's path when that is the path it planned
+    (not on a Fagor or LinuxCNC case)."""
+    extra = compare_extras(lambda text: say(f"compare: {text}"), opts.compare_workers, job.ts,
+                           reference_profile)
     return [v.to_json() for v in compare(prog, opts.variants, limits=limits, radius=job.radius,
                                          side=job.side, **extra)]
 
 
 def compare_extras(progress: Callable[[str], None] | None, workers: int,
-                   ts: float | None = None) -> dict:
-    """The ``progress``, ``workers`` and ``ts`` arguments for
-    :func:`ccopt.compare.compare`, as far as the installed one takes them (they
-    came with issue 17; an older one is called without them, one at a time)."""
-    given = {"progress": progress, "workers": workers}
+                   ts: float | None = None, reference_profile: FeedProfile | None = None) -> dict:
+    """The ``progress``, ``workers``, ``ts`` and ``reference_profile``
+    arguments for :func:`ccopt.compare.compare`, as far as the installed one
+    takes them (they came with issue 17; an older one is called without them,
+    one at a time)."""
+    given = {"progress": progress, "workers": workers, "reference_profile": reference_profile}
     if ts is not None:
         given["ts"] = ts
     return {k: v for k, v in given.items() if k in COMPARE_PARAMETERS}

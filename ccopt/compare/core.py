@@ -23,18 +23,21 @@ import multiprocessing
 import time
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field, replace
-from typing import Callable
+from typing import TYPE_CHECKING, Callable
 
 from ccopt.compare.contract import BUILTIN_NAMES, BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.figures import max_deviation, path_figures
 from ccopt.compare.leads import lead_joins
 from ccopt.compare.registry import available, load
 from ccopt.compensate import compensate
-from ccopt.compare.timing import StretchTimes, duration_figures, planner_for
+from ccopt.compare.timing import StretchTimes, duration_figures, planner_for, same_plan
 from ccopt.errors import CcoptError
 from ccopt.feed.limits import AxisLimits
 from ccopt.program.model import Program
 from ccopt.toolpath import ToolPath
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ccopt.feed.profile import FeedProfile
 
 REFERENCE = "pmac"
 
@@ -130,7 +133,8 @@ def measure(name: str, path: ToolPath, problem: BlendProblem, solve_time: float,
 def compare(program: Program, variants=None, *, limits: AxisLimits | None = None,
             delta: float | None = None, radius: float | None = None, side=None,
             options: dict | None = None, workers: int = 1,
-            progress: Callable[[str], None] | None = None) -> Comparison:
+            progress: Callable[[str], None] | None = None, ts: float | None = None,
+            reference_profile: FeedProfile | None = None) -> Comparison:
     """Compare lead-in/lead-out/corner variants of ``program``.
 
     Parameters
@@ -145,6 +149,11 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
         rows are the same either way, ``solve_time`` aside.
     progress: called with a short line as the work goes ("variant 3/10
         opt-casadi"; in this process also "opt-casadi: blend 2/6").
+    ts: the jerk planner's interpolation period (s; None: its default, 1 ms).
+    reference_profile: the reference's whole-path feed profile when the caller
+        has planned it already (``ccopt run`` does, in its feed stage); used
+        only when it is the plan this would make (:func:`.timing.same_plan`:
+        PMAC's path, these limits, their planner and ``ts``), else ignored.
     """
     names = list(variants) if variants else available()
     known = set(available())
@@ -160,7 +169,9 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     problem = times = ref_row = None
     if reference is not None:
         problem = BlendProblem(program, reference, limits, delta, opts, radius, side)
-        times = _reference_times(reference, limits)
+        planned = reference_profile if same_plan(reference_profile, reference, limits, ts) \
+            else None
+        times = _reference_times(reference, limits, ts, planned)
     rows: list[VariantResult | None] = [None] * len(names)
     jobs: list[tuple[int, str, BlendProblem]] = []
     for i, name in enumerate(names):
@@ -198,15 +209,17 @@ def _say(progress, line: str) -> None:
         progress(line)
 
 
-def _reference_times(reference: ToolPath, limits: AxisLimits | None) -> StretchTimes | None:
-    """The reference planned whole and cut at its stops (``None`` without limits, or
-    when the planner refuses it: each variant is then planned whole and says why)."""
+def _reference_times(reference: ToolPath, limits: AxisLimits | None, ts: float | None = None,
+                     profile: FeedProfile | None = None) -> StretchTimes | None:
+    """The reference planned whole (or its ``profile``) and cut at its stops
+    (``None`` without limits; none known when the planner refuses the
+    reference: each variant is then planned whole and says why)."""
     if limits is None:
         return None
     try:
-        return StretchTimes.from_reference(reference, limits)[0]
+        return StretchTimes.from_reference(reference, limits, ts, profile)[0]
     except CcoptError:
-        return None
+        return StretchTimes(limits, ts=ts)
 
 
 def _run_jobs(jobs, times: StretchTimes | None, total: int, workers: int, progress):

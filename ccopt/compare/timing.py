@@ -40,6 +40,7 @@ from ccopt import feed as feed_planning
 from ccopt.errors import CcoptError
 from ccopt.feed import plan_feed
 from ccopt.feed.limits import AxisLimits
+from ccopt.feed.planners import DEFAULT_TS
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.toolpath import Role, ToolPath
 
@@ -160,9 +161,10 @@ def _unknown_runs(got: list) -> list[list[int]]:
     return runs
 
 
-def plan_whole(path: ToolPath | ExactPath, limits: AxisLimits):
-    """``(profile, max_acc_ratio)`` of the whole path under :func:`planner_for`."""
-    prof = plan_feed(path, limits, planner=planner_for(limits))
+def plan_whole(path: ToolPath | ExactPath, limits: AxisLimits, ts: float | None = None):
+    """``(profile, max_acc_ratio)`` of the whole path under :func:`planner_for`
+    (``ts``: the jerk planner's interpolation period, s; None: its default)."""
+    prof = plan_feed(path, limits, planner=planner_for(limits), ts=ts)
     return prof, _ratio(prof)
 
 
@@ -171,20 +173,30 @@ class StretchTimes:
     """Stretch times known so far, by :func:`stretch_key`: ``(seconds, max_acc_ratio)``.
 
     Built from the reference's whole-path profile (:meth:`from_reference`);
-    :meth:`time` plans only the stretches of a path it does not know. Plain
-    data: it goes to worker processes.
+    :meth:`time` plans only the stretches of a path it does not know, with
+    ``ts`` (the jerk planner's interpolation period, s; None: its default).
+    Plain data: it goes to worker processes.
     """
 
     limits: AxisLimits
     known: dict = field(default_factory=dict)
+    ts: float | None = None
 
     @classmethod
-    def from_reference(cls, reference: ToolPath, limits: AxisLimits):
+    def from_reference(cls, reference: ToolPath, limits: AxisLimits, ts: float | None = None,
+                       profile=None):
         """``(StretchTimes, duration, max_acc_ratio)``: the reference planned whole
-        (its figures are those of the whole-path profile) and cut at its stops."""
+        (its figures are those of the whole-path profile) and cut at its stops.
+        ``profile``: that whole-path profile when the caller has it (it must
+        be the reference's, under :func:`planner_for` and ``ts``: see
+        :func:`same_plan`), else it is planned here."""
         exact = feed_planning.ExactPath(reference)
-        prof, ratio = plan_whole(exact, limits)
-        out = cls(limits)
+        if profile is not None:
+            prof, ratio = profile, _ratio(profile)
+            exact = profile.path
+        else:
+            prof, ratio = plan_whole(exact, limits, ts)
+        out = cls(limits, ts=ts)
         for st, got in zip(stretches(exact), _cut(exact, prof)):
             key = stretch_key(exact.segments[st.k0:st.k1])
             if key is not None and got is not None:
@@ -219,17 +231,17 @@ class StretchTimes:
         """``(seconds, max_acc_ratio)`` of each of the consecutive stretches ``run``
         of ``exact``: planned as one path and cut at its stops, or one by one
         where that path's stops are not the run's (never seen; a safeguard)."""
-        planner = planner_for(self.limits)
+        planner, ts = planner_for(self.limits), self.ts
         sub = feed_planning.ExactPath(feed_planning.stretch_path(exact, run[0].s0, run[-1].s1))
         if len(run) > 1:
-            prof = plan_feed(sub, self.limits, planner=planner)
+            prof = plan_feed(sub, self.limits, planner=planner, ts=ts)
             figs = _cut(sub, prof)
             if len(figs) == len(run) and all(f is not None for f in figs):
                 return figs
         out = []
         for st in run:
             prof = plan_feed(feed_planning.stretch_path(exact, st.s0, st.s1), self.limits,
-                             planner=planner)
+                             planner=planner, ts=ts)
             out.append((prof.duration, _ratio(prof)))
         return out
 
@@ -237,7 +249,18 @@ class StretchTimes:
         """A copy to time one variant with: every variant starts from the
         reference's stretches alone, so its figures do not depend on which
         variants ran before it (serial and parallel runs agree)."""
-        return StretchTimes(self.limits, dict(self.known))
+        return StretchTimes(self.limits, dict(self.known), self.ts)
+
+
+def same_plan(profile, reference: ToolPath, limits: AxisLimits, ts: float | None) -> bool:
+    """Whether ``profile`` is the plan :meth:`StretchTimes.from_reference` would
+    make of ``reference``: the same path, limits, planner (:func:`planner_for`)
+    and, for the jerk planner, interpolation period ``ts`` (None: its default)."""
+    if profile is None or profile.planner != planner_for(limits) or profile.limits != limits:
+        return False
+    if profile.planner == "jerk" and profile.info.get("ts") != (DEFAULT_TS if ts is None else ts):
+        return False
+    return profile.path.toolpath == reference
 
 
 def duration_figures(path: ToolPath, limits: AxisLimits | None,
@@ -258,4 +281,4 @@ def duration_figures(path: ToolPath, limits: AxisLimits | None,
 
 
 __all__ = ["RATIO_DT", "StretchTimes", "Stretch", "duration_figures", "plan_whole",
-           "planner_for", "stops", "stretch_key", "stretches"]
+           "planner_for", "same_plan", "stops", "stretch_key", "stretches"]

@@ -123,3 +123,41 @@ def test_progress_names_each_variant_in_turn():
     compare(prog, ["pmac", "tangent-arc"], limits=ccopt.AxisLimits(c.vmax, c.amax),
             radius=c.radius, progress=lines.append)
     assert lines == ["variant 1/2 pmac", "variant 2/2 tangent-arc"]
+
+
+def _jerk_case(name):
+    c, prog = _case(name)
+    limits = ccopt.AxisLimits(c.vmax, c.amax, j=tuple(10.0 * a for a in c.amax))
+    return c, prog, limits
+
+
+def test_ts_reaches_the_cycle_times():
+    # leadin-inside-line has curvature breaks (line to arc), where the jerk
+    # planner's acceleration step is at most jmax * ts: ts changes its time
+    c, prog, limits = _jerk_case("leadin-inside-line")
+    ref = ccopt.compensate(prog, "pmac", radius=c.radius)
+    slow = ccopt.plan_feed(ref, limits, planner="jerk", ts=0.001).duration
+    fast = ccopt.plan_feed(ref, limits, planner="jerk", ts=0.004).duration
+    assert fast < slow * (1 - 1e-3)
+    cmp = compare(prog, ["pmac"], limits=limits, radius=c.radius, ts=0.004)
+    assert cmp["pmac"].figures["duration"] == pytest.approx(fast, rel=1e-12)
+
+
+def test_the_callers_reference_plan_is_used_only_when_it_is_the_one_compare_makes(monkeypatch):
+    import ccopt.compare.timing as timing
+    c, prog, limits = _jerk_case("leadin-inside-line")
+    ref = ccopt.compensate(prog, "pmac", radius=c.radius)
+    names = ["pmac", "tangent-arc"]
+    plain = compare(prog, names, limits=limits, radius=c.radius)
+    own = ccopt.plan_feed(ref, limits, planner="jerk")
+    other = ccopt.plan_feed(ref, limits, planner="jerk", ts=0.004)
+    calls = []
+    real = timing.plan_whole
+    monkeypatch.setattr(timing, "plan_whole", lambda *a, **k: calls.append(1) or real(*a, **k))
+    reused = compare(prog, names, limits=limits, radius=c.radius, reference_profile=own)
+    assert calls == []                      # the reference was not planned again
+    assert _rows(reused) == _rows(plain)
+    # a plan under another ts (or of another path, or other limits) is not the reference's
+    ignored = compare(prog, names, limits=limits, radius=c.radius, reference_profile=other)
+    assert calls == [1]
+    assert _rows(ignored) == _rows(plain)
