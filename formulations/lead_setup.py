@@ -30,7 +30,8 @@ model imposes :data:`CURVATURE_MODEL_SHARE` of it at its samples, and
 taken. (The CVXPY model does not impose it yet: see
 :func:`ccopt_formulations.blend_cvxpy.opt_cvxpy`.)
 
-The verifier has the last word (:meth:`BlendProblem.accept`).
+The verifier has the last word (:meth:`BlendProblem.check`, on the segments a
+blend changed).
 """
 from __future__ import annotations
 
@@ -427,7 +428,7 @@ def _beside(problem: BlendProblem, path, cand) -> bool:
     violation then lies on a neighbour the splice left as it was (PMAC's own host
     gouging, as on sidechange-reversal), which no denser samples can move."""
     try:
-        problem.accept(cand, _made(path, cand, neighbours=False))
+        problem.check(cand, _made(path, cand, neighbours=False))
     except BlendRejected:
         return False
     return True
@@ -438,8 +439,9 @@ def run_leads(problem: BlendProblem, solve_lead, name: str,
               curvature_bounded: bool = True) -> BlendOutcome:
     """Replace every lead of the reference with ``solve_lead(setup) -> (x, info)``.
 
-    Each blend is spliced in and certified (:meth:`BlendProblem.accept`); when
-    the verifier rejects it the lead is solved again with denser clearance
+    Each blend is spliced in and certified on the segments it changed
+    (:meth:`BlendProblem.check`); when the verifier rejects it the lead is
+    solved again with denser clearance
     samples (``attempts``, :data:`ATTEMPTS` by default), and when every attempt
     fails PMAC's lead stays
     and the reason is reported in ``info["leads"]``. No lead replaced at all
@@ -458,7 +460,6 @@ def run_leads(problem: BlendProblem, solve_lead, name: str,
     if not leads:
         raise BlendRejected("the reference path has no lead-in or lead-out to replace")
     report = []
-    path_cert = None
     for ld in reversed(leads):
         entry = {"lead": ld.kind, "segment": ld.host}
         last_err = None
@@ -487,13 +488,13 @@ def run_leads(problem: BlendProblem, solve_lead, name: str,
                 continue
             cand = splice(path, ld, [geom], float(x[-1]), style=name)
             try:
-                cert = problem.accept(cand, _made(path, cand))
+                problem.check(cand, _made(path, cand))
             except BlendRejected as exc:
                 last_err = str(exc)
                 if _beside(problem, path, cand):
                     break
                 continue
-            path, path_cert = cand, cert
+            path = cand
             entry.update({f"solver_{k}": v for k, v in info.items()})
             entry.update(status="ok", refine=scale, sigma=float(x[-1]),
                          curvature_bound=setup.kappa_max if curvature_bounded else None,
@@ -506,7 +507,6 @@ def run_leads(problem: BlendProblem, solve_lead, name: str,
         report.append(entry)
     if all(e["status"] != "ok" for e in report):
         raise BlendRejected("; ".join(f"lead-{e['lead']}: {e.get('reason')}" for e in report))
-    info = {"leads": report[::-1]}
-    if path_cert is not None:
-        info["certificate"] = path_cert
-    return BlendOutcome(path, info)
+    # no certificate of the whole path here: each blend was checked on its own
+    # segments (BlendProblem.check), the comparison certifies the result once
+    return BlendOutcome(path, {"leads": report[::-1]})

@@ -22,7 +22,7 @@ is in :mod:`ccopt.geometry.bezier`.
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import cached_property
 from importlib.metadata import EntryPoint, entry_points
 from typing import Any, Callable, Mapping
@@ -34,6 +34,7 @@ from ccopt.feed.limits import AxisLimits
 from ccopt.program.model import Program
 from ccopt.toolpath import ToolPath
 from ccopt.verify import Certificate, contour_of, verify
+from ccopt.verify.planes import plane_runs
 from ccopt.verify.run import SIDES
 
 
@@ -117,14 +118,39 @@ class BlendProblem:
         violation lies on one of ``segments`` (indices of the segments the blend
         made or trimmed). Returns the certificate."""
         cert = self.certify(toolpath)
-        mine = set(int(i) for i in segments)
-        bad = [v for v in cert.violations
-               if v.kind in ("gouge", "gap", "side") and v.tool_segment in mine]
-        if bad:
-            v = max(bad, key=lambda v: v.depth)
-            raise BlendRejected(f"verifier: {v.kind} of depth {v.depth:.3g} on blend segment "
-                                f"{v.tool_segment} ({len(bad)} violation(s))")
+        _reject_on(cert, set(int(i) for i in segments), 0)
         return cert
+
+    def check(self, toolpath: ToolPath, segments) -> None:
+        """:meth:`accept`'s verdict without the certificate of the whole path:
+        only the segments from the one before the first of ``segments`` to the
+        one after the last are certified (each against the whole contour), so
+        every pair of tool segment and contour element, every segment's side
+        and every joint that involves ``segments`` is checked as :meth:`accept`
+        checks it, at a few segments' cost instead of the whole path's (a lead
+        blend changes one or two segments; the optimised leads certified the
+        whole path once per lead: 2.4 s of each Fagor case's comparison). A
+        program in several planes is certified whole (:meth:`accept`).
+        Raises :class:`BlendRejected`; returns nothing."""
+        mine = sorted(set(int(i) for i in segments))
+        if not mine or plane_runs(toolpath, self.program) is not None:
+            self.accept(toolpath, mine)
+            return
+        lo, hi = max(mine[0] - 1, 0), min(mine[-1] + 2, len(toolpath.segments))
+        part = replace(toolpath, segments=toolpath.segments[lo:hi], dwells=())
+        _reject_on(self.certify(part), set(mine), lo)
+
+
+def _reject_on(cert: Certificate, mine: set[int], offset: int) -> None:
+    """:class:`BlendRejected` when ``cert`` (of a path whose segment 0 is
+    segment ``offset`` of the whole) has a gouge, gap or side violation on one
+    of the segments ``mine`` (whole-path indices)."""
+    bad = [v for v in cert.violations
+           if v.kind in ("gouge", "gap", "side") and v.tool_segment + offset in mine]
+    if bad:
+        v = max(bad, key=lambda v: v.depth)
+        raise BlendRejected(f"verifier: {v.kind} of depth {v.depth:.3g} on blend segment "
+                            f"{v.tool_segment + offset} ({len(bad)} violation(s))")
 
 
 #: Acceleration assumed by time proxies when no limits are given (units/s^2).
