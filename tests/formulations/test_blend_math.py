@@ -8,7 +8,8 @@ import pytest
 from hypothesis import given, settings, strategies as st
 
 from ccopt.geometry import Arc, BezierCurve, Line
-from ccopt.geometry.bezier import g2_end, g2_start, jerk_gram, speed_profile_time
+from ccopt.geometry.bezier import (_interval_at, g2_end, g2_start, jerk_gram,
+                                   path_acceleration_interval, speed_profile_time)
 from ccopt.geometry.curve import bernstein, subdivision_matrix
 from ccopt_formulations.clearance import CONCAVE, CONVEX, END, LINE, Element, classify, linear_rows
 
@@ -114,3 +115,23 @@ def test_exempt_samples_beyond_a_lines_open_ends():
     assert np.all(np.einsum("ij,ij->i", vec, p) >= scal)
     G, h, _, _, _ = linear_rows(el, p)
     assert np.all(np.isneginf(h[kind == EXEMPT])) and np.allclose(G[kind == EXEMPT], 0.0)
+
+
+def test_interval_at_one_cut_is_the_vectorised_interval():
+    # speed_profile_time's passes take the feasible path acceleration cut by cut
+    # in floats (_interval_at); it must be path_acceleration_interval's value,
+    # bit for bit, including tangents with a zero component and infeasible cuts
+    rng = np.random.default_rng(7)
+    ang = rng.uniform(0.0, 2.0 * np.pi, 400)
+    ang[::5] = 0.0                       # along x: the y component is zero
+    ang[1::5] = np.pi / 2.0              # along y
+    T = np.column_stack([np.cos(ang), np.sin(ang)])
+    T[::5, 1] = 0.0
+    T[1::5, 0] = 0.0
+    K = rng.normal(size=(400, 2)) * rng.uniform(0.0, 2.0, (400, 1))
+    b = rng.uniform(0.0, 4e4, 400)
+    acc = (800.0, 1500.0)
+    lo, hi = path_acceleration_interval(T, K, b, acc)
+    assert np.any(lo > hi) and np.any(lo <= hi)          # both kinds of cut met
+    for i in range(400):
+        assert _interval_at(T[i].tolist(), K[i].tolist(), float(b[i]), acc) == (lo[i], hi[i])
