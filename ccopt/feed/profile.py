@@ -156,13 +156,14 @@ class FeedSamples:
                                *jerk, self.feed, self.tangential_acc])
         buf = io.StringIO()
         buf.write(",".join(header) + "\n")
-        body = np.char.mod("%.10g", num)
         lines = np.where(self.line >= 0, self.line, 0).astype(str)
         lines = np.where(self.line >= 0, lines, "")
         active = np.array(self.limit_names, dtype=object)[self.active]
-        for i in range(self.t.size):
-            row = body[i]
-            buf.write(f"{row[0]},{row[1]},{lines[i]},{','.join(row[2:])},{active[i]}\n")
+        # one format per row (numbers as "%.10g"): a third of the time of
+        # formatting every value with np.char.mod and joining them
+        row = "%.10g,%.10g,%s," + ",".join(["%.10g"] * (num.shape[1] - 2)) + ",%s\n"
+        buf.writelines(row % (r[0], r[1], ln, *r[2:], act)
+                       for r, ln, act in zip(num.tolist(), lines.tolist(), active.tolist()))
         return buf.getvalue()
 
 
