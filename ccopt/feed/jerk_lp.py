@@ -26,6 +26,13 @@ SLINEAR, FROM_REST, TO_REST = 0, 1, 2
 #: least this share of the window's largest, so the weights span at most
 #: 1e3 and none falls under HiGHS's optimality tolerance (1e-7 relative).
 WEIGHT_FLOOR = 1e-2
+#: Simplex iterations per gridpoint after which a round's solve counts as run
+#: away (then solved once more from scratch, see :meth:`WindowLP.solve`). The
+#: most any solve took on the bundled cases' smoothed paths and the 1,000-block
+#: pocket of bench/feed.py is 4.5 per gridpoint (a cold start on freeform-hsm's);
+#: with bolder bound updates than the rounds make, one warm start cycled for
+#: minutes on that path.
+RUNAWAY_ITERATIONS = 25
 
 
 @dataclass
@@ -304,7 +311,9 @@ class WindowLP:
         """``(b, alpha)`` (scaled) maximising the linearised time gain under the
         pseudo-jerk bound ``bhat``, with ``b <= cap``; None unless optimal,
         or when HiGHS's simplex would take more than ``max_iterations``
-        (then the next call starts from where it stopped)."""
+        (then the next call starts from where it stopped). Without
+        ``max_iterations`` a run past :data:`RUNAWAY_ITERATIONS` per gridpoint
+        is solved once more from scratch under the same bound, then None."""
         h, nb = self.highs, self.nb
         b_at = np.maximum(bhat[self.jerk_at0], bhat[self.jerk_at1])
         v_at = np.maximum(self.vref[self.jerk_at0], self.vref[self.jerk_at1])
@@ -318,19 +327,24 @@ class WindowLP:
         floor = WEIGHT_FLOOR * max(float(bhat.max(initial=0.0)), np.finfo(float).tiny)
         w = self.hbar / np.maximum(bhat, floor) ** 1.5
         h.changeColsCost(nb, self.b_cols, -w / w.max())
-        if max_iterations is not None:
-            h.setOptionValue("simplex_iteration_limit", int(max_iterations))
-            h.run()
-            h.setOptionValue("simplex_iteration_limit", highspy.kHighsIInf)
-            if h.getModelStatus() == highspy.HighsModelStatus.kIterationLimit:
-                return None
-        else:
-            h.run()
+        # every run bounded: by max_iterations when asked, else against a run-away
+        runaway = int(RUNAWAY_ITERATIONS * nb)
+        h.setOptionValue("simplex_iteration_limit",
+                         int(max_iterations) if max_iterations is not None else runaway)
+        h.run()
+        h.setOptionValue("simplex_iteration_limit", highspy.kHighsIInf)
+        limited = h.getModelStatus() == highspy.HighsModelStatus.kIterationLimit
+        if max_iterations is not None and limited:
+            return None
         if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
-            # rare numerical trouble without presolve: once more, from scratch, with it
+            # rare numerical trouble without presolve, or a simplex that ran
+            # away from the last basis: once more, from scratch, with presolve
             h.setOptionValue("presolve", "on")
             h.clearSolver()
+            if limited:
+                h.setOptionValue("simplex_iteration_limit", runaway)
             h.run()
+            h.setOptionValue("simplex_iteration_limit", highspy.kHighsIInf)
             h.setOptionValue("presolve", "off")
         if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
             return None

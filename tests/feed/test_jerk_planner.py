@@ -19,6 +19,7 @@ import math
 import numpy as np
 import pytest
 
+import ccopt.feed.jerk_lp as jerk_lp
 from ccopt.feed import AxisLimits, FeedError, plan_feed
 from ccopt.geometry import Arc, Line
 from ccopt.toolpath import PathSegment, Role, ToolPath
@@ -133,3 +134,22 @@ def test_needs_jerk_limits():
     tp = ToolPath((seg(Line((0, 0), (10, 0)), 100.0),))
     with pytest.raises(FeedError, match="jerk limits"):
         plan_feed(tp, AxisLimits((100, 100), (1000, 1000)), planner="jerk")
+
+
+def test_runaway_simplex_is_bounded_and_the_plan_stays_within_the_limits(monkeypatch):
+    """A round whose simplex runs past RUNAWAY_ITERATIONS per gridpoint is
+    solved once more from scratch under the same bound, then given up: the
+    window then takes the S-curve per block (rest to rest), still a feasible
+    profile. With the bound at a hundredth of an iteration per gridpoint no
+    LP can finish, so every window degrades that way, and the profile is the
+    S-curve's: 100 mm at v = 100, a = 1000, j = 20000 in two blocks that stop
+    between them, each block ``L / v + v / a + a / j`` (both reach v)."""
+    monkeypatch.setattr(jerk_lp, "RUNAWAY_ITERATIONS", 0.01)
+    tp = ToolPath((seg(Line((0, 0), (40, 0)), 1000.0), seg(Line((40, 0), (100, 0)), 1000.0)))
+    lim = AxisLimits((100, 100), (1000, 1000), j=(20000, 20000))
+    prof = plan_feed(tp, lim, planner="jerk")
+    assert prof.info["lp_failed_windows"] >= 1
+    blocks = sum(length / 100 + 100 / 1000 + 1000 / 20000 for length in (40, 60))
+    assert prof.duration == pytest.approx(blocks, rel=1e-6)
+    v, a, j, _ = sampled_ratios(prof)
+    assert max(v, a, j) <= OVER
