@@ -190,11 +190,10 @@ class StretchTimes:
         ``profile``: that whole-path profile when the caller has it (it must
         be the reference's, under :func:`planner_for` and ``ts``: see
         :func:`same_plan`), else it is planned here."""
-        exact = feed_planning.ExactPath(reference)
         if profile is not None:
-            prof, ratio = profile, _ratio(profile)
-            exact = profile.path
+            exact, prof, ratio = profile.path, profile, _ratio(profile)
         else:
+            exact = feed_planning.ExactPath(reference)
             prof, ratio = plan_whole(exact, limits, ts)
         out = cls(limits, ts=ts)
         for st, got in zip(stretches(exact), _cut(exact, prof)):
@@ -231,19 +230,16 @@ class StretchTimes:
         """``(seconds, max_acc_ratio)`` of each of the consecutive stretches ``run``
         of ``exact``: planned as one path and cut at its stops, or one by one
         where that path's stops are not the run's (never seen; a safeguard)."""
-        planner, ts = planner_for(self.limits), self.ts
-        sub = feed_planning.ExactPath(feed_planning.stretch_path(exact, run[0].s0, run[-1].s1))
+        def plan(s0: float, s1: float):
+            sub = feed_planning.ExactPath(exact.stretch(s0, s1))
+            return sub, plan_feed(sub, self.limits, planner=planner_for(self.limits), ts=self.ts)
+
         if len(run) > 1:
-            prof = plan_feed(sub, self.limits, planner=planner, ts=ts)
+            sub, prof = plan(run[0].s0, run[-1].s1)
             figs = _cut(sub, prof)
             if len(figs) == len(run) and all(f is not None for f in figs):
                 return figs
-        out = []
-        for st in run:
-            prof = plan_feed(feed_planning.stretch_path(exact, st.s0, st.s1), self.limits,
-                             planner=planner, ts=ts)
-            out.append((prof.duration, _ratio(prof)))
-        return out
+        return [(prof.duration, _ratio(prof)) for prof in (plan(st.s0, st.s1)[1] for st in run)]
 
     def copy(self) -> "StretchTimes":
         """A copy to time one variant with: every variant starts from the

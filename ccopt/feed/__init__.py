@@ -51,7 +51,6 @@ _LAZY = {
     "plan_jerk": "ccopt.feed.jerk_planner",
     "JerkProfile": "ccopt.feed.jerk_profile",
     "feed_limited_time": "ccopt.feed.bounds",
-    "stretch_path": "ccopt.feed.jerk_bound",
 }
 
 

@@ -27,11 +27,11 @@ SLINEAR, FROM_REST, TO_REST = 0, 1, 2
 #: 1e3 and none falls under HiGHS's optimality tolerance (1e-7 relative).
 WEIGHT_FLOOR = 1e-2
 #: Simplex iterations per gridpoint after which a round's solve counts as run
-#: away (then solved once more from scratch, see :meth:`WindowLP.solve`). The
-#: most any solve took on the bundled cases' smoothed paths and the 1,000-block
-#: pocket of bench/feed.py is 4.5 per gridpoint (a cold start on freeform-hsm's);
-#: with bolder bound updates than the rounds make, one warm start cycled for
-#: minutes on that path.
+#: away (then solved once more from scratch, see :meth:`WindowLP.solve`). No
+#: plan of the bundled cases' smoothed paths or the 1,000-block pocket of
+#: bench/feed.py changes with it (the most counted there: 4.5 per gridpoint,
+#: a cold start on freeform-hsm's); with bolder bound updates than the rounds
+#: make, one warm start cycled for minutes on that path.
 RUNAWAY_ITERATIONS = 25
 
 

@@ -311,12 +311,14 @@ def _solve_task(g: JerkGrid, cap: np.ndarray | None, chains, scale: float,
     stop, bmax) / scale`` (the speed bound of the task's own stretch,
     :class:`~ccopt.feed.jerk_bound.StretchBound`), computed only when the
     task has such a chain."""
-    box = np.where(g.stop, 0.0, g.bmax) / scale
-    first = rest_bound(g.s, g.stop, g.q1, g.a, g.j, g.bmax) / scale
-    if cap is None and any(chained(c, g.stop) for c in chains):
+    in_chain = [chained(c, g.stop) for c in chains]
+    if cap is None and any(in_chain):
         cap = bound(g.s, g.stop, g.bmax) / scale
-    return [r for chain in chains
-            for r in (_solve_chain(g, cap, chain, scale) if chained(chain, g.stop)
+    if not all(in_chain):
+        box = np.where(g.stop, 0.0, g.bmax) / scale
+        first = rest_bound(g.s, g.stop, g.q1, g.a, g.j, g.bmax) / scale
+    return [r for chain, c in zip(chains, in_chain)
+            for r in (_solve_chain(g, cap, chain, scale) if c
                       else _solve_chain(g, box, chain, scale, first))]
 
 
@@ -373,8 +375,8 @@ def plan_windows(g: JerkGrid, cap: np.ndarray | None, scale: float, bound_of=Non
     ``cap``: the scaled speed bound at every gridpoint, or None on a
     :func:`split` program: then ``bound_of(i0, i1)`` gives each task the
     callable that computes it on the task's gridpoints ``i0..i1``; both None
-    when no window is chained (every window starts from the box bound, see
-    :func:`_solve_task`)."""
+    when no window is chained (every window is then capped by the box bound
+    and starts from :func:`rest_bound`, see :func:`_solve_task`)."""
     wins = windows(g)
     chains = _chains(wins, g.stop)
     workers = _workers(g.s.size, len(chains))

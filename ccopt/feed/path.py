@@ -46,7 +46,7 @@ limits of the axes it moves.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -319,6 +319,24 @@ class ExactPath(AbstractGeometricPath):
         for _, _, blk in self.toolpath.dwells:
             return blk.source.file
         return "<toolpath>"
+
+    def stretch(self, s0: float, s1: float) -> ToolPath:
+        """The tool path from position ``s0`` to ``s1`` (stops or ends, so
+        segment boundaries; each taken as the nearest one), with the dwells
+        strictly inside it."""
+        k0, k1 = self.boundary(s0), self.boundary(s1)
+        i0, i1 = int(self.source_index[k0]), int(self.source_index[k1 - 1]) + 1
+        tp = self.toolpath
+        dwells = tuple((before - i0, seconds, blk) for before, seconds, blk in tp.dwells
+                       if i0 < before < i1)
+        return replace(tp, segments=tp.segments[i0:i1], dwells=dwells)
+
+    def boundary(self, s: float) -> int:
+        """Index of the segment boundary nearest ``s``."""
+        k = int(np.searchsorted(self.offsets, s))
+        if k > 0 and (k == self.offsets.size or s - self.offsets[k - 1] < self.offsets[k] - s):
+            k -= 1
+        return k
 
     @property
     def stop_positions(self) -> np.ndarray:
