@@ -21,7 +21,8 @@ from __future__ import annotations
 
 import multiprocessing
 import time
-from concurrent.futures import ProcessPoolExecutor
+from collections import deque
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Callable
 
@@ -115,19 +116,33 @@ def measure(name: str, path: ToolPath, problem: BlendProblem, solve_time: float,
             times: StretchTimes | None = None) -> VariantResult:
     """Certify, time and measure one variant's tool path (``times``: the
     reference's stretch times, :mod:`.timing`; ``None`` plans the whole path)."""
+    row = _measure_shape(name, path, problem, solve_time, info, certificate)
+    return _with_duration(row, _duration(path, problem.limits, times))
+
+
+def _measure_shape(name: str, path: ToolPath, problem: BlendProblem, solve_time: float,
+                   info: dict | None = None, certificate=None) -> VariantResult:
+    """:func:`measure` but the cycle time: certificate, path figures, deviation
+    from the reference (what needs no feed plan)."""
     cert = certificate if certificate is not None else problem.certify(path)
     fig = path_figures(path, lead_joins(path))
-    dur, acc_ratio, feed_msg = _duration(path, problem.limits, times)
     if problem.reference is not None:
         dev, dev_bound = max_deviation(path, problem.reference)
     else:  # no reference to measure against (PMAC refused the program)
         dev = dev_bound = None
     gouge = cert.check("gouge")
-    fig.update(duration=dur, max_acc_ratio=acc_ratio,
-               min_clearance=cert.min_clearance, certified=bool(cert.ok),
+    fig.update(min_clearance=cert.min_clearance, certified=bool(cert.ok),
                clearance_ok=bool(gouge.ok), violations=len(cert.violations),
                max_deviation=dev, max_deviation_bound=dev_bound, solve_time=solve_time)
-    return VariantResult(name, "ok", feed_msg, path, cert, fig, dict(info or {}))
+    return VariantResult(name, "ok", None, path, cert, fig, dict(info or {}))
+
+
+def _with_duration(row: VariantResult, duration) -> VariantResult:
+    """``row`` with :func:`_duration`'s ``(duration, max_acc_ratio, message)``."""
+    dur, acc_ratio, feed_msg = duration
+    row.figures.update(duration=dur, max_acc_ratio=acc_ratio)
+    row.message = feed_msg
+    return row
 
 
 def compare(program: Program, variants=None, *, limits: AxisLimits | None = None,
@@ -166,14 +181,26 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
         ref_error = str(exc)
     ref_time = time.perf_counter() - t0
     opts = dict(options or {})
-    problem = times = ref_row = None
+    problem = None
     if reference is not None:
         problem = BlendProblem(program, reference, limits, delta, opts, radius, side)
-        planned = reference_profile if same_plan(reference_profile, reference, limits, ts) \
-            else None
-        times = _reference_times(reference, limits, ts, planned)
+    known_times: list = []
+
+    def reference_times() -> StretchTimes | None:
+        # planned once, when first asked: in a parallel run while the workers
+        # solve the blends (freeform-hsm's reference takes about 2 s to plan)
+        if not known_times:
+            planned = reference_profile if same_plan(reference_profile, reference, limits,
+                                                     ts) else None
+            if reference is None:   # PMAC refused it: each path planned whole, with ts
+                known_times.append(None if limits is None else StretchTimes(limits, ts=ts))
+            else:
+                known_times.append(_reference_times(reference, limits, ts, planned))
+        return known_times[0]
+
     rows: list[VariantResult | None] = [None] * len(names)
     jobs: list[tuple[int, str, BlendProblem]] = []
+    ref_index = None
     for i, name in enumerate(names):
         if name not in known:
             rows[i] = VariantResult(name, "failed", f"unknown variant {name!r}; known: "
@@ -188,12 +215,24 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
             else:
                 rows[i] = VariantResult(name, "failed", f"no reference path: {ref_error}")
         elif name == REFERENCE:
-            _say(progress, f"variant {i + 1}/{len(names)} {name}")
-            rows[i] = ref_row = measure(name, reference, problem, ref_time, times=times)
+            ref_index = i
         else:
             jobs.append((i, name, problem))
-    for i, row in _run_jobs(jobs, times, len(names), workers, progress):
+
+    def reference_row(times: StretchTimes | None):
+        """The reference's row (it is the first variant that reports)."""
+        if ref_index is None:
+            return []
+        _say(progress, f"variant {ref_index + 1}/{len(names)} {REFERENCE}")
+        return [(ref_index, measure(REFERENCE, reference, problem, ref_time, times=times))]
+
+    ref_row = None
+    for i, row in _run_jobs(jobs, reference_times, reference_row, len(names), workers,
+                            progress):
         rows[i] = row
+        if i == ref_index:
+            ref_row = row
+    times = reference_times()
     ref_duration = ref_row.figures.get("duration") if ref_row is not None else None
     if ref_duration is None and problem is not None and limits is not None:
         ref_duration = _duration(reference, limits, times)[0]
@@ -222,28 +261,95 @@ def _reference_times(reference: ToolPath, limits: AxisLimits | None, ts: float |
         return StretchTimes(limits, ts=ts)
 
 
-def _run_jobs(jobs, times: StretchTimes | None, total: int, workers: int, progress):
-    """``(row index, VariantResult)`` of every job ``(index, name, problem)``: here,
-    one after the other, or in ``workers`` processes."""
+def _run_jobs(jobs, reference_times, reference_row, total: int, workers: int, progress):
+    """``(row index, VariantResult)`` of the reference (``reference_row(times)``)
+    and of every job ``(index, name, problem)``: here, one after the other, or
+    in ``workers`` processes.
+
+    A job is done in two parts: the blend and what needs no feed plan
+    (:func:`_solve`), then the cycle time (:func:`_duration`) under the
+    reference's stretch times (``reference_times()``). In processes the blends
+    are solving while this process plans the reference. A variant whose
+    tool path is another's takes that one's cycle time, planned once (Fagor's
+    G138 and G139 with G136 leave the same path on 15 of the 27 bundled
+    cases, all three Fagor styles on 7)."""
     if workers <= 1 or len(jobs) <= 1:
+        times = reference_times()
+        yield from reference_row(times)
+        timed: list[tuple[ToolPath, tuple]] = []
         for i, name, problem in jobs:
             _say(progress, f"variant {i + 1}/{total} {name}")
             local = problem if progress is None else replace(problem, progress=progress)
-            yield i, _run(name, local, times.copy() if times is not None else None)
+            row = _solve(name, local)
+            if row.status == "ok":
+                got = next((d for path, d in timed if path == row.toolpath), None)
+                if got is None:
+                    got = _duration(row.toolpath, problem.limits,
+                                    times.copy() if times is not None else None)
+                    timed.append((row.toolpath, got))
+                row = _with_duration(row, got)
+            yield i, row
         return
     # fork where there is one: a worker then starts with ccopt and its libraries
     # loaded (spawning would import toppra, casadi and cvxpy again in each)
     methods = multiprocessing.get_all_start_methods()
     ctx = multiprocessing.get_context("fork" if "fork" in methods else None)
-    with ProcessPoolExecutor(max_workers=min(workers, len(jobs)), mp_context=ctx) as pool:
-        futures = [None] * len(jobs)
-        for k, (_, name, problem) in _longest_first(jobs):
-            futures[k] = pool.submit(_run, name, problem,
-                                     times.copy() if times is not None else None)
-        for done, ((i, name, _), fut) in enumerate(zip(jobs, futures), 1):
-            row = fut.result()
-            _say(progress, f"variant {i + 1}/{total} {name} done ({done}/{len(jobs)})")
-            yield i, row
+    n_workers = min(workers, len(jobs))
+    to_solve = deque(job for _, job in _longest_first(jobs))
+    to_time: deque = deque()                  # (path, limits) whose cycle time is wanted
+    timing: dict = {}                         # cycle-time future -> its rows
+    timed: list[tuple[ToolPath, object]] = []
+    running: dict = {}                        # future -> its job, or None (a cycle time)
+    done = 0
+    with ProcessPoolExecutor(max_workers=n_workers, mp_context=ctx) as pool:
+
+        def refill(times):
+            # at most one task per worker, a cycle time before a blend: a long
+            # blend's (the smoother's) plan starts as soon as its path is there
+            while len(running) < n_workers and (to_time or to_solve):
+                if to_time:
+                    path, limits, rows = to_time.popleft()
+                    fut = pool.submit(_duration, path, limits,
+                                      times.copy() if times is not None else None)
+                    timed.append((path, fut))
+                    timing[fut] = rows
+                    running[fut] = None
+                else:
+                    i, name, problem = to_solve.popleft()
+                    running[pool.submit(_solve, name, problem)] = (i, name, problem)
+
+        refill(None)                          # the blends solve while the reference is planned
+        times = reference_times()
+        yield from reference_row(times)
+        while running:
+            finished, _ = wait(running, return_when=FIRST_COMPLETED)
+            ready = []
+            for fut in finished:
+                job = running.pop(fut)
+                if job is None:
+                    ready.extend((i, name, _with_duration(row, fut.result()))
+                                 for i, name, row in timing.pop(fut))
+                    continue
+                i, name, problem = job
+                row = fut.result()
+                if row.status != "ok":
+                    ready.append((i, name, row))
+                    continue
+                twin = next((f for path, f in timed if path == row.toolpath), None)
+                waiting = next((w for w in to_time if w[0] == row.toolpath), None)
+                if twin is not None and twin.done():
+                    ready.append((i, name, _with_duration(row, twin.result())))
+                elif twin is not None:
+                    timing[twin].append((i, name, row))
+                elif waiting is not None:
+                    waiting[2].append((i, name, row))
+                else:
+                    to_time.append((row.toolpath, problem.limits, [(i, name, row)]))
+            refill(times)
+            for i, name, row in sorted(ready, key=lambda r: r[0]):
+                done += 1
+                _say(progress, f"variant {i + 1}/{total} {name} done ({done}/{len(jobs)})")
+                yield i, row
 
 
 def _longest_first(jobs):
@@ -255,7 +361,10 @@ def _longest_first(jobs):
     return sorted(enumerate(jobs), key=lambda kj: (kj[1][1] in BUILTIN_NAMES, -kj[0]))
 
 
-def _run(name: str, problem: BlendProblem, times: StretchTimes | None = None) -> VariantResult:
+def _solve(name: str, problem: BlendProblem) -> VariantResult:
+    """The blend ``name`` on ``problem``, certified and measured but for its cycle
+    time (:func:`_measure_shape`); a blend that is refused, rejected or fails
+    gives its row with the reason."""
     t0 = time.perf_counter()
     try:
         blend = load(name)
@@ -279,4 +388,4 @@ def _run(name: str, problem: BlendProblem, times: StretchTimes | None = None) ->
     if not isinstance(out, ToolPath):
         return VariantResult(name, "failed", f"blend returned {type(out).__name__}, "
                              "not a ToolPath or BlendOutcome", figures={"solve_time": solve})
-    return measure(name, out, problem, solve, info, cert, times)
+    return _measure_shape(name, out, problem, solve, info, cert)

@@ -161,3 +161,33 @@ def test_the_callers_reference_plan_is_used_only_when_it_is_the_one_compare_make
     ignored = compare(prog, names, limits=limits, radius=c.radius, reference_profile=other)
     assert calls == [1]
     assert _rows(ignored) == _rows(plain)
+
+
+@pytest.mark.parametrize("workers", [1, 2])
+def test_a_variant_with_anothers_path_takes_its_cycle_time_planned_once(monkeypatch, workers):
+    # on leadin-inside-line Fagor's G138 and G139 with G136 build the same
+    # path (checked here): one plan serves both, serial or in processes
+    import ccopt.compare.core as core
+
+    c, prog = _case("leadin-inside-line")
+    limits = ccopt.AxisLimits(c.vmax, c.amax)
+    names = ["fagor-g138", "fagor-g139-g136", "tangent-arc"]
+    calls = []
+    if workers == 1:  # (a function of a test does not go to a worker process)
+        plan = core._duration
+
+        def counted(path, limits, times=None):
+            calls.append(path)
+            return plan(path, limits, times)
+
+        monkeypatch.setattr(core, "_duration", counted)
+    cmp = compare(prog, names, limits=limits, radius=c.radius, workers=workers)
+    g138, g139 = cmp["fagor-g138"], cmp["fagor-g139-g136"]
+    assert g138.toolpath == g139.toolpath
+    assert g138.toolpath != cmp["tangent-arc"].toolpath
+    assert g138.figures["duration"] == g139.figures["duration"] > 0.0
+    # that cycle time is the path's own, planned whole here
+    whole = ccopt.plan_feed(g139.toolpath, limits).duration
+    assert g139.figures["duration"] == pytest.approx(whole, rel=TOPPRA_MARGIN)
+    if workers == 1:
+        assert sum(path == g138.toolpath for path in calls) == 1
