@@ -191,3 +191,26 @@ def test_a_variant_with_anothers_path_takes_its_cycle_time_planned_once(monkeypa
     assert g139.figures["duration"] == pytest.approx(whole, rel=TOPPRA_MARGIN)
     if workers == 1:
         assert sum(path == g138.toolpath for path in calls) == 1
+
+
+def test_ts_reaches_the_cycle_times_when_pmac_refuses_the_program(monkeypatch):
+    # without a reference every variant is planned whole: with ts all the same
+    import ccopt.compare.core as core
+
+    c, prog, limits = _jerk_case("leadin-inside-line")
+    real = core.compensate
+
+    def refusing(program, style, **kw):
+        if style == core.REFERENCE:
+            raise ccopt.CcoptError("refused here")
+        return real(program, style, **kw)
+
+    monkeypatch.setattr(core, "compensate", refusing)
+    path = ccopt.compensate(prog, "linuxcnc", radius=c.radius)
+    for ts in (0.001, 0.004):
+        cmp = compare(prog, ["pmac", "linuxcnc"], limits=limits, radius=c.radius, ts=ts)
+        assert cmp["pmac"].status == "refused"
+        own = ccopt.plan_feed(path, limits, planner="jerk", ts=ts).duration
+        assert cmp["linuxcnc"].figures["duration"] == pytest.approx(own, rel=1e-9)
+    slow = ccopt.plan_feed(path, limits, planner="jerk", ts=0.001).duration
+    assert own < slow * (1 - 1e-3)          # ts does change this path's time
