@@ -11,7 +11,6 @@ from ccopt.cli.options import (add_limit_options, add_output_option, add_program
                                add_quiet_option, add_reading_options, add_style_options,
                                add_ts_option, describe, positive_float)
 from ccopt.cli.output import EXIT_OK, emit_json
-from ccopt.atomic import write_text_atomic
 from ccopt.feed import AxisLimits, plan_feed
 from ccopt.toolpath import ToolPath
 
@@ -106,13 +105,12 @@ def _plan(path: ToolPath, limits: AxisLimits, planners: list[str],
         prof = plan_feed(exact, limits, planner=name, junction_deviation=args.junction_deviation,
                          ts=args.ts)
         # the figures need no dt grid (FeedProfile.figure_samples); the CSV does
-        smp = prof.sample(args.dt) if target else None
-        out[name] = prof.summary(args.dt, smp)
+        out[name] = prof.summary(args.dt)
         if target:
             csv = Path(target)
             if len(planners) > 1:
                 csv = csv.with_name(f"{csv.stem}.{name}{csv.suffix}")
-            write_text_atomic(csv, smp.to_csv_text())
+            prof.to_csv(csv, args.dt)
             out[name]["csv"] = str(csv)
     return out
 

@@ -29,10 +29,11 @@ from __future__ import annotations
 
 import io
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
-from ccopt.atomic import write_text_atomic
+from ccopt.atomic import write_with_atomic
 from ccopt.feed.errors import FeedError
 from ccopt.feed.figures import derivative_bounds, piece_steps, piece_times
 from ccopt.feed.limits import AxisLimits
@@ -42,6 +43,8 @@ from ccopt.tolerances import ACTIVE_RATIO, MAX_FEED_SAMPLES
 #: Rounding allowance in ``duration / dt`` when counting sample times, so a
 #: duration of exactly n steps gives n + 1 samples, not a short extra step.
 _SAMPLE_COUNT_SLACK = 1e-9
+#: Samples written at a time by :meth:`FeedProfile.to_csv` (about 20 MB of text).
+CSV_CHUNK = 100_000
 
 
 @dataclass(frozen=True, eq=False)
@@ -144,18 +147,20 @@ class FeedSamples:
     def active_names(self) -> list[str]:
         return [self.limit_names[i] for i in self.active]
 
-    def to_csv_text(self) -> str:
+    def to_csv_text(self, header: bool = True) -> str:
         """CSV: ``t, s, block, <axes>, v<axes>, a<axes>[, j<axes>], feed, tangential_acc,
-        active``; the jerk columns when the limits give jerk limits."""
+        active``; the jerk columns when the limits give jerk limits (``header``:
+        whether the first line names the columns)."""
         ax = [a.lower() for a in self.axes]
         jerk_cols = [f"j{a}" for a in ax] if self.j_limit is not None else []
-        header = (["t", "s", "block"] + ax + [f"v{a}" for a in ax] + [f"a{a}" for a in ax]
-                  + jerk_cols + ["feed", "tangential_acc", "active"])
+        names = (["t", "s", "block"] + ax + [f"v{a}" for a in ax] + [f"a{a}" for a in ax]
+                 + jerk_cols + ["feed", "tangential_acc", "active"])
         jerk = [self.jerk] if jerk_cols else []
         num = np.column_stack([self.t, self.s, self.position, self.velocity, self.acceleration,
                                *jerk, self.feed, self.tangential_acc])
         buf = io.StringIO()
-        buf.write(",".join(header) + "\n")
+        if header:
+            buf.write(",".join(names) + "\n")
         lines = np.where(self.line >= 0, self.line, 0).astype(str)
         lines = np.where(self.line >= 0, lines, "")
         active = np.array(self.limit_names, dtype=object)[self.active]
@@ -445,8 +450,21 @@ class FeedProfile:
         return out
 
     def to_csv(self, file, dt: float = 1e-3) -> None:
-        """Write :meth:`sample` ``(dt)`` as CSV, atomically."""
-        write_text_atomic(file, self.sample(dt).to_csv_text())
+        """Write :meth:`sample` ``(dt)`` as CSV (:meth:`FeedSamples.to_csv_text`),
+        atomically, :data:`CSV_CHUNK` samples at a time: the memory it takes
+        does not grow with the program's duration (a 23-minute program at
+        1 ms, 1.4 million rows, took 1.7 GB made at once)."""
+        n = self.sample_count(dt)
+
+        def write(tmp: Path) -> None:
+            with open(tmp, "w", encoding="utf-8", newline="") as fh:
+                for i in range(0, n, CSV_CHUNK):
+                    times = np.arange(i, min(i + CSV_CHUNK, n)) * dt   # as sample() makes them
+                    if i + times.size == n:
+                        times[-1] = min(times[-1], self.duration)
+                    fh.write(self.at(times).to_csv_text(header=i == 0))
+
+        write_with_atomic(file, write)
 
 
 def _time_shares(t: np.ndarray) -> np.ndarray:

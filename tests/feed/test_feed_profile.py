@@ -114,6 +114,23 @@ def test_csv_export(tmp_path):
     assert not list(tmp_path.glob(".*.tmp"))   # written atomically, nothing left behind
 
 
+def test_csv_in_chunks_is_the_samples_written_at_once(tmp_path, monkeypatch):
+    # to_csv writes CSV_CHUNK samples at a time: chunks of 7 (the last one
+    # short, ending at the clipped final instant) give the same file as the
+    # samples formatted in one go, with one header
+    import ccopt.feed.profile as profile
+
+    tp = ToolPath((seg(Line((0, 0), (10, 0)), feed=20.0, line=4),
+                   seg(Line((10, 0), (10, 5)), feed=20.0, line=5)))
+    prof = plan_feed(tp, AxisLimits((100, 100, 30), (1000, 1000, 300)))
+    whole = prof.sample(0.01).to_csv_text()
+    monkeypatch.setattr(profile, "CSV_CHUNK", 7)
+    out = tmp_path / "feed.csv"
+    prof.to_csv(out, dt=0.01)
+    assert (len(whole.splitlines()) - 1) % 7 != 0      # a short last chunk
+    assert out.read_text() == whole
+
+
 def test_junction_deviation_corner_speed_is_grbls():
     """90-degree corner, delta = 0.05: v^2 = a delta sin(t/2) / (1 - sin(t/2)),
     t = 90 deg, a the axis limit along t_out - t_in = (-1, 1)/sqrt(2)."""
