@@ -58,8 +58,8 @@ the jerk is also imposed at a quarter, half and three quarters of its length,
 where the model is linear in the unknowns too
 (:func:`~ccopt.feed.jerk_lp._inner_rows`): there every factor of the jerk
 varies along the interval and it bulged 0.87 % over the limit between
-gridpoints that both met it. With these rows such curves need a quarter of
-TOPPRA's gridpoints (:data:`JERK_GRID`).
+gridpoints that both met it. With these rows such curves need far fewer
+gridpoints than TOPPRA's (:data:`JERK_GRID`).
 
 What is checked only at gridpoints, and its margin: the axis acceleration on
 curved segments (as TOPPRA's, :mod:`ccopt.feed.grid`, whose gridpoints are
@@ -129,17 +129,22 @@ from ccopt.feed.path import ExactPath
 from ccopt.feed.planners import DEFAULT_TS
 
 #: The gridpoints of the LP when the caller gives none: TOPPRA's default grid
-#: (:class:`~ccopt.feed.grid.GridOptions`) with 4x its budgets of curvature
-#: change and bend, so blend curves and spirals get a quarter of TOPPRA's
-#: gridpoints (lines and arcs, spaced by braking distance and turning angle,
-#: keep theirs); the jerk inside their intervals is imposed at three inner
-#: points instead (:data:`~ccopt.feed.jerk_lp.INNER_POINTS`). On
-#: freeform-hsm's smoothed path (302 blend curves) this grid and the default
-#: planned 11.1601 and 11.1491 s (+0.10 %) in 13.5 and 62.8 CPU s, with 19,171
-#: and 53,358 gridpoints; the smoothed pocket-chords and pocket +0.11 % and
-#: +0.09 %; at 10 kHz the jerk reaches 1.00017, 1.00007 and 1.00033 of the
-#: limit (with the middle point alone and budgets 2x TOPPRA's, 1.0023).
-JERK_GRID = GridOptions(max_curvature_change=0.2, max_curvature_bend=0.2)
+#: (:class:`~ccopt.feed.grid.GridOptions`) with 8x its budgets of curvature
+#: change and bend, so blend curves and spirals get far fewer gridpoints
+#: (lines and arcs, spaced by braking distance and turning angle, keep
+#: theirs); the jerk inside their intervals is imposed at three inner points
+#: instead (:data:`~ccopt.feed.jerk_lp.INNER_POINTS`). On freeform-hsm's
+#: smoothed path (302 blend curves, one stretch with no stop) TOPPRA's default
+#: grid, 4x and 8x its budgets planned 11.1491, 11.1601 and 11.1723 s with
+#: 53,358, 19,171 and 13,946 gridpoints in 62.8, 10.3 and 4.6-5.0 s, the jerk
+#: at 10 kHz at most 1.00017 (4x) and 1.00087 (8x) of the limit; 16x planned
+#: 11.1880 s (+0.14 % on 8x) in 4.1 s. 8x: the smoothed path's cycle time to
+#: 0.2 % of the finest grid's, in a third of the time 4x took (ccopt compare
+#: and ccopt run plan it for every comparison). The smoothed pocket-chords
+#: and pocket (jmax 10000, 10000, 3000) planned 10.6628 and 10.1858 s with
+#: 4x, 10.6682 and 10.1908 s (+0.05 %) with 8x, jerk within 1.00024; with the
+#: middle point alone and budgets 2x TOPPRA's the jerk reached 1.0023.
+JERK_GRID = GridOptions(max_curvature_change=0.4, max_curvature_bend=0.4)
 #: Ratio of consecutive interval lengths in the geometric refinement at stops.
 #: On the 1,000-block pocket of bench/feed.py (2 stops every 4 blocks) 1.06,
 #: 1.1, 1.15 and 1.25 planned 157.54, 157.72, 157.76 and 157.84 s with
@@ -241,8 +246,8 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         return JerkProfile.empty(path, limits, "jerk")
     # TOPPRA's bound (below) on the LP's grid options too: on freeform-hsm's
     # smoothed path it took 3.4 of 14 CPU s on TOPPRA's finer default grid and
-    # 1.7 s on this one, and the plan came out the same within 2e-6 (11.16013 s
-    # against 11.16015 s)
+    # 1.7 s on 4x its curve budgets, and the plan came out the same within 2e-6
+    # (11.16013 s against 11.16015 s)
     grid = JERK_GRID if grid is None else grid
     g = build_grid(path, limits, ts, grid)
     if not any_chained(g):
