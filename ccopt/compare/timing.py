@@ -122,16 +122,19 @@ def stretches(exact: ExactPath) -> list[Stretch]:
             for i, j in zip(cuts[:-1], cuts[1:]) if j > i]
 
 
-def _ratio(prof) -> float:
-    return float(prof.sample(prof.affordable_dt(RATIO_DT)).axis_acceleration_ratio
-                 .max(initial=0.0))
+def _ratio(prof, smp=None) -> float:
+    """The largest axis acceleration over its limit in ``prof`` sampled every
+    :data:`RATIO_DT` (or ``smp``, those samples)."""
+    smp = prof.sample(prof.affordable_dt(RATIO_DT)) if smp is None else smp
+    return float(smp.axis_acceleration_ratio.max(initial=0.0))
 
 
-def _cut(exact: ExactPath, prof) -> list[tuple[float, float] | None]:
+def _cut(exact: ExactPath, prof, smp=None) -> list[tuple[float, float] | None]:
     """``(seconds, max_acc_ratio)`` of each stretch of ``exact`` read off its
     whole-path profile ``prof`` between the stops that bound it (``None``
-    where the profile has no stop there)."""
-    smp = prof.sample(prof.affordable_dt(RATIO_DT))
+    where the profile has no stop there); ``smp``: ``prof`` sampled as
+    :func:`_ratio` samples it, when the caller has that already."""
+    smp = prof.sample(prof.affordable_dt(RATIO_DT)) if smp is None else smp
     acc = smp.axis_acceleration_ratio
     at_rest = np.flatnonzero(prof.sd == 0.0)
     tol = STOP_MATCH_REL * max(exact.length, 1.0)
@@ -161,11 +164,16 @@ def _unknown_runs(got: list) -> list[list[int]]:
     return runs
 
 
-def plan_whole(path: ToolPath | ExactPath, limits: AxisLimits, ts: float | None = None):
+def plan_whole(path: ToolPath | ExactPath, limits: AxisLimits, ts: float | None = None, *,
+               with_samples: bool = False):
     """``(profile, max_acc_ratio)`` of the whole path under :func:`planner_for`
-    (``ts``: the jerk planner's interpolation period, s; None: its default)."""
+    (``ts``: the jerk planner's interpolation period, s; None: its default);
+    ``with_samples``: also the samples the ratio was read at (every
+    :data:`RATIO_DT` or :meth:`~ccopt.feed.FeedProfile.affordable_dt`)."""
     prof = plan_feed(path, limits, planner=planner_for(limits), ts=ts)
-    return prof, _ratio(prof)
+    smp = prof.sample(prof.affordable_dt(RATIO_DT))
+    ratio = _ratio(prof, smp)
+    return (prof, ratio, smp) if with_samples else (prof, ratio)
 
 
 @dataclass
@@ -191,12 +199,14 @@ class StretchTimes:
         be the reference's, under :func:`planner_for` and ``ts``: see
         :func:`same_plan`), else it is planned here."""
         if profile is not None:
-            exact, prof, ratio = profile.path, profile, _ratio(profile)
+            exact, prof = profile.path, profile
+            smp = prof.sample(prof.affordable_dt(RATIO_DT))
+            ratio = _ratio(prof, smp)
         else:
             exact = feed_planning.ExactPath(reference)
-            prof, ratio = plan_whole(exact, limits, ts)
+            prof, ratio, smp = plan_whole(exact, limits, ts, with_samples=True)
         out = cls(limits, ts=ts)
-        for st, got in zip(stretches(exact), _cut(exact, prof)):
+        for st, got in zip(stretches(exact), _cut(exact, prof, smp)):
             key = stretch_key(exact.segments[st.k0:st.k1])
             if key is not None and got is not None:
                 out.known[key] = got
