@@ -137,17 +137,20 @@ def _cut(exact: ExactPath, prof, smp=None) -> list[tuple[float, float] | None]:
     smp = prof.sample(prof.affordable_dt(RATIO_DT)) if smp is None else smp
     acc = smp.axis_acceleration_ratio
     at_rest = np.flatnonzero(prof.sd == 0.0)
+    rest_s = prof.s[at_rest]                     # non-decreasing, as the knots are
     tol = STOP_MATCH_REL * max(exact.length, 1.0)
     out: list[tuple[float, float] | None] = []
     for st in stretches(exact):
-        before = at_rest[prof.s[at_rest] <= st.s0 + tol]
-        after = at_rest[prof.s[at_rest] >= st.s1 - tol]
-        if not before.size or not after.size:
+        # the last knot at rest at or before the stretch's start, the first at or after its end
+        k0 = int(np.searchsorted(rest_s, st.s0 + tol, side="right")) - 1
+        k1 = int(np.searchsorted(rest_s, st.s1 - tol, side="left"))
+        if k0 < 0 or k1 >= at_rest.size:
             out.append(None)
             continue
-        t0, t1 = float(prof.t[before[-1]]), float(prof.t[after[0]])
-        inside = acc[(smp.t >= t0) & (smp.t <= t1)]
-        out.append((t1 - t0, float(inside.max(initial=0.0))))
+        t0, t1 = float(prof.t[at_rest[k0]]), float(prof.t[at_rest[k1]])
+        i0 = int(np.searchsorted(smp.t, t0, side="left"))     # samples with t0 <= t <= t1
+        i1 = int(np.searchsorted(smp.t, t1, side="right"))
+        out.append((t1 - t0, float(acc[i0:i1].max(initial=0.0))))
     return out
 
 
