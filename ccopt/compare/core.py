@@ -172,33 +172,79 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
         PMAC's path, these limits, their planner and ``ts``), else ignored.
     """
     names = list(variants) if variants else available()
-    known = set(available())
-    t0 = time.perf_counter()
-    reference = None
-    ref_error = None
-    try:
-        reference = compensate(program, REFERENCE, radius=radius, side=side)
-    except CcoptError as exc:
-        ref_error = str(exc)
-    ref_time = time.perf_counter() - t0
-    opts = dict(options or {})
+    ref = _Reference.of(program, radius, side, limits, ts, reference_profile)
     problem = None
-    if reference is not None:
-        problem = BlendProblem(program, reference, limits, delta, opts, radius, side)
-    known_times: list = []
+    if ref.path is not None:
+        problem = BlendProblem(program, ref.path, limits, delta, dict(options or {}), radius,
+                               side)
+    rows, jobs, ref_index = _jobs(names, program, problem, ref.error,
+                                  (limits, delta, dict(options or {}), radius, side))
 
-    def reference_times() -> StretchTimes | None:
-        # planned once, when first asked: in a parallel run while the workers
-        # solve the blends (freeform-hsm's reference takes about 2 s to plan)
-        if not known_times:
-            planned = reference_profile if same_plan(reference_profile, reference, limits,
-                                                     ts) else None
-            if reference is None:   # PMAC refused it: each path planned whole, with ts
-                known_times.append(None if limits is None else StretchTimes(limits, ts=ts))
+    def reference_row(times: StretchTimes | None):
+        """The reference's row (it is the first variant that reports)."""
+        if ref_index is None:
+            return []
+        _say(progress, f"variant {ref_index + 1}/{len(names)} {REFERENCE}")
+        return [(ref_index, measure(REFERENCE, ref.path, problem, ref.seconds, times=times))]
+
+    for i, row in _run_jobs(jobs, ref.times, reference_row, len(names), workers, progress):
+        rows[i] = row
+    ref_duration = rows[ref_index].figures.get("duration") if ref_index is not None else None
+    if ref_duration is None and problem is not None and limits is not None:
+        ref_duration = _duration(ref.path, limits, ref.times())[0]
+    for row in rows:
+        d = row.figures.get("duration")
+        if d is not None and ref_duration:
+            row.figures["duration_ratio"] = d / ref_duration
+    return Comparison(rows, ref.path, limits, program)
+
+
+@dataclass
+class _Reference:
+    """PMAC's path of the program (``None`` with the ``error`` when PMAC refuses
+    it), the seconds its compensation took, and its stretch times, planned
+    when first asked (:meth:`times`): in a parallel comparison while the
+    workers solve the blends (freeform-hsm's reference takes about 2 s)."""
+
+    path: ToolPath | None
+    error: str | None
+    seconds: float
+    limits: AxisLimits | None
+    ts: float | None
+    profile: FeedProfile | None           # the caller's plan of it, if any
+    _times: list = field(default_factory=list)
+
+    @classmethod
+    def of(cls, program: Program, radius, side, limits, ts, profile) -> "_Reference":
+        t0 = time.perf_counter()
+        try:
+            path, error = compensate(program, REFERENCE, radius=radius, side=side), None
+        except CcoptError as exc:
+            path, error = None, str(exc)
+        return cls(path, error, time.perf_counter() - t0, limits, ts, profile)
+
+    def times(self) -> StretchTimes | None:
+        """:func:`_reference_times`, once; with no reference (refused) an empty
+        :class:`StretchTimes`, so each path is planned whole with ``ts``."""
+        if not self._times:
+            if self.path is None:
+                self._times.append(None if self.limits is None
+                                   else StretchTimes(self.limits, ts=self.ts))
             else:
-                known_times.append(_reference_times(reference, limits, ts, planned))
-        return known_times[0]
+                planned = self.profile if same_plan(self.profile, self.path, self.limits,
+                                                    self.ts) else None
+                self._times.append(_reference_times(self.path, self.limits, self.ts, planned))
+        return self._times[0]
 
+
+def _jobs(names: list[str], program: Program, problem: BlendProblem | None,
+          ref_error: str | None, settings: tuple):
+    """``(rows, jobs, ref_index)``: the rows known without work (unknown names,
+    refusals for want of a reference), the jobs ``(index, name, problem)`` and
+    the reference's index in ``names`` (None when absent or refused).
+    ``settings``: ``(limits, delta, options, radius, side)`` of a problem
+    without reference."""
+    known = set(available())
     rows: list[VariantResult | None] = [None] * len(names)
     jobs: list[tuple[int, str, BlendProblem]] = []
     ref_index = None
@@ -211,37 +257,14 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
                 rows[i] = VariantResult(name, "refused", ref_error)
             elif getattr(load(name), "compensates", False):
                 # another controller style needs no reference: it may accept the program
-                jobs.append((i, name, BlendProblem(program, None, limits, delta, opts, radius,
-                                                   side)))
+                jobs.append((i, name, BlendProblem(program, None, *settings)))
             else:
                 rows[i] = VariantResult(name, "failed", f"no reference path: {ref_error}")
         elif name == REFERENCE:
             ref_index = i
         else:
             jobs.append((i, name, problem))
-
-    def reference_row(times: StretchTimes | None):
-        """The reference's row (it is the first variant that reports)."""
-        if ref_index is None:
-            return []
-        _say(progress, f"variant {ref_index + 1}/{len(names)} {REFERENCE}")
-        return [(ref_index, measure(REFERENCE, reference, problem, ref_time, times=times))]
-
-    ref_row = None
-    for i, row in _run_jobs(jobs, reference_times, reference_row, len(names), workers,
-                            progress):
-        rows[i] = row
-        if i == ref_index:
-            ref_row = row
-    times = reference_times()
-    ref_duration = ref_row.figures.get("duration") if ref_row is not None else None
-    if ref_duration is None and problem is not None and limits is not None:
-        ref_duration = _duration(reference, limits, times)[0]
-    for row in rows:
-        d = row.figures.get("duration")
-        if d is not None and ref_duration:
-            row.figures["duration_ratio"] = d / ref_duration
-    return Comparison(rows, reference, limits, program)
+    return rows, jobs, ref_index
 
 
 def _say(progress, line: str) -> None:
@@ -265,59 +288,64 @@ def _reference_times(reference: ToolPath, limits: AxisLimits | None, ts: float |
 def _run_jobs(jobs, reference_times, reference_row, total: int, workers: int, progress):
     """``(row index, VariantResult)`` of the reference (``reference_row(times)``)
     and of every job ``(index, name, problem)``: here, one after the other, or
-    in ``workers`` processes.
+    in ``workers`` processes (:func:`_run_in_processes`).
 
     A job is done in two parts: the blend and what needs no feed plan
     (:func:`_solve`), then the cycle time (:func:`_duration`) under the
-    reference's stretch times (``reference_times()``). In processes the blends
-    are solving while this process plans the reference. A variant whose
+    reference's stretch times (``reference_times()``). A variant whose
     tool path is another's takes that one's cycle time, planned once (Fagor's
     G138 and G139 with G136 leave the same path on 15 of the 27 bundled
     cases, all three Fagor styles on 7)."""
-    if workers <= 1 or len(jobs) <= 1:
-        times = reference_times()
-        yield from reference_row(times)
-        timed: list[tuple[ToolPath, tuple]] = []
-        for i, name, problem in jobs:
-            _say(progress, f"variant {i + 1}/{total} {name}")
-            local = problem if progress is None else replace(problem, progress=progress)
-            row = _solve(name, local)
-            if row.status == "ok":
-                got = next((d for path, d in timed if path == row.toolpath), None)
-                if got is None:
-                    got = _duration(row.toolpath, problem.limits,
-                                    times.copy() if times is not None else None)
-                    timed.append((row.toolpath, got))
-                row = _with_duration(row, got)
-            yield i, row
+    if workers > 1 and len(jobs) > 1:
+        yield from _run_in_processes(jobs, reference_times, reference_row, total, workers,
+                                     progress)
         return
+    times = reference_times()
+    yield from reference_row(times)
+    timed: list[tuple[ToolPath, tuple]] = []
+    for i, name, problem in jobs:
+        _say(progress, f"variant {i + 1}/{total} {name}")
+        local = problem if progress is None else replace(problem, progress=progress)
+        row = _solve(name, local)
+        if row.status == "ok":
+            got = next((d for path, d in timed if path == row.toolpath), None)
+            if got is None:
+                got = _duration(row.toolpath, problem.limits,
+                                times.copy() if times is not None else None)
+                timed.append((row.toolpath, got))
+            row = _with_duration(row, got)
+        yield i, row
+
+
+def _run_in_processes(jobs, reference_times, reference_row, total: int, workers: int,
+                      progress):
+    """:func:`_run_jobs` in ``workers`` processes: at most one task per worker,
+    a cycle time before a blend (a long blend's plan, the smoother's, starts
+    as soon as its path is there), the blends in :func:`_longest_first`
+    order; the blends start solving while this process plans the reference."""
     # fork where there is one: a worker then starts with ccopt and its libraries
     # loaded (spawning would import toppra, casadi and cvxpy again in each)
     methods = multiprocessing.get_all_start_methods()
     ctx = multiprocessing.get_context("fork" if "fork" in methods else None)
     n_workers = min(workers, len(jobs))
     to_solve = deque(job for _, job in _longest_first(jobs))
-    to_time: deque = deque()                  # (path, limits) whose cycle time is wanted
-    timing: dict = {}                         # cycle-time future -> its rows
-    timed: list[tuple[ToolPath, object]] = []
-    running: dict = {}                        # future -> its job, or None (a cycle time)
+    to_time: deque = deque()                  # [path, limits, rows waiting for its time]
+    timed: list[tuple[ToolPath, object]] = []   # path, its cycle-time future
+    running: dict = {}                        # future -> (job, rows waiting for it)
     done = 0
     with ProcessPoolExecutor(max_workers=n_workers, mp_context=ctx) as pool:
 
         def refill(times):
-            # at most one task per worker, a cycle time before a blend: a long
-            # blend's (the smoother's) plan starts as soon as its path is there
             while len(running) < n_workers and (to_time or to_solve):
                 if to_time:
                     path, limits, rows = to_time.popleft()
                     fut = pool.submit(_duration, path, limits,
                                       times.copy() if times is not None else None)
                     timed.append((path, fut))
-                    timing[fut] = rows
-                    running[fut] = None
+                    running[fut] = (None, rows)
                 else:
-                    i, name, problem = to_solve.popleft()
-                    running[pool.submit(_solve, name, problem)] = (i, name, problem)
+                    job = to_solve.popleft()
+                    running[pool.submit(_solve, job[1], job[2])] = (job, None)
 
         refill(None)                          # the blends solve while the reference is planned
         times = reference_times()
@@ -326,31 +354,40 @@ def _run_jobs(jobs, reference_times, reference_row, total: int, workers: int, pr
             finished, _ = wait(running, return_when=FIRST_COMPLETED)
             ready = []
             for fut in finished:
-                job = running.pop(fut)
-                if job is None:
+                job, rows = running.pop(fut)
+                if job is None:               # a cycle time: to every row that waits for it
                     ready.extend((i, name, _with_duration(row, fut.result()))
-                                 for i, name, row in timing.pop(fut))
-                    continue
-                i, name, problem = job
-                row = fut.result()
-                if row.status != "ok":
-                    ready.append((i, name, row))
-                    continue
-                twin = next((f for path, f in timed if path == row.toolpath), None)
-                waiting = next((w for w in to_time if w[0] == row.toolpath), None)
-                if twin is not None and twin.done():
-                    ready.append((i, name, _with_duration(row, twin.result())))
-                elif twin is not None:
-                    timing[twin].append((i, name, row))
-                elif waiting is not None:
-                    waiting[2].append((i, name, row))
+                                 for i, name, row in rows)
                 else:
-                    to_time.append((row.toolpath, problem.limits, [(i, name, row)]))
+                    ready.extend(_timed_or_queued(job, fut.result(), timed, to_time, running))
             refill(times)
             for i, name, row in sorted(ready, key=lambda r: r[0]):
                 done += 1
                 _say(progress, f"variant {i + 1}/{total} {name} done ({done}/{len(jobs)})")
                 yield i, row
+
+
+def _timed_or_queued(job, row: VariantResult, timed, to_time, running) -> list:
+    """The rows ready now for a solved ``job``: the row itself when it has no
+    path to time, or with the cycle time of the same path planned already;
+    else none, the row waiting for a plan of its path (running, queued or
+    queued here)."""
+    i, name, problem = job
+    entry = (i, name, row)
+    if row.status != "ok":
+        return [entry]
+    twin = next((f for path, f in timed if path == row.toolpath), None)
+    if twin is not None and twin.done():
+        return [(i, name, _with_duration(row, twin.result()))]
+    if twin is not None:
+        running[twin][1].append(entry)
+        return []
+    waiting = next((w for w in to_time if w[0] == row.toolpath), None)
+    if waiting is not None:
+        waiting[2].append(entry)
+    else:
+        to_time.append((row.toolpath, problem.limits, [entry]))
+    return []
 
 
 def _longest_first(jobs):
