@@ -61,6 +61,10 @@ class JerkGrid:
     m1: np.ndarray
     m2: np.ndarray
     m3: np.ndarray
+    #: ``(N,)`` intervals of a stretch between two stops that is one straight
+    #: segment (no LP there: see :func:`~ccopt.feed.jerk_planner.lone_lines`);
+    #: None: every stretch goes to the LP
+    lone: np.ndarray | None = None
 
 
 #: An interval gets inner jerk rows where the curvature ``|q''|`` differs

@@ -127,6 +127,7 @@ from ccopt.feed.jerk_windows import any_chained, plan_windows, split
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.feed.planners import DEFAULT_TS
+from ccopt.geometry import Line
 
 #: The gridpoints of the LP when the caller gives none: TOPPRA's default grid
 #: (:class:`~ccopt.feed.grid.GridOptions`) with 8x its budgets of curvature
@@ -204,7 +205,26 @@ def build_grid(path: ExactPath, limits: AxisLimits, ts: float,
     inner = np.asarray(INNER_POINTS)[:, None]
     x = (s[:-1] + inner * np.diff(s)).ravel()
     m = [path.eval_sided(x, o, "right").reshape(inner.size, s.size - 1, -1) for o in (1, 2, 3)]
-    return JerkGrid(s, q[0], q[1], q[2], kind, stop, bmax, a_t, a, j, *m)
+    return JerkGrid(s, q[0], q[1], q[2], kind, stop, bmax, a_t, a, j, *m,
+                    lone=lone_lines(path, s, stop))
+
+
+def lone_lines(path: ExactPath, s: np.ndarray, stop: np.ndarray) -> np.ndarray:
+    """Which grid intervals lie on a stretch between two stops that is a single
+    straight segment (a line, or a rapid). There the S-curve from rest to rest
+    under the segment's speed, acceleration and jerk budgets (the axes' limits
+    along its fixed direction, the feed, the tangential limit) is the exact
+    optimum, which the planner takes per stretch anyway
+    (:func:`_best_per_stretch`; the LP there loses a few 1e-3 to its grid), so
+    such stretches get no LP window: on a chord program whose every vertex is
+    a tangent break (LinuxCNC's path of freeform-hsm, 306 of them) no LP at all."""
+    seg = path.locate(0.5 * (s[:-1] + s[1:]))
+    starts = np.flatnonzero(stop[:-1])                      # each stretch's first interval
+    first = np.minimum.reduceat(seg, starts)
+    last = np.maximum.reduceat(seg, starts)
+    line = np.array([isinstance(path.segments[k].geom, Line) for k in first], bool)
+    lone = (first == last) & line
+    return np.repeat(lone, np.diff(np.r_[starts, seg.size]))
 
 
 def _speed_caps(path, limits, s, q, v, j, ts) -> np.ndarray:
@@ -267,6 +287,10 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         scale, bound_of = _scale(upper), None
         cap = upper / scale
     b = np.zeros(g.s.size)
+    # a lone line's stretch has no window: no LP figure there, the S-curve stands in
+    inside_lone = np.zeros(g.s.size, bool)
+    inside_lone[1:-1] = g.lone[:-1] & g.lone[1:] & ~g.stop[1:-1]
+    b[inside_lone] = np.nan
     alpha = np.zeros(g.s.size)
     total_rounds = failed = 0
     with ThreadPoolExecutor(1) as pool:
@@ -290,7 +314,8 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         alpha[i0:keep + 1] = aw * scale
     info = {"gridpoints": int(g.s.size), "windows": n_windows, "lp_rounds": total_rounds,
             "ts": ts, "lp_failed_windows": failed, "workers": workers,
-            "merged_windows": n_windows - len(results)}
+            "merged_windows": n_windows - len(results),
+            "lone_lines": int(np.count_nonzero(g.lone[g.stop[:-1]]))}
     return _profile(path, limits, g, b, alpha, info, scurve)
 
 

@@ -87,12 +87,19 @@ def windows(g: JerkGrid) -> list[tuple[int, int, int]]:
     """``(i0, i1, keep)`` windows: stop-to-stop stretches gathered up to
     :data:`BATCH_POINTS` gridpoints (fewer, larger LPs: less overhead per
     gridpoint); a stretch of up to :data:`WINDOW_POINTS` alone; a longer one
-    in overlapping windows that plan to ``i1`` and keep ``i0..keep``."""
+    in overlapping windows that plan to ``i1`` and keep ``i0..keep``; none
+    on a stretch that is a lone straight segment (``g.lone``)."""
     stops = np.flatnonzero(g.stop)
     out: list[tuple[int, int, int]] = []
     i0 = int(stops[0])
     for a, b in zip(stops[:-1], stops[1:]):
         a, b = int(a), int(b)
+        if g.lone is not None and g.lone[a]:
+            # a lone straight segment: its S-curve is exact, no window (jerk_planner.lone_lines)
+            if a > i0:
+                out.append((i0, a, a))
+            i0 = b
+            continue
         if b - i0 <= BATCH_POINTS:
             continue
         if a > i0:
@@ -212,7 +219,8 @@ def _grid_slice(g: JerkGrid, i0: int, i1: int) -> JerkGrid:
     sl = slice(i0, i1 + 1)
     return replace(g, s=g.s[sl], q1=g.q1[:, sl], q2=g.q2[:, sl], q3=g.q3[:, sl],
                    kind=g.kind[i0:i1], stop=g.stop[sl], bmax=g.bmax[sl],
-                   m1=g.m1[:, i0:i1], m2=g.m2[:, i0:i1], m3=g.m3[:, i0:i1])
+                   m1=g.m1[:, i0:i1], m2=g.m2[:, i0:i1], m3=g.m3[:, i0:i1],
+                   lone=None if g.lone is None else g.lone[i0:i1])
 
 
 def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float,
@@ -327,6 +335,8 @@ def _tasks(g: JerkGrid, cap: np.ndarray | None, chains, scale: float, bound_of=N
     with its own slice of the grid: ``(offset, args of _solve_task)``; with
     ``cap`` None, each with ``bound_of(i0, i1)``, the speed bound of its
     gridpoints ``i0..i1`` instead of a slice of ``cap``."""
+    if not chains:
+        return                      # every stretch a lone line (no window at all)
     groups: list[list] = [[]]
     size = 0
     for chain in chains:
@@ -383,7 +393,7 @@ def plan_windows(g: JerkGrid, cap: np.ndarray | None, scale: float, bound_of=Non
     if workers == 1 and cap is not None:
         return _solve_task(g, cap, chains, scale), len(wins), 1
     tasks = list(_tasks(g, cap, chains, scale, bound_of))
-    workers = min(workers, len(tasks))
+    workers = max(1, min(workers, len(tasks)))     # 1: this process (or no LP at all)
     if workers == 1:
         parts = [_solve_task(*args) for _, args in tasks]
     else:

@@ -26,15 +26,38 @@ def square():
                           for p, q in zip(pts[:-1], pts[1:])))
 
 
+def square_in_halves():
+    """The square with each side in two collinear blocks: its stretches (stop
+    to stop, at the corners) are not lone lines, so they go to the LP."""
+    pts = [(0, 0), (10, 0), (20, 0), (20, 10), (20, 20), (10, 20), (0, 20), (0, 10), (0, 0)]
+    return ToolPath(tuple(PathSegment(Line(p, q), Role.COMPENSATED, None, 0.0, 0.0, 1000.0)
+                          for p, q in zip(pts[:-1], pts[1:])))
+
+
+def test_lone_lines_take_their_s_curve_without_lp():
+    """Each side of the square is a stretch of one straight block between two
+    stops: its S-curve from rest to rest is the exact optimum, taken with no
+    LP window: 20 mm at v = 100, a = 1000, j = 20000, ``L / v + v / a + a / j``."""
+    lim = AxisLimits((100, 100), (1000, 1000), j=(20000, 20000))
+    prof = plan_feed(square(), lim, planner="jerk")
+    assert prof.info["lone_lines"] == 4 and prof.info["windows"] == 0
+    assert prof.info["scurve_stretches"] == 4
+    closed = 4 * (20 / 100 + 100 / 1000 + 1000 / 20000)
+    assert prof.duration == pytest.approx(closed, rel=1e-9)
+    smp = prof.sample(1e-4)
+    assert max(smp.axis_velocity_ratio.max(), smp.axis_acceleration_ratio.max(),
+               smp.axis_jerk_ratio.max()) <= 1.005
+
+
 @pytest.mark.slow
 def test_windows_in_two_processes_match_one(monkeypatch):
     lim = AxisLimits((100, 100), (1000, 1000), j=(20000, 20000))
     monkeypatch.setattr(jerk_windows, "BATCH_POINTS", 1)      # one window per side
-    here = plan_feed(square(), lim, planner="jerk")
+    here = plan_feed(square_in_halves(), lim, planner="jerk")
     monkeypatch.setattr(jerk_windows, "PARALLEL_MIN_POINTS", 0)
     monkeypatch.setattr(jerk_windows, "WORKERS", 2)
     monkeypatch.setattr(jerk_windows, "TASK_POINTS", 1)       # a task per side
-    apart = plan_feed(square(), lim, planner="jerk")
+    apart = plan_feed(square_in_halves(), lim, planner="jerk")
     assert here.info["workers"] == 1 and apart.info["workers"] == 2
     assert apart.info["windows"] == 4
     np.testing.assert_array_equal(apart.s, here.s)
@@ -70,7 +93,7 @@ def test_split_program_plans_the_closed_form(monkeypatch):
     monkeypatch.setattr(jerk_windows, "SPLIT_BOUND_POINTS", 0)
     monkeypatch.setattr(jerk_windows, "BATCH_POINTS", 1)
     monkeypatch.setattr(jerk_windows, "TASK_POINTS", 1)
-    prof = plan_feed(square(), lim, planner="jerk")
+    prof = plan_feed(square_in_halves(), lim, planner="jerk")
     assert prof.info["workers"] == 1
     closed = 4 * (20 / 100 + 100 / 1000 + 1000 / 20000)
     assert prof.duration == pytest.approx(closed, rel=5e-3)
