@@ -30,6 +30,7 @@ curve's end points come out bit for bit).
 """
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -61,17 +62,18 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(GL_NODES)
 def bernstein_basis(t: np.ndarray, n: int) -> np.ndarray:
     """Bernstein basis of degree ``n`` at ``t`` (1-D): ``(len(t), n + 1)``,
     ``B[:, i] = C(n, i) t^i (1 - t)^(n - i)``."""
-    t = np.asarray(t, float).reshape(-1)
-    out = np.empty((t.size, n + 1))
-    u = 1.0 - t
-    out[:, 0] = 1.0
-    for i in range(1, n + 1):              # t^i, then times (1-t)^(n-i) below
-        out[:, i] = out[:, i - 1] * t
-    back = np.ones_like(t)
-    for i in range(n, -1, -1):
-        out[:, i] *= back * math.comb(n, i)
-        back = back * u
-    return out
+    t = np.asarray(t, float).reshape(-1, 1)
+    i, comb = _binomials(n)
+    # whole-array powers: a few array operations whatever the degree (a loop per
+    # power was most of the time of evaluating blend curves, called per curve)
+    return comb * t ** i * (1.0 - t) ** (n - i)
+
+
+@functools.lru_cache(maxsize=None)
+def _binomials(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(0..n, C(n, 0..n))`` as float arrays."""
+    return np.arange(n + 1, dtype=float), np.array([math.comb(n, i) for i in range(n + 1)],
+                                                   float)
 
 
 def hodograph(ctrl: np.ndarray) -> np.ndarray:
