@@ -140,8 +140,8 @@ class ArcLengthTable:
             keep = ~ok
             if not keep.any():
                 break
-            a, b = np.r_[a[keep], m[keep]], np.r_[m[keep], b[keep]]
-            coarse = np.r_[left[keep], right[keep]]
+            a, b = np.concatenate((a[keep], m[keep])), np.concatenate((m[keep], b[keep]))
+            coarse = np.concatenate((left[keep], right[keep]))
         else:  # the speed nearly vanishes somewhere: keep what the last halving gave
             done_a.append(a)
             done_s.append(coarse)
