@@ -173,12 +173,9 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     """
     names = list(variants) if variants else available()
     ref = _Reference.of(program, radius, side, limits, ts, reference_profile)
-    problem = None
-    if ref.path is not None:
-        problem = BlendProblem(program, ref.path, limits, delta, dict(options or {}), radius,
-                               side)
-    rows, jobs, ref_index = _jobs(names, program, problem, ref.error,
-                                  (limits, delta, dict(options or {}), radius, side))
+    settings = (limits, delta, dict(options or {}), radius, side)
+    problem = BlendProblem(program, ref.path, *settings) if ref.path is not None else None
+    rows, jobs, ref_index = _jobs(names, program, problem, ref.error, settings)
 
     def reference_row(times: StretchTimes | None):
         """The reference's row (it is the first variant that reports)."""

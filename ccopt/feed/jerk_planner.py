@@ -139,8 +139,8 @@ from ccopt.geometry import Line
 #: grid, 4x and 8x its budgets planned 11.1491, 11.1601 and 11.1723 s with
 #: 53,358, 19,171 and 13,946 gridpoints in 62.8, 10.3 and 4.6-5.0 s, the jerk
 #: at 10 kHz at most 1.00017 (4x) and 1.00087 (8x) of the limit; 16x planned
-#: 11.1880 s (+0.14 % on 8x) in 4.1 s. 8x: the smoothed path's cycle time to
-#: 0.2 % of the finest grid's, in a third of the time 4x took (ccopt compare
+#: 11.1880 s (+0.14 % on 8x) in 4.1 s. 8x: the smoothed path's cycle time
+#: 0.21 % above the finest grid's, in half the time 4x took (ccopt compare
 #: and ccopt run plan it for every comparison). The smoothed pocket-chords
 #: and pocket (jmax 10000, 10000, 3000) planned 10.6628 and 10.1858 s with
 #: 4x, 10.6682 and 10.1908 s (+0.05 %) with 8x, jerk within 1.00024; with the
