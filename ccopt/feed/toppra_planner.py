@@ -268,19 +268,26 @@ def plan_toppra(path: ExactPath, limits: AxisLimits, *, junction_deviation: floa
         c.samples = shared
     algo = StoppingTOPPRA(constraints, path, gridpoints=gp,
                           solver_wrapper="seidel", parametrizer="ParametrizeConstAccel")
-    _, sd, _, K = algo.compute_parameterization(0.0, 0.0, return_data=True)
-    code = algo.problem_data.return_code
-    if code != ParameterizationReturnCode.Ok or sd is None or np.isnan(sd).any():
-        where = _failure_position(gp, sd, K)
-        raise FeedError(f"TOPPRA failed ({code.value}) near s = {where:.6g} of "
-                        f"{path.length:.6g}", path.source_file, path.block_line(where))
+    # toppra's controllable sets, then the greedy pass from rest without its
+    # margin (forward_without_margin), which dominates toppra's own pass at
+    # every gridpoint: toppra's pass (as long again) is run only where ours
+    # cannot step, and then its profile is the one kept, as before
+    K = algo.compute_controllable_sets(0.0, 0.0)
+    xs = None
+    if not np.isnan(K).any() and K[0, 0] <= 0.0 <= K[0, 1]:
+        xs = algo.forward_without_margin(0.0, K)
+    if xs is not None:
+        sd = np.sqrt(np.maximum(xs, 0.0))
+    else:
+        _, sd, _, K = algo.compute_parameterization(0.0, 0.0, return_data=True)
+        code = algo.problem_data.return_code
+        if code != ParameterizationReturnCode.Ok or sd is None or np.isnan(sd).any():
+            where = _failure_position(gp, sd, K)
+            raise FeedError(f"TOPPRA failed ({code.value}) near s = {where:.6g} of "
+                            f"{path.length:.6g}", path.source_file, path.block_line(where))
+    code = ParameterizationReturnCode.Ok
     # Where a stop was imposed (cap 0) the speed is 0, not the square root of
     # a rounding residue of toppra's squared speed.
-    xs = algo.forward_without_margin(0.0, K)
-    if xs is not None:
-        # the same greedy pass from the same start with less margin: it
-        # dominates toppra's at every gridpoint
-        sd = np.sqrt(np.maximum(xs, 0.0))
     sd = np.where(cap == 0.0, 0.0, sd * scale)
     info = {"gridpoints": int(gp.size), "return_code": code.name, "time_scale": scale,
             "junction_deviation": junction_deviation if junction_deviation else 0.0}

@@ -173,19 +173,20 @@ def test_missing_z_limit_is_a_located_error():
 
 
 def test_toppra_failure_is_a_located_error(monkeypatch):
-    """A failed TOPPRA return code becomes a FeedError naming the block."""
-    from toppra.algorithm.algorithm import ParameterizationReturnCode
+    """A failed TOPPRA return code becomes a FeedError naming the block: here
+    the controllable sets come out undefined past the middle (as toppra's
+    backward pass leaves them on a path it cannot control), so toppra's own
+    pass reports the instance not controllable."""
     from toppra.algorithm.reachabilitybased.reachability_algorithm import (
         ReachabilityAlgorithm,
     )
 
-    def failing(self, sd_start, sd_end, return_data=False):
+    def failing(self, sdmin, sdmax):
         K = np.zeros((self._N + 1, 2))
         K[self._N // 2 + 3] = np.nan
-        self._problem_data.return_code = ParameterizationReturnCode.FailUncontrollable
-        return None, None, None, K
+        return K
 
-    monkeypatch.setattr(ReachabilityAlgorithm, "compute_parameterization", failing)
+    monkeypatch.setattr(ReachabilityAlgorithm, "compute_controllable_sets", failing)
     tp = ToolPath((seg(Line((0, 0), (10, 0)), feed=10.0, line=7),
                    seg(Line((10, 0), (20, 0)), feed=10.0, line=8)))
     with pytest.raises(FeedError) as exc:
