@@ -305,7 +305,7 @@ def _run_jobs(jobs, reference_times, reference_row, total: int, workers: int, pr
         local = problem if progress is None else replace(problem, progress=progress)
         row = _solve(name, local)
         if row.status == "ok":
-            got = next((d for path, d in timed if path == row.toolpath), None)
+            got = _of_path(timed, row.toolpath)
             if got is None:
                 got = _duration(row.toolpath, problem.limits,
                                 times.copy() if times is not None else None)
@@ -373,18 +373,24 @@ def _timed_or_queued(job, row: VariantResult, timed, to_time, running) -> list:
     entry = (i, name, row)
     if row.status != "ok":
         return [entry]
-    twin = next((f for path, f in timed if path == row.toolpath), None)
+    twin = _of_path(timed, row.toolpath)
     if twin is not None and twin.done():
         return [(i, name, _with_duration(row, twin.result()))]
     if twin is not None:
         running[twin][1].append(entry)
         return []
-    waiting = next((w for w in to_time if w[0] == row.toolpath), None)
+    waiting = _of_path(((w[0], w) for w in to_time), row.toolpath)
     if waiting is not None:
         waiting[2].append(entry)
     else:
         to_time.append((row.toolpath, problem.limits, [entry]))
     return []
+
+
+def _of_path(pairs, path: ToolPath):
+    """The value paired with a tool path equal to ``path`` in ``(path, value)``
+    ``pairs``, or None."""
+    return next((value for p, value in pairs if p == path), None)
 
 
 def _longest_first(jobs):

@@ -122,19 +122,25 @@ def stretches(exact: ExactPath) -> list[Stretch]:
             for i, j in zip(cuts[:-1], cuts[1:]) if j > i]
 
 
+def _ratio_samples(prof):
+    """``prof`` sampled every :data:`RATIO_DT` (or the coarser step a long
+    profile affords, :meth:`~ccopt.feed.FeedProfile.affordable_dt`)."""
+    return prof.sample(prof.affordable_dt(RATIO_DT))
+
+
 def _ratio(prof, smp=None) -> float:
-    """The largest axis acceleration over its limit in ``prof`` sampled every
-    :data:`RATIO_DT` (or ``smp``, those samples)."""
-    smp = prof.sample(prof.affordable_dt(RATIO_DT)) if smp is None else smp
+    """The largest axis acceleration over its limit in ``prof`` at
+    :func:`_ratio_samples` (``smp``: those samples, when the caller has them)."""
+    smp = _ratio_samples(prof) if smp is None else smp
     return float(smp.axis_acceleration_ratio.max(initial=0.0))
 
 
 def _cut(exact: ExactPath, prof, smp=None) -> list[tuple[float, float] | None]:
     """``(seconds, max_acc_ratio)`` of each stretch of ``exact`` read off its
     whole-path profile ``prof`` between the stops that bound it (``None``
-    where the profile has no stop there); ``smp``: ``prof`` sampled as
-    :func:`_ratio` samples it, when the caller has that already."""
-    smp = prof.sample(prof.affordable_dt(RATIO_DT)) if smp is None else smp
+    where the profile has no stop there); ``smp``: its :func:`_ratio_samples`,
+    when the caller has them."""
+    smp = _ratio_samples(prof) if smp is None else smp
     acc = smp.axis_acceleration_ratio
     at_rest = np.flatnonzero(prof.sd == 0.0)
     rest_s = prof.s[at_rest]                     # non-decreasing, as the knots are
@@ -171,10 +177,10 @@ def plan_whole(path: ToolPath | ExactPath, limits: AxisLimits, ts: float | None 
                with_samples: bool = False):
     """``(profile, max_acc_ratio)`` of the whole path under :func:`planner_for`
     (``ts``: the jerk planner's interpolation period, s; None: its default);
-    ``with_samples``: also the samples the ratio was read at (every
-    :data:`RATIO_DT` or :meth:`~ccopt.feed.FeedProfile.affordable_dt`)."""
+    ``with_samples``: also the samples the ratio was read at
+    (:func:`_ratio_samples`)."""
     prof = plan_feed(path, limits, planner=planner_for(limits), ts=ts)
-    smp = prof.sample(prof.affordable_dt(RATIO_DT))
+    smp = _ratio_samples(prof)
     ratio = _ratio(prof, smp)
     return (prof, ratio, smp) if with_samples else (prof, ratio)
 
@@ -203,7 +209,7 @@ class StretchTimes:
         :func:`same_plan`), else it is planned here."""
         if profile is not None:
             exact, prof = profile.path, profile
-            smp = prof.sample(prof.affordable_dt(RATIO_DT))
+            smp = _ratio_samples(prof)
             ratio = _ratio(prof, smp)
         else:
             exact = feed_planning.ExactPath(reference)

@@ -285,11 +285,11 @@ def plan_toppra(path: ExactPath, limits: AxisLimits, *, junction_deviation: floa
             where = _failure_position(gp, sd, K)
             raise FeedError(f"TOPPRA failed ({code.value}) near s = {where:.6g} of "
                             f"{path.length:.6g}", path.source_file, path.block_line(where))
-    code = ParameterizationReturnCode.Ok
     # Where a stop was imposed (cap 0) the speed is 0, not the square root of
     # a rounding residue of toppra's squared speed.
     sd = np.where(cap == 0.0, 0.0, sd * scale)
-    info = {"gridpoints": int(gp.size), "return_code": code.name, "time_scale": scale,
+    info = {"gridpoints": int(gp.size), "return_code": ParameterizationReturnCode.Ok.name,
+            "time_scale": scale,
             "junction_deviation": junction_deviation if junction_deviation else 0.0}
     return FeedProfile.from_path_velocity(path, limits, "toppra", gp, sd, info)
 
