@@ -138,13 +138,25 @@ class BezierParam(Param):
         self.U = 1.0
 
     def eval(self, u):
-        # the Bernstein basis times the control points: one product where de
-        # Casteljau's rounds made a copy per point and a pass per degree (a
-        # quarter of the certificate's time on freeform-hsm's smoothed path)
-        return bernstein_basis(u, len(self.P) - 1) @ self.P
+        # the Bernstein basis times the control points, where de Casteljau's
+        # rounds made a copy per point and a pass per degree (a quarter of the
+        # certificate's time on freeform-hsm's smoothed path)
+        return bezier_points(bernstein_basis(u, len(self.P) - 1), self.P)
 
     def d2(self, u0, u1):
         return np.full(np.shape(u0), self.K)
+
+
+def bezier_points(basis: np.ndarray, P: np.ndarray) -> np.ndarray:
+    """``(N, 2)`` points ``sum_i basis[:, i] P_i`` of Bezier curves: ``P`` the
+    control points ``(n + 1, 2)`` of one curve, or ``(N, n + 1, 2)`` one curve
+    per row. Summed term by term in one order either way, so a row comes out
+    bit for bit as its curve alone gives it (a matrix product's summation
+    order is the BLAS's: :mod:`.certified_batch` relies on this)."""
+    out = basis[:, 0, None] * P[..., 0, :]
+    for i in range(1, basis.shape[1]):
+        out += basis[:, i, None] * P[..., i, :]
+    return out
 
 
 class CurveParam(Param):
@@ -172,9 +184,15 @@ def param_of(g) -> Param:
         return LineParam(g)
     if isinstance(g, (Arc, Spiral)):
         return SpiralParam(g)
-    if getattr(g, "control_points", None) is not None and not hasattr(g, "d2_bound"):
+    if is_bezier(g):
         return BezierParam(g)
     return CurveParam(g)
+
+
+def is_bezier(g) -> bool:
+    """Whether ``g`` is measured by its Bezier parameter (:class:`BezierParam`):
+    it has control points and no ``d2_bound`` of its own."""
+    return getattr(g, "control_points", None) is not None and not hasattr(g, "d2_bound")
 
 
 def is_exact(g) -> bool:

@@ -9,6 +9,7 @@ import pytest
 from scipy.optimize import minimize_scalar
 
 from ccopt.geometry import Arc, Line, Spiral
+from ccopt.geometry.curve import BezierCurve
 from ccopt.verify import certified
 from ccopt.verify.certified_batch import batchable, min_distances
 from ccopt.verify.concentric import polar_gap
@@ -150,3 +151,57 @@ def test_batch_with_open_end_exemptions_gives_the_one_at_a_time_bounds():
     with pytest.raises(ValueError, match="exact second"):
         sp = Spiral((0, 0), 2.0, 3.0, 0.0, 1.0)
         min_distances([(sp, sp)], 1e-7, [math.inf], [half_plane(0.0)])
+
+
+def random_bezier_pairs(seed: int, n: int):
+    """Blend-like Bezier curves (degrees 3, 5 and 7, as the smoother's) against
+    lines and arcs around them."""
+    rng = np.random.default_rng(seed)
+    pairs = []
+    for k in range(n):
+        deg = (3, 5, 7)[k % 3]
+        steps = rng.uniform(0.3, 1.5, (deg + 1, 2)) * [1.0, rng.choice([-1.0, 1.0])]
+        a = BezierCurve(tuple(map(tuple, np.cumsum(steps, axis=0))))
+        if k % 2:
+            b = Line(tuple(rng.uniform(-3, 8, 2)), tuple(rng.uniform(-3, 8, 2)))
+        else:
+            b = Arc(tuple(rng.uniform(-1, 5, 2)), rng.uniform(1, 4), rng.uniform(-3, 3),
+                    rng.choice([-1, 1]) * rng.uniform(0.5, 3))
+        pairs.append((a, b))
+    return pairs
+
+
+@pytest.mark.parametrize("seed", range(2))
+def test_bezier_pairs_batch_gives_the_one_at_a_time_bounds_exactly(seed):
+    pairs = random_bezier_pairs(seed, 30)
+    pairs.insert(5, random_pairs(seed, 1)[0])         # a spiral among them: its own family
+    assert all(batchable(a, b) for a, b in pairs)
+    caps = [math.inf if k % 3 else 0.5 for k in range(len(pairs))]
+    one = [certified.min_distance(a, b, 1e-7, cap=c) for (a, b), c in zip(pairs, caps)]
+    assert min_distances(pairs, 1e-7, caps) == one
+    # and the bounds hold the distance measured on 20,001 points of the curve:
+    # that is at least the true one (>= lb), and ub is within the 1e-7 gap of it
+    for (a, b), bound in list(zip(pairs, one))[:8]:
+        if bound.lb >= 0.5 or isinstance(a, Spiral):
+            continue
+        q = np.asarray(a.point(np.linspace(0.0, a.length, 20_001)))
+        d = float(np.min(certified._points_to(b, q)[0]))
+        assert bound.lb <= d + 1e-12 and bound.ub <= d + 1e-7 + 1e-12
+
+
+def test_bezier_batch_with_open_end_exemptions_gives_the_one_at_a_time_bounds():
+    def half_plane(x0):
+        return (lambda pts, m: pts[:, 0] <= x0 - m, lambda pts: pts[:, 0] <= x0)
+
+    pairs = random_bezier_pairs(9, 12)
+    exempts = [half_plane(x0) if k % 2 else None
+               for k, x0 in enumerate(np.linspace(0, 6, len(pairs)))]
+    one = [certified.min_distance(a, b, 1e-7, exempt=ex) for (a, b), ex in zip(pairs, exempts)]
+    assert min_distances(pairs, 1e-7, [math.inf] * len(pairs), exempts) == one
+
+
+def test_bezier_against_a_curve_goes_one_at_a_time():
+    a = random_bezier_pairs(3, 1)[0][0]
+    assert not batchable(a, Spiral((0, 0), 2.0, 3.0, 0.0, 1.0))
+    assert not batchable(a, a)
+    assert not batchable(Line((0, 0), (1, 0)), Line((0, 1), (1, 1)))
