@@ -53,6 +53,8 @@ import numpy as np
 from ccopt.feed.limits import MACHINE_FRAME
 from ccopt.feed.toppra_import import AbstractGeometricPath
 from ccopt.geometry import Arc, Line, Spiral
+from ccopt.geometry.bezier_batch import BezierBatch
+from ccopt.geometry.curve import RECENT_INVERSIONS, BezierCurve, d2_from, d3_from, unit_tangent
 from ccopt.program.model import PLANE_AXES
 from ccopt.tolerances import GAP_EPS, POINT_EPS, TURN_EPS
 from ccopt.toolpath import Role, ToolPath
@@ -226,6 +228,14 @@ class ExactPath(AbstractGeometricPath):
             if sel.size:
                 out[sel, :2] = kernel(k[sel], lam[sel], order)
         sel = np.flatnonzero(kind == _OTHER)
+        if sel.size and self._batches:
+            bez = self._bezier[k[sel]]
+            for b in range(len(self._batches)):
+                rows = sel[bez == b]
+                if rows.size:
+                    out[rows, :2] = self._bezier_kernel(b, k[rows], lam[rows], order) \
+                        * (self._ratio[k[rows]] ** order)[:, None]
+            sel = sel[bez < 0]
         if sel.size:
             ks = k[sel]
             order_idx = np.argsort(ks, kind="stable")
@@ -369,6 +379,45 @@ class ExactPath(AbstractGeometricPath):
                 self._th0[i], self._sweep[i] = g.theta0, g.sweep
                 self._sg[i] = 1.0 if g.sweep > 0 or (g.sweep == 0 and math.copysign(1, g.sweep) > 0) \
                     else -1.0
+        self._prepare_beziers()
+
+    def _prepare_beziers(self) -> None:
+        """The Bezier curves among the segments in batches, one per degree
+        (:class:`~ccopt.geometry.bezier_batch.BezierBatch`): ``_bezier[k]`` is
+        segment ``k``'s batch number (-1: none) and ``_bezier_row[k]`` its row."""
+        K = len(self.segments)
+        self._bezier = np.full(K, -1, dtype=np.intp)
+        self._bezier_row = np.zeros(K, dtype=np.intp)
+        by_degree: dict[int, list[int]] = {}
+        for i, seg in enumerate(self.segments):
+            if type(seg.geom) is BezierCurve:
+                by_degree.setdefault(seg.geom.degree, []).append(i)
+        self._batches = []
+        for members in by_degree.values():
+            self._bezier[members] = len(self._batches)
+            self._bezier_row[members] = np.arange(len(members))
+            self._batches.append(BezierBatch([self.segments[i].geom for i in members]))
+        self._recent_t: dict = {}
+
+    def _bezier_kernel(self, b: int, k, lam, order):
+        """Points or derivatives by in-plane arc length of the Bezier segments
+        ``k`` (all in batch ``b``), as their curves' own methods give them."""
+        batch, rows = self._batches[b], self._bezier_row[k]
+        # toppra and the jerk planner ask for several orders (and both sides) at
+        # the same positions one after the other: the inversions are kept
+        key = (b, rows.tobytes(), lam.tobytes())
+        t = self._recent_t.get(key)
+        if t is None:
+            t = batch.t_of_s(rows, lam)
+            if len(self._recent_t) >= RECENT_INVERSIONS:
+                self._recent_t.pop(next(iter(self._recent_t)))   # the oldest
+            self._recent_t[key] = t
+        if order == 0:
+            return batch.at("P", rows, t)
+        r = batch.derivatives(rows, t, order)
+        if order == 1:
+            return unit_tangent(r[0])
+        return d2_from(*r) if order == 2 else d3_from(*r)
 
     def _line_kernel(self, k, lam, order):
         # Same formulas as Line.point/d1/d2: (1-t) p0 + t p1 hits both ends exactly.

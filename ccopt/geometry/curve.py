@@ -291,6 +291,32 @@ def _at(ctrl: np.ndarray, t: np.ndarray) -> np.ndarray:
     return bernstein_basis(t, len(ctrl) - 1) @ ctrl
 
 
+def unit_tangent(r1: np.ndarray) -> np.ndarray:
+    """``dp/ds = r' / |r'|`` from the parameter derivative ``r'`` (``(N, 2)``)."""
+    return r1 / np.hypot(*r1.T)[:, None]
+
+
+def d2_from(r1: np.ndarray, r2: np.ndarray) -> np.ndarray:
+    """``d2p/ds2`` (units^-1) from ``r'`` and ``r''`` (``(N, 2)`` each): the part
+    of ``r''`` normal to the tangent over ``|r'|^2``."""
+    v2 = np.einsum("ij,ij->i", r1, r1)
+    T = r1 / np.sqrt(v2)[:, None]
+    return (r2 - np.einsum("ij,ij->i", r2, T)[:, None] * T) / v2[:, None]
+
+
+def d3_from(r1: np.ndarray, r2: np.ndarray, r3: np.ndarray) -> np.ndarray:
+    """``d3p/ds3 = kappa_s N - kappa^2 T`` (units^-2) from ``r'``, ``r''`` and
+    ``r'''`` (``(N, 2)`` each)."""
+    v = np.hypot(r1[:, 0], r1[:, 1])
+    T = r1 / v[:, None]
+    N = np.c_[-T[:, 1], T[:, 0]]
+    c12 = r1[:, 0] * r2[:, 1] - r1[:, 1] * r2[:, 0]
+    c13 = r1[:, 0] * r3[:, 1] - r1[:, 1] * r3[:, 0]
+    kappa = c12 / v ** 3
+    dkappa = (c13 / v ** 3 - 3.0 * c12 * np.einsum("ij,ij->i", r1, r2) / v ** 5) / v
+    return dkappa[:, None] * N - (kappa * kappa)[:, None] * T
+
+
 @dataclass(frozen=True, eq=False)
 class BezierCurve:
     """Planar Bezier curve of ``degree`` = len(control_points) - 1, by arc length.
@@ -377,8 +403,7 @@ class BezierCurve:
         return tuple(map(float, self._P[-1]))
 
     def _tangent_t(self, t):
-        d = _at(self._D1, np.atleast_1d(t))
-        return d / np.hypot(*d.T)[:, None]
+        return unit_tangent(_at(self._D1, np.atleast_1d(t)))
 
     @property
     def start_tangent(self):
@@ -417,23 +442,11 @@ class BezierCurve:
         return float(k[0]) if np.ndim(s) == 0 else k
 
     def d2(self, s):
-        r1, r2 = self._derivs(s)
-        v2 = np.einsum("ij,ij->i", r1, r1)
-        T = r1 / np.sqrt(v2)[:, None]
-        acc = (r2 - np.einsum("ij,ij->i", r2, T)[:, None] * T) / v2[:, None]
-        return self._out(acc, s)
+        return self._out(d2_from(*self._derivs(s)), s)
 
     def d3(self, s):
         """``d3p/ds3 = kappa_s N - kappa^2 T`` (units^-2; see the module docstring)."""
-        r1, r2, r3 = self._derivs(s, 3)
-        v = np.hypot(r1[:, 0], r1[:, 1])
-        T = r1 / v[:, None]
-        N = np.c_[-T[:, 1], T[:, 0]]
-        c12 = r1[:, 0] * r2[:, 1] - r1[:, 1] * r2[:, 0]
-        c13 = r1[:, 0] * r3[:, 1] - r1[:, 1] * r3[:, 0]
-        kappa = c12 / v ** 3
-        dkappa = (c13 / v ** 3 - 3.0 * c12 * np.einsum("ij,ij->i", r1, r2) / v ** 5) / v
-        return self._out(dkappa[:, None] * N - (kappa * kappa)[:, None] * T, s)
+        return self._out(d3_from(*self._derivs(s, 3)), s)
 
     def bbox(self) -> tuple[float, float, float, float]:
         """Exact bounding box: end points and the roots of each derivative component
