@@ -33,6 +33,7 @@ import numpy as np
 from ccopt.geometry import Arc, Line, point_segment
 from ccopt.geometry.bezier_arclength import ARC_LENGTH_REL_TOL
 from ccopt.geometry.curve import curvature_bound
+from ccopt.geometry.angles import in_sweep_prepared
 from ccopt.geometry.columns import PreparedArcs
 from ccopt.geometry.point_distance import point_segment_cols
 from ccopt.tolerances import POINT_EPS, VERIFY_EPS, VERIFY_TANGENT_BREAK
@@ -176,70 +177,194 @@ def _curvature_cap(g) -> float:
     return 1.01 * float(np.max(np.abs(curvature_samples(g))))
 
 
-#: Values per block of the point-to-primitive tables (``(points, primitives)``):
-#: bounds the memory of a long primitive measured against many.
+#: Values per block of the point-to-primitive pairs: bounds the memory of many
+#: samples measured against many primitives.
 CHUNK_CELLS = 1 << 18
+
+_LINE, _ARC, _CURVE = 0, 1, 2
+
+
+class _Primitives:
+    """Primitives as columns, for many points on many of them at once: lines
+    and arcs by the formulas of :class:`~ccopt.geometry.Line` and
+    :class:`~ccopt.geometry.Arc`, Bezier curves in batches of one degree
+    (:class:`~ccopt.geometry.bezier_batch.BezierBatch`), other curves by their
+    own ``point``."""
+
+    def __init__(self, geoms):
+        from ccopt.geometry.bezier_batch import BezierBatch
+        from ccopt.geometry.curve import BezierCurve
+
+        m = len(geoms)
+        self.geoms = geoms
+        self.length = np.array([float(g.length) for g in geoms])
+        self.kind = np.full(m, _CURVE, np.int8)
+        self.p0, self.p1 = np.zeros((m, 2)), np.zeros((m, 2))
+        arc = np.zeros((m, 5))
+        arc[:, 2] = 1.0
+        for i, g in enumerate(geoms):
+            if type(g) is Line:
+                self.kind[i] = _LINE
+                self.p0[i], self.p1[i] = g.p0, g.p1
+            elif type(g) is Arc:
+                self.kind[i] = _ARC
+                arc[i] = (*g.center, g.radius, g.theta0, g.sweep)
+        self.arcs = PreparedArcs(*arc.T)
+        self.curves = np.flatnonzero(self.kind == _CURVE)
+        self.batch = np.full(m, -1, np.intp)
+        self.row = np.zeros(m, np.intp)
+        by_degree: dict = {}
+        for i in self.curves:
+            if type(geoms[i]) is BezierCurve:
+                by_degree.setdefault(geoms[i].degree, []).append(int(i))
+        self.batches = []
+        for members in by_degree.values():
+            self.batch[members] = len(self.batches)
+            self.row[members] = np.arange(len(members))
+            self.batches.append(BezierBatch([geoms[i] for i in members]))
+
+    def points(self, k, s) -> np.ndarray:
+        """``(N, 2)``: the point at arc length ``s`` (clipped) of primitive ``k``, each."""
+        s = np.clip(s, 0.0, self.length[k])
+        out = np.empty((k.size, 2))
+        kind = self.kind[k]
+        sel = np.flatnonzero(kind == _LINE)
+        if sel.size:
+            kk = k[sel]
+            L = self.length[kk]
+            t = np.where(L > 0.0, s[sel] / np.where(L > 0.0, L, 1.0), s[sel])[:, None]
+            out[sel] = (1.0 - t) * self.p0[kk] + t * self.p1[kk]
+        sel = np.flatnonzero(kind == _ARC)
+        if sel.size:
+            kk, A = k[sel], self.arcs
+            L = self.length[kk]
+            phi = np.where(L > 0.0, A.th0[kk] + A.sign[kk] * A.abs_sweep[kk]
+                           * (s[sel] / np.where(L > 0.0, L, 1.0)), A.th0[kk])
+            out[sel, 0] = A.cx[kk] + A.R[kk] * np.cos(phi)
+            out[sel, 1] = A.cy[kk] + A.R[kk] * np.sin(phi)
+        sel = np.flatnonzero(kind == _CURVE)
+        for b, batch in enumerate(self.batches):
+            rows = sel[self.batch[k[sel]] == b]
+            if rows.size:
+                r = self.row[k[rows]]
+                out[rows] = batch.at("P", r, batch.t_of_s(r, s[rows]))
+        for i in np.unique(k[sel[self.batch[k[sel]] < 0]]):
+            rows = np.flatnonzero(k == i)
+            out[rows] = np.asarray(self.geoms[i].point(s[rows])).reshape(-1, 2)
+        return out
 
 
 class _Distances:
-    """Distances from points to primitives: lines and arcs exactly (closed form);
-    another curve by its samples every ``h`` of arc length (a k-d tree, built once
-    per curve): the distance to the chords beside the nearest sample plus the
-    chords' largest gap to the curve, ``kappa ds^2 / 8`` (``|p''| = kappa`` by arc
-    length), an upper bound within that gap of the true distance."""
+    """Upper bounds of the distances from points to primitives (``targets``):
+    lines and arcs exactly (closed form); another curve by its samples every
+    ``h`` of arc length (a k-d tree, built once per curve): the distance to
+    the chords beside the nearest sample plus the chords' largest gap to the
+    curve, ``kappa ds^2 / 8`` (``|p''| = kappa`` by arc length), an upper bound
+    within that gap of the true distance."""
 
-    def __init__(self, h: float):
+    def __init__(self, targets: _Primitives, h: float):
+        self.t = targets
         self.h = h
         self._curves = {}
 
-    def curve(self, g):
-        """``(s, points, tree, gap)`` of the curve ``g`` sampled every ``h`` at most."""
+    def curve(self, j: int):
+        """``(s, points, tree, gap)`` of the curve ``j`` sampled every ``h`` at most."""
         from scipy.spatial import cKDTree  # deferred: scipy loads slowly, only this figure needs it
-        key = id(g)
-        if key not in self._curves:
+        if j not in self._curves:
+            g = self.t.geoms[j]
             s = np.linspace(0.0, g.length, max(2, int(math.ceil(g.length / self.h)) + 1))
             q = _points_between(g, 0.0, g.length, s.size)
             step = s[1] - s[0] + 2.0 * ARC_LENGTH_REL_TOL * g.length
-            self._curves[key] = (g, s, q, cKDTree(q), _curvature_cap(g) * step * step / 8.0)
-        return self._curves[key][1:]
+            self._curves[j] = (s, q, cKDTree(q), _curvature_cap(g) * step * step / 8.0)
+        return self._curves[j]
 
-    def upper(self, pts: np.ndarray, near: "_Near") -> np.ndarray:
-        """``(N,)``: an upper bound of the distance from each point to the primitives
-        of ``near`` (exact where they are lines and arcs)."""
-        d = np.full(len(pts), math.inf)
-        # points by blocks: a block times the primitives stays near CHUNK_CELLS values
-        block = max(1, CHUNK_CELLS // max(1, near.size))
-        for i in range(0, len(pts), block):
-            px, py = pts[i:i + block, :1], pts[i:i + block, 1:]
-            if near.lines is not None:
-                d[i:i + block] = point_segment_cols(px, py, *near.lines)[0].min(axis=1)
-            if near.arcs is not None:
-                d[i:i + block] = np.minimum(d[i:i + block],
-                                            _arc_distances(px, py, near.arcs).min(axis=1))
-        px, py = pts[:, 0], pts[:, 1]
-        for g in near.curves:
-            s, q, tree, gap = self.curve(g)
-            dk, k = tree.query(pts)
-            k0 = np.clip(k - 1, 0, len(q) - 2)
-            k1 = np.clip(k, 0, len(q) - 2)
-            chord = np.minimum(point_segment_cols(px, py, *q[k0].T, *q[k0 + 1].T)[0],
-                               point_segment_cols(px, py, *q[k1].T, *q[k1 + 1].T)[0])
-            d = np.minimum(d, np.minimum(dk, chord + gap))
+    def pairs(self, pts: np.ndarray, pi: np.ndarray, pj: np.ndarray) -> np.ndarray:
+        """An upper bound of the distance from each point ``pts[pi]`` to primitive
+        ``pj`` (exact for lines and arcs)."""
+        t = self.t
+        d = np.empty(pi.size)
+        kind = t.kind[pj]
+        px, py = pts[pi, 0], pts[pi, 1]
+        sel = np.flatnonzero(kind == _LINE)
+        if sel.size:
+            j = pj[sel]
+            d[sel] = point_segment_cols(px[sel], py[sel], t.p0[j, 0], t.p0[j, 1],
+                                        t.p1[j, 0], t.p1[j, 1])[0]
+        sel = np.flatnonzero(kind == _ARC)
+        if sel.size:
+            d[sel] = _arc_distances(px[sel], py[sel], t.arcs, pj[sel])
+        sel = np.flatnonzero(kind == _CURVE)
+        if sel.size:
+            order = np.argsort(pj[sel], kind="stable")
+            sel = sel[order]
+            cuts = np.flatnonzero(np.diff(pj[sel])) + 1
+            for grp in np.split(sel, cuts):
+                s, q, tree, gap = self.curve(int(pj[grp[0]]))
+                p = np.column_stack((px[grp], py[grp]))
+                dk, k = tree.query(p)
+                k0 = np.clip(k - 1, 0, len(q) - 2)
+                k1 = np.clip(k, 0, len(q) - 2)
+                chord = np.minimum(point_segment_cols(p[:, 0], p[:, 1], *q[k0].T, *q[k0 + 1].T)[0],
+                                   point_segment_cols(p[:, 0], p[:, 1], *q[k1].T, *q[k1 + 1].T)[0])
+                d[grp] = np.minimum(dk, chord + gap)
         return d
 
-    def exact(self, p: np.ndarray, geoms, reach: float) -> float:
-        """Distance from one point to the primitives within ``reach`` of it by their
-        bounding boxes: lines and arcs exactly, other curves by chords 1/400 of a
-        sample step around their nearest sample."""
+    def upper(self, pts: np.ndarray, owner: np.ndarray, local) -> np.ndarray:
+        """``(N,)``: an upper bound of the distance from each point to the primitives
+        near its own (``local = (ptr, idx)``: the targets near source primitive
+        ``o`` are ``idx[ptr[o]:ptr[o + 1]]``); points by blocks of about
+        :data:`CHUNK_CELLS` pairs."""
+        deg = local[0][owner + 1] - local[0][owner]
+        d = np.full(len(pts), math.inf)
+        ends = np.cumsum(deg)
+        i0 = 0
+        while i0 < len(pts):
+            i1 = max(i0 + 1, int(np.searchsorted(ends, (ends[i0 - 1] if i0 else 0)
+                                                 + CHUNK_CELLS, side="right")))
+            i1 = min(i1, len(pts))
+            pi, pj, first, n = _expand(owner[i0:i1], local)
+            if pi.size:
+                dd = self.pairs(pts, pi + i0, pj)
+                has = np.flatnonzero(n > 0)
+                d[i0 + has] = np.minimum.reduceat(dd, first[has])
+            i0 = i1
+        return d
+
+    def line_bounds(self, src: "_Primitives", local) -> np.ndarray:
+        """Per source primitive, an upper bound of its distance to the targets
+        near it at every one of its points: for a line, the least over the
+        line targets ``j`` of ``max(d_j(start), d_j(end))`` (the distance to a
+        segment, a convex set, is convex along a line: its largest value on
+        the line is at an end); ``inf`` for the others."""
+        out = np.full(src.length.size, math.inf)
+        lines = np.flatnonzero(src.kind == _LINE)
+        pi, pj, first, n = _expand(lines, local)
+        on_line = self.t.kind[pj] == _LINE
+        if not on_line.any():
+            return out
+        pi, pj = pi[on_line], pj[on_line]
+        k = lines[pi]
+        far = np.maximum(self.pairs(src.p0, k, pj), self.pairs(src.p1, k, pj))
+        at = np.flatnonzero(np.r_[True, k[1:] != k[:-1]])
+        out[k[at]] = np.minimum.reduceat(far, at)
+        return out
+
+    def exact(self, p: np.ndarray, near: np.ndarray, reach: float) -> float:
+        """Distance from one point to the primitives ``near`` within ``reach`` of it
+        by their bounding boxes: lines and arcs exactly, other curves by chords
+        1/400 of a sample step around their nearest sample."""
         d = math.inf
-        for g in geoms:
+        for j in near:
+            j = int(j)
+            g = self.t.geoms[j]
             x0, y0, x1, y1 = g.bbox()
             if p[0] < x0 - reach or p[0] > x1 + reach or p[1] < y0 - reach or p[1] > y1 + reach:
                 continue
-            if isinstance(g, (Line, Arc)):
-                d = min(d, float(self.upper(p[None], _Near([g]))[0]))
+            if self.t.kind[j] != _CURVE:
+                d = min(d, float(self.pairs(p[None], np.zeros(1, np.intp),
+                                            np.array([j]))[0]))
                 continue
-            s, _, tree, _ = self.curve(g)
+            s, _, tree, _ = self.curve(j)
             k = int(tree.query(p)[1])
             q = _points_between(g, s[max(k - 1, 0)], s[min(k + 1, s.size - 1)], 801)
             d = min(d, float(np.min(point_segment(np.repeat(p[None], len(q) - 1, 0),
@@ -247,37 +372,32 @@ class _Distances:
         return d
 
 
-class _Near:
-    """Primitives as arrays for :meth:`_Distances.upper`: ``lines`` (the columns
-    ``ax, ay, bx, by``, each ``(1, m)``), ``arcs`` (:class:`PreparedArcs` of
-    ``(1, m)`` columns), ``None`` when there are none; ``curves`` the others."""
-
-    def __init__(self, geoms):
-        lines = [g for g in geoms if isinstance(g, Line)]
-        arcs = [g for g in geoms if isinstance(g, Arc)]
-        self.curves = [g for g in geoms if not isinstance(g, (Line, Arc))]
-        self.lines = None
-        if lines:
-            ends = np.array([(*g.p0, *g.p1) for g in lines], float).T
-            self.lines = tuple(col[None, :] for col in ends)
-        self.size = len(lines) + len(arcs)
-        self.arcs = None
-        if arcs:
-            cols = np.array([(*g.center, g.radius, g.theta0, g.sweep) for g in arcs], float).T
-            self.arcs = PreparedArcs(*(col[None, :] for col in cols))
+def _expand(owner: np.ndarray, local):
+    """``(pi, pj, first, n)``: every pair of an item ``pi`` (an index into
+    ``owner``) and a target ``pj`` near its source primitive ``owner[pi]``
+    (``local = (ptr, idx)``, :meth:`_Distances.upper`), grouped by item;
+    ``first`` and ``n``: each item's first pair and count."""
+    ptr, idx = local
+    n = ptr[owner + 1] - ptr[owner]
+    first = np.cumsum(n) - n
+    total = int(n.sum())
+    pi = np.repeat(np.arange(owner.size), n)
+    within = np.arange(total) - np.repeat(first, n)
+    return pi, idx[np.repeat(ptr[owner], n) + within], first, n
 
 
-def _arc_distances(px, py, arcs: PreparedArcs) -> np.ndarray:
-    """Distances from points ``(px, py)`` (``(N, 1)``) to arcs (``(1, m)``): radial,
-    ``|rho - R|``, where the point's polar angle is on the arc, else to the nearer
-    end point (as :func:`ccopt.geometry.point_arc`)."""
-    vx = px - arcs.cx
-    vy = py - arcs.cy
+def _arc_distances(px, py, arcs: PreparedArcs, j) -> np.ndarray:
+    """Distances from points ``(px, py)`` to the arcs ``j`` of ``arcs`` (one each):
+    radial, ``|rho - R|``, where the point's polar angle is on the arc, else to
+    the nearer end point (as :func:`ccopt.geometry.point_arc`)."""
+    vx = px - arcs.cx[j]
+    vy = py - arcs.cy[j]
     rho = np.hypot(vx, vy)
-    radial = arcs.contains(np.arctan2(vy, vx)) & (rho > 0.0)
-    to_end = np.minimum(np.hypot(px - arcs.e0x, py - arcs.e0y),
-                        np.hypot(px - arcs.e1x, py - arcs.e1y))
-    return np.where(radial, np.abs(rho - arcs.R), to_end)
+    radial = in_sweep_prepared(np.arctan2(vy, vx), arcs.th0[j], arcs.sign[j],
+                               arcs.abs_sweep[j]) & (rho > 0.0)
+    to_end = np.minimum(np.hypot(px - arcs.e0x[j], py - arcs.e0y[j]),
+                        np.hypot(px - arcs.e1x[j], py - arcs.e1y[j]))
+    return np.where(radial, np.abs(rho - arcs.R[j]), to_end)
 
 
 def _points_between(g, s0: float, s1: float, n: int) -> np.ndarray:
@@ -285,10 +405,11 @@ def _points_between(g, s0: float, s1: float, n: int) -> np.ndarray:
 
 
 def _box_gaps(a, boxes: np.ndarray) -> np.ndarray:
-    """Distances from the box ``a`` to each of ``boxes`` (``(m, 4)``), boxes as
-    ``(xmin, ymin, xmax, ymax)`` (0 where they overlap)."""
-    dx = np.maximum(np.maximum(a[0] - boxes[:, 2], boxes[:, 0] - a[2]), 0.0)
-    dy = np.maximum(np.maximum(a[1] - boxes[:, 3], boxes[:, 1] - a[3]), 0.0)
+    """Distances from the boxes ``a`` (``(n, 4)``) to each of ``boxes`` (``(m, 4)``):
+    ``(n, m)``, boxes as ``(xmin, ymin, xmax, ymax)`` (0 where they overlap)."""
+    a = a[:, None, :]
+    dx = np.maximum(np.maximum(a[..., 0] - boxes[:, 2], boxes[:, 0] - a[..., 2]), 0.0)
+    dy = np.maximum(np.maximum(a[..., 1] - boxes[:, 3], boxes[:, 1] - a[..., 3]), 0.0)
     return np.hypot(dx, dy)
 
 
@@ -297,77 +418,124 @@ def _box_gaps(a, boxes: np.ndarray) -> np.ndarray:
 BOUND_SLACK_SHARE = 0.125
 
 
-def _along(g, local: "_Near", dist: _Distances, h: float, coarse_h: float, known: float):
-    """``(bound, pts, d)``: an upper bound of the distance from the primitive ``g`` to
-    ``local``, and the samples it rests on (points and their distance bounds).
+def _equal_steps(lengths: np.ndarray, h: float):
+    """``(owner, s)``: arc lengths every ``h`` at most along each primitive, end
+    points included (as ``np.linspace``), with the primitive of each."""
+    n = np.maximum(2, np.ceil(lengths / h).astype(np.int64) + 1)
+    owner = np.repeat(np.arange(lengths.size), n)
+    first = np.cumsum(n) - n
+    i = np.arange(owner.size) - np.repeat(first, n)
+    last = (n - 1)[owner]
+    s = lengths[owner] * (i / last)
+    s[i == last] = lengths[owner][i == last]        # the end exactly
+    return owner, s
 
-    Branch and bound on arc length: between two samples ``ds`` apart the
-    distance is at most ``(d_i + d_i+1 + ds) / 2`` (it is 1-Lipschitz; ``ds``
-    carries twice the arc-length tolerance of curves,
+
+def _along(src: _Primitives, local, dist: _Distances, h: float, coarse_h: float):
+    """``(bound, owner, pts, d)``: an upper bound of the distance from the source
+    primitives to the targets near each (``local``, :meth:`_Distances.upper`),
+    and the samples it rests on (their primitive, points and distance bounds).
+
+    Branch and bound on arc length, every primitive at once: between two
+    samples ``ds`` apart the distance is at most ``(d_i + d_i+1 + ds) / 2`` (it
+    is 1-Lipschitz; ``ds`` carries twice the arc-length tolerance of curves,
     :data:`ARC_LENGTH_REL_TOL`). Starting every ``coarse_h``, a step is halved
     while that bound exceeds ``BOUND_SLACK_SHARE * h`` plus the largest
-    distance sampled so far (here or ``known``, on the primitives before), so
-    the bound ends within that of the sampled maximum and steps far below it
-    are never refined.
+    distance sampled so far, so the bound ends within that of the sampled
+    maximum and steps far below it are never refined. A line whose
+    :meth:`_Distances.line_bounds` is within that already is not refined at
+    all (a controller style's line beside the reference's, nearly on it: the
+    Lipschitz steps alone would sample it every few ``h``).
     """
-    s = np.linspace(0.0, g.length, max(2, int(math.ceil(g.length / coarse_h)) + 1))
-    pts = _points_between(g, 0.0, g.length, s.size)
-    d = dist.upper(pts, local)
-    slack = 2.0 * ARC_LENGTH_REL_TOL * g.length
-    a, b, da, db = s[:-1], s[1:], d[:-1], d[1:]
-    all_pts, all_d = [pts], [d]
-    top = max(known, float(d.max()))
+    owner, s = _equal_steps(src.length, coarse_h)
+    pts = src.points(owner, s)
+    d = dist.upper(pts, owner, local)
+    inner = np.flatnonzero(owner[1:] == owner[:-1])       # consecutive samples on one primitive
+    a, b, da, db, k = s[inner], s[inner + 1], d[inner], d[inner + 1], owner[inner]
+    slack = 2.0 * ARC_LENGTH_REL_TOL * src.length
+    all_owner, all_pts, all_d = [owner], [pts], [d]
+    top = float(d.max(initial=0.0))
     bound = 0.0
+    # a line within the bound's reach all along by its ends needs no samples between
+    whole = dist.line_bounds(src, local)
+    held = whole <= top + BOUND_SLACK_SHARE * h
+    if held.any():
+        bound = float(whole[held].max())
+        live = ~held[k]
+        a, b, da, db, k = a[live], b[live], da[live], db[live], k[live]
     while a.size:
-        step = 0.5 * (da + db + (b - a) + slack)
-        done = (step <= top + BOUND_SLACK_SHARE * h) | (0.5 * (a + b) <= a) | (0.5 * (a + b) >= b)
+        step = 0.5 * (da + db + (b - a) + slack[k])
+        mid = 0.5 * (a + b)
+        done = (step <= top + BOUND_SLACK_SHARE * h) | (mid <= a) | (mid >= b)
         if done.any():
             bound = max(bound, float(step[done].max()))
-        a, b, da, db = a[~done], b[~done], da[~done], db[~done]
+        live = ~done
+        a, b, da, db, k, mid = a[live], b[live], da[live], db[live], k[live], mid[live]
         if not a.size:
             break
-        m = 0.5 * (a + b)
-        pm = np.asarray(g.point(m)).reshape(-1, 2)
-        dm = dist.upper(pm, local)
+        pm = src.points(k, mid)
+        dm = dist.upper(pm, k, local)
+        all_owner.append(k)
         all_pts.append(pm)
         all_d.append(dm)
         top = max(top, float(dm.max()))
-        # (np.concatenate: np.r_ costs ten times more, in this loop per primitive)
-        a, b = np.concatenate((a, m)), np.concatenate((m, b))
+        a, b = np.concatenate((a, mid)), np.concatenate((mid, b))
         da, db = np.concatenate((da, dm)), np.concatenate((dm, db))
-    return bound, np.vstack(all_pts), np.concatenate(all_d)
+        k = np.concatenate((k, k))
+    return bound, np.concatenate(all_owner), np.vstack(all_pts), np.concatenate(all_d)
+
+
+def _near_sets(src_geoms, dst_geoms, coarse_h: float):
+    """``(ptr, idx)``: the targets that can hold the nearest point of each source
+    primitive (those within the coarse bound of it: its samples' largest
+    distance to the targets' samples, plus the sample step), as
+    :meth:`_Distances.upper` takes them."""
+    from scipy.spatial import cKDTree  # deferred: scipy loads slowly, only this figure needs it
+    coarse = cKDTree(_samples(dst_geoms, coarse_h))
+    dst_boxes = np.array([g.bbox() for g in dst_geoms], float).reshape(-1, 4)
+    src_boxes = np.array([g.bbox() for g in src_geoms], float).reshape(-1, 4)
+    lengths = np.array([float(g.length) for g in src_geoms])
+    owner, s = _equal_steps(lengths, coarse_h)
+    pts = _Primitives(src_geoms).points(owner, s)
+    far = coarse.query(pts)[0]
+    reach = np.maximum.reduceat(far, np.flatnonzero(np.r_[True, owner[1:] != owner[:-1]]))
+    reach = reach + coarse_h
+    ptr, idx = [0], []
+    rows = max(1, CHUNK_CELLS // max(1, len(dst_geoms)))
+    for i in range(0, len(src_geoms), rows):
+        gaps = _box_gaps(src_boxes[i:i + rows], dst_boxes)
+        for r, near in enumerate(gaps <= reach[i:i + rows, None]):
+            hit = np.flatnonzero(near)
+            idx.append(hit)
+            ptr.append(ptr[-1] + hit.size)
+    return np.asarray(ptr, np.intp), np.concatenate(idx).astype(np.intp)
 
 
 def _one_side(src: ToolPath, dst: ToolPath, h: float):
     """``(estimate, upper bound)`` of the largest distance from the changed contour
     part of ``src`` to ``dst``'s feed path."""
-    from scipy.spatial import cKDTree  # deferred: scipy loads slowly, only this figure needs it
     dst_geoms = [s.geom for s in dst.segments if s.role in FEED_ROLES and _in_plane(s)]
     contour = [s.geom for s in src.segments if s.role in CONTOUR_ROLES and _in_plane(s)]
     src_geoms = [g for g, same in zip(contour, _shared(contour, dst_geoms)) if not same]
     if not src_geoms or not dst_geoms:
         return 0.0, 0.0
     coarse_h = max(50.0 * h, POINT_EPS)
-    coarse = cKDTree(_samples(dst_geoms, coarse_h))
-    dst_boxes = np.array([g.bbox() for g in dst_geoms], float).reshape(-1, 4)
-    dist = _Distances(h)
-    bound, top, cand = 0.0, 0.0, []
-    for g in src_geoms:
-        # which dst primitives can hold the nearest point: those within the coarse bound
-        box = g.bbox()
-        reach = float(np.max(coarse.query(_samples([g], coarse_h))[0])) + coarse_h
-        local = [dst_geoms[i] for i in np.flatnonzero(_box_gaps(box, dst_boxes) <= reach)]
-        b, pts, d = _along(g, _Near(local), dist, h, coarse_h, top)
-        bound = max(bound, b)
-        top = max(top, float(d.max()))
-        best = np.argsort(d)[-5:]
-        cand += [(float(d[i]), pts[i], local) for i in best]
-    cand.sort(key=lambda c: c[0], reverse=True)
+    local = _near_sets(src_geoms, dst_geoms, coarse_h)
+    dist = _Distances(_Primitives(dst_geoms), h)
+    bound, owner, pts, d = _along(_Primitives(src_geoms), local, dist, h, coarse_h)
+    # the five largest samples of each primitive, then the largest of those measured exactly
+    order = np.lexsort((-d, owner))
+    start = np.flatnonzero(np.r_[True, owner[order][1:] != owner[order][:-1]])
+    rank = np.arange(order.size) - np.repeat(start, np.diff(np.r_[start, order.size]))
+    best = order[rank < 5]
+    best = best[np.argsort(-d[best], kind="stable")][:20]
+    ptr, idx = local
     est = 0.0
-    for dd, p, local in cand[:20]:
-        if dd <= est:       # min(exact, dd) cannot raise the estimate any more
+    for i in best:
+        if d[i] <= est:       # min(exact, d) cannot raise the estimate any more
             break
-        est = max(est, min(dist.exact(p, local, dd + h), dd))
+        near = idx[ptr[owner[i]]:ptr[owner[i] + 1]]
+        est = max(est, min(dist.exact(pts[i], near, float(d[i]) + h), float(d[i])))
     return est, bound
 
 

@@ -107,3 +107,22 @@ def test_deviation_between_translated_curves():
         est, bound = max_deviation(a, b, h)
         assert est == pytest.approx(up, abs=1e-9)
         assert up <= bound <= up + h / 8 + 1e-6
+
+
+def test_deviation_of_lines_beside_the_reference_lines():
+    # the reference: the line y = 0 from x = 0 to 20 in 7 blocks; the variant: the
+    # same line 3e-4 higher in 40 blocks (another controller's path beside the
+    # reference's, split elsewhere). Every point is 3e-4 from the other path (its
+    # vertical distance; the ends lie above each other), so the Hausdorff distance
+    # is 3e-4 on both sides, and the bound holds it within h / 8 without sampling
+    # the lines every few h (each line's distance to a reference line is convex
+    # along it: its ends bound it).
+    e, h = 3e-4, 1e-3
+    xr = [20.0 * i / 7 for i in range(8)]
+    xv = [20.0 * i / 40 for i in range(41)]
+    ref = ToolPath(tuple(seg(Line((a, 0.0), (b, 0.0))) for a, b in zip(xr, xr[1:])))
+    var = ToolPath(tuple(seg(Line((a, e), (b, e))) for a, b in zip(xv, xv[1:])))
+    for a, b in ((var, ref), (ref, var)):
+        est, bound = max_deviation(a, b, h)
+        assert est == pytest.approx(e, abs=1e-12)
+        assert e - 1e-12 <= bound <= e + h / 8 + 1e-12
