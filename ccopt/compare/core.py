@@ -23,7 +23,7 @@ from __future__ import annotations
 import multiprocessing
 import time
 from collections import deque
-from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, ThreadPoolExecutor, wait
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Callable
 
@@ -32,9 +32,11 @@ from ccopt.compare.figures import max_deviation, path_figures
 from ccopt.compare.leads import lead_joins
 from ccopt.compare.registry import available, load
 from ccopt.compensate import compensate
-from ccopt.compare.timing import StretchTimes, duration_figures, planner_for, same_plan
+from ccopt.compare.timing import (PartialTime, StretchTimes, duration_figures, partial_figures,
+                                  planner_for, same_plan, stretch_keys)
 from ccopt.errors import CcoptError
 from ccopt.feed.limits import AxisLimits
+from ccopt.feed.path import ExactPath
 from ccopt.program.model import Program
 from ccopt.toolpath import ToolPath
 
@@ -184,7 +186,7 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
         _say(progress, f"variant {ref_index + 1}/{len(names)} {REFERENCE}")
         return [(ref_index, measure(REFERENCE, ref.path, problem, ref.seconds, times=times))]
 
-    for i, row in _run_jobs(jobs, ref.times, reference_row, len(names), workers, progress):
+    for i, row in _run_jobs(jobs, ref, reference_row, len(names), workers, progress):
         rows[i] = row
     ref_duration = rows[ref_index].figures.get("duration") if ref_index is not None else None
     if ref_duration is None and problem is not None and limits is not None:
@@ -210,6 +212,7 @@ class _Reference:
     ts: float | None
     profile: FeedProfile | None           # the caller's plan of it, if any
     _times: list = field(default_factory=list)
+    _keys: list = field(default_factory=list)   # [its stretch keys], once asked
 
     @classmethod
     def of(cls, program: Program, radius, side, limits, ts, profile) -> "_Reference":
@@ -232,6 +235,15 @@ class _Reference:
                                                     self.ts) else None
                 self._times.append(_reference_times(self.path, self.limits, self.ts, planned))
         return self._times[0]
+
+    def keys(self) -> frozenset:
+        """The reference's stretch keys (:func:`.timing.stretch_keys`; none
+        without a reference or limits): a cycle time planned before the
+        reference leaves these stretches to its plan."""
+        if not self._keys:
+            self._keys.append(frozenset() if self.path is None or self.limits is None
+                              else frozenset(stretch_keys(ExactPath(self.path))) - {None})
+        return self._keys[0]
 
 
 def _jobs(names: list[str], program: Program, problem: BlendProblem | None,
@@ -282,22 +294,21 @@ def _reference_times(reference: ToolPath, limits: AxisLimits | None, ts: float |
         return StretchTimes(limits, ts=ts)
 
 
-def _run_jobs(jobs, reference_times, reference_row, total: int, workers: int, progress):
+def _run_jobs(jobs, ref: "_Reference", reference_row, total: int, workers: int, progress):
     """``(row index, VariantResult)`` of the reference (``reference_row(times)``)
     and of every job ``(index, name, problem)``: here, one after the other, or
     in ``workers`` processes (:func:`_run_in_processes`).
 
     A job is done in two parts: the blend and what needs no feed plan
     (:func:`_solve`), then the cycle time (:func:`_duration`) under the
-    reference's stretch times (``reference_times()``). A variant whose
+    reference's stretch times (``ref.times()``). A variant whose
     tool path is another's takes that one's cycle time, planned once (Fagor's
     G138 and G139 with G136 leave the same path on 15 of the 27 bundled
     cases, all three Fagor styles on 7)."""
     if workers > 1 and len(jobs) > 1:
-        yield from _run_in_processes(jobs, reference_times, reference_row, total, workers,
-                                     progress)
+        yield from _run_in_processes(jobs, ref, reference_row, total, workers, progress)
         return
-    times = reference_times()
+    times = ref.times()
     yield from reference_row(times)
     timed: list[tuple[ToolPath, tuple]] = []
     for i, name, problem in jobs:
@@ -314,12 +325,17 @@ def _run_jobs(jobs, reference_times, reference_row, total: int, workers: int, pr
         yield i, row
 
 
-def _run_in_processes(jobs, reference_times, reference_row, total: int, workers: int,
+def _run_in_processes(jobs, ref: "_Reference", reference_row, total: int, workers: int,
                       progress):
     """:func:`_run_jobs` in ``workers`` processes: at most one task per worker,
     a cycle time before a blend (a long blend's plan, the smoother's, starts
     as soon as its path is there), the blends in :func:`_longest_first`
-    order; the blends start solving while this process plans the reference."""
+    order. This process plans the reference in a thread meanwhile, handing
+    out work as workers free up: a cycle time asked before the reference is
+    planned plans the stretches it does not share with the reference
+    (:func:`.timing.partial_figures`) and takes the shared ones from the
+    reference's plan when it is there (:meth:`.timing.PartialTime.finish`),
+    the same figures as a serial run."""
     # fork where there is one: a worker then starts with ccopt and its libraries
     # loaded (spawning would import toppra, casadi and cvxpy again in each)
     methods = multiprocessing.get_all_start_methods()
@@ -329,56 +345,102 @@ def _run_in_processes(jobs, reference_times, reference_row, total: int, workers:
     to_time: deque = deque()                  # [path, limits, rows waiting for its time]
     timed: list[tuple[ToolPath, object]] = []   # path, its cycle-time future
     running: dict = {}                        # future -> (job, rows waiting for it)
+    partial: list = []                        # (PartialTime, rows): the reference's part to come
+    known: list = []                          # [the reference's stretch times], once planned
     done = 0
-    with ProcessPoolExecutor(max_workers=n_workers, mp_context=ctx) as pool:
+    with ProcessPoolExecutor(max_workers=n_workers, mp_context=ctx) as pool, \
+            ThreadPoolExecutor(max_workers=1) as planner:
 
-        def refill(times):
+        def refill():
             while len(running) < n_workers and (to_time or to_solve):
                 if to_time:
                     path, limits, rows = to_time.popleft()
-                    fut = pool.submit(_duration, path, limits,
-                                      times.copy() if times is not None else None)
+                    if known or limits is None or ref.path is None:
+                        times = ref.times()
+                        fut = pool.submit(_duration, path, limits,
+                                          times.copy() if times is not None else None)
+                    else:
+                        fut = pool.submit(partial_figures, path, limits, ref.ts, ref.keys())
                     timed.append((path, fut))
-                    running[fut] = (None, rows)
+                    running[fut] = (None, rows, path, limits)
                 else:
                     job = to_solve.popleft()
-                    running[pool.submit(_solve, job[1], job[2])] = (job, None)
+                    running[pool.submit(_solve, job[1], job[2])] = (job, None, None, None)
 
-        refill(None)                          # the blends solve while the reference is planned
-        times = reference_times()
-        yield from reference_row(times)
-        while running:
-            finished, _ = wait(running, return_when=FIRST_COMPLETED)
+        refill()
+        reference = planner.submit(ref.times)
+        ref.keys()                            # while the workers start
+        while running or not known:
+            finished, _ = wait(set(running) | ({reference} if not known else set()),
+                               return_when=FIRST_COMPLETED)
             ready = []
-            for fut in finished:
-                job, rows = running.pop(fut)
+            now_known = reference in finished
+            if now_known:
+                known.append(reference.result())
+            for fut in finished - {reference}:
+                job, rows, path, limits = running.pop(fut)
                 if job is None:               # a cycle time: to every row that waits for it
-                    ready.extend((i, name, _with_duration(row, fut.result()))
-                                 for i, name, row in rows)
+                    partial.append((fut.result(), rows, path, limits))
                 else:
-                    ready.extend(_timed_or_queued(job, fut.result(), timed, to_time, running))
-            refill(times)
+                    ready.extend(_timed_or_queued(job, fut.result(), timed, to_time, running,
+                                                  partial, known))
+            ready.extend(_finish_partial(partial, known, to_time))
+            refill()
+            if now_known:
+                yield from reference_row(ref.times())
             for i, name, row in sorted(ready, key=lambda r: r[0]):
                 done += 1
                 _say(progress, f"variant {i + 1}/{total} {name} done ({done}/{len(jobs)})")
                 yield i, row
 
 
-def _timed_or_queued(job, row: VariantResult, timed, to_time, running) -> list:
+def _finish_partial(partial: list, known: list, to_time) -> list:
+    """The rows whose cycle time is complete: each ``(figures, rows, path,
+    limits)`` of ``partial`` (emptied of them) whose figures are ``(duration,
+    max_acc_ratio, message)`` or, once the reference is planned (``known``), a
+    :class:`~.timing.PartialTime` finished with its stretch times; a path the
+    reference's times cannot finish is queued to be timed with them."""
+    ready, waiting = [], []
+    for fig, rows, path, limits in partial:
+        if isinstance(fig, PartialTime):
+            if not known:
+                waiting.append((fig, rows, path, limits))
+                continue
+            whole = fig.finish(known[0])
+            if whole is None:
+                to_time.append((path, limits, rows))
+                continue
+            fig = (*whole, None)
+        ready.extend((i, name, _with_duration(row, fig)) for i, name, row in rows)
+    partial[:] = waiting
+    return ready
+
+
+def _timed_or_queued(job, row: VariantResult, timed, to_time, running, partial,
+                     known) -> list:
     """The rows ready now for a solved ``job``: the row itself when it has no
     path to time, or with the cycle time of the same path planned already;
-    else none, the row waiting for a plan of its path (running, queued or
-    queued here)."""
+    else none, the row waiting for a plan of its path (running, waiting for
+    the reference's, queued, or queued here)."""
     i, name, problem = job
     entry = (i, name, row)
     if row.status != "ok":
         return [entry]
     twin = _of_path(timed, row.toolpath)
-    if twin is not None and twin.done():
-        return [(i, name, _with_duration(row, twin.result()))]
-    if twin is not None:
+    if twin is not None and twin in running:
         running[twin][1].append(entry)
         return []
+    if twin is not None:
+        fig = twin.result()
+        if isinstance(fig, PartialTime):
+            held = _of_path(((p[2], p) for p in partial), row.toolpath)
+            if held is not None:
+                held[1].append(entry)
+                return []
+            whole = fig.finish(known[0]) if known else None
+            fig = None if whole is None else (*whole, None)
+        if fig is not None:
+            return [(i, name, _with_duration(row, fig))]
     waiting = _of_path(((w[0], w) for w in to_time), row.toolpath)
     if waiting is not None:
         waiting[2].append(entry)

@@ -113,6 +113,11 @@ def stops(exact: ExactPath) -> np.ndarray:
     return np.flatnonzero(cut)
 
 
+def stretch_keys(exact: ExactPath) -> list:
+    """:func:`stretch_key` of each of :func:`stretches` of ``exact``, in order."""
+    return [stretch_key(exact.segments[st.k0:st.k1]) for st in stretches(exact)]
+
+
 def stretches(exact: ExactPath) -> list[Stretch]:
     """The stretches of ``exact`` between consecutive stops (see the module docstring)."""
     if not exact.segments:
@@ -215,8 +220,7 @@ class StretchTimes:
             exact = feed_planning.ExactPath(reference)
             prof, ratio, smp = plan_whole(exact, limits, ts, with_samples=True)
         out = cls(limits, ts=ts)
-        for st, got in zip(stretches(exact), _cut(exact, prof, smp)):
-            key = stretch_key(exact.segments[st.k0:st.k1])
+        for key, got in zip(stretch_keys(exact), _cut(exact, prof, smp)):
             if key is not None and got is not None:
                 out.known[key] = got
         return out, prof.duration, ratio
@@ -232,18 +236,30 @@ class StretchTimes:
         changes every one of the reference's 302 stretches, one plan instead
         of 302 (the jerk planner then gathers the short stretches into LP
         windows, :data:`~ccopt.feed.jerk_windows.BATCH_POINTS`)."""
+        return self.time_partial(path).finish(self)
+
+    def time_partial(self, path: ToolPath, defer=frozenset()) -> "PartialTime":
+        """:meth:`time` but for the stretches whose key is in ``defer`` (the
+        reference's, before its plan is there): those are neither looked up
+        nor planned, and :meth:`PartialTime.finish` reads them off the
+        reference's times later. The stretches planned here are those
+        :meth:`time` plans with the reference's times known, in the same runs,
+        so the figures come out the same."""
         exact = feed_planning.ExactPath(path)
-        total = float(sum(d.seconds for d in exact.dwells))
+        dwells = float(sum(d.seconds for d in exact.dwells))
         parts = stretches(exact)
-        keys = [stretch_key(exact.segments[st.k0:st.k1]) for st in parts]
+        keys = stretch_keys(exact)
         got = [self.known.get(k) if k is not None else None for k in keys]
+        pending = [i for i, k in enumerate(keys) if got[i] is None and k is not None
+                   and k in defer]
+        for i in pending:
+            got[i] = _Pending(keys[i])          # not None: no run plans it
         for run in _unknown_runs(got):
             for i, fig in zip(run, self._plan_run(exact, [parts[i] for i in run])):
                 got[i] = fig
                 if keys[i] is not None:
                     self.known[keys[i]] = fig
-        total += sum(g[0] for g in got)
-        return total, max((g[1] for g in got), default=0.0)
+        return PartialTime(dwells, got, pending)
 
     def _plan_run(self, exact: ExactPath, run: list[Stretch]) -> list[tuple[float, float]]:
         """``(seconds, max_acc_ratio)`` of each of the consecutive stretches ``run``
@@ -267,6 +283,40 @@ class StretchTimes:
         return StretchTimes(self.limits, dict(self.known), self.ts)
 
 
+@dataclass(frozen=True)
+class _Pending:
+    """A stretch whose time the reference's plan will give (its key)."""
+
+    key: tuple
+
+
+@dataclass
+class PartialTime:
+    """A cycle time with some stretches still to read off the reference's plan
+    (:meth:`StretchTimes.time_partial`): ``dwells`` (s), ``got`` the stretches'
+    ``(seconds, max_acc_ratio)`` in path order, a :class:`_Pending` at the
+    indices ``pending``. Plain data: it comes back from worker processes."""
+
+    dwells: float
+    got: list
+    pending: list
+
+    def finish(self, times: StretchTimes) -> tuple[float, float] | None:
+        """``(duration, max_acc_ratio)`` with the pending stretches from ``times``
+        (the reference's), summed in path order as :meth:`StretchTimes.time`
+        does; None when ``times`` lacks one (its stretch is then not the
+        reference's after all: time the path again with ``times``)."""
+        got = list(self.got)
+        for i in self.pending:
+            fig = times.known.get(got[i].key)
+            if fig is None:
+                return None
+            got[i] = fig
+        total = self.dwells
+        total += sum(g[0] for g in got)
+        return total, max((g[1] for g in got), default=0.0)
+
+
 def same_plan(profile, reference: ToolPath, limits: AxisLimits, ts: float | None) -> bool:
     """Whether ``profile`` is the plan :meth:`StretchTimes.from_reference` would
     make of ``reference``: the same path, limits, planner (:func:`planner_for`)
@@ -276,6 +326,17 @@ def same_plan(profile, reference: ToolPath, limits: AxisLimits, ts: float | None
     if profile.planner == "jerk" and profile.info.get("ts") != (DEFAULT_TS if ts is None else ts):
         return False
     return profile.path.toolpath == reference
+
+
+def partial_figures(path: ToolPath, limits: AxisLimits, ts: float | None, defer):
+    """:func:`duration_figures` before the reference is planned: a
+    :class:`PartialTime` whose stretches in ``defer`` (the reference's keys)
+    are left to :meth:`PartialTime.finish`, or ``(None, None, message)`` when
+    the planner refuses."""
+    try:
+        return StretchTimes(limits, ts=ts).time_partial(path, defer)
+    except CcoptError as exc:
+        return None, None, f"feed: {exc}"
 
 
 def duration_figures(path: ToolPath, limits: AxisLimits | None,
@@ -295,5 +356,6 @@ def duration_figures(path: ToolPath, limits: AxisLimits | None,
         return None, None, f"feed: {exc}"
 
 
-__all__ = ["RATIO_DT", "StretchTimes", "Stretch", "duration_figures", "plan_whole",
-           "planner_for", "same_plan", "stops", "stretch_key", "stretches"]
+__all__ = ["RATIO_DT", "PartialTime", "StretchTimes", "Stretch", "duration_figures",
+           "partial_figures", "plan_whole",
+           "planner_for", "same_plan", "stops", "stretch_key", "stretch_keys", "stretches"]

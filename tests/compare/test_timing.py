@@ -214,3 +214,45 @@ def test_ts_reaches_the_cycle_times_when_pmac_refuses_the_program(monkeypatch):
         assert cmp["linuxcnc"].figures["duration"] == pytest.approx(own, rel=1e-9)
     slow = ccopt.plan_feed(path, limits, planner="jerk", ts=0.001).duration
     assert own < slow * (1 - 1e-3)          # ts does change this path's time
+
+
+@pytest.mark.parametrize("style", ["linuxcnc", "fagor-g139-g137", "tangent-arc"])
+def test_a_cycle_time_planned_before_the_reference_is_the_same(style):
+    # a worker that times a variant before the reference is planned plans the
+    # stretches it does not share, and takes the shared ones from the
+    # reference's plan afterwards: the same figures, bit for bit, as timing it
+    # with the reference's stretch times known
+    from ccopt.compare.contract import BlendProblem
+    from ccopt.compare.core import _solve
+    from ccopt.compare.timing import PartialTime, stretch_keys
+    c, prog = _case("freeform-hsm")
+    limits = ccopt.AxisLimits(c.vmax, c.amax, j=c.jmax)
+    ref = ccopt.compensate(prog, "pmac", radius=c.radius)
+    times, _, _ = StretchTimes.from_reference(ref, limits)
+    path = _solve(style, BlendProblem(prog, ref, limits, None, {}, c.radius, None)).toolpath
+    keys = frozenset(stretch_keys(ExactPath(ref))) - {None}
+    part = StretchTimes(limits).time_partial(path, keys)
+    assert isinstance(part, PartialTime)
+    shared = [i for i, k in enumerate(stretch_keys(ExactPath(path))) if k in keys]
+    assert part.pending == shared and shared       # the rapids at least
+    assert part.finish(times) == times.copy().time(path)
+
+
+def test_workers_give_the_serial_rows_when_the_reference_plans_last(monkeypatch):
+    # the reference's plan held back: every variant's cycle time is asked first
+    import time as clock
+
+    import ccopt.compare.core as core
+    c, prog = _case("leadin-inside-line")
+    limits = ccopt.AxisLimits(c.vmax, c.amax, j=tuple(10.0 * a for a in c.amax))
+    names = ["pmac", "linuxcnc", "tangent-arc", "line-arc", "fagor-g138", "fagor-g139-g136"]
+    serial = compare(prog, names, limits=limits, radius=c.radius)
+    real = core._reference_times
+
+    def late(*args, **kw):
+        clock.sleep(3.0)
+        return real(*args, **kw)
+
+    monkeypatch.setattr(core, "_reference_times", late)
+    parallel = compare(prog, names, limits=limits, radius=c.radius, workers=2)
+    assert _rows(parallel) == _rows(serial)
