@@ -36,7 +36,6 @@ from ccopt.compare.timing import (PartialTime, StretchTimes, duration_figures, p
                                   planner_for, same_plan, stretch_keys)
 from ccopt.errors import CcoptError
 from ccopt.feed.limits import AxisLimits
-from ccopt.feed.path import ExactPath
 from ccopt.program.model import Program
 from ccopt.toolpath import ToolPath
 
@@ -242,7 +241,7 @@ class _Reference:
         reference leaves these stretches to its plan."""
         if not self._keys:
             self._keys.append(frozenset() if self.path is None or self.limits is None
-                              else frozenset(stretch_keys(ExactPath(self.path))) - {None})
+                              else frozenset(stretch_keys(self.path)) - {None})
         return self._keys[0]
 
 

@@ -32,7 +32,8 @@ import numpy as np
 
 from ccopt.geometry import Arc, Line, point_segment
 from ccopt.geometry.bezier_arclength import ARC_LENGTH_REL_TOL
-from ccopt.geometry.curve import curvature_bound
+from ccopt.geometry.bezier_batch import BezierBatch
+from ccopt.geometry.curve import BezierCurve, curvature_bound
 from ccopt.geometry.angles import in_sweep_prepared
 from ccopt.geometry.columns import PreparedArcs
 from ccopt.geometry.point_distance import point_segment_cols
@@ -192,9 +193,6 @@ class _Primitives:
     own ``point``."""
 
     def __init__(self, geoms):
-        from ccopt.geometry.bezier_batch import BezierBatch
-        from ccopt.geometry.curve import BezierCurve
-
         m = len(geoms)
         self.geoms = geoms
         self.length = np.array([float(g.length) for g in geoms])

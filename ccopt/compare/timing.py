@@ -113,8 +113,9 @@ def stops(exact: ExactPath) -> np.ndarray:
     return np.flatnonzero(cut)
 
 
-def stretch_keys(exact: ExactPath) -> list:
-    """:func:`stretch_key` of each of :func:`stretches` of ``exact``, in order."""
+def stretch_keys(path: ToolPath | ExactPath) -> list:
+    """:func:`stretch_key` of each of :func:`stretches` of ``path``, in order."""
+    exact = path if isinstance(path, feed_planning.ExactPath) else feed_planning.ExactPath(path)
     return [stretch_key(exact.segments[st.k0:st.k1]) for st in stretches(exact)]
 
 

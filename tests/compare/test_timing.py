@@ -230,10 +230,10 @@ def test_a_cycle_time_planned_before_the_reference_is_the_same(style):
     ref = ccopt.compensate(prog, "pmac", radius=c.radius)
     times, _, _ = StretchTimes.from_reference(ref, limits)
     path = _solve(style, BlendProblem(prog, ref, limits, None, {}, c.radius, None)).toolpath
-    keys = frozenset(stretch_keys(ExactPath(ref))) - {None}
+    keys = frozenset(stretch_keys(ref)) - {None}
     part = StretchTimes(limits).time_partial(path, keys)
     assert isinstance(part, PartialTime)
-    shared = [i for i, k in enumerate(stretch_keys(ExactPath(path))) if k in keys]
+    shared = [i for i, k in enumerate(stretch_keys(path)) if k in keys]
     assert part.pending == shared and shared       # the rapids at least
     assert part.finish(times) == times.copy().time(path)
 
