@@ -32,8 +32,8 @@ from ccopt.compare.figures import max_deviation, path_figures
 from ccopt.compare.leads import lead_joins
 from ccopt.compare.registry import available, load
 from ccopt.compensate import compensate
-from ccopt.compare.timing import (PartialTime, StretchTimes, duration_figures, partial_figures,
-                                  planner_for, same_plan, stretch_keys)
+from ccopt.compare.timing import (PartialTime, StretchTimes, duration_figures, load_planner,
+                                  partial_figures, planner_for, same_plan, stretch_keys)
 from ccopt.errors import CcoptError
 from ccopt.feed.limits import AxisLimits
 from ccopt.program.model import Program
@@ -340,6 +340,8 @@ def _run_in_processes(jobs, ref: "_Reference", reference_row, total: int, worker
     methods = multiprocessing.get_all_start_methods()
     ctx = multiprocessing.get_context("fork" if "fork" in methods else None)
     n_workers = min(workers, len(jobs))
+    if ref.limits is not None:
+        load_planner(ref.limits)
     to_solve = deque(job for _, job in _longest_first(jobs))
     to_time: deque = deque()                  # [path, limits, rows waiting for its time]
     timed: list[tuple[ToolPath, object]] = []   # path, its cycle-time future

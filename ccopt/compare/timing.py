@@ -58,6 +58,17 @@ RATIO_DT = 2e-4
 STOP_MATCH_REL = 1e-12
 
 
+def load_planner(limits: AxisLimits) -> None:
+    """Import the planner :func:`planner_for` picks (with toppra, ~0.5 s): a
+    parallel comparison does it before it forks its workers, so that each
+    does not import it again for its first cycle time."""
+    import importlib
+    for name in ("ccopt.feed.path", "ccopt.feed.plan", "ccopt.feed.toppra_planner",
+                 "ccopt.feed.jerk_planner" if planner_for(limits) == "jerk" else None):
+        if name is not None:
+            importlib.import_module(name)
+
+
 def planner_for(limits: AxisLimits) -> str:
     """The planner cycle times are compared under: ``jerk`` when the limits carry
     jerk (issue 18: blends are judged where they pay), else ``toppra``."""
