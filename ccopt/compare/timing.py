@@ -30,6 +30,7 @@ rounds per window, so there the difference is within its round tolerance
 """
 from __future__ import annotations
 
+import importlib
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -62,7 +63,6 @@ def load_planner(limits: AxisLimits) -> None:
     """Import the planner :func:`planner_for` picks (with toppra, ~0.5 s): a
     parallel comparison does it before it forks its workers, so that each
     does not import it again for its first cycle time."""
-    import importlib
     for name in ("ccopt.feed.path", "ccopt.feed.plan", "ccopt.feed.toppra_planner",
                  "ccopt.feed.jerk_planner" if planner_for(limits) == "jerk" else None):
         if name is not None:
