@@ -1,5 +1,6 @@
-"""Planning a feed does not load matplotlib.pyplot (toppra imports it only for
-plotting helpers), and pyplot works as always afterwards."""
+"""Planning a feed does not load matplotlib.pyplot or scipy.interpolate (toppra
+imports them only for plotting helpers and its own spline paths), and both work
+as always afterwards."""
 from __future__ import annotations
 
 import subprocess
@@ -23,5 +24,31 @@ print("ok")
 def test_feed_planner_does_not_load_pyplot():
     out = subprocess.run([sys.executable, "-c", CHECK], capture_output=True, text=True,
                          check=False)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "ok"
+
+
+CHECK_INTERPOLATE = """
+import sys
+import numpy as np
+import ccopt.feed.plan
+assert "scipy.interpolate" not in sys.modules, "scipy.interpolate loaded by the feed planner"
+import scipy
+import scipy.interpolate as si
+assert scipy.interpolate is si and type(si.PPoly).__name__ == "type"
+import toppra
+# toppra's spline path, built through the stand-in names, is scipy's cubic spline
+x = np.linspace(0.0, 1.0, 6)
+y = np.column_stack((np.sin(3 * x), x ** 2))
+path = toppra.SplineInterpolator(x, y)
+s = np.linspace(0.0, 1.0, 11)
+assert np.array_equal(path(s), si.CubicSpline(x, y, bc_type="not-a-knot")(s))
+print("ok")
+"""
+
+
+def test_feed_planner_does_not_load_scipy_interpolate():
+    out = subprocess.run([sys.executable, "-c", CHECK_INTERPOLATE], capture_output=True,
+                         text=True, check=False)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "ok"
