@@ -32,10 +32,12 @@ from __future__ import annotations
 import warnings
 from dataclasses import dataclass
 
-import cvxpy as cp
 import numpy as np
 
 from ccopt.geometry.angles import TWO_PI
+from ccopt.stand_ins import import_cvxpy
+
+cp = import_cvxpy()
 
 #: Largest allowed |SOCP - closed form| for agreement (program units).
 AGREEMENT = 1e-6

@@ -22,6 +22,7 @@ import numpy as np
 
 from ccopt.geometry.bezier import DIVISION_FLOOR, bezier_energy, energy_root
 from ccopt.geometry.curve import bernstein, derivative_matrix
+from ccopt.stand_ins import import_cvxpy
 from ccopt_formulations.clearance import linear_rows
 from ccopt_formulations.lead_setup import CURVATURE_MODEL_SHARE, V_MIN_FRACTION, LeadSetup
 
@@ -73,7 +74,7 @@ class CompiledModel:
     iterations on leadin-inside-line: 57 against 28)."""
 
     def __init__(self, shape: ModelShape):
-        import cvxpy as cp  # deferred: heavy, and only this blend needs it
+        cp = import_cvxpy()  # on first use: heavy, and only this blend needs it
 
         self.shape = shape
         n, m, E, nx = shape.degree, shape.m, shape.elements, shape.nx

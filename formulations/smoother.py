@@ -80,6 +80,7 @@ from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
 from ccopt.geometry import BezierCurve, Line
 from ccopt.geometry.bezier import DIVISION_FLOOR, energy_root
 from ccopt.geometry.curve import bernstein, derivative_matrix
+from ccopt.stand_ins import import_cvxpy
 from ccopt.toolpath import Role, ToolPath
 from ccopt_formulations.clearance import Element, linear_rows, near
 from ccopt_formulations.smoother_chain import chain_path
@@ -133,7 +134,7 @@ class CornerModel:
     NX = 8
 
     def __init__(self, lam: float = LAM):
-        import cvxpy as cp  # deferred: heavy, and only this blend needs it
+        cp = import_cvxpy()  # on first use: heavy, and only this blend needs it
 
         n, m, nx = DEGREE, M_SAMPLES, self.NX
         self.t = np.linspace(0.0, 1.0, m)

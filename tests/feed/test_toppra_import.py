@@ -52,3 +52,26 @@ def test_feed_planner_does_not_load_scipy_interpolate():
                          text=True, check=False)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "ok"
+
+
+CHECK_CVXPY = """
+import sys
+from ccopt.stand_ins import import_cvxpy
+cp = import_cvxpy()
+assert "scipy.stats" not in sys.modules, "scipy.stats loaded with cvxpy"
+x = cp.Variable(2)
+cp.Problem(cp.Minimize(cp.sum_squares(x - [1.0, 2.0]))).solve()
+assert abs(x.value[0] - 1.0) < 1e-6 and abs(x.value[1] - 2.0) < 1e-6
+# cvxpy's entropy atom, built on scipy.stats' entropy through the stand-in
+entropy = sys.modules["cvxpy.atoms.quantum_rel_entr"].entropy
+import scipy.stats
+assert entropy([0.5, 0.25, 0.25]) == scipy.stats.entropy([0.5, 0.25, 0.25])
+print("ok")
+"""
+
+
+def test_cvxpy_loads_without_scipy_stats():
+    out = subprocess.run([sys.executable, "-c", CHECK_CVXPY], capture_output=True, text=True,
+                         check=False)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "ok"
