@@ -28,9 +28,14 @@ import types
 
 class ModuleOnFirstUse(types.ModuleType):
     """Stands for a module: the real one is imported when a name is first read
-    from it."""
+    from it. For a package, a submodule that has its own stand-in in
+    ``sys.modules`` is that stand-in (``import matplotlib.pyplot as plt`` reads
+    ``pyplot`` from ``matplotlib``)."""
 
     def __getattr__(self, name: str):
+        sub = sys.modules.get(f"{self.__name__}.{name}")
+        if isinstance(sub, (ModuleOnFirstUse, NamesOnFirstUse)):
+            return sub
         return getattr(importlib.import_module(self.__name__), name)
 
 

@@ -4,8 +4,9 @@ or ``scipy.interpolate``.
 toppra imports ``matplotlib.pyplot`` at module level (``toppra.algorithm``,
 ``toppra.parametrizer``) only for its plotting helpers, and names of
 ``scipy.interpolate`` (``toppra.interpolator``, ``toppra.simplepath``) only
-for its own spline paths, which ccopt never uses: about 0.3 s and 0.6 s of
-the 1.4 s ``import toppra`` took, paid by every command that plans a feed.
+for its own spline paths, which ccopt never uses: about 0.5 s (matplotlib
+with pyplot) and 0.6 s of the 1.4 s ``import toppra`` took, paid by every
+command that plans a feed.
 toppra is imported here with stand-ins for both
 (:func:`ccopt.stand_ins.import_with_stand_ins`). Every ccopt module takes
 its toppra names from here, so this always happens first.
@@ -14,7 +15,8 @@ from __future__ import annotations
 
 from ccopt.stand_ins import ModuleOnFirstUse, NamesOnFirstUse, import_with_stand_ins
 
-import_with_stand_ins("toppra", {"matplotlib.pyplot": ModuleOnFirstUse,
+import_with_stand_ins("toppra", {"matplotlib": ModuleOnFirstUse,
+                                 "matplotlib.pyplot": ModuleOnFirstUse,
                                  "scipy.interpolate": NamesOnFirstUse})
 
 # from the toppra just imported (the point of this module)

@@ -10,6 +10,7 @@ CHECK = """
 import sys
 import ccopt.feed.plan
 assert "matplotlib.pyplot" not in sys.modules, "pyplot loaded by the feed planner"
+assert "matplotlib" not in sys.modules, "matplotlib loaded by the feed planner"
 import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt
