@@ -369,8 +369,8 @@ def _run_in_processes(jobs, ref: "_Reference", reference_row, total: int, worker
                     running[pool.submit(_solve, job[1], job[2])] = (job, None, None, None)
 
         refill()
+        ref.keys()          # here, before the thread plans the same geometry
         reference = planner.submit(ref.times)
-        ref.keys()                            # while the workers start
         while running or not known:
             finished, _ = wait(set(running) | ({reference} if not known else set()),
                                return_when=FIRST_COMPLETED)
