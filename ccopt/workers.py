@@ -74,18 +74,26 @@ def die_with_parent(parent: int) -> None:
         os._exit(1)
 
 
-def _context():
-    # fork: the children start at once with the parent's modules (ccopt, numpy)
-    # already imported; elsewhere the platform's default start method.
+def fork_context():
+    """The multiprocessing context of worker processes: fork where there is one
+    (the children start at once with the parent's modules, ccopt, numpy and
+    the solvers, already imported), elsewhere the platform's default."""
     methods = multiprocessing.get_all_start_methods()
     return multiprocessing.get_context("fork" if "fork" in methods else None)
+
+
+def start_child(parent: int) -> None:
+    """What a worker process (a child of process ``parent``) does first: ignore
+    SIGINT (the parent decides, and kills it: a solver such as IPOPT may catch
+    the signal and go on) and die with its parent (:func:`die_with_parent`)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    die_with_parent(parent)
 
 
 def _child(work: Callable, tasks, results, parent: int) -> None:
     """A worker's loop (a child of process ``parent``): take ``(index, item)``
     until ``None``; report progress, results and failures on ``results``."""
-    signal.signal(signal.SIGINT, signal.SIG_IGN)   # the parent decides; it kills us
-    die_with_parent(parent)
+    start_child(parent)
     try:
         os.setpgrp()    # our own group, so the parent can kill what we start with us
     except OSError:
@@ -119,8 +127,9 @@ def _portable(exc: BaseException) -> BaseException:
     return failed
 
 
-def _kill(procs: Sequence) -> None:
-    """Kill every child and its process group, and reap them."""
+def kill_processes(procs: Sequence) -> None:
+    """Kill every child process (``multiprocessing`` processes) and the process
+    group it leads, if any, and reap them."""
     for p in procs:
         if p.pid is None:
             continue
@@ -177,7 +186,7 @@ def run_in_workers(work: Callable[[Any, Callable[[str], None]], Any], items: Seq
     """
     if not items:
         return []
-    ctx = _context()
+    ctx = fork_context()
     tasks, results = ctx.Queue(), ctx.Queue()
     for index in (order if order is not None else range(len(items))):
         tasks.put((index, items[index]))
@@ -211,7 +220,7 @@ def run_in_workers(work: Callable[[Any, Callable[[str], None]], Any], items: Seq
                 errors[index] = value
                 break
     finally:
-        _kill(procs)
+        kill_processes(procs)
         remove_temps_of([p.pid for p in procs if p.pid], temp_folders)
         tasks.close()
         results.close()

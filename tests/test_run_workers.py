@@ -108,3 +108,33 @@ def test_sigint_stops_run_within_a_second_leaving_no_partial_file(tmp_path):
             json.loads(f.read_text())
         elif name.endswith((".nc", ".pmc")):
             ccopt.read_program(f)
+
+
+@pytest.mark.slow
+def test_sigint_stops_a_parallel_comparison_within_a_second():
+    # freeform-hsm's comparison keeps both workers on long plans for seconds;
+    # a library pool would let each finish its task before the command ends
+    env = dict(os.environ, PYTHONPATH=str(ROOT))
+    proc = subprocess.Popen([sys.executable, "-m", "ccopt.cli", "compare", "freeform-hsm",
+                             "--workers", "2"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    try:
+        t0 = time.monotonic()
+        while len(_children(proc.pid)) < 2 and time.monotonic() - t0 < 60:
+            time.sleep(0.02)
+        workers = _children(proc.pid)
+        assert len(workers) == 2, "the workers never started"
+        time.sleep(2.5)                      # the blends and the first plans are running
+        assert proc.poll() is None, "finished before it could be interrupted"
+        t1 = time.monotonic()
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=30)
+        stopped = time.monotonic() - t1
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    assert proc.returncode == 130, err
+    assert stopped < 1.0, stopped
+    assert err.strip() == "ccopt: interrupted"
+    assert not [w for w in workers if Path(f"/proc/{w}").exists()
+                and "Z" not in Path(f"/proc/{w}/stat").read_text().split()[2]]

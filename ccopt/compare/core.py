@@ -20,10 +20,11 @@ from the reference's stretch times alone), ``solve_time`` aside.
 """
 from __future__ import annotations
 
-import multiprocessing
+import os
 import time
 from collections import deque
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, ThreadPoolExecutor, wait
+from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Callable
 
@@ -38,6 +39,7 @@ from ccopt.errors import CcoptError
 from ccopt.feed.limits import AxisLimits
 from ccopt.program.model import Program
 from ccopt.toolpath import ToolPath
+from ccopt.workers import fork_context, kill_processes, start_child
 
 if TYPE_CHECKING:  # pragma: no cover
     from ccopt.feed.profile import FeedProfile
@@ -335,10 +337,6 @@ def _run_in_processes(jobs, ref: "_Reference", reference_row, total: int, worker
     (:func:`.timing.partial_figures`) and takes the shared ones from the
     reference's plan when it is there (:meth:`.timing.PartialTime.finish`),
     the same figures as a serial run."""
-    # fork where there is one: a worker then starts with ccopt and its libraries
-    # loaded (spawning would import toppra, casadi and cvxpy again in each)
-    methods = multiprocessing.get_all_start_methods()
-    ctx = multiprocessing.get_context("fork" if "fork" in methods else None)
     n_workers = min(workers, len(jobs))
     if ref.limits is not None:
         load_planner(ref.limits)
@@ -349,8 +347,7 @@ def _run_in_processes(jobs, ref: "_Reference", reference_row, total: int, worker
     partial: list = []                        # (PartialTime, rows): the reference's part to come
     known: list = []                          # [the reference's stretch times], once planned
     done = 0
-    with ProcessPoolExecutor(max_workers=n_workers, mp_context=ctx) as pool, \
-            ThreadPoolExecutor(max_workers=1) as planner:
+    with _pools(n_workers) as (pool, planner):
 
         def refill():
             while len(running) < n_workers and (to_time or to_solve):
@@ -393,6 +390,28 @@ def _run_in_processes(jobs, ref: "_Reference", reference_row, total: int, worker
                 done += 1
                 _say(progress, f"variant {i + 1}/{total} {name} done ({done}/{len(jobs)})")
                 yield i, row
+
+
+@contextmanager
+def _pools(n_workers: int):
+    """``(pool, planner)``: ``n_workers`` worker processes (forked where the
+    platform can: they start with ccopt and its libraries loaded) and a
+    thread for the reference's plan. Left normally, after both are done; on a
+    Ctrl-C or an error, at once: the workers killed (a library pool lets
+    each finish its task first, seconds on a long plan) and the thread not
+    waited for."""
+    pool = ProcessPoolExecutor(max_workers=n_workers, mp_context=fork_context(),
+                               initializer=start_child, initargs=(os.getpid(),))
+    planner = ThreadPoolExecutor(max_workers=1)
+    done = False
+    try:
+        yield pool, planner
+        done = True
+    finally:
+        if not done:
+            kill_processes(list((getattr(pool, "_processes", None) or {}).values()))
+        planner.shutdown(wait=done, cancel_futures=True)
+        pool.shutdown(wait=done, cancel_futures=True)
 
 
 def _finish_partial(partial: list, known: list, to_time) -> list:
