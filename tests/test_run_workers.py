@@ -69,13 +69,12 @@ def _children(pid: int) -> list[int]:
         return []
 
 
-@pytest.mark.slow
-def test_sigint_stops_run_within_a_second_leaving_no_partial_file(tmp_path):
-    out = tmp_path / "out"
+def _interrupt(args: list[str], busy_for: float):
+    """Run ``ccopt ARGS``, wait until its two workers are up and have computed
+    for ``busy_for`` s, send SIGINT: ``(exit code, stderr, seconds it took to
+    stop, the workers' pids)``."""
     env = dict(os.environ, PYTHONPATH=str(ROOT))
-    # pocket's comparison alone takes many seconds: both workers are busy when interrupted
-    proc = subprocess.Popen([sys.executable, "-m", "ccopt.cli", "run", "leadin-inside-line",
-                             "pocket", "-o", str(out), "--workers", "2"],
+    proc = subprocess.Popen([sys.executable, "-m", "ccopt.cli", *args],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     try:
         t0 = time.monotonic()
@@ -83,7 +82,7 @@ def test_sigint_stops_run_within_a_second_leaving_no_partial_file(tmp_path):
             time.sleep(0.02)
         workers = _children(proc.pid)
         assert len(workers) == 2, "the workers never started"
-        time.sleep(2.0)                      # they are computing now
+        time.sleep(busy_for)                 # they are computing now
         assert proc.poll() is None, "finished before it could be interrupted"
         t1 = time.monotonic()
         proc.send_signal(signal.SIGINT)
@@ -92,11 +91,25 @@ def test_sigint_stops_run_within_a_second_leaving_no_partial_file(tmp_path):
     finally:
         if proc.poll() is None:
             proc.kill()
-    assert proc.returncode == 130, err
+    return proc.returncode, err, stopped, workers
+
+
+def _gone(workers: list[int]) -> bool:
+    """Whether none of ``workers`` is still running (a zombie is not)."""
+    return not [w for w in workers if Path(f"/proc/{w}").exists()
+                and "Z" not in Path(f"/proc/{w}/stat").read_text().split()[2]]
+
+
+@pytest.mark.slow
+def test_sigint_stops_run_within_a_second_leaving_no_partial_file(tmp_path):
+    out = tmp_path / "out"
+    # pocket's comparison alone takes many seconds: both workers are busy when interrupted
+    code, err, stopped, workers = _interrupt(["run", "leadin-inside-line", "pocket", "-o",
+                                              str(out), "--workers", "2"], 2.0)
+    assert code == 130, err
     assert stopped < 1.0, stopped
     assert err.strip() == "ccopt: interrupted"
-    assert not [w for w in workers if Path(f"/proc/{w}").exists()
-                and "Z" not in Path(f"/proc/{w}/stat").read_text().split()[2]]
+    assert _gone(workers)
     names = sorted(p.name for p in out.iterdir()) if out.exists() else []
     # no temporary file, no report of a run that did not finish
     assert not [n for n in names if n.endswith(".tmp")], names
@@ -114,27 +127,8 @@ def test_sigint_stops_run_within_a_second_leaving_no_partial_file(tmp_path):
 def test_sigint_stops_a_parallel_comparison_within_a_second():
     # freeform-hsm's comparison keeps both workers on long plans for seconds;
     # a library pool would let each finish its task before the command ends
-    env = dict(os.environ, PYTHONPATH=str(ROOT))
-    proc = subprocess.Popen([sys.executable, "-m", "ccopt.cli", "compare", "freeform-hsm",
-                             "--workers", "2"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    try:
-        t0 = time.monotonic()
-        while len(_children(proc.pid)) < 2 and time.monotonic() - t0 < 60:
-            time.sleep(0.02)
-        workers = _children(proc.pid)
-        assert len(workers) == 2, "the workers never started"
-        time.sleep(2.5)                      # the blends and the first plans are running
-        assert proc.poll() is None, "finished before it could be interrupted"
-        t1 = time.monotonic()
-        proc.send_signal(signal.SIGINT)
-        _, err = proc.communicate(timeout=30)
-        stopped = time.monotonic() - t1
-    finally:
-        if proc.poll() is None:
-            proc.kill()
-    assert proc.returncode == 130, err
+    code, err, stopped, workers = _interrupt(["compare", "freeform-hsm", "--workers", "2"], 2.5)
+    assert code == 130, err
     assert stopped < 1.0, stopped
     assert err.strip() == "ccopt: interrupted"
-    assert not [w for w in workers if Path(f"/proc/{w}").exists()
-                and "Z" not in Path(f"/proc/{w}/stat").read_text().split()[2]]
+    assert _gone(workers)

@@ -23,10 +23,7 @@ print("ok")
 
 
 def test_feed_planner_does_not_load_pyplot():
-    out = subprocess.run([sys.executable, "-c", CHECK], capture_output=True, text=True,
-                         check=False)
-    assert out.returncode == 0, out.stderr
-    assert out.stdout.strip() == "ok"
+    _runs_ok(CHECK)
 
 
 CHECK_INTERPOLATE = """
@@ -49,10 +46,7 @@ print("ok")
 
 
 def test_feed_planner_does_not_load_scipy_interpolate():
-    out = subprocess.run([sys.executable, "-c", CHECK_INTERPOLATE], capture_output=True,
-                         text=True, check=False)
-    assert out.returncode == 0, out.stderr
-    assert out.stdout.strip() == "ok"
+    _runs_ok(CHECK_INTERPOLATE)
 
 
 CHECK_CVXPY = """
@@ -72,7 +66,12 @@ print("ok")
 
 
 def test_cvxpy_loads_without_scipy_stats():
-    out = subprocess.run([sys.executable, "-c", CHECK_CVXPY], capture_output=True, text=True,
+    _runs_ok(CHECK_CVXPY)
+
+
+def _runs_ok(code: str) -> None:
+    """``code`` run in a fresh interpreter prints ``ok``."""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                          check=False)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "ok"
