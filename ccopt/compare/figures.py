@@ -184,6 +184,11 @@ CHUNK_CELLS = 1 << 18
 
 _LINE, _ARC, _CURVE = 0, 1, 2
 
+#: Nearest curve samples (over all target curves) whose chords bound a point's
+#: distance to the curves: more than one, so that a curve whose chord passes
+#: nearer than another curve's nearest sample is seen too.
+CURVE_NEIGHBOURS = 4
+
 
 class _Primitives:
     """Primitives as columns, for many points on many of them at once: lines
@@ -254,31 +259,76 @@ class _Primitives:
 
 class _Distances:
     """Upper bounds of the distances from points to primitives (``targets``):
-    lines and arcs exactly (closed form); another curve by its samples every
-    ``h`` of arc length (a k-d tree, built once per curve): the distance to
-    the chords beside the nearest sample plus the chords' largest gap to the
-    curve, ``kappa ds^2 / 8`` (``|p''| = kappa`` by arc length), an upper bound
-    within that gap of the true distance."""
+    lines and arcs exactly (closed form); the other curves by their samples
+    every ``h`` of arc length, all in one k-d tree: for each of the
+    :data:`CURVE_NEIGHBOURS` nearest samples, the distance to the chords
+    beside it on its curve plus the chords' largest gap to that curve,
+    ``kappa ds^2 / 8`` (``|p''| = kappa`` by arc length): an upper bound of the
+    distance to the curves, within that gap of it where the nearest point
+    lies on those chords."""
 
     def __init__(self, targets: _Primitives, h: float):
         self.t = targets
         self.h = h
-        self._curves = {}
+        self._sampled: dict = {}
+        self._trees: dict = {}
+        self._all = None
 
-    def curve(self, j: int):
-        """``(s, points, tree, gap)`` of the curve ``j`` sampled every ``h`` at most."""
-        from scipy.spatial import cKDTree  # deferred: scipy loads slowly, only this figure needs it
-        if j not in self._curves:
+    def sampled(self, j: int):
+        """``(s, points, gap)`` of the curve ``j`` sampled every ``h`` at most."""
+        if j not in self._sampled:
             g = self.t.geoms[j]
             s = np.linspace(0.0, g.length, max(2, int(math.ceil(g.length / self.h)) + 1))
             q = _points_between(g, 0.0, g.length, s.size)
             step = s[1] - s[0] + 2.0 * ARC_LENGTH_REL_TOL * g.length
-            self._curves[j] = (s, q, cKDTree(q), _curvature_cap(g) * step * step / 8.0)
-        return self._curves[j]
+            self._sampled[j] = (s, q, _curvature_cap(g) * step * step / 8.0)
+        return self._sampled[j]
+
+    def tree(self, j: int):
+        """A k-d tree of the samples of the curve ``j``."""
+        from scipy.spatial import cKDTree  # deferred: scipy loads slowly, only this figure needs it
+        if j not in self._trees:
+            self._trees[j] = cKDTree(self.sampled(j)[1])
+        return self._trees[j]
+
+    def _every_curve(self):
+        """``(points, curve, first, last, gap, tree)``: the samples of every target
+        curve, in one array and one k-d tree; per sample its curve's index in
+        ``t.curves``; per curve its first and last sample and chord gap."""
+        from scipy.spatial import cKDTree  # deferred: scipy loads slowly, only this figure needs it
+        if self._all is None:
+            parts = [self.sampled(int(j)) for j in self.t.curves]
+            sizes = np.array([len(q) for _, q, _ in parts])
+            last = np.cumsum(sizes) - 1
+            Q = np.vstack([q for _, q, _ in parts])
+            self._all = (Q, np.repeat(np.arange(sizes.size), sizes), last - sizes + 1, last,
+                         np.array([gap for _, _, gap in parts]), cKDTree(Q))
+        return self._all
+
+    def to_curves(self, p: np.ndarray) -> np.ndarray:
+        """``(N,)``: an upper bound of the distance from each point to the target
+        curves (see the class docstring)."""
+        Q, curve, first, last, gap, tree = self._every_curve()
+        k_near = min(CURVE_NEIGHBOURS, len(Q))
+        dk, k = tree.query(p, k=k_near)
+        dk, k = dk.reshape(len(p), k_near), k.reshape(len(p), k_near)
+        best = dk.min(axis=1)
+        px, py = p[:, 0], p[:, 1]
+        for col in range(k_near):
+            kk = k[:, col]
+            c = curve[kk]
+            k0 = np.clip(kk - 1, first[c], last[c] - 1)
+            k1 = np.clip(kk, first[c], last[c] - 1)
+            chord = np.minimum(point_segment_cols(px, py, *Q[k0].T, *Q[k0 + 1].T)[0],
+                               point_segment_cols(px, py, *Q[k1].T, *Q[k1 + 1].T)[0])
+            best = np.minimum(best, chord + gap[c])
+        return best
 
     def pairs(self, pts: np.ndarray, pi: np.ndarray, pj: np.ndarray) -> np.ndarray:
         """An upper bound of the distance from each point ``pts[pi]`` to primitive
-        ``pj`` (exact for lines and arcs)."""
+        ``pj``: exact for lines and arcs; for a curve, the bound to every target
+        curve (:meth:`to_curves`: no larger than that curve's, so the least
+        over a point's pairs is still an upper bound of its distance to them)."""
         t = self.t
         d = np.empty(pi.size)
         kind = t.kind[pj]
@@ -293,18 +343,8 @@ class _Distances:
             d[sel] = _arc_distances(px[sel], py[sel], t.arcs, pj[sel])
         sel = np.flatnonzero(kind == _CURVE)
         if sel.size:
-            order = np.argsort(pj[sel], kind="stable")
-            sel = sel[order]
-            cuts = np.flatnonzero(np.diff(pj[sel])) + 1
-            for grp in np.split(sel, cuts):
-                s, q, tree, gap = self.curve(int(pj[grp[0]]))
-                p = np.column_stack((px[grp], py[grp]))
-                dk, k = tree.query(p)
-                k0 = np.clip(k - 1, 0, len(q) - 2)
-                k1 = np.clip(k, 0, len(q) - 2)
-                chord = np.minimum(point_segment_cols(p[:, 0], p[:, 1], *q[k0].T, *q[k0 + 1].T)[0],
-                                   point_segment_cols(p[:, 0], p[:, 1], *q[k1].T, *q[k1 + 1].T)[0])
-                d[grp] = np.minimum(dk, chord + gap)
+            at = np.unique(pi[sel])               # one bound per point, whatever its curves
+            d[sel] = self.to_curves(pts[at])[np.searchsorted(at, pi[sel])]
         return d
 
     def upper(self, pts: np.ndarray, owner: np.ndarray, local) -> np.ndarray:
@@ -362,8 +402,8 @@ class _Distances:
                 d = min(d, float(self.pairs(p[None], np.zeros(1, np.intp),
                                             np.array([j]))[0]))
                 continue
-            s, _, tree, _ = self.curve(j)
-            k = int(tree.query(p)[1])
+            s = self.sampled(j)[0]
+            k = int(self.tree(j).query(p)[1])
             q = _points_between(g, s[max(k - 1, 0)], s[min(k + 1, s.size - 1)], 801)
             d = min(d, float(np.min(point_segment(np.repeat(p[None], len(q) - 1, 0),
                                                   q[:-1], q[1:])[0])))
