@@ -32,8 +32,8 @@ import numpy as np
 
 from ccopt.geometry import Arc, Line, point_segment
 from ccopt.geometry.bezier_arclength import ARC_LENGTH_REL_TOL
-from ccopt.geometry.bezier_batch import BezierBatch
-from ccopt.geometry.curve import BezierCurve, curvature_bound
+from ccopt.geometry.bezier_batch import batches_by_degree
+from ccopt.geometry.curve import curvature_bound
 from ccopt.geometry.angles import in_sweep_prepared
 from ccopt.geometry.columns import PreparedArcs
 from ccopt.geometry.point_distance import point_segment_cols
@@ -214,17 +214,7 @@ class _Primitives:
                 arc[i] = (*g.center, g.radius, g.theta0, g.sweep)
         self.arcs = PreparedArcs(*arc.T)
         self.curves = np.flatnonzero(self.kind == _CURVE)
-        self.batch = np.full(m, -1, np.intp)
-        self.row = np.zeros(m, np.intp)
-        by_degree: dict = {}
-        for i in self.curves:
-            if type(geoms[i]) is BezierCurve:
-                by_degree.setdefault(geoms[i].degree, []).append(int(i))
-        self.batches = []
-        for members in by_degree.values():
-            self.batch[members] = len(self.batches)
-            self.row[members] = np.arange(len(members))
-            self.batches.append(BezierBatch([geoms[i] for i in members]))
+        self.batch, self.row, self.batches = batches_by_degree(geoms)
 
     def points(self, k, s) -> np.ndarray:
         """``(N, 2)``: the point at arc length ``s`` (clipped) of primitive ``k``, each."""

@@ -53,8 +53,8 @@ import numpy as np
 from ccopt.feed.limits import MACHINE_FRAME
 from ccopt.feed.toppra_import import AbstractGeometricPath
 from ccopt.geometry import Arc, Line, Spiral
-from ccopt.geometry.bezier_batch import BezierBatch
-from ccopt.geometry.curve import RECENT_INVERSIONS, BezierCurve, d2_from, d3_from, unit_tangent
+from ccopt.geometry.bezier_batch import batches_by_degree
+from ccopt.geometry.curve import RECENT_INVERSIONS, d2_from, d3_from, unit_tangent
 from ccopt.program.model import PLANE_AXES
 from ccopt.tolerances import GAP_EPS, POINT_EPS, TURN_EPS
 from ccopt.toolpath import Role, ToolPath
@@ -385,18 +385,8 @@ class ExactPath(AbstractGeometricPath):
         """The Bezier curves among the segments in batches, one per degree
         (:class:`~ccopt.geometry.bezier_batch.BezierBatch`): ``_bezier[k]`` is
         segment ``k``'s batch number (-1: none) and ``_bezier_row[k]`` its row."""
-        K = len(self.segments)
-        self._bezier = np.full(K, -1, dtype=np.intp)
-        self._bezier_row = np.zeros(K, dtype=np.intp)
-        by_degree: dict[int, list[int]] = {}
-        for i, seg in enumerate(self.segments):
-            if type(seg.geom) is BezierCurve:
-                by_degree.setdefault(seg.geom.degree, []).append(i)
-        self._batches = []
-        for members in by_degree.values():
-            self._bezier[members] = len(self._batches)
-            self._bezier_row[members] = np.arange(len(members))
-            self._batches.append(BezierBatch([self.segments[i].geom for i in members]))
+        self._bezier, self._bezier_row, self._batches = batches_by_degree(
+            [seg.geom for seg in self.segments])
         self._recent_t: dict = {}
 
     def _bezier_kernel(self, b: int, k, lam, order):

@@ -69,6 +69,18 @@ def bernstein_basis(t: np.ndarray, n: int) -> np.ndarray:
     return comb * t ** i * (1.0 - t) ** (n - i)
 
 
+def bezier_points(basis: np.ndarray, P: np.ndarray) -> np.ndarray:
+    """``(N, 2)`` points ``sum_i basis[:, i] P_i`` of Bezier curves: ``P`` the
+    control points ``(n + 1, 2)`` of one curve, or ``(N, n + 1, 2)`` one curve
+    per row. Summed term by term in one order either way, so a row comes out
+    bit for bit as its curve alone gives it (a matrix product's summation
+    order is the BLAS's: :mod:`ccopt.verify.certified_batch` relies on this)."""
+    out = basis[:, 0, None] * P[..., 0, :]
+    for i in range(1, basis.shape[1]):
+        out += basis[:, i, None] * P[..., i, :]
+    return out
+
+
 @functools.lru_cache(maxsize=None)
 def _binomials(n: int) -> tuple[np.ndarray, np.ndarray]:
     """``(0..n, C(n, 0..n))`` as float arrays."""

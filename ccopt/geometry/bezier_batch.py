@@ -25,8 +25,9 @@ from __future__ import annotations
 import numpy as np
 
 from ccopt.geometry.bezier_arclength import (
-    _GL_W, _GL_X, MAX_INVERSION_ROUNDS, bernstein_basis,
+    _GL_W, _GL_X, MAX_INVERSION_ROUNDS, bernstein_basis, bezier_points,
 )
+from ccopt.geometry.curve import BezierCurve
 
 
 class BezierBatch:
@@ -149,11 +150,7 @@ class BezierBatch:
         ``"D3"``) of each point's curve at parameters ``t``; zero where the
         degree is too low to have it."""
         ctrl = getattr(self, which)[np.asarray(c, dtype=np.intp)]        # (N, k + 1, 2)
-        basis = bernstein_basis(t, ctrl.shape[1] - 1)
-        out = basis[:, 0, None] * ctrl[:, 0]
-        for i in range(1, basis.shape[1]):
-            out += basis[:, i, None] * ctrl[:, i]
-        return out
+        return bezier_points(bernstein_basis(t, ctrl.shape[1] - 1), ctrl)
 
     def derivatives(self, c, t, order: int) -> list[np.ndarray]:
         """``r'``, ``r''`` (and ``r'''`` for ``order`` 3) at parameters ``t``, as
@@ -162,3 +159,21 @@ class BezierBatch:
         for name, k in (("D2", 2), ("D3", 3))[: order - 1]:
             out.append(self.at(name, c, t) if self.degree >= k else np.zeros_like(out[0]))
         return out
+
+
+def batches_by_degree(geoms) -> tuple[np.ndarray, np.ndarray, list[BezierBatch]]:
+    """The Bezier curves among ``geoms`` in batches, one per degree: ``(batch,
+    row, batches)``, ``batch[i]`` the batch of ``geoms[i]`` (-1: not a Bezier
+    curve) and ``row[i]`` its row there."""
+    batch = np.full(len(geoms), -1, dtype=np.intp)
+    row = np.zeros(len(geoms), dtype=np.intp)
+    by_degree: dict[int, list[int]] = {}
+    for i, g in enumerate(geoms):
+        if type(g) is BezierCurve:
+            by_degree.setdefault(g.degree, []).append(i)
+    batches = []
+    for members in by_degree.values():
+        batch[members] = len(batches)
+        row[members] = np.arange(len(members))
+        batches.append(BezierBatch([geoms[i] for i in members]))
+    return batch, row, batches

@@ -36,7 +36,7 @@ import numpy as np
 
 from ccopt.geometry import Arc, Line, SegmentArray, Spiral
 from ccopt.geometry.angles import sweep_sign
-from ccopt.geometry.bezier_arclength import bernstein_basis
+from ccopt.geometry.bezier_arclength import bernstein_basis, bezier_points
 from ccopt.geometry.distance import (
     point_arc, point_segment, segment_arc, segment_segment,
 )
@@ -145,18 +145,6 @@ class BezierParam(Param):
 
     def d2(self, u0, u1):
         return np.full(np.shape(u0), self.K)
-
-
-def bezier_points(basis: np.ndarray, P: np.ndarray) -> np.ndarray:
-    """``(N, 2)`` points ``sum_i basis[:, i] P_i`` of Bezier curves: ``P`` the
-    control points ``(n + 1, 2)`` of one curve, or ``(N, n + 1, 2)`` one curve
-    per row. Summed term by term in one order either way, so a row comes out
-    bit for bit as its curve alone gives it (a matrix product's summation
-    order is the BLAS's: :mod:`.certified_batch` relies on this)."""
-    out = basis[:, 0, None] * P[..., 0, :]
-    for i in range(1, basis.shape[1]):
-        out += basis[:, i, None] * P[..., i, :]
-    return out
 
 
 class CurveParam(Param):

@@ -28,10 +28,10 @@ from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.distance import point_arc, point_segment, segment_arc, segment_segment
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
 from ccopt.verify.concentric import polar_gap, same_angle
-from ccopt.geometry.bezier_arclength import bernstein_basis
+from ccopt.geometry.bezier_arclength import bernstein_basis, bezier_points
 from ccopt.verify.certified import (
-    MAX_PIECES, BezierParam, Bound, SpiralParam, _first_pieces, _fraction, bezier_points,
-    is_bezier, is_exact,
+    MAX_PIECES, BezierParam, Bound, SpiralParam, _first_pieces, _fraction, is_bezier,
+    is_exact,
 )
 
 
