@@ -10,6 +10,8 @@ from ccopt.feed import AxisLimits, ExactPath
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.toolpath import PathSegment, Role, ToolPath
 
+from _tolerances import TOPPRA_OVER
+
 
 def seg(geom, w0=0.0, w1=0.0, feed=10.0, role=Role.COMPENSATED):
     return PathSegment(geom, role, None, w0, w1, feed)
@@ -199,5 +201,5 @@ def test_blend_curve_from_its_own_methods():
     lim = AxisLimits((100.0, 100.0), (1000.0, 1000.0), centripetal_acc=300.0)
     smp = plan_feed(path, lim).sample(1e-3)
     kappa_v2 = smp.curvature * smp.feed ** 2
-    assert kappa_v2.max() <= 300.0 * 1.005
-    assert smp.axis_acceleration_ratio.max() <= 1.005
+    assert kappa_v2.max() <= 300.0 * TOPPRA_OVER
+    assert smp.axis_acceleration_ratio.max() <= TOPPRA_OVER

@@ -21,6 +21,8 @@ from ccopt.feed import AxisLimits, plan_feed
 from ccopt.geometry import Line
 from ccopt.toolpath import PathSegment, Role, ToolPath
 
+from _tolerances import JERK_OVER
+
 
 def seg(geom, feed):
     return PathSegment(geom, Role.COMPENSATED, None, 0.0, 0.0, feed)
@@ -99,7 +101,7 @@ def test_feed_cli_jmax_and_ts(run_cli):
     assert list(out["planners"]) == ["toppra", "stop", "junction", "jerk"]
     jerk = out["planners"]["jerk"]
     assert jerk["ts"] == 0.002
-    assert jerk["max_axis_jerk_ratio"] <= 1.005
+    assert jerk["max_axis_jerk_ratio"] <= JERK_OVER
     # more limits: never faster than TOPPRA; never slower than the S-curve per block
     assert out["planners"]["toppra"]["duration"] <= jerk["duration"]
     assert jerk["duration"] <= out["planners"]["stop"]["duration"]

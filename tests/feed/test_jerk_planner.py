@@ -11,6 +11,13 @@ Reference figures are derived here, independently of ccopt's S-curve code:
 - a circle of radius R run at speed v: each axis is R cos(v t / R), whose
   jerk amplitude is v^3 / R^2, so at constant speed the jerk allows at most
   v_j = (J R^2)^(1/3).
+
+Tolerances are the product's stated ones: the README says the planner
+"matches the closed-form jerk-limited line within 0.1 % and a full circle at
+feed within 0.03 % (tests)" (:data:`LINE_REL`, :data:`CIRCLE_REL`), and its
+profiles are certified against the limits with the verifier's tolerance
+(:data:`ccopt.verify.limits.LIMITS_TOL`, 0.1 %), which the samples here (at
+10 kHz, finer than the certificate's 1 kHz) must keep too.
 """
 from __future__ import annotations
 
@@ -23,8 +30,16 @@ import ccopt.feed.jerk_lp as jerk_lp
 from ccopt.feed import AxisLimits, FeedError, plan_feed
 from ccopt.geometry import Arc, Line
 from ccopt.toolpath import PathSegment, Role, ToolPath
+from ccopt.verify.limits import LIMITS_TOL
 
-OVER = 1.005        # limits: at most 0.5 % over, sampled at 10 kHz
+#: Limits: at most the certificate's tolerance over, sampled at 10 kHz
+#: (measured on these paths: at most 1 + 1.5e-4, the line's velocity).
+OVER = 1 + LIMITS_TOL
+#: README: the closed-form jerk-limited line within 0.1 % (measured: the
+#: 100 mm line 0.082 % above), a full circle at feed within 0.03 % (measured:
+#: 0.011 % above).
+LINE_REL = 1e-3
+CIRCLE_REL = 3e-4
 DT = 1e-4
 
 
@@ -47,7 +62,7 @@ def test_line_rest_to_rest_matches_closed_form():
     prof = plan_feed(tp, lim, planner="jerk")
     assert prof.info["scurve_stretches"] == 0
     closed = 100 / 100 + 100 / 1000 + 1000 / 20000
-    assert prof.duration == pytest.approx(closed, rel=5e-3)
+    assert prof.duration == pytest.approx(closed, rel=LINE_REL)
     assert prof.duration >= closed * (1 - 1e-9)       # nothing beats the optimum
     v, a, j, smp = sampled_ratios(prof)
     assert max(v, a, j) <= OVER
@@ -69,7 +84,11 @@ def test_short_diagonal_line_pure_jerk_limited():
     assert (2.0 / (2 * jp)) ** (1 / 3) * jp <= ap          # peak acceleration below a
     prof = plan_feed(tp, lim, planner="jerk")
     assert prof.info["scurve_stretches"] == 0
-    assert prof.duration == pytest.approx(closed, rel=5e-3)
+    # (measured 0.43 % above: the README's 0.1 % for a jerk-limited line is
+    # not met on this pure jerk-limited one; ccopt.feed.jerk_planner's
+    # STOP_RATIO note states 0.44 %)
+    assert prof.duration == pytest.approx(closed, rel=LINE_REL)
+    assert prof.duration >= closed * (1 - 1e-9)       # nothing beats the optimum
     v, a, j, _ = sampled_ratios(prof)
     assert max(v, a, j) <= OVER
 
@@ -85,10 +104,13 @@ def test_circle_at_constant_feed():
     lim = AxisLimits((200, 200), (A, A), j=(J, J))
     prof = plan_feed(tp, lim, planner="jerk")
     closed = 2 * math.pi * R / F + F / A + A / J
-    assert prof.duration == pytest.approx(closed, rel=5e-3)
+    assert prof.duration == pytest.approx(closed, rel=CIRCLE_REL)
     v, a, j, smp = sampled_ratios(prof)
     assert max(v, a, j) <= OVER
-    assert smp.feed.max() == pytest.approx(F, rel=5e-3)
+    # it runs at F: the speed reaches F and stays within the certificate's
+    # tolerance of it (measured: 3.4e-4 above, the speed's peak inside curved
+    # intervals that ccopt.feed.jerk_planner's docstring states)
+    assert F * (1 - 1e-9) <= smp.feed.max() <= F * OVER
 
 
 def test_circle_jerk_bound():
@@ -104,7 +126,7 @@ def test_circle_jerk_bound():
     assert max(v, a, j) <= OVER
     L = 2 * math.pi * R
     t0, t1 = np.interp([L / 4, 3 * L / 4], smp.s, smp.t)
-    assert t1 - t0 <= (L / 2) / v_j * 1.005
+    assert t1 - t0 <= (L / 2) / v_j          # (measured: 1.0 % less)
     # and the acceleration-limited optimum (TOPPRA) is faster: the jerk limit costs time
     assert plan_feed(tp, lim).duration < prof.duration
 
@@ -123,10 +145,11 @@ def test_curvature_break_step_bounded_by_jmax_ts():
     prof = plan_feed(tp, lim, planner="jerk", ts=ts)
     joins = [20.0, 20.0 + math.pi * R / 2]
     v_join = np.interp(joins, prof.s, prof.sd)
-    assert v_join == pytest.approx([math.sqrt(J * ts * R)] * 2, rel=1e-3)
+    # the cap |dq''| b <= J ts is imposed exactly at the join (measured: equal)
+    assert v_join == pytest.approx([math.sqrt(J * ts * R)] * 2, rel=1e-9)
     loose = plan_feed(tp, lim, planner="jerk", ts=4 * ts)
     assert np.interp(joins, loose.s, loose.sd) == pytest.approx([math.sqrt(4 * J * ts * R)] * 2,
-                                                              rel=1e-3)
+                                                              rel=1e-9)
     assert loose.duration < prof.duration
 
 

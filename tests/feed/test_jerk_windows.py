@@ -6,7 +6,9 @@ its four sides are four independent chains of windows; in two processes
 (forced on this small path) every gridpoint's speed is the one planned here.
 Each side is a rest-to-rest straight move of 20 mm along one axis, so its
 time is the closed form L / v + v / a + a / j (v j >= a^2 and room to cruise),
-four times over.
+four times over: within the README's 0.1 % for the closed-form jerk-limited
+line (:data:`LINE_REL`) where the LP plans it, and every limit within the
+certificate's tolerance (:data:`ccopt.verify.limits.LIMITS_TOL`) at 10 kHz.
 """
 from __future__ import annotations
 
@@ -18,6 +20,11 @@ from ccopt.feed import jerk_windows
 from ccopt.feed.jerk_bound import StretchBound
 from ccopt.geometry import Line
 from ccopt.toolpath import PathSegment, Role, ToolPath
+from ccopt.verify.limits import LIMITS_TOL
+
+OVER = 1 + LIMITS_TOL
+#: README: "matches the closed-form jerk-limited line within 0.1 %".
+LINE_REL = 1e-3
 
 
 def square():
@@ -46,7 +53,7 @@ def test_lone_lines_take_their_s_curve_without_lp():
     assert prof.duration == pytest.approx(closed, rel=1e-9)
     smp = prof.sample(1e-4)
     assert max(smp.axis_velocity_ratio.max(), smp.axis_acceleration_ratio.max(),
-               smp.axis_jerk_ratio.max()) <= 1.005
+               smp.axis_jerk_ratio.max()) <= OVER
 
 
 @pytest.mark.slow
@@ -63,10 +70,10 @@ def test_windows_in_two_processes_match_one(monkeypatch):
     np.testing.assert_array_equal(apart.s, here.s)
     np.testing.assert_array_equal(apart.sd, here.sd)
     closed = 4 * (20 / 100 + 100 / 1000 + 1000 / 20000)
-    assert apart.duration == pytest.approx(closed, rel=5e-3)
+    assert apart.duration == pytest.approx(closed, rel=LINE_REL)   # measured: 0.27 % above
     smp = apart.sample(1e-4)
     assert max(smp.axis_velocity_ratio.max(), smp.axis_acceleration_ratio.max(),
-               smp.axis_jerk_ratio.max()) <= 1.005
+               smp.axis_jerk_ratio.max()) <= OVER
 
 
 def test_stretch_bound_is_toppra_rest_to_rest_on_its_side():
@@ -96,7 +103,7 @@ def test_split_program_plans_the_closed_form(monkeypatch):
     prof = plan_feed(square_in_halves(), lim, planner="jerk")
     assert prof.info["workers"] == 1
     closed = 4 * (20 / 100 + 100 / 1000 + 1000 / 20000)
-    assert prof.duration == pytest.approx(closed, rel=5e-3)
+    assert prof.duration == pytest.approx(closed, rel=LINE_REL)    # measured: 0.27 % above
 
 
 def test_a_window_worker_dies_with_its_parent(tmp_path):
@@ -171,18 +178,19 @@ def test_chained_windows_start_from_the_last_ones_state(monkeypatch):
     # each from the state the one before kept: none is merged with the one before
     # (they were, before a window took its predecessor's speed bound on their
     # overlap: on freeform-hsm's smoothed path that made every window fall back
-    # to the stretch's start, quadratic in its length), the time is within 0.5 %
-    # of one window over the stretch, and every limit holds at 10 kHz.
+    # to the stretch's start, quadratic in its length), the time is within 0.2 %
+    # of one window over the stretch (no stated figure: measured 0.14 % faster),
+    # and every limit holds at 10 kHz within the certificate's tolerance.
     lim = AxisLimits((100, 100), (1000, 1000), j=(20000, 20000))
     whole = plan_feed(wiggle(), lim, planner="jerk")
     assert whole.info["windows"] == 1
     monkeypatch.setattr(jerk_windows, "WINDOW_POINTS", 100)
     chained = plan_feed(wiggle(), lim, planner="jerk")
     assert chained.info["windows"] >= 5 and chained.info["merged_windows"] == 0
-    assert chained.duration == pytest.approx(whole.duration, rel=5e-3)
+    assert chained.duration == pytest.approx(whole.duration, rel=2e-3)
     smp = chained.sample(1e-4)
     assert max(smp.axis_velocity_ratio.max(), smp.axis_acceleration_ratio.max(),
-               smp.axis_jerk_ratio.max()) <= 1.005
+               smp.axis_jerk_ratio.max()) <= OVER
 
 
 def test_rest_bound_is_motion_from_the_nearest_stop():
