@@ -33,23 +33,81 @@ def test_roundtrip_every_case(case, suffix, tmp_path):
     res = export(path, out)
     assert res.roundtrip_error <= res.tolerance
     # Read the file back independently (compensation off: no CC words) and
-    # compare every move with the computed tool path, by sampling each
-    # computed segment and measuring its distance to the read-back moves.
+    # compare it with the computed tool path both ways: every computed move
+    # lies within the tolerance of the file's moves, and every move of the
+    # file within the tolerance of the computed path (an extra move in the
+    # file fails the second).
     back = ccopt.programmed_path(read_program(out))
     text = out.read_text()
     assert not any(w in text for w in ("G41", "G42", "CC1", "CC2", "CCR"))
-    pts = np.vstack([seg.geom.point(np.linspace(0, seg.length, 41))
-                     for seg in path.segments if seg.length > 0])
-    d = distance_bound(pts, [s.geom for s in back.segments if s.length > 0])
-    worst = int(np.argmax(d))
-    assert d[worst] <= res.tolerance + 1e-12, (case.name, pts[worst], d[worst])
+    missing, extra = roundtrip_gaps(path, back, res.tolerance)
+    assert missing[0] <= res.tolerance + 1e-12, (case.name, "not in the file", missing)
+    assert extra[0] <= res.tolerance + 1e-12, (case.name, "in the file only", extra)
+    # moves with no in-plane length (plunges, retracts) are not in the
+    # distances above: the same ones, end for end, both ways
+    assert same_moves(vertical_moves(path), vertical_moves(back), res.tolerance), case.name
 
 
-def distance_bound(pts: np.ndarray, geoms) -> np.ndarray:
+def test_roundtrip_check_catches_a_move_the_file_adds(tmp_path):
+    # the check of the round trip itself: one extra move in the exported file
+    # (out to a point 5 mm off the path and back) is found by the file-to-path
+    # direction, which the path-to-file direction cannot see
+    case = pmac_case("profile")
+    path = ccopt.compensate(read_program(case.program), case.style, radius=case.radius)
+    out = tmp_path / "profile.nc"
+    res = export(path, out)
+    lines = out.read_text().splitlines()
+    at = max(i for i, ln in enumerate(lines) if ln.startswith("G1 "))
+    back_to = lines[at]
+    lines[at + 1:at + 1] = ["G1 X500 Y500", back_to]
+    out.write_text("\n".join(lines) + "\n")
+    back = ccopt.programmed_path(read_program(out))
+    missing, extra = roundtrip_gaps(path, back, res.tolerance)
+    assert missing[0] <= res.tolerance
+    assert extra[0] > 100.0 and np.allclose(extra[1][:2], (500.0, 500.0))
+
+
+def roundtrip_gaps(path, back, tol: float):
+    """``((d, point), (d, point))``: the largest distance from a point of the
+    computed ``path`` to the read-back ``back`` (a move missing from the
+    file), and from a point of ``back`` to ``path`` (a move the file adds),
+    each with its point. Moves of no in-plane length are left out; curves
+    other than lines and arcs are sampled at ``tol / 50`` (an upper bound,
+    at most ``tol / 100`` above the distance)."""
+    computed = [seg for seg in path.segments if seg.length > 0]
+    read = [seg for seg in back.segments if seg.length > 0]
+    out = []
+    for these, those, spacing in ((computed, read, None), (read, computed, tol / 50)):
+        pts = np.vstack([seg.geom.point(np.linspace(0, seg.length, 41)) for seg in these])
+        d = distance_bound(pts, [s.geom for s in those], spacing=spacing)
+        worst = int(np.argmax(d))
+        out.append((float(d[worst]), pts[worst]))
+    return out[0], out[1]
+
+
+def vertical_moves(path) -> np.ndarray:
+    """``(x, y, w0, w1)`` of every move of ``path`` with no in-plane length
+    that moves along the third axis."""
+    rows = [(*seg.geom.point(0.0)[:2], seg.w0, seg.w1) for seg in path.segments
+            if seg.length == 0 and seg.w0 != seg.w1]
+    return np.array(rows, float).reshape(-1, 4)
+
+
+def same_moves(a: np.ndarray, b: np.ndarray, tol: float) -> bool:
+    """Whether each row of ``a`` has a row of ``b`` within ``tol`` (each
+    coordinate) and each row of ``b`` one of ``a``."""
+    if len(a) == 0 or len(b) == 0:
+        return len(a) == len(b)
+    close = np.all(np.abs(a[:, None, :] - b[None, :, :]) <= tol + 1e-12, axis=2)
+    return bool(close.any(axis=1).all() and close.any(axis=0).all())
+
+
+def distance_bound(pts: np.ndarray, geoms, spacing: float | None = None) -> np.ndarray:
     """Distance from each point to the nearest of ``geoms``: exact for lines
-    and arcs (closed-form kernels); for a spiral the minimum over 4001 points
-    on it, an upper bound of the distance (the right direction for asserting
-    it is small)."""
+    and arcs (closed-form kernels); for any other curve the minimum over
+    points on it (4001, or ``spacing`` apart at most), an upper bound of the
+    distance (the right direction for asserting it is small), above it by at
+    most half the spacing."""
     best = np.full(len(pts), np.inf)
     sampled = []
     for g in geoms:
@@ -60,7 +118,8 @@ def distance_bound(pts: np.ndarray, geoms) -> np.ndarray:
             d = point_arc(pts, np.tile(g.center, (m, 1)), np.full(m, g.radius),
                           np.full(m, g.theta0), np.full(m, g.sweep))[0]
         else:
-            sampled.append(g.point(np.linspace(0, g.length, 4001))[:, :2])
+            n = 4001 if spacing is None else max(2, math.ceil(g.length / spacing) + 1)
+            sampled.append(g.point(np.linspace(0, g.length, n))[:, :2])
             continue
         best = np.minimum(best, d)
     if sampled:
