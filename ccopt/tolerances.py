@@ -27,6 +27,15 @@ PMAC_BREAK_COS = 0.9998
 #: Default verification tolerance (program units), see ccopt.verify.
 VERIFY_EPS = 1e-6
 
+#: Default gouge tolerance of a certificate, per program unit: a gouge, contact
+#: excess or wrong-side offset no deeper than this is a warning (listed with
+#: its depth, place and cause; verdict "ok within tolerance"), deeper ones
+#: fail. 1 micrometre, and 40 microinches (1.016 micrometres) for inch
+#: programs: above what a CAM program's written decimals move a point by (at
+#: most 5e-4 per coordinate at 3 decimals), far below what a machine holds,
+#: far above the rounding of the arithmetic (``VERIFY_EPS``).
+GOUGE_TOLERANCE = {"mm": 1e-3, "inch": 4e-5}
+
 #: A compensated arc whose two end points lie within this (relative to
 #: max(1, R')) of its offset circle R' is that offset arc, radius exactly R'.
 #: Corner intersections with nearly straight arcs (R of thousands of units)

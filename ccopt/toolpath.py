@@ -45,6 +45,13 @@ class Role(str, enum.Enum):
 #: controller itself makes: e.g. a fitted arc with role ``corner`` is a piece
 #: of a blend, not an added corner arc about a programmed corner.
 FITTED_PIECES = "fitted_pieces"
+#: ``ToolPath.meta`` key: segment index -> corner angle (radians, > 0 turning
+#: away from the tool side) of the tool segments that start at the previous
+#: move's offset end because the controller took a slight turn as straight on
+#: (LinuxCNC below ``LINUXCNC_CONCAVE_CORNER``): such a join gouges by up to
+#: ``r (1 - cos angle)`` at an outside turn, and the verifier names it as the
+#: cause of a gouge within tolerance.
+STRAIGHT_JOINS = "straight_joins"
 #: ``ToolPath.meta`` key of a lathe path's controlled-point moves
 #: (:mod:`ccopt.compensate.lathe`): ``(segment index, how, du, dv)`` with how
 #: ``"whole"``, ``"end"`` (entry), ``"start"`` (exit) or ``"added"`` (the

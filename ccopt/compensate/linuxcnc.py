@@ -72,7 +72,7 @@ from ccopt.tolerances import (
     LINUXCNC_TOLERANCE_EQUAL,
     SPIRAL_RADIUS_REL_TOL,
 )
-from ccopt.toolpath import PathSegment, Role, ToolPath, effective_side_radius
+from ccopt.toolpath import STRAIGHT_JOINS, PathSegment, Role, ToolPath, effective_side_radius
 
 
 #: The style's "straight on" turn tolerance (radians), exported under its old
@@ -131,12 +131,21 @@ class _Move:
     centre: np.ndarray | None = None      # arcs
     turn: int = 0                          # arcs: LinuxCNC turn (+-n)
     programmed_sweep: float = 0.0          # arcs: 0 = never checked (corner arcs)
+    join: float = 0.0                      # LinuxCNC's corner angle beta when the move
+                                           # starts at the last offset point (a slight
+                                           # turn taken as straight on), else 0
 
 
 @dataclass
 class _Dwell:
     seconds: float
     block: Block
+
+
+def _straight_join(beta: float, small: float) -> float:
+    """``beta`` when a move with corner angle ``beta`` starts at the last offset
+    point (a turn of at most ``small`` either way, taken as straight on), else 0."""
+    return beta if beta != 0.0 and -small <= beta <= small else 0.0
 
 
 def _err(block: Block, message: str) -> CompensationError:
@@ -185,6 +194,7 @@ class _Interpreter:
         self.dwells: list[tuple[int, float, Block]] = []
         self.used_radius = 0.0
         self.exit_pending = False
+        self.joins: dict[int, float] = {}    # STRAIGHT_JOINS of the tool path
 
     # -- the machine side: sending moves ----------------------------------------
     def send(self, item) -> None:
@@ -197,6 +207,8 @@ class _Interpreter:
         else:
             geom = self._arc_geometry(s, item)
         feed = None if item.rapid else item.block.feed
+        if item.join != 0.0:
+            self.joins[len(self.segs)] = item.join
         self.segs.append(PathSegment(geom, item.role, item.block, self.tip_w, item.w1, feed))
         self.tip = np.asarray(item.end, float).copy()
         self.tip_w = item.w1
@@ -291,7 +303,8 @@ class _Interpreter:
         plane = self.segs[0].plane if self.segs else self.plane
         return ToolPath(tuple(self.segs), plane=plane, style=LinuxcncStyle.name,
                         radius=self.used_radius, dwells=tuple(self.dwells),
-                        units=self.program.units, meta={})
+                        units=self.program.units,
+                        meta={STRAIGHT_JOINS: dict(self.joins)} if self.joins else {})
 
     def state_change(self, blk: Block, prev_modal) -> None:
         """``G40``/``G41``/``G42`` between the previous block and this one."""
@@ -473,7 +486,7 @@ class _Interpreter:
             self.dequeue()
             self.set_endpoint(c)
         self.enqueue(_Move("line", end, w, blk, Role.COMPENSATED, rapid=rapid,
-                           direction=p - op))
+                           direction=p - op, join=_straight_join(beta, small)))
         self.cur, self.cur_w, self.prog = end, w, p.copy()
 
     def _pull_back_line_line(self, blk: Block, beta: float, t_prev) -> np.ndarray:
@@ -550,7 +563,8 @@ class _Interpreter:
             self.dequeue()
             self.set_endpoint(c)
         self.enqueue(_Move("arc", new_end, w, blk, Role.COMPENSATED, centre=C, turn=turn,
-                           programmed_sweep=programmed_sweep))
+                           programmed_sweep=programmed_sweep,
+                           join=0.0 if concave else _straight_join(beta, small)))
         self.cur, self.cur_w, self.prog = new_end, w, p.copy()
 
     def _pull_back_line_arc(self, blk: Block, C, new_rad: float, inside: bool, t_prev):

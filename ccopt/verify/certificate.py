@@ -131,6 +131,16 @@ class Certificate:
     notes: tuple[str, ...] = ()
     context: Any = field(default=None, repr=False)
     surface: dict = field(default_factory=dict)
+    warnings: tuple[Violation, ...] = ()
+    tolerance: float | None = None
+
+    @property
+    def verdict(self) -> str:
+        """``"ok"``, ``"ok within tolerance"`` (every check holds, with shallow
+        violations listed as :attr:`warnings`) or ``"failed"``."""
+        if not self.ok:
+            return "failed"
+        return "ok within tolerance" if self.warnings else "ok"
 
     def check(self, name: str) -> Check:
         for c in self.checks:
@@ -164,6 +174,8 @@ class Certificate:
     def to_json(self) -> dict:
         return {
             "ok": self.ok,
+            "verdict": self.verdict,
+            "tolerance": self.tolerance,
             "geometry_ok": self.geometry_ok,
             "limits_ok": self.limits_ok,
             "limits_tol": self.limits_tol,
@@ -174,15 +186,16 @@ class Certificate:
             "units": self.units,
             "checks": [c.to_json() for c in self.checks],
             "violations": [v.to_json() for v in self.violations],
+            "warnings": [v.to_json() for v in self.warnings],
             "notes": list(self.notes),
             "surface": self.surface,
         }
 
     def summary(self) -> str:
         """A few human lines: one per check, then the violations (first 20)."""
-        lines = [f"verification {'PASSED' if self.ok else 'FAILED'} ({self._verdicts()}): "
+        lines = [f"verification {self._headline()} ({self._verdicts()}): "
                  f"cutter radius {self.radius:g} "
-                 f"{self.units}, eps {self.eps:g}, min clearance "
+                 f"{self.units}, eps {self.eps:g}{self._tolerance_text()}, min clearance "
                  + ("n/a" if self.min_clearance is None else
                     f"{self.min_clearance:.9g} ({self.min_clearance_basis})")]
         for c in self.checks:
@@ -199,6 +212,17 @@ class Certificate:
             lines.append(f"  - {v.kind}: depth {v.depth:.9g}, {where}{elem}{wit}".rstrip())
         if len(self.violations) > 20:
             lines.append(f"  ... {len(self.violations) - 20} more")
+        for v in self.warnings[:20]:
+            where = f"tool segment {v.tool_segment} (line {v.tool_block}, {v.tool_role})" \
+                if v.tool_segment is not None else ""
+            elem = f" vs element {v.element} (line {v.element_block})" if v.element is not None else ""
+            wit = ""
+            if v.witness_tool is not None:
+                wit = f" at ({v.witness_tool[0]:.6g}, {v.witness_tool[1]:.6g})"
+            lines.append(f"  ~ warning, {v.kind} within tolerance: depth {v.depth:.3g} "
+                         f"{self.units}, {where}{elem}{wit}: {v.detail.get('cause', '')}".rstrip())
+        if len(self.warnings) > 20:
+            lines.append(f"  ... {len(self.warnings) - 20} more warnings")
         for n in self.notes:
             lines.append(f"  note: {n}")
         lines.extend(_surface_lines(self.surface))
@@ -211,7 +235,7 @@ class Certificate:
         and violation, :meth:`to_json` everything)."""
         clear = "n/a" if self.min_clearance is None else \
             f"{self.min_clearance:.6g} {self.units} ({self.min_clearance_basis})"
-        head = (f"Certificate {'OK' if self.ok else 'FAILED'} ({self._verdicts()}): cutter "
+        head = (f"Certificate {self._headline().replace('PASSED', 'OK')} ({self._verdicts()}): cutter "
                 f"radius {self.radius:g} {self.units}, min clearance {clear}")
         failed = [c for c in self.checks if not c.ok]
         if not failed:
@@ -219,6 +243,17 @@ class Certificate:
         return head + "\n  failed: " + ", ".join(
             f"{c.name} ({c.violations} violation{'s' if c.violations != 1 else ''})"
             for c in failed)
+
+    def _headline(self) -> str:
+        if not self.ok:
+            return "FAILED"
+        if self.warnings:
+            n = len(self.warnings)
+            return f"PASSED within tolerance ({n} warning{'s' if n != 1 else ''})"
+        return "PASSED"
+
+    def _tolerance_text(self) -> str:
+        return "" if self.tolerance is None else f", tolerance {self.tolerance:g} {self.units}"
 
     def _verdicts(self) -> str:
         """``geometry ok, limits FAIL`` and the like: the two verdicts ``ok`` joins."""
@@ -234,11 +269,18 @@ def _lines_text(ranges) -> str:
 
 
 def _surface_lines(surface: dict) -> list[str]:
-    """The part/air decision in words: the part lines, then each air run and why."""
+    """The part/air decision in words: each run of part moves and of air
+    moves with its reason (runs on the same lines for the same reason, e.g.
+    the passes of one subroutine, once with their count)."""
     if not surface or not surface.get("air_lines"):
         return []
-    out = [f"  part surface ({surface['rule']}): lines {_lines_text(surface['part_lines'])}"]
+    runs: dict[tuple, int] = {}
     for run in surface["moves"]:
-        if run["surface"] == "air":
-            out.append(f"  air: lines {_lines_text([run['lines']])} ({run['why']})")
+        key = (run["surface"], tuple(run["lines"]), run["why"])
+        runs[key] = runs.get(key, 0) + 1
+    out = [f"  part and air by rule {surface['rule']}:"]
+    for (surf, lines, why), count in runs.items():
+        label = "part surface" if surf == "part" else "air"
+        times = f" (x{count})" if count > 1 else ""
+        out.append(f"  {label}: lines {_lines_text([lines])}{times} ({why})")
     return out

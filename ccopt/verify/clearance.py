@@ -49,7 +49,10 @@ class PairDistances:
     ``tool``, ``elem``: indices; ``d``: distance (exact) or certified lower
     bound; ``ub``: a distance actually realised (equal to ``d`` when exact);
     ``wt``, ``we``: witness points on the tool segment and the element;
-    ``exact``: True for closed-form pairs; ``margin``: ``d - clearance``;
+    ``exact``: True for closed-form pairs; ``required``: the distance the
+    pair must keep, the element's clearance or, when the tool segment was made
+    with a smaller radius (a later pass of the same contour with another
+    tool or offset), that radius; ``margin``: ``d - required``;
     ``counted``: the tool segment was made with compensation in force
     (:data:`ccopt.verify.decisions.GOUGE_ONLY_WHILE_COMPENSATED`);
     ``tapered``: the margin comes from the part of the tool segment past an
@@ -69,6 +72,7 @@ class PairDistances:
     counted: np.ndarray
     reach: np.ndarray
     tapered: np.ndarray
+    required: np.ndarray
 
     def __len__(self) -> int:
         return int(self.tool.size)
@@ -398,10 +402,16 @@ PAIR_CHUNK = 1 << 16
 
 
 def pair_distances(tool: Packed, contour: Contour, eps: float,
-                   counted: np.ndarray | None = None) -> PairDistances:
+                   counted: np.ndarray | None = None,
+                   tool_radius: np.ndarray | None = None) -> PairDistances:
     """Distances of every tool segment to every contour element within reach.
 
-    ``counted``: per tool segment, whether its pairs count as gouges (all by default).
+    ``counted``: per tool segment, whether its pairs count as gouges (all by
+    default). ``tool_radius``: per tool segment, the cutter radius it was made
+    with (``inf`` where unknown; default: unknown everywhere): a pair asks the
+    smaller of it and the element's clearance, so each pass of a program that
+    runs one contour with several radii is held to its own radius (a finishing
+    pass at r = 3 is no gouge of the roughing pass's r = 5 elements).
     """
     # In the plane of compensation only: a tool position counts whatever its
     # out-of-plane coordinate (conservative: a tool above the part is checked
@@ -442,10 +452,14 @@ def pair_distances(tool: Packed, contour: Contour, eps: float,
                 f[q], tapered[q] = ff, True
                 wt[q], we[q] = a, b
     keep = np.isfinite(f) & (f <= reach[je])
-    margin = f - contour.clearance[je]
+    required = contour.clearance[je]
+    if tool_radius is not None:
+        required = np.minimum(required, np.asarray(tool_radius, float)[it])
+    margin = f - required
     cnt = np.ones(n, bool) if counted is None else np.asarray(counted, bool)[it]
     return PairDistances(it[keep], je[keep], d[keep], ub[keep], wt[keep], we[keep],
-                         exact[keep], margin[keep], cnt[keep], reach, tapered[keep])
+                         exact[keep], margin[keep], cnt[keep], reach, tapered[keep],
+                         required[keep])
 
 def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: float, out):
     """Certified bounds of the ``pairs`` (indices into ``it``, ``je``) with a

@@ -21,6 +21,7 @@ from ccopt.verify.limits import LIMITS_TOL, check_limits
 from ccopt.verify.planes import join_certificates, plane_runs
 from ccopt.verify.segments import Packed, lengths, pack
 from ccopt.verify.side import check_side
+from ccopt.verify.tolerance import apply_tolerance, resolve_tolerance
 
 SIDES = {"left": 1, "right": -1, 1: 1, -1: -1, None: None}
 
@@ -36,7 +37,9 @@ class SegmentTable:
     segment), ``steady`` (its element is steady), radius ``r`` in force, and
     ``move``: its block's index into :attr:`Contour.moves` (the program's
     in-plane moves in order; -1 for a block that is not one, e.g. a Z-only
-    move, or no block)."""
+    move, or no block); ``tool_r``: the cutter radius the segment was made
+    with, its move's radius or, for a lead-out (compensation off over the
+    move), the radius in force before it (``inf`` when not known)."""
 
     role: np.ndarray
     line: np.ndarray
@@ -44,6 +47,7 @@ class SegmentTable:
     steady: np.ndarray
     r: np.ndarray
     move: np.ndarray
+    tool_r: np.ndarray
 
     @classmethod
     def build(cls, roles, blocks, contour: Contour) -> "SegmentTable":
@@ -62,9 +66,13 @@ class SegmentTable:
             elem = np.where(hit, contour.move_element[qq], -1)
             steady = hit & (contour.move_status[qq] == STATUS_NAMES.index(STATUS_STEADY))
             r = np.where(hit, contour.move_r[qq], 0.0)
+            # a lead-out is made with the radius in force before compensation goes off
+            before = contour.move_r[np.maximum(qq - 1, 0)]
+            tool_r = np.where(hit, np.maximum(r, np.where(qq > 0, before, 0.0)), np.inf)
         else:
             elem, steady, r = np.full(n, -1, np.intp), np.zeros(n, bool), np.zeros(n)
-        return cls(role, line, elem, steady, r, q)
+            tool_r = np.full(n, np.inf)
+        return cls(role, line, elem, steady, r, q, tool_r)
 
     def is_role(self, role: Role) -> np.ndarray:
         return self.role == ROLE_CODES[role]
@@ -117,7 +125,7 @@ def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info):
             (float(pairs.wt[q, 0]), float(pairs.wt[q, 1])),
             (float(pairs.we[q, 0]), float(pairs.we[q, 1])),
             EXACT if pairs.exact[q] else CERTIFIED,
-            _gouge_detail(pairs, q, float(contour.clearance[j]))))
+            _gouge_detail(pairs, q, float(pairs.required[q]))))
     viol.sort(key=lambda v: -v.depth)
     approaches = []
     for q in np.flatnonzero(bad & ~pairs.counted)[:LISTED_APPROACHES]:
@@ -145,7 +153,8 @@ def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info):
 
 def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = VERIFY_EPS,
            radius: float | None = None, side=None,
-           limits_tol: float = LIMITS_TOL, part_lines=None) -> Certificate:
+           limits_tol: float = LIMITS_TOL, part_lines=None,
+           tolerance: float | None = None) -> Certificate:
     """Certify that ``toolpath`` keeps the radius offset of ``program``'s contour.
 
     Parameters
@@ -166,6 +175,11 @@ def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = V
         or ``[(A, B), ...]``); the others are air. Default: the markers and the
         closed-loop rule decide (:mod:`ccopt.verify.surface`). The
         certificate's ``surface`` says what was taken as part and why.
+    tolerance: program units; a gouge, contact excess or wrong-side offset
+        no deeper than it is a warning (verdict "ok within tolerance"), a
+        deeper one fails (:mod:`ccopt.verify.tolerance`). Default
+        :data:`~ccopt.tolerances.GOUGE_TOLERANCE` by the program's units
+        (1e-3 mm, 4e-5 inch); 0 makes every violation beyond ``eps`` fail.
 
     Returns a :class:`~ccopt.verify.certificate.Certificate`: checks ``gouge``,
     ``contact``, ``side``, ``continuity`` and ``limits``, each with its figure.
@@ -177,7 +191,9 @@ def verify(toolpath: ToolPath, program: Program, profile=None, *, eps: float = V
     paused = gc.isenabled()
     gc.disable()
     try:
-        return _verify(toolpath, program, profile, eps, radius, side, limits_tol, part_lines)
+        tol = resolve_tolerance(tolerance, program.units, program.file)
+        cert = _verify(toolpath, program, profile, eps, radius, side, limits_tol, part_lines)
+        return apply_tolerance(cert, tol, tool_centre_path(toolpath))
     finally:
         if paused:
             gc.enable()
@@ -221,7 +237,7 @@ def _verify(toolpath, program, profile, eps, radius, side, limits_tol,
         counted = ~(table.is_role(Role.RAPID) | table.is_role(Role.UNCOMPENSATED))
     else:
         counted = np.ones(len(segs), bool)
-    pairs = pair_distances(tool, contour, eps, counted)
+    pairs = pair_distances(tool, contour, eps, counted, table.tool_r)
     results = [check_gouge(pairs, contour, eps, info),
                check_contact(tool, toolpath, contour, eps, seg_len, info, table),
                check_side(tool, contour, eps, seg_len, info, table),
@@ -229,10 +245,13 @@ def _verify(toolpath, program, profile, eps, radius, side, limits_tol,
                check_limits(profile, limits_tol)]
     checks = tuple(c for c, _ in results)
     violations = tuple(v for _, vs in results for v in vs)
-    c = np.flatnonzero(pairs.counted & np.isfinite(pairs.d))
+    # the headline clearance is the gouge check's own figure as a distance:
+    # the pair with the smallest margin (past an open end, its tapered distance)
+    c = np.flatnonzero(pairs.counted & np.isfinite(pairs.margin))
     if c.size:
-        k = c[int(np.argmin(pairs.d[c]))]
-        min_clear, basis = float(pairs.d[k]), EXACT if pairs.exact[k] else CERTIFIED
+        k = c[int(np.argmin(pairs.margin[c]))]
+        min_clear = float(pairs.required[k] + pairs.margin[k])
+        basis = EXACT if pairs.exact[k] else CERTIFIED
     else:
         min_clear, basis = None, EXACT
     rad = float(contour.radius.max()) if len(contour) else float(toolpath.radius)

@@ -191,8 +191,16 @@ def _encloses(verts: np.ndarray, arcs: np.ndarray, eps: float) -> bool:
 
 
 def _loops(compensated, start, end, is_arc, eps, part, why) -> None:
-    """Mark the closed loops of every episode part and the rest of an episode
-    with a loop air (in place)."""
+    """Mark the innermost closed loops of every episode part and the rest of
+    an episode with a loop air (in place).
+
+    A loop is a run of moves from a vertex to its next return within ``eps``
+    that encloses something (:func:`_encloses`). Loops nest when a lead comes
+    back to its own start: a CAM plate entered at a corner whose tangent arc
+    out ends where the arc in began makes the loop lead-in, contour, lead-out
+    around the contour's own loop. Only loops holding no other loop are the
+    part (the leads are air); loops that overlap without nesting (a contour
+    run twice, a loop started at another vertex) are all part."""
     # deferred: scipy.spatial would add 0.3 s to every `import ccopt`
     from scipy.spatial import cKDTree
     for a, b in _episodes(compensated):
@@ -200,26 +208,35 @@ def _loops(compensated, start, end, is_arc, eps, part, why) -> None:
         # the episode's vertices: its first start, then every end; a loop is a
         # later vertex back within eps of an earlier one
         verts = np.r_[start[a:a + 1], end[a:b + 1]]
-        last = np.full(verts.shape[0], -1, np.intp)
+        returns: dict[int, list[int]] = {}
         for p, q in cKDTree(verts).query_pairs(eps, output_type="ndarray"):
             p, q = (int(p), int(q)) if p < q else (int(q), int(p))
-            last[p] = max(last[p], q)
-        loops = []
-        p = 0
-        while p < verts.shape[0]:
-            if last[p] > p and _encloses(verts[p:last[p]], is_arc[a + p:a + last[p]], eps):
-                loops.append((a + p, a + last[p] - 1))
-                p = last[p]
-            else:
-                p += 1
+            returns.setdefault(p, []).append(q)
+        # per vertex, its first return that encloses: the smallest loop from it
+        cand = []
+        for p in sorted(returns):
+            for q in sorted(returns[p]):
+                if _encloses(verts[p:q], is_arc[a + p:a + q], eps):
+                    cand.append((p, q))
+                    break
+        # innermost: no other candidate lies within [p, q] (each vertex has one
+        # candidate, so another one within starts later and returns no later)
+        loops, nearest = [], np.inf
+        for p, q in reversed(cand):
+            if q < nearest:
+                loops.append((p, q))
+            nearest = min(nearest, q)
         if not loops:
             part[a:b + 1] = True
             why[a:b + 1] = [WHY_NO_LOOP] * (b - a + 1)
             continue
-        part[a:b + 1] = False
-        why[a:b + 1] = [WHY_BETWEEN] * (b - a + 1)
-        why[a:loops[0][0]] = [WHY_LEAD_BEFORE] * (loops[0][0] - a)
-        why[loops[-1][1] + 1:b + 1] = [WHY_LEAD_AFTER] * (b - loops[-1][1])
-        for i, j in loops:
-            part[i:j + 1] = True
-            why[i:j + 1] = [WHY_LOOP] * (j - i + 1)
+        inner = np.zeros(b - a + 1, bool)
+        for p, q in loops:
+            inner[p:q] = True
+        first = int(np.argmax(inner))
+        last = int(inner.size - 1 - np.argmax(inner[::-1]))
+        part[a:b + 1] = inner
+        k = np.arange(inner.size)
+        kinds = np.select([inner, k < first, k > last], [0, 1, 2], 3)
+        names = (WHY_LOOP, WHY_LEAD_BEFORE, WHY_LEAD_AFTER, WHY_BETWEEN)
+        why[a:b + 1] = [names[x] for x in kinds.tolist()]

@@ -21,6 +21,10 @@ from ccopt.verify import verify
 from faults import (dropped_segments, flipped_arcs, moved_points, moved_segments, pushed_leads)
 
 EPS = 1e-6
+#: The faults are checked at the arithmetic's tolerance (no gouge tolerance):
+#: every fault deeper than EPS must fail, a 1e-3 one included.
+#: test_faults_within_the_default_tolerance_are_warnings covers the default.
+EXACT = 0.0
 CASES = [c for c in bundled_cases() if c.expect != "error"]
 OK = [c for c in CASES if c.expect == "ok"]
 GOUGE = [c for c in CASES if c.expect == "gouge"]
@@ -69,7 +73,7 @@ def depths_at(cert, segments) -> float:
 @pytest.mark.parametrize("case", OK, ids=[c.name for c in OK])
 def test_unmodified_ok_cases_raise_no_alarm(case):
     prog, path, _, _, _ = setup(case)
-    cert = verify(path, prog, radius=case.radius, eps=EPS)
+    cert = verify(path, prog, radius=case.radius, eps=EPS, tolerance=EXACT)
     assert cert.ok, cert.summary()
     assert cert.violations == ()
 
@@ -77,13 +81,36 @@ def test_unmodified_ok_cases_raise_no_alarm(case):
 @pytest.mark.parametrize("case", GOUGE, ids=[c.name for c in GOUGE])
 def test_gouge_cases_keep_failing(case):
     prog, path, _, _, _ = setup(case)
-    cert = verify(path, prog, radius=case.radius, eps=EPS)
+    cert = verify(path, prog, radius=case.radius, eps=EPS, tolerance=EXACT)
     assert not cert.ok
     assert cert.violations_of("gouge")
 
 
 def _ds(r):
     return (1e-3, 1e-2, 0.1, r / 2)
+
+
+@pytest.mark.parametrize("case", OK, ids=[c.name for c in OK])
+def test_faults_within_the_default_tolerance_are_warnings(case):
+    # the default tolerance (1e-3 mm): a cut segment moved 5e-4 toward the
+    # contour is a gouge warning at that segment, one moved 2e-3 a gouge
+    # failure there (the jumps a moved segment leaves at its ends are gaps,
+    # which no tolerance excuses: the path is broken)
+    prog, path, _, lines, r = setup(case)
+    tol = 1e-3 if prog.units == "mm" else 4e-5
+    n = 0
+    for d, fails in ((0.5 * tol, False), (2 * tol, True)):
+        for name, bad, i in moved_segments(path, d, r, lines):
+            cert = verify(bad, prog, radius=case.radius, eps=EPS)
+            assert cert.tolerance == tol
+            assert cert.check("gouge").ok is not fails, (name, cert.summary())
+            listed = cert.violations if fails else cert.warnings
+            depth = max([v.depth for v in listed if v.kind == "gouge" and v.tool_segment == i],
+                        default=0.0)
+            assert depth >= d - DEPTH_TOL, (name, cert.summary())
+            assert not cert.ok and cert.verdict == "failed"       # the gaps
+            n += 1
+    assert n > 0
 
 
 @pytest.mark.slow
@@ -93,7 +120,7 @@ def test_moved_cut_segments_and_points_are_caught_at_their_depth(case):
     n = 0
     for d in _ds(r):
         for name, bad, i in moved_segments(path, d, r, lines):
-            cert = verify(bad, prog, radius=case.radius, eps=EPS)
+            cert = verify(bad, prog, radius=case.radius, eps=EPS, tolerance=EXACT)
             assert not cert.ok, name
             assert depths_at(cert, {i}) >= d - DEPTH_TOL, (name, cert.summary())
             n += 1
@@ -103,7 +130,7 @@ def test_moved_cut_segments_and_points_are_caught_at_their_depth(case):
             # d nearer, it is d - (dist - r) deep
             rb = radius_of(case)(blk)
             assert rb - DEPTH_TOL <= dist <= rb + 1e-4
-            cert = verify(bad, prog, radius=case.radius, eps=EPS)
+            cert = verify(bad, prog, radius=case.radius, eps=EPS, tolerance=EXACT)
             assert not cert.ok, name
             assert depths_at(cert, set(pair)) >= d - (dist - rb) - DEPTH_TOL, (name, cert.summary())
             n += 1
@@ -115,13 +142,13 @@ def test_moved_cut_segments_and_points_are_caught_at_their_depth(case):
 def test_flipped_arcs_dropped_segments_and_swapped_sides_are_caught(case):
     prog, path, blocks, lines, r = setup(case)
     for name, bad, i in flipped_arcs(path, lines):
-        cert = verify(bad, prog, radius=case.radius, eps=EPS)
+        cert = verify(bad, prog, radius=case.radius, eps=EPS, tolerance=EXACT)
         assert not cert.ok, name
         if path.segments[i].role is Role.COMPENSATED:
             # swept the long way round: it no longer runs alongside its element
             assert any(v.tool_segment == i for v in cert.violations_of("contact")), name
     for name, bad, _ in dropped_segments(path, lines, 10 * EPS):
-        assert not verify(bad, prog, radius=case.radius, eps=EPS).ok, name
+        assert not verify(bad, prog, radius=case.radius, eps=EPS, tolerance=EXACT).ok, name
     sides = {b.modal.side for b in blocks}
     swapped = 0
     for side, k in (("left", 1), ("right", -1)):
@@ -131,7 +158,7 @@ def test_flipped_arcs_dropped_segments_and_swapped_sides_are_caught(case):
             bad = compensate(prog, case.style, radius=case.radius, side=side)
         except CcoptError:
             continue                    # the controller refuses it: nothing to verify
-        cert = verify(bad, prog, radius=case.radius, eps=EPS)
+        cert = verify(bad, prog, radius=case.radius, eps=EPS, tolerance=EXACT)
         assert not cert.ok, side
         assert not cert.check("side").ok, side
         swapped += 1
@@ -146,7 +173,7 @@ def test_leads_pushed_toward_the_part_are_caught(case):
     for d in _ds(r):
         for name, bad, new, _, depth in pushed_leads(path, d, radius_of(case), lines, set(),
                                                      blocks):
-            cert = verify(bad, prog, radius=case.radius, eps=EPS)
+            cert = verify(bad, prog, radius=case.radius, eps=EPS, tolerance=EXACT)
             assert not cert.ok, name
             assert depths_at(cert, set(new)) >= depth - DEPTH_TOL, (name, cert.summary())
             n += 1

@@ -13,6 +13,9 @@ compensated tool segment and every corner arc, one at a time, is moved by
   at that segment, with the depth ``10 * eps``;
 - outward (the opposite way): the contact check must fail at that segment
   with the gap ``10 * eps``.
+
+Faults this small are far below the default gouge tolerance (1e-3 mm): the
+checks run with ``tolerance=0``, where every violation beyond ``eps`` fails.
 """
 from __future__ import annotations
 
@@ -75,11 +78,13 @@ def test_injected_faults_are_caught(data):
                if s.role in (Role.COMPENSATED, Role.CORNER) and s.length > 0]
     assert targets
     for i in targets:
-        inward = verify(with_segment(path, i, moved(path.segments[i], True)), prog, eps=EPS)
+        inward = verify(with_segment(path, i, moved(path.segments[i], True)), prog, eps=EPS,
+                        tolerance=0.0)
         g = [v for v in inward.violations_of("gouge") if v.tool_segment == i]
         assert g, f"inward move of segment {i} ({path.segments[i].role.value}) not caught"
         assert max(v.depth for v in g) == pytest.approx(MOVE, rel=1e-3)
-        outward = verify(with_segment(path, i, moved(path.segments[i], False)), prog, eps=EPS)
+        outward = verify(with_segment(path, i, moved(path.segments[i], False)), prog, eps=EPS,
+                         tolerance=0.0)
         c = [v for v in outward.violations_of("contact") if v.tool_segment == i]
         assert c, f"outward move of segment {i} ({path.segments[i].role.value}) kept contact"
         assert c[0].depth == pytest.approx(MOVE, rel=1e-3)

@@ -104,7 +104,8 @@ def test_cam_profile_verifies_ok_with_its_leads_in_air(tmp_path, dialect):
     assert why[arc_out] == "lead after the closed loop"
     assert why[c0] == "closed loop"
     text_out = cert.summary()
-    assert f"part surface (closed-loop): lines {c0}-{c1}" in text_out
+    assert "part and air by rule closed-loop:" in text_out
+    assert f"part surface: lines {c0}-{c1} (closed loop)" in text_out
     assert f"air: lines {arc_in} (lead before the closed loop)" in text_out
 
 

@@ -1,0 +1,87 @@
+"""Tolerance with a scale: shallow violations are warnings, deep ones fail.
+
+The checks find every violation beyond ``eps`` (the arithmetic's tolerance,
+1e-6 program units) with its exact depth. A part program has a scale of its
+own: a CAM system writes 3 or 4 decimals, and a controller's own rules may
+leave a few micrometres (LinuxCNC takes a turn under 0.05 rad as straight on,
+:data:`ccopt.tolerances.LINUXCNC_CONCAVE_CORNER`, and its straight join then
+comes ``r (1 - cos angle)`` inside the clearance at an outside turn). So a
+gouge, contact excess or wrong-side offset no deeper than the certificate's
+``tolerance`` (default :data:`ccopt.tolerances.GOUGE_TOLERANCE` by the
+program's units) is a *warning*, listed with its depth, place and cause, and
+the verdict is "ok within tolerance"; deeper ones fail. The figures stay exact.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+from ccopt.errors import ProgramError
+from ccopt.tolerances import GOUGE_TOLERANCE, LINUXCNC_CONCAVE_CORNER
+from ccopt.toolpath import STRAIGHT_JOINS, ToolPath
+from ccopt.verify.certificate import Certificate
+
+#: The checks whose violations are lengths a tolerance applies to (the
+#: violation kind of each check).
+TOLERATED = {"gouge": "gouge", "contact": "contact", "side": "side"}
+
+CAUSE_WITHIN = "no deeper than the tolerance"
+
+
+def default_tolerance(units: str) -> float:
+    """:data:`~ccopt.tolerances.GOUGE_TOLERANCE` for ``units`` (``"mm"`` or ``"inch"``)."""
+    return GOUGE_TOLERANCE.get(units, GOUGE_TOLERANCE["mm"])
+
+
+def resolve_tolerance(tolerance: float | None, units: str, file: str = "<string>") -> float:
+    """``tolerance`` checked (a finite number >= 0), or the default for ``units``."""
+    if tolerance is None:
+        return default_tolerance(units)
+    try:
+        tol = float(tolerance)
+    except (TypeError, ValueError):
+        raise ProgramError(f"tolerance must be a number, not {tolerance!r}", file) from None
+    if not (0.0 <= tol < math.inf):
+        raise ProgramError(f"tolerance must be a finite number >= 0 (program units), "
+                           f"got {tolerance!r}", file)
+    return tol
+
+
+def cause_of(violation, toolpath: ToolPath) -> str:
+    """Why a shallow violation is there, as far as the tool path recorded it:
+    a controller's straight join at a slight turn, else the generic cause."""
+    joins = toolpath.meta.get(STRAIGHT_JOINS) or {}
+    i = violation.tool_segment
+    if i is not None and i in joins:
+        beta = joins[i]
+        which = "outside" if beta > 0 else "inside"
+        who = "LinuxCNC" if toolpath.style == "linuxcnc" else toolpath.style
+        return (f"{who} straight join at a {math.degrees(abs(beta)):.3g}-degree {which} corner "
+                f"(turns under {LINUXCNC_CONCAVE_CORNER:g} rad are taken as straight on)")
+    return CAUSE_WITHIN
+
+
+def apply_tolerance(cert: Certificate, tolerance: float, toolpath: ToolPath) -> Certificate:
+    """``cert`` with its violations no deeper than ``tolerance`` moved to
+    ``warnings`` (each with its ``cause`` in ``detail``) and each check's
+    verdict taken on the deeper ones only."""
+    warn, keep = [], []
+    for v in cert.violations:
+        if v.kind in TOLERATED.values() and math.isfinite(v.depth) and v.depth <= tolerance:
+            warn.append(replace(v, detail={**v.detail, "cause": cause_of(v, toolpath)}))
+        else:
+            keep.append(v)
+    checks = []
+    for c in cert.checks:
+        kind = TOLERATED.get(c.name)
+        if kind is None:
+            checks.append(c)
+            continue
+        n_warn = sum(1 for v in warn if v.kind == kind)
+        n_fail = sum(1 for v in keep if v.kind == kind)
+        # a check that failed without listing violations (none of its kind) keeps its verdict
+        ok = c.ok or (n_fail == 0 and n_warn > 0)
+        checks.append(replace(c, ok=ok, violations=n_fail,
+                              detail={**c.detail, "warnings": n_warn, "tolerance": tolerance}))
+    return replace(cert, ok=all(c.ok for c in checks), checks=tuple(checks),
+                   violations=tuple(keep), warnings=tuple(warn), tolerance=tolerance)
