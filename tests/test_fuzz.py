@@ -9,8 +9,14 @@ and ``ccopt feed`` (100 programs). Whatever the text:
 * the exit code is 0, 1 or 2 (3 is an internal error, anything else a crash);
 * an exit 2 prints one line ``PROGRAM:LINE:`` (``:COL`` optional) on stderr,
   located in the mutated program or the case's ``case.toml``;
-* no run takes longer than :data:`RUN_LIMIT_S` (an interval timer stops a
-  longer one, and the test fails with the program text).
+* no run uses more than :data:`RUN_CPU_LIMIT_S` of CPU (a CPU-time interval
+  timer stops a longer one, and the test fails with the program text): a
+  bound on the work, which load from other processes does not change. How
+  long the runs take on the clock is measured by ``bench/fuzz.py``, not here.
+
+Each test counts how the runs ended and asserts the share that got past
+reading the program (exit 0 or 1, or exit 2 from a later stage): mutations
+that only ever make the reader refuse would exercise nothing else.
 """
 from __future__ import annotations
 
@@ -18,7 +24,6 @@ import contextlib
 import io
 import re
 import signal
-import time
 from pathlib import Path
 
 import pytest
@@ -29,11 +34,16 @@ from ccopt.cases import bundled_cases
 from ccopt.cli import main
 from text_mutations import mutate
 
-#: Longest wall time one command may take on a mutated program, seconds.
-RUN_LIMIT_S = 20.0
+#: Most CPU time one command may use on a mutated program, seconds (a bound on
+#: the work against runaways; the slowest run of the fuzz takes a few seconds).
+RUN_CPU_LIMIT_S = 20.0
 #: Mutated programs through show and compensate, and through verify and feed.
 SHOW_PROGRAMS, VERIFY_PROGRAMS = 500, 100
 FUZZ_SEED = 20261202
+#: Share of the runs that must get past reading the mutated program (to
+#: compensation and beyond): measured 62 % (show, compensate) and 60 % (verify,
+#: feed) with FUZZ_SEED; the rest are located refusals of the reader.
+SHARE_PAST_READING = 0.55
 
 
 def _seeds() -> list[tuple[Path, str, str]]:
@@ -62,7 +72,7 @@ _LOCATED = re.compile(r":\d+(:\d+)?: \S")
 
 
 class _Overtime(BaseException):
-    """Raised by the interval timer: a run took longer than RUN_LIMIT_S. A
+    """Raised by the interval timer: a run used more than RUN_CPU_LIMIT_S. A
     BaseException, so the command's own ``except Exception`` lets it through."""
 
 
@@ -88,13 +98,12 @@ def _write_case(root: Path, k: int, folder: Path, name: str, text: str) -> tuple
     return dest, dest / name
 
 
-def _run(argv: list[str]) -> tuple[int, str, float]:
-    """``ccopt argv`` in-process: exit code, stderr and wall time (s); stops
-    the run with :class:`_Overtime` past :data:`RUN_LIMIT_S`."""
+def _run(argv: list[str]) -> tuple[int, str]:
+    """``ccopt argv`` in-process: exit code and stderr; stops the run with
+    :class:`_Overtime` once it has used :data:`RUN_CPU_LIMIT_S` of CPU."""
     err = io.StringIO()
-    old = signal.signal(signal.SIGALRM, _overtime)
-    signal.setitimer(signal.ITIMER_REAL, RUN_LIMIT_S)
-    t0 = time.perf_counter()
+    old = signal.signal(signal.SIGPROF, _overtime)
+    signal.setitimer(signal.ITIMER_PROF, RUN_CPU_LIMIT_S)
     try:
         with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
             try:
@@ -102,26 +111,25 @@ def _run(argv: list[str]) -> tuple[int, str, float]:
             except SystemExit as exc:  # argparse's own exit
                 code = exc.code
     finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, old)
-    return code, err.getvalue(), time.perf_counter() - t0
+        signal.setitimer(signal.ITIMER_PROF, 0)
+        signal.signal(signal.SIGPROF, old)
+    return code, err.getvalue()
 
 
 def _check(commands: list[list[str]], folder: Path, program: Path, text: str,
-           times: list[float]) -> list[str]:
+           ends: list[str]) -> list[str]:
     """Run each command on the mutated case ``folder``; what is wrong with
-    its exit, message or time (empty: nothing)."""
+    its exit, message or work (empty: nothing). How each run ended goes to
+    ``ends``: ``"ran"`` (exit 0 or 1), ``"read"`` (exit 2 located in the
+    program's text by the reader), ``"later"`` (exit 2 from a later stage)."""
     problems = []
     for cmd in commands:
         name = f"ccopt {' '.join(cmd)}"
         try:
-            code, err, dt = _run([*cmd, str(folder)])
+            code, err = _run([*cmd, str(folder)])
         except _Overtime:
-            problems.append(f"{name} ran longer than {RUN_LIMIT_S} s on:\n{text}")
+            problems.append(f"{name} used more than {RUN_CPU_LIMIT_S} s of CPU on:\n{text}")
             continue
-        times.append(dt)
-        if dt > RUN_LIMIT_S:
-            problems.append(f"{name} took {dt:.1f} s on:\n{text}")
         if code not in (0, 1, 2):
             problems.append(f"{name}: exit {code}: {err}\n{text}")
         elif code == 2:
@@ -131,14 +139,29 @@ def _check(commands: list[list[str]], folder: Path, program: Path, text: str,
                                           and _LOCATED.match(lines[0], len(f))
                                           for f in located):
                 problems.append(f"{name}: not one line file:line: message: {err}\n{text}")
+            ends.append("later" if _refused_after_reading(program, text) else "read")
+        else:
+            ends.append("ran")
     return problems
 
 
-def _fuzz(tmp_path: Path, commands: list[list[str]], programs: int) -> list[float]:
-    """``programs`` mutated cases through ``commands``; the wall time of each
-    run. Problems are collected and reported together after the run (not
-    raised inside Hypothesis, which would re-run a slow example)."""
-    times: list[float] = []
+def _refused_after_reading(program: Path, text: str) -> bool:
+    """Whether ccopt's reader accepts ``text`` (so an exit 2 came from a later
+    stage: compensation, the feed planner, a size limit)."""
+    from ccopt.program import read_program
+    try:
+        read_program(program)
+    except Exception:  # noqa: BLE001 - any refusal of the reader
+        return False
+    return True
+
+
+def _fuzz(tmp_path: Path, commands: list[list[str]], programs: int) -> dict[str, int]:
+    """``programs`` mutated cases through ``commands``; how the runs ended
+    (counts of ``"ran"``, ``"read"``, ``"later"``). Problems are collected and
+    reported together after the run (not raised inside Hypothesis, which
+    would re-run a slow example)."""
+    ends: list[str] = []
     problems: list[str] = []
     count = [0]
 
@@ -150,21 +173,24 @@ def _fuzz(tmp_path: Path, commands: list[list[str]], programs: int) -> list[floa
         folder, name, text = case
         count[0] += 1
         dest, program = _write_case(tmp_path, count[0], folder, name, text)
-        problems.extend(_check(commands, dest, program, text, times))
+        problems.extend(_check(commands, dest, program, text, ends))
 
     one()
     assert not problems, f"{len(problems)} problems:\n" + "\n----\n".join(problems)
     assert count[0] >= programs
-    return times
+    assert len(ends) == len(commands) * count[0]
+    tally = {k: ends.count(k) for k in ("ran", "read", "later")}
+    print(f"fuzz {commands}: {count[0]} programs, runs {tally}")
+    return tally
 
 
 @pytest.mark.slow
 def test_mutated_programs_through_show_and_compensate(tmp_path):
-    times = _fuzz(tmp_path, [["show"], ["compensate"]], SHOW_PROGRAMS)
-    assert len(times) >= 2 * SHOW_PROGRAMS and max(times) <= RUN_LIMIT_S
+    ends = _fuzz(tmp_path, [["show"], ["compensate"]], SHOW_PROGRAMS)
+    assert ends["ran"] + ends["later"] >= SHARE_PAST_READING * 2 * SHOW_PROGRAMS, ends
 
 
 @pytest.mark.slow
 def test_mutated_programs_through_verify_and_feed(tmp_path):
-    times = _fuzz(tmp_path, [["verify"], ["feed"]], VERIFY_PROGRAMS)
-    assert len(times) >= 2 * VERIFY_PROGRAMS and max(times) <= RUN_LIMIT_S
+    ends = _fuzz(tmp_path, [["verify"], ["feed"]], VERIFY_PROGRAMS)
+    assert ends["ran"] + ends["later"] >= SHARE_PAST_READING * 2 * VERIFY_PROGRAMS, ends
