@@ -48,17 +48,17 @@ FIGURES = ["cycle_time", "min_clearance", "path_length"]
 def _direct(spec) -> float:
     programs = {p.label: ccopt.read_program(p.file) for p in resolve_programs(spec)}
     tasks = expand(spec, resolve_programs(spec))
-    run_task(programs[tasks[0].program], tasks[0].setting)  # warm-up
+    run_task(programs[tasks[0].program], tasks[0].job)  # warm-up
     t0 = time.perf_counter()
     for t in tasks:
-        run_task(programs[t.program], t.setting)
+        run_task(programs[t.program], t.job)
     return time.perf_counter() - t0
 
 
 def _warm_worker(spec) -> None:
     programs = resolve_programs(spec)
     task = expand(spec, programs)[0]
-    run_task(ccopt.read_program(programs[0].file), task.setting)
+    run_task(ccopt.read_program(programs[0].file), task.job)
 
 
 def _on_cluster(spec, workers: int, repeat: int):

@@ -5,7 +5,7 @@
     title   = "Lead-out, inside corner, line to line"
     source  = "PMAC User Manual p.189, figure 47 (a)"
     program = "leadout_line_line.pmc"   # relative to the case folder
-    style   = "pmac"                    # controller style to compensate with
+    style   = "pmac"                    # controller style (default: by the program's dialect)
     radius  = 2.0                       # cutter radius override, program units
     expect  = "ok"                      # ok | gouge | error  (verification verdict)
 
@@ -19,8 +19,10 @@ the repository's ``cases/`` folder.
 
 :func:`resolve_input` is the one place where an input (program file, case
 folder or bundled case name) gets its settings: what the command line says
-(:class:`Overrides`), else what its ``case.toml`` says, else the defaults. It
-returns a :class:`Job`, which every command and :mod:`ccopt.run` work from.
+(:class:`Overrides`: the command line's options, a sweep spec's row or the
+Python API's keywords, :func:`make_job`), else what its ``case.toml`` says,
+else the defaults. It returns a :class:`Job`, which :func:`ccopt.pipeline.pipeline`
+runs for every command, ``ccopt run``, the sweep and the API alike.
 """
 from __future__ import annotations
 
@@ -33,7 +35,7 @@ from pathlib import Path
 
 from ccopt.compensate import STYLES, compensate
 from ccopt.errors import ProgramError
-from ccopt.feed import AxisLimits
+from ccopt.feed import PLANNERS, AxisLimits, certified_planner
 from ccopt.program import read_program
 from ccopt.program.model import MAX_COORDINATE, Program
 from ccopt.tolerances import LIMIT_RANGE
@@ -74,7 +76,7 @@ class Case:
     program: Path
     title: str = ""
     source: str = ""
-    style: str = "pmac"
+    style: str | None = None            # None: by the program's dialect (default_style)
     radius: float | None = None
     expect: str = "ok"
     vmax: tuple[float, ...] | None = None
@@ -222,8 +224,8 @@ def load_case(folder: str | os.PathLike) -> Case:
     expect = data.get("expect", "ok")
     if expect not in EXPECTS:
         raise bad("expect", expect, f"must be one of {', '.join(EXPECTS)}")
-    style = data.get("style", "pmac")
-    if style not in STYLES:
+    style = data.get("style")
+    if style is not None and style not in STYLES:
         raise bad("style", style, f"must be one of {', '.join(sorted(STYLES))}")
     vmax, amax = _limits(data, bad)
     jmax = _case_jerk(data.get("limits", {}), bad) if vmax is not None else None
@@ -303,13 +305,25 @@ class ReadOptions:
 
 @dataclass(frozen=True)
 class Overrides:
-    """What the command line says for every input; ``None`` where it says nothing.
+    """What the command line, a sweep spec's row or the Python API says for an
+    input; ``None`` (or empty) where it says nothing. Units are the program's.
 
-    style: controller style; radius: cutter radius, program units (>= 0);
-    side: ``"left"``/``"right"``; vmax, amax, jmax: axis limits ``(X, Y[, Z])`` in
-    units/s, units/s^2 and units/s^3; delta: the smoother's tolerance band, program units;
-    reading: how to read the program (:class:`ReadOptions`); style_options: the style's
-    own options (``break_cos``, ``ccbuf``), passed to compensation as given.
+    style: controller style; radius: cutter radius (>= 0); side: ``"left"``/``"right"``;
+    vmax, amax, jmax: axis limits ``(X, Y[, Z])`` in units/s, units/s^2 and units/s^3;
+    tangential_acc, centripetal_acc: path acceleration limits, units/s^2;
+    ts: the jerk-limited planners' interpolation period, s; planner: the planner whose
+    profile is certified and timed (``None``: :func:`ccopt.feed.certified_planner`);
+    planners: the planners planned (``"all"``: every one the limits allow);
+    junction_deviation: grbl's corner deviation for the planners that take it;
+    tolerance: the verifier's gouge tolerance (``None``: 1e-3 mm or 4e-5 inch,
+    the verifier's default); eps, limits_tol, part_lines: the verifier's other
+    settings (``None``: its defaults); toolpath: a tool path file (JSON) to
+    verify instead of compensating; variants: the blend variants compared
+    (``None``: every available one); variant: a compare variant whose path is
+    the job's instead of the style's; delta: the smoother's band; blend_options:
+    the blends' options (``lead_radius``); reading: how to read the program
+    (:class:`ReadOptions`); style_options: the style's own options
+    (``break_cos``, ``ccbuf``), passed to compensation as given.
     """
 
     style: str | None = None
@@ -322,18 +336,32 @@ class Overrides:
     reading: ReadOptions = ReadOptions()
     style_options: dict = field(default_factory=dict)
     ts: float | None = None
+    tangential_acc: float | None = None
+    centripetal_acc: float | None = None
+    planner: str | None = None
+    planners: tuple[str, ...] | None = None
+    junction_deviation: float | None = None
+    tolerance: float | None = None
+    eps: float | None = None
+    limits_tol: float | None = None
+    part_lines: object = None
+    toolpath: str | os.PathLike | None = None
+    variants: tuple[str, ...] | None = None
+    variant: str | None = None
+    blend_options: dict = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
 class Job:
-    """One input with its settings resolved (see :func:`resolve_input`).
+    """One input with every setting resolved (see :func:`resolve_input`): what
+    :func:`ccopt.pipeline.pipeline` runs.
 
     ``style`` ``None``: by the program's dialect (:func:`default_style`).
     ``radius``/``side`` ``None``: the program's own. ``vmax``/``amax``
     ``None``: no limits known (:meth:`limits` says so); ``limits_from`` says
     where they came from (``"command line"``, ``"case"``, ``"default"``).
-    ``delta`` ``None``: the smoother's default band. ``ts``: the interpolation
-    period of the jerk-limited planners, seconds (``None``: theirs).
+    The other fields are :class:`Overrides`' (the same names and units),
+    resolved over the case's settings.
     """
 
     label: str
@@ -351,6 +379,19 @@ class Job:
     ts: float | None = None
     limits_from: str | None = None
     style_from: str | None = None
+    tangential_acc: float | None = None
+    centripetal_acc: float | None = None
+    planner: str | None = None
+    planners: tuple[str, ...] | None = None
+    junction_deviation: float | None = None
+    tolerance: float | None = None
+    eps: float | None = None
+    limits_tol: float | None = None
+    part_lines: object = None
+    toolpath: Path | None = None
+    variants: tuple[str, ...] | None = None
+    variant: str | None = None
+    blend_options: dict = field(default_factory=dict)
 
     @property
     def title(self) -> str:
@@ -386,18 +427,43 @@ class Job:
         """Where the axis limits come from, for the output (``""`` when unknown)."""
         return LIMITS_FROM.get(self.limits_from or "", self.limits_from or "")
 
-    def limits(self, tangential_acc: float | None = None,
-               centripetal_acc: float | None = None) -> AxisLimits:
-        """The job's axis limits (plus the optional path limits, units/s^2);
+    def limits(self) -> AxisLimits:
+        """The job's axis limits (with its path acceleration limits, units/s^2);
         a ProgramError located at the program when they are missing or bad."""
         if self.vmax is None or self.amax is None:
             raise ProgramError("no axis limits: give --vmax and --amax (X,Y[,Z]) or use a case "
                                "whose case.toml has [limits]", str(self.program))
         try:
-            return AxisLimits(self.vmax, self.amax, tangential_acc=tangential_acc,
-                              centripetal_acc=centripetal_acc, j=self.jmax)
+            return AxisLimits(self.vmax, self.amax, tangential_acc=self.tangential_acc,
+                              centripetal_acc=self.centripetal_acc, j=self.jmax)
         except ValueError as exc:
             raise ProgramError(f"bad limits: {exc}", str(self.program)) from None
+
+    def planner_for(self, limits: AxisLimits) -> str:
+        """The planner whose profile is certified and whose duration is the cycle
+        time: the job's ``planner``, else :func:`ccopt.feed.certified_planner`."""
+        return self.planner or certified_planner(limits)
+
+    def planners_for(self, limits: AxisLimits) -> list[str]:
+        """The planners the job plans, in order (``"all"``: every registered one,
+        ``jerk`` only when ``limits`` carry jerk), the certified one
+        (:meth:`planner_for`) among them; none asked: that one alone."""
+        names: list[str] = []
+        for name in self.planners or ():
+            names.extend((p for p in PLANNERS if p != "jerk" or limits.j is not None)
+                         if name == "all" else (name,))
+        certified = self.planner_for(limits)
+        return list(dict.fromkeys(names if certified in names else [certified, *names]))
+
+    def verify_options(self) -> dict:
+        """The keywords of :func:`ccopt.verify.verify` the job sets: its overrides
+        (``radius``, ``side``) and the verifier settings it names (``tolerance``,
+        ``eps``, ``limits_tol``, ``part_lines``; left out where ``None``, the
+        verifier's defaults then)."""
+        given = {"tolerance": self.tolerance, "eps": self.eps, "limits_tol": self.limits_tol,
+                 "part_lines": self.part_lines}
+        return {"radius": self.radius, "side": self.side,
+                **{k: v for k, v in given.items() if v is not None}}
 
 
 def _locate(what: str | Case) -> tuple[str, Path, Case | None]:
@@ -413,34 +479,57 @@ def _locate(what: str | Case) -> tuple[str, Path, Case | None]:
     return p.stem, p, None  # outputs are <stem>.nc, <stem>.pmc, ... (no doubled suffix)
 
 
+#: the :class:`Overrides` fields a :class:`Job` takes as they are (no case setting under them)
+_AS_GIVEN = ("side", "delta", "reading", "ts", "tangential_acc", "centripetal_acc", "planner",
+             "planners", "junction_deviation", "tolerance", "eps", "limits_tol", "part_lines",
+             "variants", "variant")
+
+
 def resolve_input(what: str | Case, overrides: Overrides = Overrides(),
-                  default_limits: dict | None = None) -> Job:
+                  default_limits: dict | None = None, label: str | None = None) -> Job:
     """The job for ``what`` (a program file, case folder, bundled case name or
-    loaded :class:`Case`) with every setting resolved once: the command line's
-    ``overrides``, else the case's, else the defaults: the style by the
-    program's dialect (:func:`default_style`, once it is read) and
+    loaded :class:`Case`) with every setting resolved once: the ``overrides``
+    (command line, sweep row or API), else the case's, else the defaults: the
+    style by the program's dialect (:func:`default_style`, once it is read) and
     ``default_limits`` (``{"v": (X, Y[, Z]), "a": (...)}``, units/s and
     units/s^2, e.g. :data:`DEFAULT_LIMITS`; ``None``: no default) for the axis
     limits. The velocity and acceleration limits come as a pair from one
-    place: both given on the command line, else the case's, else the default
-    (one of ``--vmax``/``--amax`` replaces that one of the pair).
+    place: both given, else the case's, else the default (one of
+    ``vmax``/``amax`` replaces that one of the pair); the jerk limits are the
+    overrides', else the case's. ``label``: the job's name in tables and file
+    names (default: the case's name or the program's stem).
 
-    A ProgramError located at ``what`` when it is none of those.
+    This is the one place settings are resolved. A ProgramError located at
+    ``what`` when it is none of those.
     """
-    label, program, case = _locate(what)
+    found, program, case = _locate(what)
     default_limits = default_limits or {}
     vmax, amax, limits_from = _resolved_limits(overrides, case, default_limits)
+    case_style = case.style if case else None
     return Job(
-        label=label, program=program, case=case,
-        style=overrides.style or (case.style if case else None),
-        style_from="--style" if overrides.style else ("the case's" if case else None),
+        label=label or found, program=program, case=case,
+        style=overrides.style or case_style,
+        style_from="--style" if overrides.style else ("the case's" if case_style else None),
         radius=overrides.radius if overrides.radius is not None else (
             case.radius if case else None),
-        side=overrides.side, vmax=vmax, amax=amax,
-        delta=overrides.delta, reading=overrides.reading,
-        style_options=dict(overrides.style_options),
+        vmax=vmax, amax=amax, limits_from=limits_from,
         jmax=overrides.jmax or (case.jmax if case else None) or default_limits.get("j"),
-        ts=overrides.ts, limits_from=limits_from)
+        style_options=dict(overrides.style_options),
+        blend_options=dict(overrides.blend_options),
+        toolpath=Path(overrides.toolpath) if overrides.toolpath is not None else None,
+        **{name: getattr(overrides, name) for name in _AS_GIVEN})
+
+
+def make_job(what: str | Case, **settings) -> Job:
+    """The Python API's job: ``what`` with ``settings`` (the :class:`Overrides`
+    fields: ``style=``, ``radius=``, ``vmax=``, ``tolerance=``, ...) resolved
+    as the command line's are, over the case's settings and
+    :data:`DEFAULT_LIMITS` (what every command takes)::
+
+        job = ccopt.make_job("cases/pocket", style="linuxcnc", vmax=(50, 50))
+        outcome = ccopt.pipeline(job)
+    """
+    return resolve_input(what, Overrides(**settings), DEFAULT_LIMITS)
 
 
 def _resolved_limits(overrides: Overrides, case: Case | None, default_limits: dict):

@@ -2,17 +2,16 @@
 compare blend variants, export, and write one HTML report.
 
 Used by ``ccopt run``. Every input comes as a :class:`ccopt.cases.Job`, its
-settings resolved once by :func:`ccopt.cases.resolve_input`: a case's
-``case.toml`` gives its style, radius, expected verdict (``ok``, ``gouge``,
-``error``) and axis limits; a bare program uses the command line's values or
-:data:`DEFAULT_LIMITS`.
+settings resolved once by :func:`ccopt.cases.resolve_input` (a case's
+``case.toml`` gives its style, radius, expected verdict ``ok``, ``gouge`` or
+``error``, and axis limits; a bare program uses the command line's values or
+:data:`DEFAULT_LIMITS`), and runs through :func:`ccopt.pipeline.pipeline`, the
+stages every command shares; this module adds the report's own files.
 """
 from __future__ import annotations
 
-import inspect
 import json
 import os
-import time
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
@@ -20,71 +19,40 @@ from typing import TYPE_CHECKING, Callable, Protocol
 
 # DEFAULT_LIMITS: the axis limits of an input with none (ccopt.cases defines them)
 from ccopt.cases import DEFAULT_LIMITS, Job  # noqa: F401 - re-exported for ccopt run
-from ccopt.compare import compare
 from ccopt.errors import CcoptError, ProgramError
-from ccopt.export import export
 from ccopt.atomic import write_text_atomic
-from ccopt import feed as feed_planning
-from ccopt.feed import AxisLimits, certified_planner, plan_feed
+from ccopt.pipeline import Outcome, StageClock, Target, pipeline
 from ccopt.program.model import Program
 from ccopt.report.html import render
 from ccopt.report.plots import feed_plot, path_plot, speed_time_plot
 from ccopt.toolpath import ToolPath, programmed_path
-from ccopt.verify import Certificate, verify
+from ccopt.verify import Certificate
 from ccopt.workers import run_in_workers
 
 if TYPE_CHECKING:  # pragma: no cover - importing it loads toppra (see ccopt.feed)
     from ccopt.feed.profile import FeedProfile
 
 
-#: the planners of every run (``jerk`` joins them when the limits carry jerk)
-PLANNERS = ("toppra", "stop", "junction")
-
-#: the parameters the installed :func:`ccopt.compare.compare` takes
-COMPARE_PARAMETERS = frozenset(inspect.signature(compare).parameters)
+#: the planners of every run: every one the limits allow (``jerk`` when they carry
+#: jerk), resolved into each job (:meth:`ccopt.cases.Job.planners_for`)
+PLANNERS = ("all",)
 
 #: Sampling step of the feed figures and the feed CSV, seconds (fine enough to
 #: show a millisecond-scale acceleration phase; longer paths get a coarser one,
 #: :meth:`FeedProfile.affordable_dt`).
 SAMPLE_DT = 1e-3
 
+#: the exported programs of each input, in the order they are written
+EXPORTS = (".nc", ".pmc", ".svg")
+
 
 @dataclass
 class RunOptions:
     """What the command line can change for the whole run (the per-input
-    settings are in each :class:`Job`)."""
+    settings, the compared variants among them, are in each :class:`Job`)."""
 
     compare: bool = True
-    variants: list[str] | None = None     # blend variants compared (None: every available one)
     compare_workers: int = 1              # worker processes of each comparison
-
-
-class StageClock:
-    """The stages of one input (read, compensate, feed, verify, compare,
-    export), each announced to ``progress`` as it starts and its wall time
-    (s) kept in ``seconds``."""
-
-    def __init__(self, progress: Callable[[str], None] | None = None):
-        self.progress = progress
-        self.seconds: dict[str, float] = {}
-        self._stage: str | None = None
-        self._t0 = 0.0
-
-    def __call__(self, stage: str) -> None:
-        """``stage`` starts now (the previous one ends)."""
-        self.stop()
-        self._stage, self._t0 = stage, time.perf_counter()
-        self.say(stage)
-
-    def say(self, text: str) -> None:
-        if self.progress is not None:
-            self.progress(text)
-
-    def stop(self) -> None:
-        if self._stage is not None:
-            self.seconds[self._stage] = self.seconds.get(self._stage, 0.0) + \
-                time.perf_counter() - self._t0
-            self._stage = None
 
 
 def run_one(job: Job, out: Path | None, opts: RunOptions,
@@ -100,82 +68,71 @@ def run_one(job: Job, out: Path | None, opts: RunOptions,
     clock = StageClock(progress)
     row: dict = {"name": job.label, "program": str(job.program), "expect": job.expect,
                  "title": job.title, "source": job.source}
-    try:
-        _run_stages(job, out, opts, row, clock)
-    except CcoptError as exc:
-        failed = "error (expected)" if job.expect == "error" and "style" not in row else "error"
-        row.update(status=failed, message=str(exc))
-    finally:
-        clock.stop()
-        row["stage_seconds"] = clock.seconds
+    files: dict[str, str] = {}
+    targets = [Target(f"{out / job.label}{suffix}", title=job.label if suffix == ".svg" else None)
+               for suffix in EXPORTS] if out is not None else []
+    done = pipeline(job, compare=opts.compare, export=targets, workers=opts.compare_workers,
+                    clock=clock)
+    _fill(row, done, files)
+    if done.error is None and out is not None:
+        try:
+            clock("export")
+            _write_files(out / job.label, done, row, files)
+            row["plots"] = _plots(done.path, done.program, done.certificate, done.profiles,
+                                  job.label, done.planner)
+        except CcoptError as exc:
+            done.error = exc
+        finally:
+            clock.stop()
+    if done.error is not None:
+        compensated = done.path is not None
+        failed = "error (expected)" if job.expect == "error" and not compensated else "error"
+        row.update(status=failed, message=str(done.error))
+    else:
+        row["status"] = _status(job.expect, done.certificate.ok)
+    row["stage_seconds"] = clock.seconds
     return row
 
 
-def _run_stages(job: Job, out: Path | None, opts: RunOptions, row: dict,
-                clock: StageClock) -> None:
-    """The stages of :func:`run_one`, filling ``row``; a CcoptError stops them."""
-    clock("read")
-    prog = job.read()
-    clock("compensate")
-    path = job.compensate(prog)
-    row.update(style=path.style, radius=path.radius, units=path.units,
-               segments=len(path.segments), length=path.length)
-    files: dict[str, str] = {}
-    row["files"] = files
-    limits = job.limits()
-    row.update(limits=limits.to_json(), limits_from=job.limits_from)
-    clock("feed")
-    profiles = _plan(path, limits, row, job.ts)
-    clock("verify")
-    cert = verify(path, prog, profile=profiles[row["planner"]])
-    row["certificate"] = cert.to_json()
-    row["certificate_text"] = cert.summary()
-    row["verified"] = bool(cert.ok)
-    row["min_clearance"] = cert.min_clearance
-    if opts.compare:
-        clock("compare")
-        row["compare"] = _compare(prog, limits, job, opts, clock.say, profiles[row["planner"]])
-    if out is not None:
-        clock("export")
-        _write_files(out / job.label, job, path, prog, profiles, row, files)
-        row["plots"] = _plots(path, prog, cert, profiles, job.label, row["planner"])
-    row["status"] = _status(job.expect, cert.ok)
+def _fill(row: dict, done: Outcome, files: dict[str, str]) -> None:
+    """``row`` with what the pipeline made (as far as it got)."""
+    path = done.path
+    if path is not None:
+        row.update(style=path.style, radius=path.radius, units=path.units,
+                   segments=len(path.segments), length=path.length)
+        row["files"] = files
+    if done.limits is not None:
+        row.update(limits=done.limits.to_json(), limits_from=done.job.limits_from)
+    if done.profiles:
+        row["feed"] = {p: prof.summary(prof.affordable_dt(SAMPLE_DT))
+                       for p, prof in done.profiles.items()}
+        # the cycle time is the certified planner's: the jerk planner's when the
+        # limits carry jerk (TOPPRA's profile would break them), else TOPPRA's
+        row["planner"] = done.planner
+        row["duration"] = done.duration
+    cert = done.certificate
+    if cert is not None:
+        row["certificate"] = cert.to_json()
+        row["certificate_text"] = cert.summary()
+        row["verified"] = bool(cert.ok)
+        row["min_clearance"] = cert.min_clearance
+    if done.comparison is not None:
+        row["compare"] = [v.to_json() for v in done.comparison]
+    for res in done.exports:
+        files[Path(res.file).suffix[1:]] = Path(res.file).name
 
 
-def _plan(path: ToolPath, limits: AxisLimits, row: dict,
-          ts: float | None = None) -> dict[str, FeedProfile]:
-    """Every planner's feed profile of ``path`` (``ts``: the interpolation
-    period of the jerk-limited planners, s; ``None``: their default); their
-    summaries and the TOPPRA cycle time (s) go into ``row``."""
-    # ccopt.feed loads ExactPath (and toppra, ~2 s) on first use, so `ccopt show` stays fast
-    exact = feed_planning.ExactPath(path)
-    planners = PLANNERS + (("jerk",) if limits.j is not None else ())
-    profiles = {p: plan_feed(exact, limits, planner=p, ts=ts) for p in planners}
-    row["feed"] = {p: prof.summary(prof.affordable_dt(SAMPLE_DT)) for p, prof in profiles.items()}
-    # the cycle time is the certified planner's: the jerk planner's when the
-    # limits carry jerk (TOPPRA's profile would break them), else TOPPRA's
-    row["planner"] = certified_planner(limits)
-    row["duration"] = profiles[row["planner"]].duration
-    return profiles
-
-
-def _write_files(stem: Path, job: Job, path: ToolPath, prog: Program,
-                 profiles: dict[str, FeedProfile], row: dict, files: dict[str, str]) -> None:
-    """The exported programs, SVG, feed CSV, certificate and tool path of one
-    input, named ``stem.*``; ``files`` maps what each is to its file name as
+def _write_files(stem: Path, done: Outcome, row: dict, files: dict[str, str]) -> None:
+    """The feed CSV, certificate and tool path of one input beside its exported
+    programs, named ``stem.*``; ``files`` maps what each is to its file name as
     they are written (so a failure still lists the ones that were)."""
-    label = job.label
-    for suffix in (".nc", ".pmc"):
-        res = export(path, f"{stem}{suffix}", program=prog, title=row["title"] or label)
-        files[suffix[1:]] = Path(res.file).name
-    export(path, f"{stem}.svg", program=prog, title=label)
-    files["svg"] = f"{label}.svg"
-    best = profiles[row["planner"]]
+    label = done.job.label
+    best = done.profile
     best.to_csv(f"{stem}.feed.csv", best.affordable_dt(SAMPLE_DT))
     files["feed csv"] = f"{label}.feed.csv"
     write_text_atomic(f"{stem}.certificate.json", json.dumps(row["certificate"]) + "\n")
     files["certificate"] = f"{label}.certificate.json"
-    write_text_atomic(f"{stem}.toolpath.json", json.dumps(path.to_json()) + "\n")
+    write_text_atomic(f"{stem}.toolpath.json", json.dumps(done.path.to_json()) + "\n")
     files["tool path"] = f"{label}.toolpath.json"
 
 
@@ -186,32 +143,6 @@ def _status(expect: str, verified: bool) -> str:
     if verified:
         return "ok" if expect == "ok" else "UNEXPECTED PASS"
     return "gouge (expected)" if expect == "gouge" else "FAILED"
-
-
-def _compare(prog: Program, limits: AxisLimits, job: Job, opts: RunOptions,
-             say: Callable[[str], None], reference_profile: FeedProfile | None = None) -> list[dict]:
-    """The blend comparison, with the same compensation overrides as the run
-    (a case's radius, ``--radius``, ``--side``), so a program that names no
-    radius (e.g. ``G41`` without ``D``) is compared, not refused.
-    ``reference_profile``: the run's certified plan of its own path, which
-    the comparison reuses for PMAC's path when that is the path it planned
-    (not on a Fagor or LinuxCNC case)."""
-    extra = compare_extras(lambda text: say(f"compare: {text}"), opts.compare_workers, job.ts,
-                           reference_profile)
-    return [v.to_json() for v in compare(prog, opts.variants, limits=limits, radius=job.radius,
-                                         side=job.side, **extra)]
-
-
-def compare_extras(progress: Callable[[str], None] | None, workers: int,
-                   ts: float | None = None, reference_profile: FeedProfile | None = None) -> dict:
-    """The ``progress``, ``workers``, ``ts`` and ``reference_profile``
-    arguments for :func:`ccopt.compare.compare`, as far as the installed one
-    takes them (they came with issue 17; an older one is called without them,
-    one at a time)."""
-    given = {"progress": progress, "workers": workers, "reference_profile": reference_profile}
-    if ts is not None:
-        given["ts"] = ts
-    return {k: v for k, v in given.items() if k in COMPARE_PARAMETERS}
 
 
 def _plots(path: ToolPath, prog: Program, cert: Certificate, profiles: dict[str, FeedProfile],

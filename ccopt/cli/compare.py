@@ -8,10 +8,10 @@ from ccopt.cases import Job
 from ccopt.cli.inputs import limits_text, reading
 from ccopt.cli.options import (add_limit_options, add_output_option, add_program,
                                add_quiet_option, add_radius_side, add_reading_options,
-                               add_ts_option, add_variants_option, add_workers_option,
-                               chosen_variants, describe, positive_float)
+                               add_tolerance_option, add_ts_option, add_variants_option,
+                               add_workers_option, chosen_variants, describe, positive_float)
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, aligned, emit_json, figure
-from ccopt.compare import REFERENCE, BlendOutcome, BlendProblem, available, compare, measure
+from ccopt.compare import REFERENCE, BlendOutcome, BlendProblem, available, measure
 from ccopt.compare.plot import plot_comparison
 from ccopt.compare.registry import Blend, require_known
 from ccopt.compare.registry import load as load_blend
@@ -20,8 +20,8 @@ from ccopt.errors import ProgramError
 from ccopt.export import ExportResult, export
 from ccopt.feed import AxisLimits
 from ccopt.feed.bounds import feed_limited_time
+from ccopt.pipeline import StageClock, pipeline
 from ccopt.program.model import Program
-from ccopt.run import compare_extras
 from ccopt.toolpath import ToolPath
 from ccopt.workers import default_workers
 
@@ -75,14 +75,10 @@ def cmd_compare(args: argparse.Namespace) -> int:
     if names:
         require_known(names, args.program)
     with reading(args, "compare") as (work, prog, say):
-        limits = work.limits()
-        options = {}
-        if args.lead_radius is not None:
-            options["lead_radius"] = args.lead_radius
-        say("compare")
-        extra = compare_extras(say, args.workers or default_workers(), work.ts)
-        cmp = compare(prog, names, limits=limits, delta=work.delta, radius=work.radius,
-                      side=work.side, options=options, **extra)
+        done = pipeline(work, program=prog, compensate=False, feed=False, verify=False,
+                        compare=True, workers=args.workers or default_workers(),
+                        clock=StageClock(say)).result()
+        cmp, limits = done.comparison, done.limits
     doc = cmp.to_json()
     if args.output:
         doc["plot"] = plot_comparison(cmp, args.output, f"{work.label}: variants")
@@ -120,7 +116,8 @@ def _smoothed(blend: Blend, work: Job, prog: Program,
     (PMAC) path: the JSON document of ``ccopt smooth``, the path, and whether
     its certificate holds."""
     ref = compensate(prog, REFERENCE, radius=work.radius, side=work.side)
-    problem = BlendProblem(prog, ref, limits, work.delta, {}, work.radius, work.side)
+    problem = BlendProblem(prog, ref, limits, work.delta, {}, work.radius, work.side,
+                           tolerance=work.tolerance)
     t0 = time.perf_counter()
     out = blend(problem)
     solve = time.perf_counter() - t0
@@ -151,7 +148,7 @@ def _jerk_figures(row, base, floor: float | None) -> dict:
     the jerk planner, their ratio, and the share of the possible gain reached:
     ``(T_pmac - T_smooth) / (T_pmac - floor)`` with ``floor`` the smoothed path's
     feed-limited time (what no smoothing can beat). Under jerk limits the rows'
-    durations are already the jerk planner's (:func:`ccopt.compare.timing.planner_for`),
+    durations are already the jerk planner's (:func:`ccopt.feed.certified_planner`),
     so nothing is planned again (the smoothed ``freeform-hsm`` takes about a
     minute). A path the planner failed on gets ``None`` and its message."""
     out: dict = {}
@@ -243,6 +240,7 @@ def _add_blend_options(p: argparse.ArgumentParser) -> None:
     add_radius_side(p)
     add_limit_options(p)
     add_ts_option(p)
+    add_tolerance_option(p)
     add_quiet_option(p)
 
 

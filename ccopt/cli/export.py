@@ -3,11 +3,12 @@ from __future__ import annotations
 
 import argparse
 
+from ccopt.atomic import job_inputs, refuse_overwriting_inputs
 from ccopt.cli.inputs import job
 from ccopt.cli.options import (add_output_option, add_program, add_reading_options,
                                add_style_options, describe, positive_float)
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, emit_json
-from ccopt.export import export
+from ccopt.pipeline import Target, pipeline
 
 
 DESCRIPTION = """\
@@ -16,7 +17,9 @@ words, in the format -o's suffix names: G-code (.nc, .ngc; spirals and blend
 curves as arcs within --tol, with a certified bound), PMAC (.pmc), SVG or
 JSON. A program is read back, compared with the computed path and verified
 against the contour before it is written (atomically); the verdict is in the
-file's header and the exit code (1 when it fails)."""
+file's header and the exit code (1 when it fails). OUT is never one of the
+input files (the program, a link to it, its tool table...): that is exit 2
+and nothing is written."""
 
 EXAMPLE = """\
   ccopt export cases/leadin-outside-arc -o leadin.nc"""
@@ -28,9 +31,11 @@ def cmd_export(args: argparse.Namespace) -> int:
     failing file is then written as ``NAME.failed.EXT`` if ``NAME.EXT`` exists,
     and the message says so."""
     work = job(args.program, args)
-    prog = work.read()
-    path = work.compensate(prog)
-    res = export(path, args.output, program=prog, tol=args.tol, title=work.title)
+    # before any work: the output must not replace an input (exit 2, nothing written)
+    refuse_overwriting_inputs([args.output], job_inputs(work))
+    done = pipeline(work, feed=False, verify=False,
+                    export=[Target(args.output, title=work.title, tol=args.tol)]).result()
+    path, (res,) = done.path, done.exports
     if args.json:
         emit_json(res.to_json())
     else:

@@ -5,14 +5,13 @@ import argparse
 import math
 from pathlib import Path
 
-from ccopt import feed as feed_planning
 from ccopt.cli.inputs import limits_text, reading
 from ccopt.cli.options import (add_limit_options, add_output_option, add_program,
                                add_quiet_option, add_reading_options, add_style_options,
                                add_ts_option, describe, positive_float)
 from ccopt.cli.output import EXIT_OK, emit_json
-from ccopt.feed import AxisLimits, plan_feed
-from ccopt.toolpath import ToolPath
+from ccopt.feed import PLANNERS
+from ccopt.pipeline import StageClock, pipeline
 
 DESCRIPTION = """\
 Time-optimal feed along the exact compensated path with TOPPRA, under
@@ -32,12 +31,13 @@ EXAMPLE = """\
 DEFAULT_DT = 1e-3
 
 #: the planners ``--planner`` knows (``all`` names them all), in the order they are reported
-PLANNER_NAMES = ("toppra", "stop", "junction", "jerk")
+PLANNER_NAMES = tuple(PLANNERS)
 
 
 def planner_names(text: str) -> list[str]:
     """``A,B`` -> planner names (argparse type of ``--planner``); ``all``: every one
-    (``jerk`` only when jerk limits are known: :func:`cmd_feed` drops it otherwise)."""
+    (``jerk`` only when jerk limits are known: :meth:`ccopt.cases.Job.planners_for`
+    drops it otherwise)."""
     names = [n.strip() for n in text.split(",")]
     for n in names:
         if n not in PLANNER_NAMES + ("all",):
@@ -46,27 +46,18 @@ def planner_names(text: str) -> list[str]:
     return ["all"] if "all" in names else names
 
 
-def chosen_planners(groups, limits: AxisLimits) -> list[str]:
-    """The ``--planner`` names in order, ``all`` expanded (with ``jerk`` when
-    ``limits`` give jerk limits); ``toppra`` when none is given."""
-    names: list[str] = []
-    for group in groups or [["toppra"]]:
-        for n in group:
-            if n == "all":
-                names.extend(p for p in PLANNER_NAMES if p != "jerk" or limits.j is not None)
-            else:
-                names.append(n)
-    return list(dict.fromkeys(names))
-
-
 def cmd_feed(args: argparse.Namespace) -> int:
     """Feed profiles of the compensated path: TOPPRA and/or the baselines."""
-    with reading(args, "feed") as (work, prog, say):
-        say("compensate")
-        path = work.compensate(prog)
-        limits = work.limits(args.tangential_acc, args.centripetal_acc)
-        planners = chosen_planners(args.planner, limits)
-        out = _plan(path, limits, planners, args, say)
+    # the first planner listed is the one reported first (``all`` starts with toppra)
+    first_named = (args.planner or [["toppra"]])[0][0]
+    own = {"planner": "toppra" if first_named == "all" else first_named}
+    if not args.planner:
+        own["planners"] = ("toppra",)
+    with reading(args, "feed", **own) as (work, prog, say):
+        done = pipeline(work, program=prog, verify=False, clock=StageClock(say)).result()
+        path, limits = done.path, done.limits
+        out = _summaries(done.profiles, args, say)
+    planners = list(out)
     first = out[planners[0]]
     if args.json:
         emit_json({"program": str(work.program), "style": path.style, "units": path.units,
@@ -91,24 +82,19 @@ def cmd_feed(args: argparse.Namespace) -> int:
     return EXIT_OK
 
 
-def _plan(path: ToolPath, limits: AxisLimits, planners: list[str],
-          args: argparse.Namespace, say) -> dict[str, dict]:
+def _summaries(profiles: dict, args: argparse.Namespace, say) -> dict[str, dict]:
     """Each planner's summary (figures to a stated bound, ``FeedProfile.summary``),
     its samples every ``--dt`` s written as CSV when ``-o``/``--csv`` asks
     (``FILE.<planner>.csv`` when several)."""
-    # ccopt.feed loads ExactPath (and toppra, ~2 s) on first use, so `ccopt show` stays fast
-    exact = feed_planning.ExactPath(path)
     out: dict = {}
     target = args.output
-    for k, name in enumerate(planners, 1):
-        say(f"plan: {name} ({k} of {len(planners)})")
-        prof = plan_feed(exact, limits, planner=name, junction_deviation=args.junction_deviation,
-                         ts=args.ts)
+    for name, prof in profiles.items():
         # the figures need no dt grid (FeedProfile.figure_samples); the CSV does
         out[name] = prof.summary(args.dt)
         if target:
+            say(f"csv: {name}")
             csv = Path(target)
-            if len(planners) > 1:
+            if len(profiles) > 1:
                 csv = csv.with_name(f"{csv.stem}.{name}{csv.suffix}")
             prof.to_csv(csv, args.dt)
             out[name]["csv"] = str(csv)

@@ -13,6 +13,7 @@ from contextlib import contextmanager
 from typing import TYPE_CHECKING
 
 from ccopt.cases import DEFAULT_LIMITS, Case, Job, Overrides, ReadOptions, resolve_input
+from ccopt.cli.options import chosen_variants
 from ccopt.cli.progress import stage_progress
 
 if TYPE_CHECKING:  # annotations only
@@ -23,14 +24,29 @@ if TYPE_CHECKING:  # annotations only
 STYLE_OPTIONS = ("break_cos", "ccbuf")
 
 
-def overrides(args: argparse.Namespace) -> Overrides:
-    """What ``args`` says about every input; a command without an option says nothing."""
+def overrides(args: argparse.Namespace, **command) -> Overrides:
+    """What ``args`` says about every input; a command without an option says
+    nothing. ``command``: the :class:`Overrides` a command sets itself, not
+    from an option (``ccopt run``'s planners)."""
     given = {name: getattr(args, name, None) for name in STYLE_OPTIONS}
-    return Overrides(
+    lead_radius = getattr(args, "lead_radius", None)
+    planners = [n for group in getattr(args, "planner", None) or () for n in group]
+    settings = dict(
         style=getattr(args, "style", None), radius=getattr(args, "radius", None),
         side=getattr(args, "side", None), vmax=getattr(args, "vmax", None),
         amax=getattr(args, "amax", None), jmax=getattr(args, "jmax", None),
         delta=getattr(args, "delta", None), ts=getattr(args, "ts", None),
+        tangential_acc=getattr(args, "tangential_acc", None),
+        centripetal_acc=getattr(args, "centripetal_acc", None),
+        junction_deviation=getattr(args, "junction_deviation", None),
+        planners=tuple(planners) or None,
+        tolerance=getattr(args, "tolerance", None), eps=getattr(args, "eps", None),
+        limits_tol=getattr(args, "limits_tol", None),
+        part_lines=getattr(args, "part_lines", None),
+        toolpath=getattr(args, "toolpath", None),
+        variants=tuple(chosen_variants(args) or ()) or None if hasattr(args, "variants")
+        else None,
+        blend_options={} if lead_radius is None else {"lead_radius": lead_radius},
         reading=ReadOptions(
             dialect=getattr(args, "dialect", None), tool_table=getattr(args, "tool_table", None),
             var_file=getattr(args, "var_file", None), units=getattr(args, "units", None),
@@ -38,28 +54,31 @@ def overrides(args: argparse.Namespace) -> Overrides:
             sub_path=tuple(getattr(args, "sub_path", None) or ()),
             max_loop_iterations=getattr(args, "max_loop_iterations", None)),
         style_options={k: v for k, v in given.items() if v is not None})
+    settings.update(command)
+    return Overrides(**settings)
 
 
-def job(what: str | Case, args: argparse.Namespace,
-        default_limits: dict | None = DEFAULT_LIMITS) -> Job:
+def job(what: str | Case, args: argparse.Namespace, **command) -> Job:
     """The job for ``what`` (program file, case folder, bundled case name or
-    case) with ``args``' overrides; ``default_limits`` as in
-    :func:`ccopt.cases.resolve_input`: every command resolves the axis limits
-    by one rule (``--vmax/--amax``, else the case's ``[limits]``, else
-    :data:`ccopt.cases.DEFAULT_LIMITS`, which the output names)."""
-    return resolve_input(what, overrides(args), default_limits)
+    case) with ``args``' overrides (and the ``command``'s own, see
+    :func:`overrides`): every command resolves its settings by one rule
+    (:func:`ccopt.cases.resolve_input`: the axis limits ``--vmax/--amax``, else
+    the case's ``[limits]``, else :data:`ccopt.cases.DEFAULT_LIMITS`, which the
+    output names)."""
+    return resolve_input(what, overrides(args, **command), DEFAULT_LIMITS)
 
 
 @contextmanager
-def reading(args: argparse.Namespace, command: str) -> Iterator[tuple[Job, Program, object]]:
+def reading(args: argparse.Namespace, command: str,
+            **settings) -> Iterator[tuple[Job, Program, object]]:
     """The preamble every command that works on one program shares: its
     stage progress (:func:`ccopt.cli.progress.stage_progress`), its :class:`Job`
     (:func:`job`) and the program read; yields ``(job, program, say)``, ``say``
     naming the next stage on the progress line, which closes on the way out
-    (an error included)."""
+    (an error included). ``settings``: the command's own (:func:`overrides`)."""
     say = stage_progress(args, command)
     try:
-        work = job(args.program, args)
+        work = job(args.program, args, **settings)
         say("read")
         yield work, work.read(), say
     finally:

@@ -14,6 +14,7 @@ from ccopt.cli.output import EXIT_BAD_INPUT
 from ccopt.compensate import STYLES
 from ccopt.program.gcode import MAX_LOOP_ITERATIONS
 from ccopt.program.model import MAX_COORDINATE
+from ccopt.sides import SIDE_NAMES
 
 
 #: Old spellings of options, still taken but left out of ``--help`` so nothing
@@ -189,14 +190,23 @@ def add_radius_side(p: argparse.ArgumentParser) -> None:
     """The compensation overrides every command that compensates takes."""
     p.add_argument("--radius", type=nonneg_float, metavar="R",
                    help="cutter radius in program units, overriding the program")
-    p.add_argument("--side", choices=["left", "right"],
+    p.add_argument("--side", choices=SIDE_NAMES,
                    help="compensation side wherever it is on, overriding the program")
+
+
+def add_tolerance_option(p: argparse.ArgumentParser) -> None:
+    """``--tolerance T``: the verifier's gouge tolerance, program units."""
+    p.add_argument("--tolerance", type=nonneg_float, metavar="T",
+                   help="gouges no deeper than T (program units) are warnings, the verdict "
+                        "'ok within tolerance'; deeper ones fail (default 1e-3 mm, or 4e-5 "
+                        "inch, by the program's units)")
 
 
 def add_style_options(p: argparse.ArgumentParser) -> None:
     """The controller style, the radius and side, and the style's own options."""
     p.add_argument("--style", choices=sorted(STYLES),
-                   help="controller style (default: the case's, else pmac)")
+                   help="controller style (default: the case's, else by dialect: pmac for "
+                        "PMAC, linuxcnc for G-code, fagor where G136-G139 appear)")
     add_radius_side(p)
     p.add_argument("--break-cos", type=cosine, metavar="C",
                    help="PMAC Isx99 outside-corner break (cos of the turn), default 0.9998")

@@ -8,14 +8,14 @@ from pathlib import Path
 from ccopt.cases import bundled_cases
 from ccopt.cli.inputs import job
 from ccopt.cli.options import (add_limit_options, add_output_option, add_quiet_option,
-                               add_reading_options, add_style_options, add_ts_option,
-                               add_variants_option, add_workers_option, chosen_variants,
-                               describe)
+                               add_reading_options, add_style_options, add_tolerance_option,
+                               add_ts_option, add_variants_option, add_workers_option,
+                               chosen_variants, describe)
 from ccopt.cli.output import emit_json
 from ccopt.cli.progress import cases_progress
 from ccopt.compare.registry import require_known
 from ccopt.errors import ProgramError
-from ccopt.run import DEFAULT_LIMITS, RunOptions, default_out, exit_code, run_all
+from ccopt.run import DEFAULT_LIMITS, PLANNERS, RunOptions, default_out, exit_code, run_all
 from ccopt.workers import default_workers
 
 DESCRIPTION = """\
@@ -43,7 +43,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     Exit 0 when every input did what its case expects, 1 when a verification
     failed, 2 when an input could not be read or compensated.
     """
-    jobs = [job(a, args) for a in args.inputs or bundled_cases()]
+    jobs = [job(a, args, planners=PLANNERS) for a in args.inputs or bundled_cases()]
     if not jobs:
         raise ProgramError("no bundled cases found (is the cases/ folder next to ccopt/?)",
                            "cases")
@@ -53,7 +53,7 @@ def cmd_run(args: argparse.Namespace) -> int:
         require_known(variants, "--variants")
     workers = args.workers or default_workers()
     # cases share the workers; a single case's comparison gets them instead
-    opts = RunOptions(compare=not args.no_compare, variants=variants,
+    opts = RunOptions(compare=not args.no_compare,
                       compare_workers=workers if len(jobs) == 1 else 1)
     progress = cases_progress(args, [j.label for j in jobs])
     try:
@@ -110,4 +110,5 @@ def add_commands(sub, commands: dict) -> None:
     add_reading_options(p)
     add_quiet_option(p)
     add_style_options(p)
+    add_tolerance_option(p)
     commands["run"] = cmd_run

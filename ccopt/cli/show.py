@@ -6,6 +6,7 @@ import argparse
 from ccopt.cli.inputs import job
 from ccopt.cli.options import add_program, add_reading_options, add_style_options, describe
 from ccopt.cli.output import EXIT_OK, emit_json, path_table
+from ccopt.pipeline import pipeline
 from ccopt.toolpath import programmed_path
 
 
@@ -24,13 +25,12 @@ def cmd_show(args: argparse.Namespace) -> int:
 
 def cmd_compensate(args: argparse.Namespace) -> int:
     """Print the tool-centre path the chosen controller style makes."""
-    work = job(args.program, args)
-    prog = work.read()
-    path = work.compensate(prog)
+    done = pipeline(job(args.program, args), feed=False, verify=False).result()
+    prog, path = done.program, done.path
     if args.json:
         emit_json(path.to_json())
     else:
-        print(f"{prog.file}: style {path.style} ({work.style_for(prog)[1]}), cutter radius "
+        print(f"{prog.file}: style {path.style} ({done.style_from}), cutter radius "
               f"{path.radius:g} {path.units}, {len(path.segments)} segments, tool path "
               f"{path.length:.4f} {path.units}")
         print(path_table(path))

@@ -5,13 +5,11 @@ import argparse
 
 from ccopt.cli.inputs import reading
 from ccopt.cli.options import (add_limit_options, add_program, add_quiet_option,
-                               add_reading_options, add_style_options, describe, nonneg_float,
-                               positive_float)
+                               add_reading_options, add_style_options, add_tolerance_option,
+                               add_ts_option, describe, nonneg_float, positive_float)
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, emit_json
-from ccopt.feed import certified_planner, plan_feed
+from ccopt.pipeline import StageClock, pipeline
 from ccopt.tolerances import VERIFY_EPS
-from ccopt.toolpath_json import read_toolpath_json
-from ccopt.verify import verify
 from ccopt.verify.crosschecks import run_crosschecks
 from ccopt.verify.limits import LIMITS_TOL
 from ccopt.verify.surface import parse_part_lines
@@ -41,21 +39,11 @@ EXAMPLE = """\
 
 def cmd_verify(args: argparse.Namespace) -> int:
     """Compensate (or read ``--toolpath``), then certify the radius offset and,
-    with ``--feed``, the feed limits of TOPPRA's profile (exit 1 when a check fails)."""
+    with ``--feed``, the feed limits of the certified planner's profile (the jerk
+    planner's when the limits carry jerk, else TOPPRA's); exit 1 when a check fails."""
     with reading(args, "verify") as (work, prog, say):
-        say("compensate")
-        path = read_toolpath_json(args.toolpath, prog) if args.toolpath else \
-            work.compensate(prog)
-        profile = None
-        if args.feed:
-            say("feed")
-            limits = work.limits()
-            # the certificate checks jerk when the limits carry it: the jerk
-            # planner's profile then, TOPPRA's (velocity, acceleration) otherwise
-            profile = plan_feed(path, limits, planner=certified_planner(limits), ts=work.ts)
-        say("verify")
-        cert = verify(path, prog, profile, eps=args.eps, radius=work.radius, side=work.side,
-                      limits_tol=args.limits_tol, part_lines=args.part_lines)
+        done = pipeline(work, program=prog, feed=args.feed, clock=StageClock(say)).result()
+    path, cert = done.path, done.certificate
     report = cert.to_json()
     agree = True
     if args.crosscheck:
@@ -87,9 +75,12 @@ def add_commands(sub, commands: dict) -> None:
     p.add_argument("--toolpath", metavar="FILE.json",
                    help="verify this tool path (ccopt's JSON schema, as `ccopt compensate --json` "
                         "prints it) against PROGRAM's contour instead of compensating")
+    add_tolerance_option(p)
     p.add_argument("--feed", action="store_true",
-                   help="also plan TOPPRA's feed under the axis limits and check them")
+                   help="also plan the feed under the axis limits and check them (TOPPRA's, "
+                        "or the jerk planner's when the limits carry jerk)")
     add_limit_options(p)
+    add_ts_option(p)
     p.add_argument("--limits-tol", type=nonneg_float, default=LIMITS_TOL, metavar="T",
                    help="relative tolerance of the limits check: a sample may exceed its limit "
                         "by this fraction (default 1e-3)")

@@ -16,9 +16,10 @@ leads are found and replaced with :mod:`.leads`; figures are in
 :mod:`.figures`.
 """
 from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
-from ccopt.compare.core import FIGURES, REFERENCE, Comparison, VariantResult, compare, measure
+from ccopt.compare.core import (FIGURES, REFERENCE, Comparison, GivenReference, VariantResult,
+                                compare, measure)
 from ccopt.compare.contract import ENTRY_POINT_GROUP
 from ccopt.compare.registry import available, load
 
 __all__ = ["BlendOutcome", "BlendProblem", "BlendRejected", "Comparison", "ENTRY_POINT_GROUP",
-           "FIGURES", "REFERENCE", "VariantResult", "available", "compare", "load", "measure"]
+           "FIGURES", "GivenReference", "REFERENCE", "VariantResult", "available", "compare", "load", "measure"]

@@ -32,10 +32,10 @@ import numpy as np
 from ccopt.compare.leads import Lead, find_leads
 from ccopt.feed.limits import AxisLimits
 from ccopt.program.model import Program
+from ccopt.sides import side_sign
 from ccopt.toolpath import ToolPath
 from ccopt.verify import Certificate, contour_of, verify
 from ccopt.verify.planes import plane_runs
-from ccopt.verify.run import SIDES
 
 
 class BlendRejected(RuntimeError):
@@ -67,6 +67,8 @@ class BlendProblem:
     radius, side: the compensation overrides the reference was made with.
     progress: called with a short line as a blend goes (:meth:`report`);
         ``None`` (the default, and in worker processes): silent.
+    tolerance: the verifier's gouge tolerance, program units (``None``: its
+        default), as the job that asked for the comparison has it.
     """
 
     program: Program
@@ -77,6 +79,7 @@ class BlendProblem:
     radius: float | None = None
     side: Any = None
     progress: Callable[[str], None] | None = None
+    tolerance: float | None = None
 
     def report(self, line: str) -> None:
         """Pass ``line`` (e.g. "blend 2/6") to :attr:`progress`, if any."""
@@ -95,7 +98,7 @@ class BlendProblem:
     @cached_property
     def contour(self):
         """The verifier's contour of the program (:func:`ccopt.verify.contour_of`)."""
-        return contour_of(self.program, radius=self.radius, side=SIDES[self.side],
+        return contour_of(self.program, radius=self.radius, side=side_sign(self.side),
                           toolpath_radius=self.reference.radius if self.radius is None else None)
 
     def acc(self) -> np.ndarray:
@@ -110,8 +113,10 @@ class BlendProblem:
         return find_leads(self.reference)
 
     def certify(self, toolpath: ToolPath) -> Certificate:
-        """The verifier's certificate of ``toolpath`` against the program."""
-        return verify(toolpath, self.program, radius=self.radius, side=self.side)
+        """The verifier's certificate of ``toolpath`` against the program (with
+        the job's ``tolerance`` when it names one)."""
+        given = {} if self.tolerance is None else {"tolerance": self.tolerance}
+        return verify(toolpath, self.program, radius=self.radius, side=self.side, **given)
 
     def accept(self, toolpath: ToolPath, segments) -> Certificate:
         """Certify ``toolpath``; :class:`BlendRejected` when a gouge, gap or side

@@ -34,8 +34,9 @@ from ccopt.compare.leads import lead_joins
 from ccopt.compare.registry import available, load
 from ccopt.compensate import compensate
 from ccopt.compare.timing import (PartialTime, StretchTimes, duration_figures, load_planner,
-                                  partial_figures, planner_for, same_plan, stretch_keys)
+                                  partial_figures, same_plan, stretch_keys)
 from ccopt.errors import CcoptError
+from ccopt.feed import certified_planner
 from ccopt.feed.limits import AxisLimits
 from ccopt.program.model import Program
 from ccopt.toolpath import ToolPath
@@ -57,7 +58,7 @@ class VariantResult:
     """One row of the comparison."""
 
     name: str
-    status: str                     # ok | refused | rejected | failed
+    status: str                     # ok | uncertified | refused | rejected | failed
     message: str | None = None
     toolpath: ToolPath | None = None
     certificate: object | None = None
@@ -105,7 +106,7 @@ class Comparison:
                 "units": self.program.units,
                 "limits": self.limits.to_json() if self.limits is not None else None,
                 "reference": REFERENCE,
-                "planner": planner_for(self.limits) if self.limits is not None else None,
+                "planner": certified_planner(self.limits) if self.limits is not None else None,
                 "variants": [v.to_json() for v in self.variants]}
 
 
@@ -138,22 +139,59 @@ def _measure_shape(name: str, path: ToolPath, problem: BlendProblem, solve_time:
     fig.update(min_clearance=cert.min_clearance, certified=bool(cert.ok),
                clearance_ok=bool(gouge.ok), violations=len(cert.violations),
                max_deviation=dev, max_deviation_bound=dev_bound, solve_time=solve_time)
-    return VariantResult(name, "ok", None, path, cert, fig, dict(info or {}))
+    status, message = ("ok", None) if cert.ok else ("uncertified", uncertified_reason(cert))
+    return VariantResult(name, status, message, path, cert, fig, dict(info or {}))
+
+
+def uncertified_reason(cert) -> str:
+    """Why a row whose path the verifier did not certify is not ``ok``: the
+    checks that failed and the deepest violation (program units for a
+    gouge, side or gap; a ratio over the limit for the feed limits)."""
+    failed = [c.name for c in cert.checks if not c.ok]
+    text = f"not certified: {', '.join(failed) or 'a check'} failed"
+    if cert.violations:
+        v = max(cert.violations, key=lambda v: v.depth)
+        line = f" at line {v.tool_block}" if v.tool_block is not None else ""
+        text += f" (deepest: {v.kind} {v.depth:.3g}{line}, {len(cert.violations)} violation(s))"
+    return text
+
+
+def _timed(row: VariantResult) -> bool:
+    """Whether ``row`` gets a cycle time: it has a tool path (``ok`` or
+    ``uncertified``; the time of an uncertified path is still a figure)."""
+    return row.status in ("ok", "uncertified") and row.toolpath is not None
 
 
 def _with_duration(row: VariantResult, duration) -> VariantResult:
-    """``row`` with :func:`_duration`'s ``(duration, max_acc_ratio, message)``."""
+    """``row`` with :func:`_duration`'s ``(duration, max_acc_ratio, message)``
+    (the planner's refusal joins the row's own message, if any)."""
     dur, acc_ratio, feed_msg = duration
     row.figures.update(duration=dur, max_acc_ratio=acc_ratio)
-    row.message = feed_msg
+    if feed_msg:
+        row.message = feed_msg if row.message is None else f"{row.message}; {feed_msg}"
     return row
+
+
+@dataclass(frozen=True)
+class GivenReference:
+    """PMAC's path of the program as the caller made it (``ccopt run``'s
+    pipeline, when the job's own path is PMAC's): ``path``, the ``seconds``
+    compensating it took, and ``profile``, its whole-path feed plan under the
+    comparison's limits and :func:`~ccopt.feed.certified_planner` when the
+    caller has one (``None``: planned here). The comparison takes it as its
+    reference instead of compensating the program again."""
+
+    path: ToolPath
+    seconds: float = 0.0
+    profile: FeedProfile | None = None
 
 
 def compare(program: Program, variants=None, *, limits: AxisLimits | None = None,
             delta: float | None = None, radius: float | None = None, side=None,
             options: dict | None = None, workers: int = 1,
             progress: Callable[[str], None] | None = None, ts: float | None = None,
-            reference_profile: FeedProfile | None = None) -> Comparison:
+            reference: GivenReference | None = None,
+            tolerance: float | None = None) -> Comparison:
     """Compare lead-in/lead-out/corner variants of ``program``.
 
     Parameters
@@ -169,14 +207,20 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     progress: called with a short line as the work goes ("variant 3/10
         opt-casadi"; in this process also "opt-casadi: blend 2/6").
     ts: the jerk planner's interpolation period (s; None: its default, 1 ms).
-    reference_profile: the reference's whole-path feed profile when the caller
-        has planned it already (``ccopt run`` does, in its feed stage); used
-        only when it is the plan this would make (:func:`.timing.same_plan`:
-        PMAC's path, these limits, their planner and ``ts``), else ignored.
+    reference: PMAC's path (and its plan) when the caller has made it already
+        (:class:`GivenReference`; it must be PMAC's path of ``program`` with
+        ``radius`` and ``side``); its plan is used only when it is the plan
+        this would make (:func:`.timing.same_plan`: these limits, their
+        planner and ``ts``), else the path is planned here.
+    tolerance: the verifier's gouge tolerance (program units; ``None``: its
+        default), as for :func:`ccopt.verify.verify`.
+
+    A row is ``ok`` only when its path is certified; a path the verifier does
+    not certify is ``uncertified``, with its figures and why (``message``).
     """
     names = list(variants) if variants else available()
-    ref = _Reference.of(program, radius, side, limits, ts, reference_profile)
-    settings = (limits, delta, dict(options or {}), radius, side)
+    ref = _Reference.of(program, radius, side, limits, ts, reference)
+    settings = (limits, delta, dict(options or {}), radius, side, None, tolerance)
     problem = BlendProblem(program, ref.path, *settings) if ref.path is not None else None
     rows, jobs, ref_index = _jobs(names, program, problem, ref.error, settings)
 
@@ -216,13 +260,17 @@ class _Reference:
     _keys: list = field(default_factory=list)   # [its stretch keys], once asked
 
     @classmethod
-    def of(cls, program: Program, radius, side, limits, ts, profile) -> "_Reference":
+    def of(cls, program: Program, radius, side, limits, ts,
+           given: GivenReference | None = None) -> "_Reference":
+        """PMAC's path of ``program``: the caller's (``given``) or compensated here."""
+        if given is not None:
+            return cls(given.path, None, given.seconds, limits, ts, given.profile)
         t0 = time.perf_counter()
         try:
             path, error = compensate(program, REFERENCE, radius=radius, side=side), None
         except CcoptError as exc:
             path, error = None, str(exc)
-        return cls(path, error, time.perf_counter() - t0, limits, ts, profile)
+        return cls(path, error, time.perf_counter() - t0, limits, ts, None)
 
     def times(self) -> StretchTimes | None:
         """:func:`_reference_times`, once; with no reference (refused) an empty
@@ -252,8 +300,8 @@ def _jobs(names: list[str], program: Program, problem: BlendProblem | None,
     """``(rows, jobs, ref_index)``: the rows known without work (unknown names,
     refusals for want of a reference), the jobs ``(index, name, problem)`` and
     the reference's index in ``names`` (None when absent or refused).
-    ``settings``: ``(limits, delta, options, radius, side)`` of a problem
-    without reference."""
+    ``settings``: ``(limits, delta, options, radius, side, progress, tolerance)``
+    of a problem without reference."""
     known = set(available())
     rows: list[VariantResult | None] = [None] * len(names)
     jobs: list[tuple[int, str, BlendProblem]] = []
@@ -316,7 +364,7 @@ def _run_jobs(jobs, ref: "_Reference", reference_row, total: int, workers: int, 
         _say(progress, f"variant {i + 1}/{total} {name}")
         local = problem if progress is None else replace(problem, progress=progress)
         row = _solve(name, local)
-        if row.status == "ok":
+        if _timed(row):
             got = _of_path(timed, row.toolpath)
             if got is None:
                 got = _duration(row.toolpath, problem.limits,
@@ -444,7 +492,7 @@ def _timed_or_queued(job, row: VariantResult, timed, to_time, running, partial,
     the reference's, queued, or queued here)."""
     i, name, problem = job
     entry = (i, name, row)
-    if row.status != "ok":
+    if not _timed(row):
         return [entry]
     twin = _of_path(timed, row.toolpath)
     if twin is not None and twin in running:

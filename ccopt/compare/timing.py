@@ -39,7 +39,7 @@ import numpy as np
 # ccopt.feed loads ExactPath (and toppra, ~2 s) on first use: importing ccopt.compare stays fast
 from ccopt import feed as feed_planning
 from ccopt.errors import CcoptError
-from ccopt.feed import plan_feed
+from ccopt.feed import certified_planner, plan_feed
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.planners import DEFAULT_TS
 from ccopt.geometry import Arc, Line, Spiral
@@ -60,19 +60,13 @@ STOP_MATCH_REL = 1e-12
 
 
 def load_planner(limits: AxisLimits) -> None:
-    """Import the planner :func:`planner_for` picks (with toppra, ~0.5 s): a
+    """Import the planner :func:`~ccopt.feed.certified_planner` picks (with toppra, ~0.5 s): a
     parallel comparison does it before it forks its workers, so that each
     does not import it again for its first cycle time."""
     for name in ("ccopt.feed.path", "ccopt.feed.plan", "ccopt.feed.toppra_planner",
-                 "ccopt.feed.jerk_planner" if planner_for(limits) == "jerk" else None):
+                 "ccopt.feed.jerk_planner" if certified_planner(limits) == "jerk" else None):
         if name is not None:
             importlib.import_module(name)
-
-
-def planner_for(limits: AxisLimits) -> str:
-    """The planner cycle times are compared under: ``jerk`` when the limits carry
-    jerk (issue 18: blends are judged where they pay), else ``toppra``."""
-    return "jerk" if limits.j is not None else "toppra"
 
 
 def _geometry_key(g):
@@ -192,11 +186,11 @@ def _unknown_runs(got: list) -> list[list[int]]:
 
 def plan_whole(path: ToolPath | ExactPath, limits: AxisLimits, ts: float | None = None, *,
                with_samples: bool = False):
-    """``(profile, max_acc_ratio)`` of the whole path under :func:`planner_for`
+    """``(profile, max_acc_ratio)`` of the whole path under :func:`~ccopt.feed.certified_planner`
     (``ts``: the jerk planner's interpolation period, s; None: its default);
     ``with_samples``: also the samples the ratio was read at
     (:func:`_ratio_samples`)."""
-    prof = plan_feed(path, limits, planner=planner_for(limits), ts=ts)
+    prof = plan_feed(path, limits, planner=certified_planner(limits), ts=ts)
     smp = _ratio_samples(prof)
     ratio = _ratio(prof, smp)
     return (prof, ratio, smp) if with_samples else (prof, ratio)
@@ -222,7 +216,7 @@ class StretchTimes:
         """``(StretchTimes, duration, max_acc_ratio)``: the reference planned whole
         (its figures are those of the whole-path profile) and cut at its stops.
         ``profile``: that whole-path profile when the caller has it (it must
-        be the reference's, under :func:`planner_for` and ``ts``: see
+        be the reference's, under :func:`~ccopt.feed.certified_planner` and ``ts``: see
         :func:`same_plan`), else it is planned here."""
         if profile is not None:
             exact, prof = profile.path, profile
@@ -279,7 +273,7 @@ class StretchTimes:
         where that path's stops are not the run's (never seen; a safeguard)."""
         def plan(s0: float, s1: float):
             sub = feed_planning.ExactPath(exact.stretch(s0, s1))
-            return sub, plan_feed(sub, self.limits, planner=planner_for(self.limits), ts=self.ts)
+            return sub, plan_feed(sub, self.limits, planner=certified_planner(self.limits), ts=self.ts)
 
         if len(run) > 1:
             sub, prof = plan(run[0].s0, run[-1].s1)
@@ -331,13 +325,16 @@ class PartialTime:
 
 def same_plan(profile, reference: ToolPath, limits: AxisLimits, ts: float | None) -> bool:
     """Whether ``profile`` is the plan :meth:`StretchTimes.from_reference` would
-    make of ``reference``: the same path, limits, planner (:func:`planner_for`)
-    and, for the jerk planner, interpolation period ``ts`` (None: its default)."""
-    if profile is None or profile.planner != planner_for(limits) or profile.limits != limits:
+    make of ``reference``: a plan of that very path object (the caller gave
+    both, :class:`ccopt.compare.core.GivenReference`; no path is compared
+    with another), under these limits, their planner
+    (:func:`~ccopt.feed.certified_planner`) and, for the jerk planner,
+    interpolation period ``ts`` (None: its default)."""
+    if profile is None or profile.planner != certified_planner(limits) or profile.limits != limits:
         return False
     if profile.planner == "jerk" and profile.info.get("ts") != (DEFAULT_TS if ts is None else ts):
         return False
-    return profile.path.toolpath == reference
+    return profile.path.toolpath is reference
 
 
 def partial_figures(path: ToolPath, limits: AxisLimits, ts: float | None, defer):
@@ -370,4 +367,4 @@ def duration_figures(path: ToolPath, limits: AxisLimits | None,
 
 __all__ = ["RATIO_DT", "PartialTime", "StretchTimes", "Stretch", "duration_figures",
            "partial_figures", "plan_whole",
-           "planner_for", "same_plan", "stops", "stretch_key", "stretch_keys", "stretches"]
+           "same_plan", "stops", "stretch_key", "stretch_keys", "stretches"]

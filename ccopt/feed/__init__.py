@@ -61,9 +61,11 @@ def __getattr__(name):
 
 
 def certified_planner(limits: AxisLimits) -> str:
-    """The planner whose profile a command certifies and whose time it reports
-    as the cycle time: ``"jerk"`` when ``limits`` carry jerk (TOPPRA's profile
-    would break them), else ``"toppra"``."""
+    """The planner whose profile is certified and whose time is the cycle time,
+    for every command, the sweep and the comparison alike: ``"jerk"`` when
+    ``limits`` carry jerk (TOPPRA's profile would break them; blends are judged
+    where they pay, issue 18), else ``"toppra"``. The one place this choice is
+    made (:meth:`ccopt.cases.Job.planner_for` applies a job's own choice over it)."""
     return "jerk" if limits.j is not None else "toppra"
 
 

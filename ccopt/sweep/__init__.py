@@ -33,7 +33,7 @@ from ccopt.sweep.results import (Flusher, columns, load_done, make_folder, write
                                  write_spec_copy)
 from ccopt.sweep.spec import Spec, load_spec
 from ccopt.sweep.summary import write_summary
-from ccopt.sweep.tasks import ProgramInput, Task, expand, resolve_programs
+from ccopt.sweep.tasks import ProgramInput, Task, expand, planned, resolve_programs
 from ccopt.version import __version__
 
 
@@ -118,7 +118,7 @@ def sweep(spec, client=None, *, out: str | os.PathLike | None = None,
     todo = [t for t in tasks if t.id not in have]
     last = int(done["run"].max()) if done is not None and len(done) else 0
     run = last + 1 if todo else last  # a run that computes nothing is no new run
-    flusher = Flusher(folder, done, [t.id for t in tasks], columns(spec))
+    flusher = Flusher(folder, done, [t.id for t in tasks], columns(spec, planned(tasks)))
     options = {"client": client, "scheduler": scheduler, "workers": workers,
                "task_timeout": task_timeout, "progress": progress, "serial": serial}
     try:

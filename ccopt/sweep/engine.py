@@ -124,7 +124,7 @@ def run_tasks(session: Session, programs: dict, tasks: list[Task], run: int,
     token = uuid.uuid4().hex[:8]  # keys unique per call, named for the dashboard
     futures = {}
     for t in tasks:
-        fut = client.submit(run_task, shipped[t.program], t.setting, timeout, pure=False,
+        fut = client.submit(run_task, shipped[t.program], t.job, timeout, pure=False,
                             key=f"ccopt-sweep-{t.id}-{token}")
         futures[fut] = t
     try:
@@ -144,4 +144,4 @@ def run_serial(programs: dict, tasks: list[Task], run: int, timeout: float | Non
     """The same tasks one after another in this process (no Dask): for
     benchmarks and for checking the cluster's figures."""
     for t in tasks:
-        on_row(_row(t, run_task(programs[t.program], t.setting, timeout), run))
+        on_row(_row(t, run_task(programs[t.program], t.job, timeout), run))

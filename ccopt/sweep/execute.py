@@ -1,21 +1,23 @@
-"""One task: compensate -> feed -> verify (-> compare) on one program, one setting.
+"""One task: its job through :func:`ccopt.pipeline.pipeline` on one program.
 
 :func:`run_task` is what a Dask worker runs; it never raises: a bad program,
 a refused setting, a solver failure or a timeout is the row's ``error``.
-Its figures are exactly those of the public API called by hand::
+Its figures are exactly those of ``ccopt run``, ``ccopt compare`` and the
+public API on the same job (the same pipeline), e.g. with no variant::
 
-    path = ccopt.compensate(prog, style=s.style, radius=s.radius, side=s.side)
-    prof = ccopt.plan_feed(path, ccopt.AxisLimits(**s.limits), planner=p)
-    cert = ccopt.verify(path, prog, profile=prof, radius=s.radius, side=s.side)
+    path = ccopt.compensate(prog, style=job.style, radius=job.radius, side=job.side)
+    prof = ccopt.plan_feed(path, job.limits(), planner=p)
+    cert = ccopt.verify(path, prog, profile=prof, radius=job.radius, side=job.side)
 
 With a ``variant`` the path is that variant's from
 :func:`ccopt.compare.compare` (its ``max_deviation`` from PMAC's path is the
 row's ``deviation``), then planned and verified the same way.
 
-Row figures (units: program units, seconds): ``cycle_time`` (the first
-planner's duration) and ``cycle_time_<planner>``, ``min_clearance``
-(certified), ``ok`` (every check), ``geometry_ok`` (every check but
-``limits``), ``limits_ok`` (the feed limits check on the first planner's
+Row figures (units: program units, seconds): ``cycle_time`` (the certified
+planner's duration: the first of the spec's ``planners``, else the jerk
+planner's with jerk limits, else TOPPRA's) and ``cycle_time_<planner>``,
+``min_clearance`` (certified), ``ok`` (every check), ``geometry_ok`` (every
+check but ``limits``), ``limits_ok`` (the feed limits check on the certified
 profile) and ``limits_ratio`` (its figure: the largest |value| / limit
 sampled), ``cutter_radius``, ``path_length``, ``max_curvature`` (1/units,
 largest |curvature| of the moves that cut, rapids excluded), ``deviation``,
@@ -32,14 +34,11 @@ import time
 
 import numpy as np
 
-from ccopt.compare import compare
-from ccopt.compensate import compensate
+from ccopt.cases import Job
 from ccopt.errors import CcoptError
-from ccopt.feed import AxisLimits, plan_feed
+from ccopt.pipeline import pipeline
 from ccopt.program.model import Program
-from ccopt.sweep.tasks import Setting
 from ccopt.toolpath import Role
-from ccopt.verify import verify
 
 #: Curvature samples per spiral or blend curve (lines and arcs are exact at any count).
 CURVATURE_SAMPLES = 257
@@ -76,20 +75,6 @@ def max_curvature(path) -> float:
     return worst
 
 
-def build_path(program: Program, s: Setting):
-    """``(tool path, deviation from PMAC's path or None, seconds to build it)``."""
-    t0 = time.perf_counter()
-    if s.variant is None:
-        path = compensate(program, style=s.style, radius=s.radius, side=s.side)
-        return path, None, time.perf_counter() - t0
-    cmp = compare(program, [s.variant], limits=AxisLimits(**s.limits), delta=s.delta,
-                  radius=s.radius, side=s.side)
-    row = cmp[s.variant]
-    if row.status != "ok" or row.toolpath is None:
-        raise CcoptError(f"variant {s.variant} {row.status}: {row.message}")
-    return row.toolpath, row.figures.get("max_deviation"), row.figures.get("solve_time")
-
-
 def _verdicts(cert) -> dict:
     limits = [c for c in cert.checks if c.name == "limits"]
     geometry = [c for c in cert.checks if c.name != "limits"]
@@ -100,33 +85,29 @@ def _verdicts(cert) -> dict:
             "limits_ok": limits_ok, "limits_ratio": ratio, "min_clearance": cert.min_clearance}
 
 
-def pipeline(program: Program, s: Setting, deadline: float | None = None) -> dict:
+def figures(program: Program, job: Job, deadline: float | None = None) -> dict:
     """The task's figures (see the module docstring); raises on failure."""
-    path, deviation, solve_time = build_path(program, s)
+    def checkpoint(step: str) -> None:
+        _check_time(deadline, step)
+
+    done = pipeline(job, program=program, checkpoint=checkpoint).result()
+    path = done.path
     row: dict = {"cutter_radius": path.radius, "path_length": path.length,
-                 "max_curvature": max_curvature(path), "deviation": deviation,
-                 "solve_time": solve_time}
-    limits = AxisLimits(**s.limits)
-    profiles = {}
-    t0 = time.perf_counter()
-    for planner in s.planners:
-        _check_time(deadline, f"planner {planner}")
-        profiles[planner] = plan_feed(path, limits, planner=planner)
-        row[f"cycle_time_{planner}"] = profiles[planner].duration
-    row["feed_time"] = time.perf_counter() - t0
-    row["cycle_time"] = profiles[s.planners[0]].duration
-    _check_time(deadline, "verify")
-    t0 = time.perf_counter()
-    cert = verify(path, program, profile=profiles[s.planners[0]], radius=s.radius, side=s.side)
-    row["verify_time"] = time.perf_counter() - t0
-    row.update(_verdicts(cert))
+                 "max_curvature": max_curvature(path), "deviation": done.deviation,
+                 "solve_time": done.solve_time}
+    for planner, profile in done.profiles.items():
+        row[f"cycle_time_{planner}"] = profile.duration
+    row["feed_time"] = done.seconds.get("feed")
+    row["cycle_time"] = done.duration
+    row["verify_time"] = done.seconds.get("verify")
+    row.update(_verdicts(done.certificate))
     return row
 
 
-def _guarded(program: Program, s: Setting, deadline: float | None) -> dict:
-    """:func:`pipeline`, with any failure as the row's ``error``."""
+def _guarded(program: Program, job: Job, deadline: float | None) -> dict:
+    """:func:`figures`, with any failure as the row's ``error``."""
     try:
-        return pipeline(program, s, deadline)
+        return figures(program, job, deadline)
     except TaskTimeout as exc:
         return {"error": f"timeout: {exc}"}
     except CcoptError as exc:
@@ -135,7 +116,7 @@ def _guarded(program: Program, s: Setting, deadline: float | None) -> dict:
         return {"error": f"{type(exc).__name__}: {exc}"}
 
 
-def run_task(program, s: Setting, timeout: float | None = None) -> dict:
+def run_task(program, job: Job, timeout: float | None = None) -> dict:
     """Figures of one task; never raises.
 
     ``program``: a :class:`~ccopt.program.model.Program`, or the exception
@@ -147,11 +128,11 @@ def run_task(program, s: Setting, timeout: float | None = None) -> dict:
     if isinstance(program, BaseException):
         row = {"error": f"{type(program).__name__}: {program}"}
     elif timeout is None:
-        row = _guarded(program, s, None)
+        row = _guarded(program, job, None)
     else:
         box: dict = {}
         deadline = time.monotonic() + timeout
-        worker = threading.Thread(target=lambda: box.update(_guarded(program, s, deadline)),
+        worker = threading.Thread(target=lambda: box.update(_guarded(program, job, deadline)),
                                   name="ccopt-sweep-task", daemon=True)
         worker.start()
         worker.join(timeout)

@@ -49,10 +49,10 @@ def make_folder(out: str | os.PathLike) -> Path:
     return out
 
 
-def columns(spec: Spec) -> list[str]:
-    """The table's columns: id, program, the settings, the figures, the run."""
+def columns(spec: Spec, planners: list[str]) -> list[str]:
+    """The table's columns: id, program, the settings, the figures (with
+    ``cycle_time_<planner>`` of each of ``planners``), the run."""
     settings = [a for a in AXES if a in spec.setting_names]
-    planners = list(spec.axes.get("planner", [])) or list(spec.planners)
     figures = list(FIGURES)
     at = figures.index("cycle_time") + 1
     figures[at:at] = [f"cycle_time_{p}" for p in planners]
@@ -129,7 +129,7 @@ def write_spec_copy(out: Path, spec: Spec) -> str:
         name, text = "spec.toml", spec.text
     else:
         name = "spec.json"
-        text = json.dumps({"programs": list(spec.programs), "planners": list(spec.planners),
+        text = json.dumps({"programs": list(spec.programs), "planners": list(spec.planners or ()),
                            "axes": spec.axes, "combinations": list(spec.combinations),
                            "title": spec.title}, indent=2) + "\n"
     _replace(out / name, lambda p: p.write_text(text, encoding="utf-8"))

@@ -4,14 +4,19 @@
 
     title = "Controller styles x cutter radii"       # optional
     programs = ["leadin-*", "cases/pocket", "parts/*.nc"]
-    planners = ["toppra", "stop"]                     # planned for every task (default toppra)
+    planners = ["toppra", "stop"]                     # planned for every task; the first is
+                                                      # verified (default: the certified one,
+                                                      # jerk with jerk limits, else toppra)
+    tolerance = 0.001                                 # the verifier's gouge tolerance (program
+                                                      # units; default 1e-3 mm / 4e-5 inch)
 
     [axes]                                            # the sweep is their product
     style = ["pmac", "linuxcnc", "fagor"]
     radius = [1.0, 1.5, 2.0]                          # cutter radius, program units
     side = ["left", "right"]
     limits = [{name = "slow", v = [50, 50, 20], a = [500, 500, 200]},
-              {name = "fast", v = [200, 200, 50], a = [2000, 2000, 500]}]
+              {name = "fast", v = [200, 200, 50], a = [2000, 2000, 500],
+               j = [20000, 20000, 5000]}]                 # j: jerk, units/s^3 (optional)
     planner = ["toppra", "junction"]                  # one planner per task instead
     variant = ["pmac", "tangent-arc", "smooth"]       # a compare variant (not with style)
     delta = [0.01, 0.03]                              # the smoother's band (with variant)
@@ -20,7 +25,12 @@
     style = "fagor"                                   # axis whose values are whole tables
     radius = 2.0
 
-A value that is not a list is a fixed setting (a one-value axis). Programs
+A value that is not a list is a fixed setting (a one-value axis); the
+top-level ``tolerance`` is one too. Each task's settings are resolved as the
+command line's are, over its case's (:func:`ccopt.cases.resolve_input`): a
+program that is not a case gets its style by dialect, its own radius and
+:data:`ccopt.cases.DEFAULT_LIMITS`; a limits table without ``j`` keeps the
+case's jerk limits, if any. Programs
 are bundled case names, case folders, program files, folders and globs,
 relative to the spec's folder (a glob that matches no file is matched
 against the bundled case names). Every problem is a
@@ -39,11 +49,11 @@ from pathlib import Path
 
 from ccopt.errors import ProgramError
 from ccopt.feed import PLANNERS
+from ccopt.sides import SIDE_NAMES
 
 #: The axes a sweep may span, in the order of the table's columns.
-AXES = ("style", "radius", "side", "limits", "planner", "variant", "delta")
-TOP_KEYS = ("title", "programs", "planners", "axes", "combinations")
-SIDES = ("left", "right")
+AXES = ("style", "radius", "side", "limits", "planner", "variant", "delta", "tolerance")
+TOP_KEYS = ("title", "programs", "planners", "tolerance", "axes", "combinations")
 LIMIT_KEYS = ("name", "v", "a", "j")
 
 
@@ -54,7 +64,9 @@ class Spec:
     ``axes``: axis name -> list of values (a fixed setting is a one-value
     list); ``combinations``: explicit settings (dicts), one more axis whose
     values are whole tables (``[{}]`` when none); ``planners``: planned for
-    every task unless ``planner`` is an axis; ``base``: the folder program
+    every task unless ``planner`` is an axis, the first verified (``None``:
+    each task's certified planner, :func:`ccopt.feed.certified_planner`);
+    ``base``: the folder program
     entries are relative to; ``text``: the spec as written (for the copy in
     the results folder), ``file``: where it came from.
     """
@@ -62,7 +74,7 @@ class Spec:
     programs: tuple[str, ...]
     axes: dict
     combinations: tuple[dict, ...] = ({},)
-    planners: tuple[str, ...] = ("toppra",)
+    planners: tuple[str, ...] | None = None
     title: str = ""
     base: Path = field(default_factory=Path.cwd)
     file: str = "<spec>"
@@ -125,32 +137,34 @@ def _axis_values(name: str, values: list, where) -> list:
             raise where(f"radius: {v!r} is not a number >= 0")
         if name == "delta" and not (_number(v) and v > 0):
             raise where(f"delta: {v!r} is not a number > 0")
-        if name == "side" and v not in SIDES:
-            raise where(f"side: {v!r} is not left or right")
+        if name == "tolerance" and not (_number(v) and v >= 0):
+            raise where(f"tolerance: {v!r} is not a number >= 0")
+        if name == "side" and v not in SIDE_NAMES:
+            raise where(f"side: {v!r} is not {' or '.join(SIDE_NAMES)}")
         out.append(_limits_value(v, where) if name == "limits" else
-                   float(v) if name in ("radius", "delta") else v)
+                   float(v) if name in ("radius", "delta", "tolerance") else v)
     return out
 
 
 def _limits_value(v, where) -> dict:
-    """A limits table ``{name?, v, a}`` as a plain dict with float lists."""
+    """A limits table ``{name?, v, a, j?}`` as a plain dict with float lists
+    (``j``: jerk limits, units/s^3, for the jerk planner)."""
     if not isinstance(v, dict):
         raise where(f"limits: {v!r} is not a table {{v = [...], a = [...]}}")
     unknown = sorted(set(v) - set(LIMIT_KEYS))
     if unknown:
-        raise where(f"limits: unknown key(s) {', '.join(unknown)}; known: v, a, name")
-    if "j" in v:
-        raise where("limits: j (jerk) needs a jerk-limited planner, which ccopt does not "
-                    "have yet; give v and a")
+        raise where(f"limits: unknown key(s) {', '.join(unknown)}; known: v, a, j, name")
     out = {}
-    for key in ("v", "a"):
+    for key in ("v", "a", "j"):
         vals = v.get(key)
+        if key == "j" and vals is None:
+            continue
         if not (isinstance(vals, list) and 2 <= len(vals) <= 3
                 and all(_number(x) and x > 0 for x in vals)):
             raise where(f"limits.{key}: must be a list of 2 or 3 positive numbers (X, Y[, Z])")
         out[key] = [float(x) for x in vals]
-    if len(out["v"]) != len(out["a"]):
-        raise where("limits: v and a must name the same axes (same length)")
+    if len({len(vals) for vals in out.values()}) != 1:
+        raise where("limits: v, a and j must name the same axes (same length)")
     if "name" in v:
         if not (isinstance(v["name"], str) and v["name"]):
             raise where("limits.name: must be a non-empty string")
@@ -164,8 +178,8 @@ def limits_label(limits: dict | None) -> str | None:
         return None
     if "name" in limits:
         return limits["name"]
-    return ("v=" + ",".join(f"{x:g}" for x in limits["v"])
-            + ";a=" + ",".join(f"{x:g}" for x in limits["a"]))
+    return ";".join(f"{key}=" + ",".join(f"{x:g}" for x in limits[key])
+                    for key in ("v", "a", "j") if key in limits)
 
 
 def _check_axes(data: dict, loc: _Locator) -> dict:
@@ -211,8 +225,10 @@ def _check_programs(data: dict, loc: _Locator) -> tuple[str, ...]:
     return tuple(progs)
 
 
-def _check_planners(data: dict, loc: _Locator) -> tuple[str, ...]:
-    planners = data.get("planners", ["toppra"])
+def _check_planners(data: dict, loc: _Locator) -> tuple[str, ...] | None:
+    if "planners" not in data:
+        return None
+    planners = data["planners"]
     planners = planners if isinstance(planners, list) else [planners]
     planners = _axis_values("planner", planners, lambda m: loc.error(m, "planners"))
     if len(set(planners)) != len(planners):
@@ -246,6 +262,12 @@ def parse_spec(data: dict, file: str = "<spec>", text: str = "",
     if not isinstance(title, str):
         raise loc.error("title: must be a string", "title")
     axes = _check_axes(data, loc)
+    if "tolerance" in data:
+        if "tolerance" in axes:
+            raise loc.error("tolerance: given both at the top and in [axes]; give it in one "
+                            "place", "tolerance")
+        axes["tolerance"] = _axis_values("tolerance", [data["tolerance"]],
+                                         lambda m: loc.error(m, "tolerance"))
     combos = _check_combinations(data, axes, loc)
     _check_together(axes, combos, data, loc)
     return Spec(programs=_check_programs(data, loc), axes=axes, combinations=combos,

@@ -4,9 +4,11 @@ A task is one program with one setting. Its id (:func:`task_id`) is a hash of
 the program's label and the setting, so a results folder knows which tasks
 it already holds whatever order they run in (resume).
 
-A bundled or user case brings its own style, cutter radius and axis limits
-(``case.toml``); they apply wherever the sweep does not set them. A bare
-program gets style ``pmac``, its own radius and :data:`DEFAULT_LIMITS`.
+A task's settings are resolved as every command's are
+(:func:`ccopt.cases.resolve_input`): a bundled or user case brings its own
+style, cutter radius and axis limits (``case.toml``), which apply wherever the
+sweep does not set them; a bare program gets its style by dialect (as every
+command picks it), its own radius and :data:`DEFAULT_LIMITS`.
 """
 from __future__ import annotations
 
@@ -18,8 +20,10 @@ import json
 from dataclasses import dataclass
 from pathlib import Path
 
-from ccopt.cases import DEFAULT_LIMITS, Case, bundled_cases, find_case, load_case
-from ccopt.errors import ProgramError
+from ccopt.cases import (DEFAULT_LIMITS, Case, Job, Overrides, bundled_cases, find_case,
+                         load_case, resolve_input)
+from ccopt.errors import CcoptError, ProgramError
+from ccopt.feed import PLANNERS
 from ccopt.sweep.spec import Spec, limits_label
 
 PROGRAM_SUFFIXES = (".pmc", ".nc", ".ngc")
@@ -34,48 +38,17 @@ class ProgramInput:
     file: Path
     case: Case | None = None
 
-    def defaults(self) -> dict:
-        """The settings the program brings: its case's style, radius and limits."""
-        c = self.case
-        # a program that is not a case (and a sweep that sets none) takes the
-        # limits every command takes (ccopt.cases.DEFAULT_LIMITS)
-        limits = {key: list(value) for key, value in DEFAULT_LIMITS.items()}
-        if c is not None and c.vmax and c.amax:
-            limits = {"v": list(c.vmax), "a": list(c.amax)}
-        return {"style": c.style if c else "pmac", "radius": c.radius if c else None,
-                "side": None, "limits": limits, "variant": None, "delta": None}
-
-
-@dataclass(frozen=True)
-class Setting:
-    """Everything a task runs with (program defaults overridden by the sweep).
-
-    ``style``: controller style; ``radius``: cutter radius override (program
-    units, ``None``: the program's); ``side``: ``"left"``/``"right"``
-    override or ``None``; ``limits``: ``{"v": [...], "a": [...]}`` in
-    units/s and units/s^2; ``planners``: planned in order, the first is
-    the one verified and reported as ``cycle_time``; ``variant``: a compare
-    variant whose path replaces the style's (``None``: the style's);
-    ``delta``: the smoother's band (program units, ``None``: compare's default).
-    """
-
-    style: str
-    radius: float | None
-    side: str | None
-    limits: dict
-    planners: tuple[str, ...]
-    variant: str | None = None
-    delta: float | None = None
-
 
 @dataclass(frozen=True)
 class Task:
-    """One row to compute: ``settings`` are the swept values (the columns)."""
+    """One row to compute: ``settings`` are the swept values (the columns),
+    ``job`` the task's whole job, resolved as every entry point's is
+    (:func:`make_job`)."""
 
     id: str
     program: str
     settings: dict
-    setting: Setting
+    job: Job
 
 
 def task_id(program: str, settings: dict) -> str:
@@ -156,13 +129,38 @@ def settings_product(spec: Spec) -> list[dict]:
     return out
 
 
-def make_setting(program: ProgramInput, settings: dict, spec: Spec) -> Setting:
-    """The full setting of one task: the program's defaults, then the sweep's."""
-    s = {**program.defaults(), **settings}
-    planners = (s["planner"],) if "planner" in settings else spec.planners
-    return Setting(style=s["style"], radius=s["radius"], side=s["side"],
-                   limits={"v": list(s["limits"]["v"]), "a": list(s["limits"]["a"])},
-                   planners=tuple(planners), variant=s["variant"], delta=s["delta"])
+def make_job(program: ProgramInput, settings: dict, spec: Spec) -> Job:
+    """The job of one task: the sweep's ``settings`` over the program's case
+    and the defaults, by :func:`ccopt.cases.resolve_input` (the rule every
+    command follows: a style by the program's dialect where neither sets
+    one, :data:`DEFAULT_LIMITS` where neither gives limits, the certified
+    planner where the spec names none). A ``limits`` table sets ``v`` and
+    ``a`` (and ``j`` when it has one); the spec's ``planners`` are planned for
+    every task, the first verified, unless ``planner`` is swept."""
+    limits = settings.get("limits")
+    planners = (settings["planner"],) if "planner" in settings else spec.planners
+    overrides = Overrides(
+        style=settings.get("style"), radius=settings.get("radius"), side=settings.get("side"),
+        vmax=tuple(limits["v"]) if limits else None, amax=tuple(limits["a"]) if limits else None,
+        jmax=tuple(limits["j"]) if limits and "j" in limits else None,
+        planner=planners[0] if planners else None, planners=planners,
+        variant=settings.get("variant"), delta=settings.get("delta"),
+        tolerance=settings.get("tolerance"))
+    return resolve_input(program.case or str(program.file), overrides, DEFAULT_LIMITS,
+                         label=program.label)
+
+
+def planned(tasks: list[Task]) -> list[str]:
+    """Every planner some task plans, in the registry's order (the table's
+    ``cycle_time_<planner>`` columns); a task whose limits are bad plans none
+    (its row says why)."""
+    names: set[str] = set()
+    for t in tasks:
+        try:
+            names.update(t.job.planners_for(t.job.limits()))
+        except CcoptError:
+            continue
+    return [p for p in PLANNERS if p in names]
 
 
 def expand(spec: Spec, programs: list[ProgramInput]) -> list[Task]:
@@ -173,5 +171,5 @@ def expand(spec: Spec, programs: list[ProgramInput]) -> list[Task]:
         for settings in product:
             columns = {k: (limits_label(v) if k == "limits" else v) for k, v in settings.items()}
             tasks.append(Task(task_id(prog.label, settings), prog.label, columns,
-                              make_setting(prog, settings, spec)))
+                              make_job(prog, settings, spec)))
     return tasks

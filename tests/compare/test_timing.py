@@ -11,7 +11,7 @@ import pytest
 
 import ccopt
 from ccopt.cases import find_case
-from ccopt.compare import compare
+from ccopt.compare import GivenReference, compare
 from ccopt.compare.timing import StretchTimes, stops, stretch_key, stretches
 from ccopt.feed import ExactPath
 from ccopt.feed.junction import boundary_speed_caps
@@ -144,6 +144,8 @@ def test_ts_reaches_the_cycle_times():
 
 
 def test_the_callers_reference_plan_is_used_only_when_it_is_the_one_compare_makes(monkeypatch):
+    # the caller gives PMAC's path with its plan (GivenReference: ccopt run's pipeline
+    # does when the job's path is PMAC's); compare neither compensates nor plans it again
     import ccopt.compare.timing as timing
     c, prog, limits = _jerk_case("leadin-inside-line")
     ref = ccopt.compensate(prog, "pmac", radius=c.radius)
@@ -154,11 +156,13 @@ def test_the_callers_reference_plan_is_used_only_when_it_is_the_one_compare_make
     calls = []
     real = timing.plan_whole
     monkeypatch.setattr(timing, "plan_whole", lambda *a, **k: calls.append(1) or real(*a, **k))
-    reused = compare(prog, names, limits=limits, radius=c.radius, reference_profile=own)
+    reused = compare(prog, names, limits=limits, radius=c.radius,
+                     reference=GivenReference(ref, 0.0, own))
     assert calls == []                      # the reference was not planned again
     assert _rows(reused) == _rows(plain)
-    # a plan under another ts (or of another path, or other limits) is not the reference's
-    ignored = compare(prog, names, limits=limits, radius=c.radius, reference_profile=other)
+    # a plan under another ts (or other limits, or of another path object) is not the reference's
+    ignored = compare(prog, names, limits=limits, radius=c.radius,
+                      reference=GivenReference(ref, 0.0, other))
     assert calls == [1]
     assert _rows(ignored) == _rows(plain)
 

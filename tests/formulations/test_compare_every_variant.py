@@ -28,11 +28,20 @@ def test_every_variant_listed_with_every_figure(case):
         if v["status"] == "ok":
             missing = [k for k in FIGURES if v[k] is None]
             assert not missing, (v["name"], missing)
+        elif v["status"] == "uncertified":
+            # a path the verifier does not certify is not ok (issue 29): profile's
+            # PMAC spiral lead-in gouges; its figures are there and it says why
+            assert v["certified"] is False and v["message"].startswith("not certified"), v
+            assert not [k for k in FIGURES if v[k] is None], v
         else:
             # a controller that refuses the program says why (profile: LinuxCNC
             # and Fagor reject its CIRCLE lead-in and lead-out)
             assert v["status"] == "refused" and v["message"], v
     for name in OPTIMISED:
         row = cmp[name]
-        assert row.status == "ok", (name, row.message)
+        # a row is ok only when its path is certified (issue 29): on profile the
+        # smoother keeps PMAC's gouging spiral lead-in (it stays within its band of
+        # PMAC's path), so its row is uncertified there and says why
+        want = "uncertified" if (case, name) == ("profile", "smooth") else "ok"
+        assert row.status == want, (name, row.message)
         assert row.figures["continuity"] == "G2"

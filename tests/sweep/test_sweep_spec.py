@@ -36,8 +36,9 @@ BAD_SPECS = [
      "needs a variant axis"),
     ('programs = ["leadin-inside-line"]\n[axes]\nstyle = ["pmac"]\nvariant = ["smooth"]\n', 4,
      "cannot both be set"),
-    ('programs = ["leadin-inside-line"]\n[axes]\nlimits = [{v = [1, 1], a = [1, 1], j = [9, 9]}]\n',
-     3, "jerk"),
+    ('programs = ["leadin-inside-line"]\n[axes]\nlimits = [{v = [1, 1], a = [1, 1], j = [9]}]\n',
+     3, "limits.j: must be a list of 2 or 3 positive numbers"),
+    ('programs = ["leadin-inside-line"]\ntolerance = -1\n', 2, "tolerance: -1 is not a number >= 0"),
     ('programs = ["leadin-inside-line"]\n[axes]\nplanner = ["fastest"]\n', 3, "unknown planner"),
     ('programs = ["no-such-case-*"]\n[axes]\nradius = [1.0]\n', 1, "matches none"),
     ('programs = ["leadin-inside-line"]\n[axes]\nradius = 1.0\n[[combinations]]\nstyle = "pmac"\n'
@@ -79,7 +80,7 @@ delta = 0.02
     assert len({t.id for t in tasks}) == len(tasks)
     smooth = [t for t in tasks if t.settings["variant"] == "smooth"]
     assert {t.settings["delta"] for t in smooth} == {0.02}
-    assert all(t.setting.side == "left" for t in tasks)
+    assert all(t.job.side == "left" for t in tasks)
     # ids depend on the program and setting only, not on the order of the spec
     again = expand(spec, list(reversed(programs)))
     assert {t.id for t in again} == {t.id for t in tasks}
@@ -89,9 +90,9 @@ def test_case_defaults_apply_where_the_sweep_sets_nothing():
     spec = load_spec({"programs": ["fagor-seed-line-cancel"], "axes": {"radius": [1.0]}})
     (task,) = expand(spec, resolve_programs(spec))
     case = ccopt.cases.find_case("fagor-seed-line-cancel")
-    assert task.setting.style == case.style == "fagor"
-    assert task.setting.limits == {"v": list(case.vmax), "a": list(case.amax)}
-    assert task.setting.radius == 1.0
+    assert task.job.style == case.style == "fagor"
+    assert (task.job.vmax, task.job.amax) == (case.vmax, case.amax)
+    assert task.job.radius == 1.0
 
 
 def test_one_task_equals_the_public_api():
@@ -99,9 +100,9 @@ def test_one_task_equals_the_public_api():
                       "axes": {"style": "linuxcnc", "radius": 1.5}})
     (task,) = expand(spec, resolve_programs(spec))
     prog = ccopt.read_program(resolve_programs(spec)[0].file)
-    row = run_task(prog, task.setting)
+    row = run_task(prog, task.job)
     path = ccopt.compensate(prog, style="linuxcnc", radius=1.5)
-    limits = ccopt.AxisLimits(**task.setting.limits)
+    limits = ccopt.AxisLimits(task.job.vmax, task.job.amax)
     prof = ccopt.plan_feed(path, limits)
     cert = ccopt.verify(path, prog, profile=prof, radius=1.5)
     assert row.get("error") is None
@@ -117,7 +118,7 @@ def test_a_task_past_its_timeout_is_a_row_with_the_error():
     spec = load_spec({"programs": ["pocket"], "axes": {"planner": "toppra"}})
     (task,) = expand(spec, resolve_programs(spec))
     prog = ccopt.read_program(resolve_programs(spec)[0].file)
-    row = run_task(prog, task.setting, timeout=0.001)
+    row = run_task(prog, task.job, timeout=0.001)
     assert row["error"].startswith("timeout")
 
 
@@ -153,7 +154,7 @@ def test_a_variant_task_has_the_compare_figures():
     (inp,) = resolve_programs(spec)
     (task,) = expand(spec, [inp])
     prog = ccopt.read_program(inp.file)
-    row = run_task(prog, task.setting)
+    row = run_task(prog, task.job)
     limits = ccopt.AxisLimits(v=list(inp.case.vmax), a=list(inp.case.amax))
     want = compare(prog, ["tangent-arc"], limits=limits, radius=inp.case.radius)["tangent-arc"]
     assert row.get("error") is None
