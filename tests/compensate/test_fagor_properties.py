@@ -7,10 +7,17 @@ G138/G139 combinations, lines and arcs, left and right).
   (not a spiral) ends on its offset circle about the programmed centre;
 * corner arcs have radius ``r`` about the programmed corner, and corner lines
   (G137) never come closer than ``r`` to it.
+
+The test counts how many drawn programs checked an offset (:mod:`exercised`)
+and asserts the share. A refusal counts only where the program itself shows
+it is warranted, checked here from its geometry: a concave arc (the tool
+inside it) whose radius is not larger than the tool's, which no tool of that
+radius can follow.
 """
 from __future__ import annotations
 
 import math
+from collections import Counter
 
 import numpy as np
 from hypothesis import HealthCheck, given, settings, strategies as st
@@ -19,8 +26,13 @@ from ccopt.compensate import compensate
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line
 from ccopt.program.gcode import read_gcode
+from exercised import assert_share
 
 TOL = 1e-7
+#: Drawn programs, and the share that must check an offset.
+PROGRAMS = 300
+SHARE = 0.8
+WARRANTED = "refused: a concave arc of radius <= r"
 
 
 @st.composite
@@ -63,20 +75,45 @@ def _point_distance(p, geom) -> float:
     return float(np.hypot(*(a + s * ab - p)))
 
 
-@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(programs())
-def test_random_programs(case):
-    text, r = case
+def test_random_programs():
+    tally = Counter()
+
+    @settings(max_examples=PROGRAMS, deadline=None,
+              suppress_health_check=[HealthCheck.too_slow])
+    @given(programs())
+    def one(case):
+        tally[check_program(*case)] += 1
+
+    one()
+    assert_share("fagor offsets", tally, {"offsets checked", WARRANTED}, SHARE, PROGRAMS)
+
+
+def tool_cannot_follow(prog, r: float) -> bool:
+    """Whether a compensated arc of ``prog`` has the tool inside it (G41 and
+    counter-clockwise, G42 and clockwise) with a radius of at most ``r``
+    (within the rounding of the written numbers, 12 decimals)."""
+    for b in prog.blocks:
+        if b.motion.is_arc and b.modal.side:
+            inside = (b.modal.side > 0) == (b.motion.value == "ccw")
+            R = min(math.dist(b.start[:2], b.center[:2]), math.dist(b.end[:2], b.center[:2]))
+            if inside and R <= r + 1e-9:
+                return True
+    return False
+
+
+def check_program(text: str, r: float) -> str:
+    """Check the properties on one program; what it exercised."""
     prog = read_gcode(text, "rand.nc")
     try:
         path = compensate(prog, style="fagor", radius=r)
     except CompensationError as exc:
         assert exc.line is not None and exc.file == "rand.nc"
-        return
+        return WARRANTED if tool_cannot_follow(prog, r) else "refused (not warranted here)"
     segs = list(path.segments)
     for a, b in zip(segs, segs[1:]):
         assert math.dist(a.end, b.start) < TOL
     k = prog.blocks[1].modal.side
+    checked = 0
     for s in segs:
         blk = s.block
         P = blk.end[:2]
@@ -101,3 +138,5 @@ def test_random_programs(case):
             t = (p1 - p0) / np.hypot(*(p1 - p0))
             w = np.asarray(s.end) - p0
             assert abs(t[0] * w[1] - t[1] * w[0] - k * r) < TOL
+        checked += 1
+    return "offsets checked" if checked else "no compensated move checked"
