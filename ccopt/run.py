@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Callable, Protocol
 # DEFAULT_LIMITS: the axis limits of an input with none (ccopt.cases defines them)
 from ccopt.cases import DEFAULT_LIMITS, Job  # noqa: F401 - re-exported for ccopt run
 from ccopt.errors import CcoptError, ProgramError
-from ccopt.atomic import write_text_atomic
+from ccopt.atomic import job_inputs, refuse_overwriting_inputs, write_text_atomic
 from ccopt.pipeline import Outcome, StageClock, Target, pipeline
 from ccopt.program.model import Program
 from ccopt.report.html import render
@@ -157,6 +157,18 @@ def _plots(path: ToolPath, prog: Program, cert: Certificate, profiles: dict[str,
     }
 
 
+#: the files of each input beside its exported programs (:func:`_write_files`)
+FILES_PER_INPUT = (".feed.csv", ".certificate.json", ".toolpath.json")
+
+
+def planned_files(jobs: list[Job], out: Path) -> list[Path]:
+    """Every file :func:`run_all` writes into ``out`` (the report and each
+    input's ``LABEL.*``): none of them may be an input."""
+    return [out / "index.html", out / "summary.json",
+            *(out / f"{job.label}{suffix}" for job in jobs
+              for suffix in (*EXPORTS, *FILES_PER_INPUT))]
+
+
 def run_all(jobs: list[Job], out: Path | None, opts: RunOptions,
             workers: int | None = None, progress: RunProgress | None = None) -> list[dict]:
     """Run every input, write the report into ``out`` (if given).
@@ -166,8 +178,11 @@ def run_all(jobs: list[Job], out: Path | None, opts: RunOptions,
     1: one after the other, in one), which a Ctrl-C stops at once. The rows
     are the same either way, in the order of ``jobs``. ``progress`` hears
     each stage of each input and each input done.
+    A :class:`ProgramError`, nothing written, when one of the files it would
+    write (:func:`planned_files`) is one of the inputs (``-o .`` beside them).
     """
     if out is not None:
+        refuse_overwriting_inputs(planned_files(jobs, out), job_inputs(*jobs))
         try:
             out.mkdir(parents=True, exist_ok=True)
         except OSError as exc:

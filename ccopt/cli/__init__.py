@@ -20,6 +20,7 @@ import os
 import sys
 from typing import Callable, Sequence
 
+from ccopt.atomic import inputs_guarded
 from ccopt.cli import compare, export, feed, run, show, sweep, verify
 from ccopt.cli.options import Parser
 from ccopt.cli.output import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_OK
@@ -65,7 +66,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return EXIT_BAD_INPUT
     try:
-        return commands[args.command](args)
+        # no file a command reads as input is written over (ccopt.atomic)
+        with inputs_guarded():
+            return commands[args.command](args)
     except CcoptError as exc:
         print(str(exc), file=sys.stderr)
         return EXIT_BAD_INPUT

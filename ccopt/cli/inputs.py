@@ -12,6 +12,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import TYPE_CHECKING
 
+from ccopt.atomic import job_inputs, refuse_overwriting_inputs
 from ccopt.cases import DEFAULT_LIMITS, Case, Job, Overrides, ReadOptions, resolve_input
 from ccopt.cli.options import chosen_variants
 from ccopt.cli.progress import stage_progress
@@ -79,6 +80,8 @@ def reading(args: argparse.Namespace, command: str,
     say = stage_progress(args, command)
     try:
         work = job(args.program, args, **settings)
+        # -o must not name an input (the program, a link to it...): exit 2 before any work
+        refuse_overwriting_inputs([getattr(args, "output", None)], job_inputs(work))
         say("read")
         yield work, work.read(), say
     finally:

@@ -12,12 +12,13 @@ import json
 import sys
 from pathlib import Path
 
+from ccopt.atomic import refuse_overwriting_inputs
 from ccopt.cli.options import (add_json_option, add_output_option, describe, positive_float,
                                positive_int)
 from ccopt.cli.output import EXIT_BAD_INPUT, EXIT_OK
 from ccopt.errors import CcoptError
 from ccopt.sweep import sweep
-from ccopt.sweep.results import CSV, PARQUET
+from ccopt.sweep.results import CSV, META, PARQUET
 
 
 def _report(table, out: Path, as_json: bool) -> None:
@@ -40,6 +41,10 @@ def _report(table, out: Path, as_json: bool) -> None:
     print(f"results: {files['parquet']}, {files['csv']}; summary: {files['summary']}")
 
 
+#: the sweep's other files in DIR: the summary and its plot, the spec's copy
+SWEEP_FILES = ("summary.html", "summary.png", "spec.toml", "spec.json")
+
+
 def cmd_sweep(args: argparse.Namespace) -> int:
     """Run the sweep a spec describes; returns the exit code."""
     out = Path(args.output) if args.output else Path(f"sweep-{Path(args.spec).stem}")
@@ -47,6 +52,9 @@ def cmd_sweep(args: argparse.Namespace) -> int:
         print("ccopt sweep: --workers sets the local cluster's size; a cluster given by "
               "--scheduler has its own workers", file=sys.stderr)
         return EXIT_BAD_INPUT
+    # the files of DIR must not replace the spec (``-o .`` beside spec.toml): exit 2 first
+    refuse_overwriting_inputs([out / name for name in (PARQUET, CSV, META, *SWEEP_FILES)],
+                              [args.spec])
     try:
         table = sweep(args.spec, out=out, scheduler=args.scheduler, workers=args.workers,
                       task_timeout=args.task_timeout,

@@ -13,6 +13,10 @@ verification fails is written, but never over an existing file: when
 (:func:`failed_name`) and the result says so (:attr:`ExportResult.kept_existing`).
 Every text the writers put in a file (titles, headers) passes through
 :mod:`ccopt.export.text`, so the file's commands are the path's alone.
+An export never writes over a file its program was read from (the program,
+its subroutine files, tool table, parameter file; a link to one included):
+that is a :class:`~ccopt.errors.ProgramError` before anything is computed or
+written (:func:`ccopt.atomic.refuse_overwriting_inputs`).
 """
 from __future__ import annotations
 
@@ -22,7 +26,7 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from ccopt.atomic import write_text_atomic
+from ccopt.atomic import refuse_overwriting_inputs, write_text_atomic
 from ccopt.errors import ProgramError
 from ccopt.export.arcfit import DEFAULT_TOL
 from ccopt.export.gcode import write_gcode
@@ -31,7 +35,7 @@ from ccopt.export.svg import write_svg
 from ccopt.geometry import Arc, Line
 from ccopt.program import read_text
 from ccopt.program.gcode.execute import LATHE_DIAMETER_MODE_USED
-from ccopt.program.model import Program
+from ccopt.program.model import INPUT_FILES, Program
 from ccopt.tolerances import EXPORT_REFIT_MIN_TOL, EXPORT_REFIT_ROUNDS, EXPORT_REFIT_SHRINK
 from ccopt.toolpath import (FITTED_PIECES, TOOL_TIP, PathSegment, Role, ToolPath,
                             programmed_path)
@@ -92,15 +96,23 @@ def failed_name(out: Path) -> Path:
     return out.with_name(f"{out.stem}.failed{out.suffix}")
 
 
-def _write_checked(res: ExportResult, out: Path, text: str) -> None:
+def inputs_of(program: Program | None) -> tuple[str, ...]:
+    """The files ``program`` was read from (:data:`~ccopt.program.model.INPUT_FILES`;
+    none for a program read from text)."""
+    return tuple(program.meta.get(INPUT_FILES, ())) if program is not None else ()
+
+
+def _write_checked(res: ExportResult, out: Path, text: str, program: Program | None) -> None:
     """Write ``text`` to ``out``, or to :func:`failed_name` when the export
-    failed its verification and ``out`` exists (recorded in ``res``)."""
+    failed its verification and ``out`` exists (recorded in ``res``); never
+    over one of ``program``'s input files."""
     if res.verified is False and (out.exists() or out.is_symlink()):
         res.kept_existing = str(out)
         out = failed_name(out)
         res.file = str(out)
         res.notes.append(f"verification failed: written as {out.name}, the existing "
                          f"{res.kept_existing} left as it was")
+    refuse_overwriting_inputs([out], inputs_of(program))
     write_text_atomic(out, text)
 
 
@@ -310,7 +322,7 @@ def _export_program(res: ExportResult, path: ToolPath, out: Path, program: Progr
     seg_tol, moves, res.roundtrip_error, cert = job.refit(seg_tol, moves, roundtrip, cert)
     fit = _fit_summary(res, path, moves, seg_tol)
     text = job.write(header + _verdict(res, path, fit, cert), seg_tol)[0]
-    _write_checked(res, out, text)
+    _write_checked(res, out, text, program)
 
 
 def _export_json(res: ExportResult, path: ToolPath, out: Path, program: Program | None) -> None:
@@ -320,7 +332,7 @@ def _export_json(res: ExportResult, path: ToolPath, out: Path, program: Program 
     if cert is not None:
         res.verified = bool(cert.ok)
         res.certificate = doc["certificate"]
-    _write_checked(res, out, json.dumps(doc) + "\n")
+    _write_checked(res, out, json.dumps(doc) + "\n", program)
 
 
 def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = None,
@@ -335,8 +347,11 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
     reproduce the path within ``tol``. A program or JSON export whose
     verification fails is written to ``NAME.failed.EXT`` when ``out`` exists
     (``res.file`` then names it, ``res.kept_existing`` the file left alone).
+    :class:`ProgramError`, nothing written, when ``out`` is one of the files
+    ``program`` was read from (the same file once links are resolved).
     """
     out = Path(out)
+    refuse_overwriting_inputs([out], inputs_of(program))
     fmt = fmt or FORMATS.get(out.suffix.lower())
     if fmt is None:
         raise ProgramError(f"unknown export format {out.suffix!r}; use one of "

@@ -10,10 +10,11 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from ccopt.atomic import protect_input
 from ccopt.errors import ProgramError
 from ccopt.program.gcode import read_gcode
 from ccopt.program.gcode.coordinates import read_var_file
-from ccopt.program.model import Block, Modal, Motion, PLANE_AXES, Program, Source
+from ccopt.program.model import INPUT_FILES, Block, Modal, Motion, PLANE_AXES, Program, Source
 from ccopt.program.pmac import read_pmac
 from ccopt.program.tooltable import read_tool_table
 
@@ -80,6 +81,7 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
         raw = Path(path).read_bytes()
     except OSError as exc:
         raise ProgramError(f"cannot read program: {exc.strerror or exc}", file) from None
+    protect_input(path)     # an input: never written over (ccopt.atomic)
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -95,9 +97,15 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
                             (sub_path or None, "--sub-path")):
             if given is not None:
                 raise ProgramError(f"{what} applies to G-code programs only", file)
-    return read_text(text, file, dialect, tool_table=table, parameters=parameters, units=units,
+    prog = read_text(text, file, dialect, tool_table=table, parameters=parameters, units=units,
                      table_units=table_units, sub_path=sub_path,
                      max_loop_iterations=max_loop_iterations)
+    # every file it was read from: what no output may replace (ccopt.export)
+    read_from = [file, *(b.source.file for b in prog.blocks),
+                 *(str(f) for f in (tool_table, var_file)
+                   if isinstance(f, (str, os.PathLike)) and os.path.isfile(f))]
+    prog.meta[INPUT_FILES] = tuple(dict.fromkeys(read_from))
+    return prog
 
 
 __all__ = ["Block", "Modal", "Motion", "PLANE_AXES", "Program", "ProgramError", "Source",

@@ -58,6 +58,12 @@ MAX_COORDINATE = 1e9
 PLANE_CHANGES_CHECKED = "plane_changes_checked"
 
 
+#: ``Program.meta`` key: the files a program was read from (the program, its
+#: subroutine files, tool table and parameter file), set by
+#: :func:`ccopt.program.read_program`; no export may write over one of them.
+INPUT_FILES = "input_files"
+
+
 def out_of_range(value: float) -> bool:
     """``value`` is not finite or beyond :data:`MAX_COORDINATE` in magnitude."""
     return not abs(value) <= MAX_COORDINATE

@@ -25,6 +25,7 @@ import os
 import re
 from pathlib import Path
 
+from ccopt.atomic import protect_input
 from ccopt.errors import ProgramError
 from ccopt.program.model import MAX_COORDINATE, out_of_range
 
@@ -62,7 +63,9 @@ def _load(path_or_text) -> tuple[str, str]:
         raise ProgramError(f"tool table must be a path or text, not {type(path_or_text).__name__}",
                            "<tool table>")
     try:
-        return path.read_text(encoding="utf-8", errors="replace"), str(path)
+        text = path.read_text(encoding="utf-8", errors="replace")
+        protect_input(path)     # an input: never written over (ccopt.atomic)
+        return text, str(path)
     except OSError as exc:
         raise ProgramError(f"cannot read tool table: {exc.strerror or exc}", str(path)) from None
 
