@@ -2,8 +2,9 @@
 
 * values in ``case.toml`` and on the command line that are not finite or out
   of range are exit 2 naming the key (and, in ``case.toml``, its line);
-* coordinates, I J K R and F beyond 1e9 program units are located errors in
-  both readers (they used to crash ``verify`` and ``feed`` with exit 3);
+* coordinates, I J K R and F beyond 1e6 program units
+  (``MAX_PROGRAM_COORDINATE``; 1e9 until issue 29) are located errors in both
+  readers (they used to crash ``verify`` and ``feed`` with exit 3);
 * an O-word loop stops after ``max_loop_iterations`` (all loops of a program
   together), located at the loop's first line, well within 5 s.
 """
@@ -21,7 +22,7 @@ from ccopt.cli import main
 from ccopt.errors import ProgramError
 from ccopt.program import read_program, read_text
 from ccopt.program.gcode import LOOP_LINES_PER_ITERATION, MAX_LOOP_ITERATIONS, read_gcode
-from ccopt.program.model import MAX_COORDINATE
+from ccopt.program.model import MAX_PROGRAM_COORDINATE
 from ccopt.program.pmac import read_pmac
 from ccopt.program.tooltable import read_tool_table
 
@@ -115,7 +116,7 @@ def test_bad_option_values_are_exit_2_naming_the_option(capsys, argv, fragment):
     assert code == 2 and fragment in one_line(err)
 
 
-# -- coordinates beyond 1e9 --------------------------------------------------------------
+# -- coordinates beyond MAX_PROGRAM_COORDINATE (1e6) -------------------------------------
 BIG = "1" + "0" * 30   # 1e30 written out (neither dialect reads exponents)
 
 
@@ -138,8 +139,8 @@ def column(text: str, line: int, word: str) -> int:
 
 @pytest.mark.parametrize("text, line, word", [
     (f"G1 X0 Y0 F60\nG2 X0 Y-2 I0 J-{BIG}\n", 2, "J-"),
-    ("G1 X1000000001 F60\n", 1, "X"),            # one unit past the bound
-    ("G1 X0 Y-1000000000.5 F60\n", 1, "Y"),
+    ("G1 X1000001 F60\n", 1, "X"),            # one unit past the bound
+    ("G1 X0 Y-1000000.5 F60\n", 1, "Y"),
     ("G1 Z5000000000 F60\n", 1, "Z"),
     ("G2 X1 Y1 R2000000000 F60\n", 1, "R2"),
     ("G1 X1 F2000000000\n", 1, "F"),
@@ -150,19 +151,20 @@ def test_gcode_words_beyond_the_bound_are_located(text, line, word):
 
 
 def test_gcode_moves_that_add_up_beyond_the_bound_are_located():
-    # 6e8 + 6e8 = 1.2e9 > 1e9: the second incremental move goes out of range
-    e = gcode_error("G91 G1 X600000000 F60\nX600000000\n")
+    # 6e5 + 6e5 = 1.2e6 > 1e6: the second incremental move goes out of range
+    e = gcode_error("G91 G1 X600000 F60\nX600000\n")
     assert (e.line, "beyond") == (2, "beyond") and "beyond" in e.message
 
 
 def test_gcode_at_the_bound_is_read():
-    prog = read_gcode(f"G1 X{MAX_COORDINATE:.0f} Y-{MAX_COORDINATE:.0f} F60\n")
-    assert prog.blocks[0].end[:2] == (1e9, -1e9)
+    prog = read_gcode(f"G1 X{MAX_PROGRAM_COORDINATE:.0f} Y-{MAX_PROGRAM_COORDINATE:.0f} F60\n")
+    bound = MAX_PROGRAM_COORDINATE
+    assert prog.blocks[0].end[:2] == (bound, -bound) == (1e6, -1e6)
 
 
 @pytest.mark.parametrize("text, line, word", [
     (f"LINEAR ABS F10\nX1 Y1\nCIRCLE2 X1 Y-1 I0 J-{BIG}\n", 3, "J-"),
-    ("LINEAR ABS F10\nX1000000001\n", 2, "X"),
+    ("LINEAR ABS F10\nX1000001\n", 2, "X"),
     ("LINEAR ABS F10\nCIRCLE1 X1 Y1 R2000000000\n", 2, "R2"),
     ("LINEAR ABS F2000000000\n", 1, "F"),
 ])
@@ -172,7 +174,7 @@ def test_pmac_words_beyond_the_bound_are_located(text, line, word):
 
 
 def test_pmac_moves_that_add_up_beyond_the_bound_are_located():
-    e = pmac_error("INC LINEAR F10\nX600000000\nX600000000\n")
+    e = pmac_error("INC LINEAR F10\nX600000\nX600000\n")
     assert e.line == 3 and "beyond" in e.message
 
 

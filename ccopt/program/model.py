@@ -41,11 +41,23 @@ PLANE_AXES: dict[str, tuple[int, int, int]] = {
 }
 
 #: Largest magnitude of a coordinate, centre, centre offset (I J K), radius
-#: (R) or feed a program may hold, in program units (feeds: units per minute
-#: as written, units per second as stored). A machine travels metres, not
-#: 1e9 units; past this the doubles downstream keep too few digits for
-#: micrometre checks and the geometry's work grows without bound, so readers
-#: refuse it as a located error instead.
+#: (R), feed or tool diameter a program may hold, in program units (feeds:
+#: units per minute as written, units per second as stored): 1e6, a
+#: kilometre in mm (25 km in inches). The largest machine tools travel tens
+#: of metres, and a feed of 1e6 mm/min (17 m/s) is beyond any axis. A value
+#: past it is a typing error (a missing decimal point, ``X1000000000``), not
+#: a part: the feed planner and the comparison take minutes and gigabytes on
+#: it (a line to 1e9 took ``ccopt compare`` 24 s and 6.8 GB, issue 29), and
+#: near 1e9 the doubles downstream keep too few digits for micrometre
+#: checks. The readers refuse it where it is written, as a located error
+#: (``part.nc:3:4: X1000000000 is out of range: ...``), so every command
+#: stops at once. It was :data:`MAX_COORDINATE` (1e9) until issue 29.
+MAX_PROGRAM_COORDINATE = 1e6
+
+#: Largest magnitude of a length, time or rate given on the command line or
+#: in a ``case.toml`` (``--radius``, ``--eps``, ``radius = ...``): 1e9.
+#: Beyond, the geometry's work and the doubles' precision run out. A
+#: program's own values are bounded tighter, by :data:`MAX_PROGRAM_COORDINATE`.
 MAX_COORDINATE = 1e9
 
 
@@ -65,8 +77,9 @@ INPUT_FILES = "input_files"
 
 
 def out_of_range(value: float) -> bool:
-    """``value`` is not finite or beyond :data:`MAX_COORDINATE` in magnitude."""
-    return not abs(value) <= MAX_COORDINATE
+    """``value`` is not finite or beyond :data:`MAX_PROGRAM_COORDINATE` in magnitude
+    (a value a program may not hold)."""
+    return not abs(value) <= MAX_PROGRAM_COORDINATE
 
 
 class Motion(str, enum.Enum):

@@ -27,7 +27,7 @@ from pathlib import Path
 
 from ccopt.atomic import protect_input
 from ccopt.errors import ProgramError
-from ccopt.program.model import MAX_COORDINATE, out_of_range
+from ccopt.program.model import MAX_PROGRAM_COORDINATE, out_of_range
 
 __all__ = ["ToolTable", "read_tool_table"]
 
@@ -132,7 +132,8 @@ def read_tool_table(path_or_text, file: str | None = None) -> ToolTable:
                 if letter == "D":
                     if out_of_range(number):
                         raise ProgramError(f"D{value} is out of range: a diameter must lie "
-                                           f"within +-{MAX_COORDINATE:g}", name, lineno, col)
+                                           f"within +-{MAX_PROGRAM_COORDINATE:g}",
+                                           name, lineno, col)
                     diameter = number
         if first_col is None:
             continue

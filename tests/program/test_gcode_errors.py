@@ -91,9 +91,9 @@ CASES = [
     ("G4", 1, 1, "G4 needs the dwell time"),
     ("G4 P-1", 1, 4, "negative dwell"),
     ("G4 P1 G2 X1 R1 F60", 1, 1, "share the P word"),
-    # an incremental end beyond the readers' bound of 1e9 (issue 16; this
+    # an incremental end beyond the readers' bound of 1e6 (issue 16, 1e9 until issue 29; this
     # case was two 308-digit values overflowing to inf, now refused on line 1)
-    ("G1 X600000000 F60\nG91 X600000000", 2, 1, "beyond"),
+    ("G1 X600000 F60\nG91 X600000", 2, 1, "beyond"),
     # compensation words
     ("G1 X1 D3 F60", 1, 7, "D word with no G41"),
     ("G40 D3", 1, 5, "D word with no G41"),

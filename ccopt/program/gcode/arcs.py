@@ -20,8 +20,14 @@ from ccopt.program.gcode.units import MM_PER_INCH, output_units
 from ccopt.program.gcode.words import fmt
 from ccopt.program.model import PLANE_AXES
 
-#: Largest G2/G3 P (number of turns), LinuxCNC keeps it in an int.
-MAX_ARC_TURNS = 2**31 - 1
+#: Largest G2/G3 ``P`` (number of turns) ccopt reads: 1000. LinuxCNC takes
+#: any int (2^31 - 1), but a helix of 1000 turns is already a 100 mm bore
+#: at a 0.1 mm pitch or a 1 m one at 1 mm, past any helical milling or
+#: thread milling pass; each turn costs the feed planner about 126 grid
+#: intervals (0.05 rad each) and the samples of its time, so ``P2147483647``
+#: asked for terabytes (exit 3) and ``P10000`` took 34 s and 2 GB before a
+#: refusal (issue 29). Beyond it the ``P`` word is a located error.
+MAX_ARC_TURNS = 1000
 #: A P word within this of a whole number is that number of turns.
 _TURNS_WHOLE_TOL = 1e-3
 #: Radii below this fraction of the arc tolerance are zero (LinuxCNC).
@@ -115,9 +121,13 @@ def _extra_turns(state: GCodeState, L: dict, gname: str) -> int:
     if "P" not in L:
         return 0
     p, pcol = L["P"]
-    if abs(p - round(p)) > _TURNS_WHOLE_TOL or round(p) < 1 or p > MAX_ARC_TURNS:
+    if abs(p - round(p)) > _TURNS_WHOLE_TOL or round(p) < 1:
         raise state.error(f"{gname} P{fmt(p)}: P is the number of turns, a whole number "
                           "from 1", pcol)
+    if round(p) > MAX_ARC_TURNS:
+        raise state.error(f"{gname} P{fmt(p)}: at most {MAX_ARC_TURNS} turns (P is the number "
+                          "of turns; split the helix into several arcs if it really needs more)",
+                          pcol)
     return int(round(p)) - 1
 
 

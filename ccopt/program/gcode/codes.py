@@ -14,7 +14,7 @@ from ccopt.program.expr import ExprError
 from ccopt.program.gcode.parameters import parameter_target, read_value
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, Lexed, fmt, gname, skip_blanks
-from ccopt.program.model import MAX_COORDINATE, out_of_range
+from ccopt.program.model import MAX_PROGRAM_COORDINATE, out_of_range
 
 #: A G number within this of a tenth is that tenth (``G41.1`` read as 41.1
 #: in floating point): the codes have one decimal at most.
@@ -63,7 +63,7 @@ _M_LIMIT = 1000  # M-codes run from M0 to M999
 
 _WORD_LETTERS = set("GMXYZIJKRFPDHTSQL")
 _UNSUPPORTED_AXES = set("ABCUVW")
-# Words holding a length or a feed: bounded by MAX_COORDINATE where they are written.
+# Words holding a length or a feed: bounded by MAX_PROGRAM_COORDINATE where they are written.
 _BOUNDED_LETTERS = set("XYZIJKRF")
 
 
@@ -112,7 +112,7 @@ def read_words(state: GCodeState, lx: Lexed) -> tuple[Words, list[tuple[str, obj
             else:
                 if up in _BOUNDED_LETTERS and out_of_range(value):
                     raise ExprError(f"{up}{fmt(value)} is out of range: coordinates, I J K R "
-                                    f"and F must lie within +-{MAX_COORDINATE:g}", p)
+                                    f"and F must lie within +-{MAX_PROGRAM_COORDINATE:g}", p)
                 if up in words.letters:
                     raise ExprError(f"two {up} words on one line: keep one", p)
                 words.letters[up] = (value, p)

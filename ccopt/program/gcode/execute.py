@@ -22,7 +22,7 @@ from ccopt.program.gcode.units import (feed_factor, length_factor, output_units,
                                        scale_lengths, set_units)
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, gname
 from ccopt.program.markers import surface_marker
-from ccopt.program.model import MAX_COORDINATE, Block, Motion, Source, out_of_range
+from ccopt.program.model import MAX_PROGRAM_COORDINATE, Block, Motion, Source, out_of_range
 
 _AXES = "XYZ"
 _PLANES = {170: "XY", 180: "ZX", 190: "YZ"}
@@ -254,7 +254,7 @@ def _compensation(state: GCodeState, comp: tuple[int, int], L: dict) -> None:
         d = L["D"][0]
         if out_of_range(d):
             raise state.error(f"D{fmt(d)} is out of range: a diameter must lie within "
-                              f"+-{MAX_COORDINATE:g}", L["D"][1])
+                              f"+-{MAX_PROGRAM_COORDINATE:g}", L["D"][1])
         state.side = -side if d < 0 else side
         state.radius = abs(d) / 2.0
         state.tool = None
@@ -315,8 +315,9 @@ def _emit(state: GCodeState, block: Block) -> None:
                           "values on this line", block.source.col - 1)
     if any(out_of_range(v) for v in values):
         # incremental moves add up, and an R arc's centre is computed: check what they make
-        raise state.error(f"the move's end point, centre or feed is beyond +-{MAX_COORDINATE:g} "
-                          "program units: check the values on this line", block.source.col - 1)
+        raise state.error(f"the move's end point, centre or feed is beyond "
+                          f"+-{MAX_PROGRAM_COORDINATE:g} program units: check the values on "
+                          "this line", block.source.col - 1)
     state.blocks.append(block)
 
 

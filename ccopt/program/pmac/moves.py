@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass, field
 
 from ccopt.errors import ProgramError
-from ccopt.program.model import MAX_COORDINATE, PLANE_AXES, Vec3, out_of_range
+from ccopt.program.model import MAX_PROGRAM_COORDINATE, PLANE_AXES, Vec3, out_of_range
 from ccopt.tolerances import POINT_EPS, R_CHORD_REL_TOL
 
 _VECTORS = "IJK"
@@ -41,15 +41,15 @@ class PendingMove:
 def finite_point(p, file: str, line: int, col: int, what: str) -> Vec3:
     """``p`` as a tuple of three floats; ProgramError when one is not finite."""
     x, y, z = p
-    if -MAX_COORDINATE <= x <= MAX_COORDINATE and -MAX_COORDINATE <= y <= MAX_COORDINATE \
-            and -MAX_COORDINATE <= z <= MAX_COORDINATE:
+    bound = MAX_PROGRAM_COORDINATE
+    if -bound <= x <= bound and -bound <= y <= bound and -bound <= z <= bound:
         return (float(x), float(y), float(z))      # the common case, in one test
     if not all(math.isfinite(v) for v in p):
         raise ProgramError(f"{what} is not a finite number (values too large)", file, line, col)
     if any(out_of_range(v) for v in p):
         # incremental moves add up and an R arc's centre is computed: bound what they make
-        raise ProgramError(f"{what} is beyond +-{MAX_COORDINATE:g} program units: check the "
-                           "values on this line", file, line, col)
+        raise ProgramError(f"{what} is beyond +-{MAX_PROGRAM_COORDINATE:g} program units: "
+                           "check the values on this line", file, line, col)
     return (float(p[0]), float(p[1]), float(p[2]))
 
 

@@ -14,7 +14,8 @@ import math
 import re
 
 from ccopt.errors import ProgramError
-from ccopt.program.model import MAX_COORDINATE, Block, Modal, Motion, Source, Vec3, out_of_range
+from ccopt.program.model import (MAX_PROGRAM_COORDINATE, Block, Modal, Motion, Source, Vec3,
+                                 out_of_range)
 from ccopt.program.pmac.lexer import (AXES, LETTERS_RE, MOVE_MODES, OTHER_AXES,
                                       PLAIN_LINE_RE, PLAIN_STATEMENT_RE, UNSUPPORTED,
                                       UNSUPPORTED_MODES, UNSUPPORTED_WHY, VECTORS, keyword_at,
@@ -86,10 +87,10 @@ class Interpreter:
     # -- variables and coordinate-system set-up --------------------------------
     def bounded(self, value: float, letter: str, line: int, col: int) -> None:
         """A ProgramError at ``col`` when word ``letter``'s value is beyond
-        :data:`~ccopt.program.model.MAX_COORDINATE`."""
+        :data:`~ccopt.program.model.MAX_PROGRAM_COORDINATE`."""
         if out_of_range(value):
             raise self.error(f"{letter}{value:g} is out of range: coordinates, I J K R and F "
-                             f"must lie within +-{MAX_COORDINATE:g}", line, col)
+                             f"must lie within +-{MAX_PROGRAM_COORDINATE:g}", line, col)
 
     def isx(self, offset: int) -> int:
         """Number of the I-variable Isx<offset> of the selected coordinate system."""
@@ -382,7 +383,7 @@ class Interpreter:
 
     def add_axis_word(self, letter: str, value: float, line: int, col: int) -> None:
         """Add the word ``letter`` (at ``col``) with ``value`` to the line's move."""
-        if not -MAX_COORDINATE <= value <= MAX_COORDINATE:
+        if not -MAX_PROGRAM_COORDINATE <= value <= MAX_PROGRAM_COORDINATE:
             self.bounded(value, letter, line, col)
         if self.pending is None:
             self.pending = PendingMove(line, col)
