@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import argparse
-import time
 
 from ccopt.cases import Job
 from ccopt.cli.inputs import limits_text, reading
@@ -11,11 +10,9 @@ from ccopt.cli.options import (add_limit_options, add_output_option, add_program
                                add_tolerance_option, add_ts_option, add_variants_option,
                                add_workers_option, chosen_variants, describe, positive_float)
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, aligned, emit_json, figure
-from ccopt.compare import REFERENCE, BlendOutcome, BlendProblem, available, measure
+from ccopt.compare import REFERENCE, BlendProblem, Comparison, available
 from ccopt.compare.plot import plot_comparison
-from ccopt.compare.registry import Blend, require_known
-from ccopt.compare.registry import load as load_blend
-from ccopt.compensate import compensate
+from ccopt.compare.registry import require_known
 from ccopt.errors import ProgramError
 from ccopt.export import ExportResult, export
 from ccopt.feed import AxisLimits
@@ -110,28 +107,24 @@ def _feed_floor(path: ToolPath, limits: AxisLimits) -> float | None:
         return None
 
 
-def _smoothed(blend: Blend, work: Job, prog: Program,
+def _smoothed(cmp: Comparison, work: Job, prog: Program,
               limits: AxisLimits) -> tuple[dict, ToolPath, bool]:
-    """The smoother ``blend``'s path of ``prog`` measured against the reference
-    (PMAC) path: the JSON document of ``ccopt smooth``, the path, and whether
-    its certificate holds."""
-    ref = compensate(prog, REFERENCE, radius=work.radius, side=work.side)
-    problem = BlendProblem(prog, ref, limits, work.delta, {}, work.radius, work.side,
-                           tolerance=work.tolerance)
-    t0 = time.perf_counter()
-    out = blend(problem)
-    solve = time.perf_counter() - t0
-    info = dict(out.info) if isinstance(out, BlendOutcome) else {}
-    path = out.toolpath if isinstance(out, BlendOutcome) else out
-    cert = info.pop("certificate", None)
-    row = measure("smooth", path, problem, solve, info, cert)
-    base = measure(REFERENCE, ref, problem, 0.0)
-    fig = row.figures
+    """The smoother's row of the comparison ``cmp`` (of PMAC's path and the
+    smoother's, :func:`ccopt.pipeline.pipeline`) measured against the
+    reference: the JSON document of ``ccopt smooth``, the path, and whether
+    its certificate holds. A ProgramError when PMAC refuses the program or the
+    smoother gives no path (its row says why)."""
+    row, base = cmp["smooth"], cmp[REFERENCE]
+    for r in (base, row):
+        if r.toolpath is None:
+            raise ProgramError(f"{r.name} {r.status}: {r.message}", prog.file)
+    path, ref = row.toolpath, cmp.reference
+    fig, info = row.figures, row.info
     ratio = fig["duration"] / base.figures["duration"] if fig.get("duration") and \
         base.figures.get("duration") else None
-    doc = {"program": prog.file, "delta": problem.band, "radius": ref.radius,
-           "duration": fig.get("duration"), "pmac_duration": base.figures.get("duration"),
-           "duration_ratio": ratio,
+    doc = {"program": prog.file, "delta": BlendProblem(prog, ref, delta=work.delta).band,
+           "radius": ref.radius, "duration": fig.get("duration"),
+           "pmac_duration": base.figures.get("duration"), "duration_ratio": ratio,
            # what neither path can beat (no acceleration limit at all): how much any
            # smoothing of PMAC's path could buy
            "feed_floor": _feed_floor(path, limits), "pmac_feed_floor": _feed_floor(ref, limits),
@@ -168,16 +161,15 @@ def cmd_smooth(args: argparse.Namespace) -> int:
     """G2 blends at every corner within ``--delta``, certified, timed against
     PMAC's path and exported with ``-o`` (exit 1 when the certificate or the
     exported file's read-back fails)."""
-    with reading(args, "smooth") as (work, prog, say):
-        limits = work.limits()
-        try:
-            blend = load_blend("smooth")
-        except KeyError:
-            raise ProgramError("the smoother is not installed: no 'smooth' entry point in "
-                               "group ccopt.blends (install ccopt with its formulations)",
-                               args.program) from None
-        say("smooth")
-        doc, path, certified = _smoothed(blend, work, prog, limits)
+    if "smooth" not in available():
+        raise ProgramError("the smoother is not installed: no 'smooth' entry point in "
+                           "group ccopt.blends (install ccopt with its formulations)",
+                           args.program)
+    with reading(args, "smooth", variants=(REFERENCE, "smooth")) as (work, prog, say):
+        done = pipeline(work, program=prog, compensate=False, feed=False, verify=False,
+                        compare=True, clock=StageClock(say)).result()
+        limits = done.limits
+        doc, path, certified = _smoothed(done.comparison, work, prog, limits)
         exported = None
         if args.output:
             say("export")
