@@ -294,6 +294,32 @@ class FeedProfile:
         times[-1] = min(times[-1], self.duration)
         return self.at(times)
 
+    def longest_block(self) -> tuple[int | None, int | None, str]:
+        """Where the profile spends most of its time, to locate a size limit
+        (issue 29): ``(line, col, text)`` of the program block whose moves (or
+        dwell) take the longest, the text saying how long and which share of
+        the duration; ``(None, None, "no program line known")`` without one."""
+        path = self.path
+        dt = np.diff(self.t)
+        seg = np.asarray(self.segment, dtype=int)
+        per_block: dict = {}
+        moving = seg >= 0
+        if moving.any():
+            times = np.bincount(seg[moving], weights=dt[moving], minlength=len(path.segments))
+            for k in np.flatnonzero(times > 0.0):
+                blk = path.segments[int(k)].block
+                if blk is not None:
+                    per_block[blk.source] = per_block.get(blk.source, 0.0) + float(times[k])
+        for _, seconds, blk in path.toolpath.dwells:
+            if blk is not None:
+                per_block[blk.source] = per_block.get(blk.source, 0.0) + float(seconds)
+        if not per_block:
+            return None, None, "no program line known"
+        src, longest = max(per_block.items(), key=lambda kv: kv[1])
+        share = longest / self.duration if self.duration > 0 else 1.0
+        return src.line, src.col, (f"line {src.line} alone takes {longest:.6g} s, "
+                                   f"{share:.0%} of the time")
+
     def sample_count(self, dt: float) -> int:
         """How many samples :meth:`sample` ``(dt)`` gives (without making them):
         every ``dt`` from 0 and the final instant. :class:`FeedError` when that
@@ -302,9 +328,10 @@ class FeedProfile:
             raise ValueError("dt must be > 0")
         T = self.duration
         if T / dt >= MAX_FEED_SAMPLES:
+            line, col, what = self.longest_block()
             raise FeedError(f"sampling {T:.6g} s every {dt:g} s takes {T / dt:.3g} samples, more "
-                            f"than {MAX_FEED_SAMPLES:g}: use a larger dt (at least "
-                            f"{self.affordable_dt(dt):.3g} s)", self.path.source_file)
+                            f"than {MAX_FEED_SAMPLES:g} ({what}): use a larger dt (at least "
+                            f"{self.affordable_dt(dt):.3g} s)", self.path.source_file, line, col)
         n = int(np.floor(T / dt + _SAMPLE_COUNT_SLACK)) + 1
         return n + 1 if (n - 1) * dt < T else n
 
@@ -392,8 +419,9 @@ class FeedProfile:
                             self.limits.centripetal_acc, dt)
         piece, tau = piece_times(self.t, steps)
         if piece.size >= MAX_FEED_SAMPLES:
+            line, col, what = self.longest_block()
             raise FeedError(f"the profile's figures need {piece.size:.3g} samples, more than "
-                            f"{MAX_FEED_SAMPLES:g}", self.path.source_file)
+                            f"{MAX_FEED_SAMPLES:g} ({what})", self.path.source_file, line, col)
         u = self.sdd[piece]
         v = np.maximum(self.sd[piece] + u * tau, 0.0)
         s = np.clip(self.s[piece] + self.sd[piece] * tau + 0.5 * u * tau * tau,
