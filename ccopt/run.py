@@ -115,6 +115,7 @@ def _fill(row: dict, done: Outcome, files: dict[str, str]) -> None:
         row["certificate"] = cert.to_json()
         row["certificate_text"] = cert.summary()
         row["verified"] = bool(cert.ok)
+        row["verdict"] = cert.verdict          # ok, ok within tolerance or failed
         row["min_clearance"] = cert.min_clearance
     if done.comparison is not None:
         row["compare"] = [v.to_json() for v in done.comparison]

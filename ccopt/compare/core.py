@@ -137,10 +137,23 @@ def _measure_shape(name: str, path: ToolPath, problem: BlendProblem, solve_time:
         dev = dev_bound = None
     gouge = cert.check("gouge")
     fig.update(min_clearance=cert.min_clearance, certified=bool(cert.ok),
+               verdict=cert.verdict,
                clearance_ok=bool(gouge.ok), violations=len(cert.violations),
                max_deviation=dev, max_deviation_bound=dev_bound, solve_time=solve_time)
-    status, message = ("ok", None) if cert.ok else ("uncertified", uncertified_reason(cert))
+    status, message = ("ok", _warnings_note(cert)) if cert.ok else \
+        ("uncertified", uncertified_reason(cert))
     return VariantResult(name, status, message, path, cert, fig, dict(info or {}))
+
+
+def _warnings_note(cert) -> str | None:
+    """``ok within tolerance: ...`` for a certified path with shallow violations
+    the verifier lists as warnings (program units), else ``None``."""
+    if not cert.warnings:
+        return None
+    v = max(cert.warnings, key=lambda v: v.depth)
+    line = f" at line {v.tool_block}" if v.tool_block is not None else ""
+    return (f"ok within tolerance: {len(cert.warnings)} warning(s), deepest {v.kind} "
+            f"{v.depth:.3g}{line}")
 
 
 def uncertified_reason(cert) -> str:

@@ -17,7 +17,8 @@ Row figures (units: program units, seconds): ``cycle_time`` (the certified
 planner's duration: the first of the spec's ``planners``, else the jerk
 planner's with jerk limits, else TOPPRA's) and ``cycle_time_<planner>``,
 ``min_clearance`` (certified), ``ok`` (every check), ``geometry_ok`` (every
-check but ``limits``), ``limits_ok`` (the feed limits check on the certified
+check but ``limits``), ``verdict`` (the certificate's: ``ok``, ``ok within
+tolerance`` or ``failed``), ``limits_ok`` (the feed limits check on the certified
 profile) and ``limits_ratio`` (its figure: the largest |value| / limit
 sampled), ``cutter_radius``, ``path_length``, ``max_curvature`` (1/units,
 largest |curvature| of the moves that cut, rapids excluded), ``deviation``,
@@ -44,7 +45,7 @@ from ccopt.toolpath import Role
 CURVATURE_SAMPLES = 257
 
 #: Result columns every row has, in table order (``cycle_time_<planner>`` follow ``cycle_time``).
-FIGURES = ("error", "ok", "geometry_ok", "limits_ok", "limits_ratio", "cycle_time",
+FIGURES = ("error", "ok", "verdict", "geometry_ok", "limits_ok", "limits_ratio", "cycle_time",
            "min_clearance", "cutter_radius", "path_length", "max_curvature", "deviation",
            "solve_time", "feed_time", "verify_time", "task_time", "worker")
 
@@ -81,7 +82,8 @@ def _verdicts(cert) -> dict:
     limits_ok = ratio = None
     if limits and limits[0].basis != "not-run":
         limits_ok, ratio = bool(limits[0].ok), limits[0].figure
-    return {"ok": bool(cert.ok), "geometry_ok": all(bool(c.ok) for c in geometry),
+    return {"ok": bool(cert.ok), "verdict": cert.verdict,
+            "geometry_ok": all(bool(c.ok) for c in geometry),
             "limits_ok": limits_ok, "limits_ratio": ratio, "min_clearance": cert.min_clearance}
 
 
