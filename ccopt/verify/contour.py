@@ -237,10 +237,37 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
         open_start, open_end = np.zeros(sel.size, bool), np.zeros(sel.size, bool)
     cblocks = tuple(mv.moves[q] for q in sel) if sel.size < n else tuple(mv.moves)
     elements = mv.elements(sel, cblocks)
+    if decisions.OPEN_END_EXEMPTION:
+        _close_joined_ends(elements, open_start, open_end, eps)
     clearance = np.where(radius_change[sel], np.minimum(r[sel], prev_r[sel]), r[sel])
     return Contour(cblocks, elements, k[sel], r[sel], clearance, steady[sel], open_start,
                    open_end, mv.plane, tuple(mv.moves), status, k, r, elem_idx, tuple(notes),
                    surf.report(mv.moves, in_contour | air, _approaches(k, prev_k, side_change)))
+
+
+def _close_joined_ends(elements: Packed, open_start: np.ndarray, open_end: np.ndarray,
+                       eps: float) -> None:
+    """An end is open only where the surface really stops: a start that another
+    element of the contour ends at (within ``eps``), or an end another one
+    starts at, is a joint of the surface, not an open end (in place). A
+    closed loop entered by a lead is the case: its first element follows the
+    lead in the program, but its start is where its last element ends, so a
+    lead leaving the loop's corner is held to that corner."""
+    if not (open_start.any() or open_end.any()):
+        return
+    # deferred: scipy.spatial would add 0.3 s to every `import ccopt`
+    from scipy.spatial import cKDTree
+    p0, p1 = elements.arr.p0, elements.arr.p1
+    for opened, here, there in ((open_start, p0, p1), (open_end, p1, p0)):
+        q = np.flatnonzero(opened)
+        if not q.size:
+            continue
+        k = min(2, there.shape[0])
+        dist, idx = cKDTree(there).query(here[q], k=k)
+        dist, idx = dist.reshape(q.size, k), idx.reshape(q.size, k)
+        # another element's end (not the element's own other end)
+        joined = ((dist <= eps) & (idx != q[:, None])).any(axis=1)
+        opened[q[joined]] = False
 
 
 def _approaches(k: np.ndarray, prev_k: np.ndarray, side_change: np.ndarray) -> dict[int, str]:

@@ -23,6 +23,8 @@ from __future__ import annotations
 #: nearer to that end. Spiral and curve elements get no such exemption
 #: (conservative). Without this rule the spec's own lead-in (a diagonal to
 #: ``P + r*o(t_next)``) would "gouge" the start point ``P`` it approaches.
+#: An end where another contour element starts or ends (the closing corner
+#: of a loop entered by a lead) is a joint, not open.
 #: ``False``: no end is open; every tool position is checked against every
 #: element (conservative: the spec's lead-ins and lead-outs then fail).
 #: Applied in :func:`ccopt.verify.contour.contour_of` (``Contour.open_start``,
@@ -56,7 +58,9 @@ RADIUS_FROM_TOOLPATH_WHEN_UNIFORM = True
 #: and the compensated moves before, between and after the loops are leads in
 #: air (a CAM system's tangent arcs in and out): they are no contour elements
 #: (no contact or side required of them; their tool segments are checked
-#: against the part). A run without a closed loop is part throughout.
+#: against the part). Only innermost loops count (a loop holding another, as
+#: a lead that returns to its own start makes around the contour, is not
+#: part). A run without a closed loop is part throughout.
 #: ``--part-lines`` and the ``(ccopt: part)``/``(ccopt: air)`` markers override
 #: it. ``False``: every fully compensated move is part (unless marked air).
 #: Applied in :func:`ccopt.verify.surface.surface_of`.

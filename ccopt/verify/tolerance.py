@@ -52,8 +52,12 @@ def cause_of(violation, toolpath: ToolPath) -> str:
     a controller's straight join at a slight turn, else the generic cause."""
     joins = toolpath.meta.get(STRAIGHT_JOINS) or {}
     i = violation.tool_segment
-    if i is not None and i in joins:
-        beta = joins[i]
+    # the join is the segment that starts at the last offset point, and the
+    # segment before it ends there
+    at = next((j for j in (i, None if i is None else i + 1) if j is not None and j in joins),
+              None)
+    if at is not None:
+        beta = joins[at]
         which = "outside" if beta > 0 else "inside"
         who = "LinuxCNC" if toolpath.style == "linuxcnc" else toolpath.style
         return (f"{who} straight join at a {math.degrees(abs(beta)):.3g}-degree {which} corner "

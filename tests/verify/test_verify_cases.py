@@ -9,7 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
 import ccopt
 from ccopt.cases import bundled_cases, find_case
@@ -122,8 +122,16 @@ def test_profile_spiral_lead_in_overcut():
     assert 0 < y < 15
     depth = 3 - (10 - g(phi))
     lead_in = [v for v in cert.violations_of("gouge") if v.tool_role == "lead-in"]
-    assert len(lead_in) == 1
-    v = lead_in[0]
+    # against the closing edge, and against the loop's first edge x = 0,
+    # y in [15, 25], which it joins at (0, 15): there the distance is to that
+    # point, |P(phi) - (0, 15)|^2 = (10 - rho sin phi)^2 + (rho cos phi)^2
+    assert len(lead_in) == 2
+    v, w = sorted(lead_in, key=lambda v: -v.depth)
+    rho = lambda f: 10 - 6 * f / math.pi          # noqa: E731
+    near = minimize_scalar(lambda f: math.hypot(10 - rho(f) * math.sin(f), rho(f) * math.cos(f)),
+                           bounds=(0.0, math.pi / 2), method="bounded", options={"xatol": 1e-12})
+    assert w.element_block == line_of(case, "LINEAR X0 Y25", exact=True)
+    assert 3 - near.fun - 1e-9 <= w.depth <= 3 - near.fun + 0.1 * EPS + 1e-9
     assert v.basis == "certified-bound"
     # a certified lower bound of the distance: the depth is at least the true
     # one and within the certified gap (0.1 eps) of it
