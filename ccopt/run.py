@@ -88,6 +88,10 @@ def run_one(job: Job, out: Path | None, opts: RunOptions,
         compensated = done.path is not None
         failed = "error (expected)" if job.expect == "error" and not compensated else "error"
         row.update(status=failed, message=str(done.error))
+    elif done.program is not None and done.program.nothing_to_verify():
+        # said in so many words, not "ok" over no checks (issue 29); exit 0
+        row.update(status="nothing to verify", message=f"{done.program.file}: "
+                                                       f"{done.program.nothing_to_verify()}")
     else:
         row["status"] = _status(job.expect, done.certificate.ok)
     row["stage_seconds"] = clock.seconds

@@ -168,7 +168,10 @@ def test_run_exit_codes(capsys, tmp_path):
     code, _, _ = run_cli(capsys, "run", str(CASES / "concave-arc-too-small"), "--out",
                          str(tmp_path), "--no-compare")
     assert code == 0
-    bad = tmp_path / "bad.pmc"
+    # (the program beside the output folder, not in it: run -o DIR refuses to
+    # start when DIR holds an input its files would replace, issue 29)
+    (tmp_path / "in").mkdir()
+    bad = tmp_path / "in" / "bad.pmc"
     bad.write_text("LINEAR ABS F10\nCCR5 CC1\nX10 Y0\nCIRCLE2 X10 Y2 I0 J1\nLINEAR X0 Y2\nCC0\nX0 Y0\n")
     code, _, err = run_cli(capsys, "run", str(bad), "--out", str(tmp_path), "--no-compare")
     assert code == 2 and "concave arc radius 1" in err

@@ -39,7 +39,8 @@ def cmd_export(args: argparse.Namespace) -> int:
     if args.json:
         emit_json(res.to_json())
     else:
-        verdict = {True: "verified OK", False: "verification FAILED", None: "not verified"}
+        verdict = {True: "verified OK", False: "verification FAILED",
+                   None: res.nothing_to_verify or "not verified"}
         print(f"{res.file}: {res.format}, read back within {res.roundtrip_error:.3g} "
               f"{path.units} (tolerance {res.tolerance:g}), {verdict[res.verified]}"
               f"{res.where_written()}")

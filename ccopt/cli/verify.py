@@ -30,7 +30,9 @@ least r - eps from every part element), contact, side and continuity, exact
 for lines and arcs and certified bounds for spirals and curves; with --feed
 also the planned profile within the axis limits (--vmax/--amax, else the
 case's [limits]): TOPPRA's, or the jerk planner's when the limits carry jerk
-(--jmax or the case's j). Exit 1 when a check fails."""
+(--jmax or the case's j). Exit 1 when a check fails. A program with no
+moves (empty, or settings and dwells only) says "nothing to verify" and
+exits 0."""
 
 EXAMPLE = """\
   ccopt verify short-move-overcut
@@ -45,6 +47,15 @@ def cmd_verify(args: argparse.Namespace) -> int:
         done = pipeline(work, program=prog, feed=args.feed, clock=StageClock(say)).result()
     path, cert = done.path, done.certificate
     report = cert.to_json()
+    nothing = prog.nothing_to_verify() or (None if path.segments else
+                                           "nothing to verify: the tool path has no segments")
+    if nothing:     # said in so many words, not "PASSED" over no checks; exit 0
+        report["nothing_to_verify"] = nothing
+        if args.json:
+            emit_json(report)
+        elif not args.quiet:
+            print(f"{prog.file}: {nothing}")
+        return EXIT_OK
     agree = True
     if args.crosscheck:
         report["crosschecks"] = run_crosschecks(cert)

@@ -58,7 +58,9 @@ class ExportResult:
         curves (both formats); 0 if none.
     fitted_moves: how many moves replace spirals and blend curves.
     verified: verdict of the verifier on the read-back path (``None`` when no
-        program was given to verify against).
+        program was given to verify against, or it has nothing to verify).
+    nothing_to_verify: why the export was not verified though a program was
+        given (``"nothing to verify: the program has no moves"``), else ``None``.
     kept_existing: the existing file a failing export was not written over
         (then ``file`` is its ``NAME.failed.EXT``); ``None`` otherwise.
     """
@@ -73,13 +75,14 @@ class ExportResult:
     certificate: dict | None = None
     notes: list[str] = field(default_factory=list)
     kept_existing: str | None = None
+    nothing_to_verify: str | None = None
 
     def to_json(self) -> dict:
         return {"file": self.file, "format": self.format, "tolerance": self.tolerance,
                 "roundtrip_error": self.roundtrip_error, "fit_error": self.fit_error,
                 "fitted_moves": self.fitted_moves, "verified": self.verified,
                 "certificate": self.certificate, "notes": self.notes,
-                "kept_existing": self.kept_existing}
+                "kept_existing": self.kept_existing, "nothing_to_verify": self.nothing_to_verify}
 
     def where_written(self) -> str:
         """For messages: ``""``, or where a failing export went instead of the
@@ -200,8 +203,9 @@ def _tighter_fits(cert, moves: list, seg_tol: dict[int, float], tol: float) -> d
 
 
 def _verify(path: ToolPath, program: Program | None):
-    """Certificate of ``path`` against ``program``'s contour, or ``None``."""
-    if program is None:
+    """Certificate of ``path`` against ``program``'s contour, or ``None`` (no
+    program, or one with nothing to verify: no moves)."""
+    if program is None or program.nothing_to_verify():
         return None
     return verify(path, program)
 
@@ -301,6 +305,8 @@ def _verdict(res: ExportResult, path: ToolPath, fit: str, cert) -> list[str]:
                      f"minimum clearance {cert.min_clearance:.6g} for radius {path.radius:g}")
         lines.append(f"verified against the programmed contour: "
                      f"{'OK' if cert.ok else 'FAILED'}, {clearance}")
+    elif res.nothing_to_verify:
+        lines.append(res.nothing_to_verify)
     else:
         lines.append("not verified: no programmed contour given")
     return lines
@@ -360,6 +366,8 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
     if not tol > 0:
         raise ProgramError("export tolerance must be > 0", str(out))
     res = ExportResult(str(out), fmt, tol)
+    if program is not None:
+        res.nothing_to_verify = program.nothing_to_verify()
     if fmt in ("gcode", "pmac"):
         _export_program(res, path, out, program, title)
     elif fmt == "svg":

@@ -76,6 +76,10 @@ PLANE_CHANGES_CHECKED = "plane_changes_checked"
 INPUT_FILES = "input_files"
 
 
+#: What the commands say of a program with no move (:meth:`Program.nothing_to_verify`).
+NOTHING_TO_VERIFY = "nothing to verify: the program has no moves"
+
+
 def out_of_range(value: float) -> bool:
     """``value`` is not finite or beyond :data:`MAX_PROGRAM_COORDINATE` in magnitude
     (a value a program may not hold)."""
@@ -283,3 +287,13 @@ class Program:
     @property
     def moves(self) -> tuple[Block, ...]:
         return tuple(b for b in self.blocks if b.motion.is_move)
+
+    def nothing_to_verify(self) -> str | None:
+        """Why there is nothing to verify (or plan, or export) in this program,
+        ``None`` when there is something: an empty program, or one with no
+        move (dwells and settings only). The commands say it in so many words
+        (``nothing to verify: the program has no moves``) and exit 0, instead
+        of a "verification PASSED" over no checks (issue 29)."""
+        if not any(b.motion.is_move for b in self.blocks):
+            return NOTHING_TO_VERIFY
+        return None
