@@ -54,7 +54,9 @@ def cmd_feed(args: argparse.Namespace) -> int:
     if not args.planner:
         own["planners"] = ("toppra",)
     with reading(args, "feed", **own) as (work, prog, say):
-        done = pipeline(work, program=prog, verify=False, clock=StageClock(say)).result()
+        # each planner shown as it starts (the pipeline's checkpoints)
+        done = pipeline(work, program=prog, verify=False, clock=StageClock(say),
+                        checkpoint=say).result()
         path, limits = done.path, done.limits
         out = _summaries(done.profiles, args, say)
     planners = list(out)
