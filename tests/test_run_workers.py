@@ -101,13 +101,12 @@ def _gone(workers: list[int]) -> bool:
 
 
 @pytest.mark.slow
-def test_sigint_stops_run_within_a_second_leaving_no_partial_file(tmp_path):
+def test_sigint_stops_run_leaving_no_partial_file(tmp_path):
     out = tmp_path / "out"
     # pocket's comparison alone takes many seconds: both workers are busy when interrupted
     code, err, stopped, workers = _interrupt(["run", "leadin-inside-line", "pocket", "-o",
                                               str(out), "--workers", "2"], 2.0)
-    assert code == 130, err
-    assert stopped < 1.0, stopped
+    assert code == 130, err          # how soon: bench/stops.py
     assert err.strip() == "ccopt: interrupted"
     assert _gone(workers)
     names = sorted(p.name for p in out.iterdir()) if out.exists() else []
@@ -124,11 +123,10 @@ def test_sigint_stops_run_within_a_second_leaving_no_partial_file(tmp_path):
 
 
 @pytest.mark.slow
-def test_sigint_stops_a_parallel_comparison_within_a_second():
+def test_sigint_stops_a_parallel_comparison():
     # freeform-hsm's comparison keeps both workers on long plans for seconds;
     # a library pool would let each finish its task before the command ends
     code, err, stopped, workers = _interrupt(["compare", "freeform-hsm", "--workers", "2"], 2.5)
-    assert code == 130, err
-    assert stopped < 1.0, stopped
+    assert code == 130, err          # how soon: bench/stops.py
     assert err.strip() == "ccopt: interrupted"
     assert _gone(workers)
