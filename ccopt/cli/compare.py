@@ -9,7 +9,7 @@ from ccopt.cli.options import (add_limit_options, add_output_option, add_program
                                add_quiet_option, add_radius_side, add_reading_options,
                                add_tolerance_option, add_ts_option, add_variants_option,
                                add_workers_option, chosen_variants, describe, positive_float)
-from ccopt.cli.output import EXIT_FAILED, EXIT_OK, aligned, emit_json, figure
+from ccopt.cli.output import EXIT_FAILED, EXIT_OK, aligned, emit_json, figure, nothing_to_do
 from ccopt.compare import REFERENCE, BlendProblem, Comparison, available
 from ccopt.compare.plot import plot_comparison
 from ccopt.compare.registry import require_known
@@ -72,6 +72,8 @@ def cmd_compare(args: argparse.Namespace) -> int:
     if names:
         require_known(names, args.program)
     with reading(args, "compare") as (work, prog, say):
+        if prog.nothing_to_verify():
+            return nothing_to_do(args, prog, "compare")
         done = pipeline(work, program=prog, compensate=False, feed=False, verify=False,
                         compare=True, workers=args.workers or default_workers(),
                         clock=StageClock(say)).result()
@@ -166,6 +168,8 @@ def cmd_smooth(args: argparse.Namespace) -> int:
                            "group ccopt.blends (install ccopt with its formulations)",
                            args.program)
     with reading(args, "smooth", variants=(REFERENCE, "smooth")) as (work, prog, say):
+        if prog.nothing_to_verify():
+            return nothing_to_do(args, prog, "smooth")
         done = pipeline(work, program=prog, compensate=False, feed=False, verify=False,
                         compare=True, clock=StageClock(say)).result()
         limits = done.limits

@@ -15,6 +15,18 @@ from ccopt.toolpath import ToolPath
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT, EXIT_INTERNAL = 0, 1, 2, 3
 
 
+def nothing_to_do(args, prog, what: str) -> int:
+    """A program with no moves (:meth:`~ccopt.program.model.Program.nothing_to_verify`):
+    ``FILE: nothing to WHAT: the program has no moves`` (or that as JSON, key
+    ``nothing_to_verify``) instead of figures over nothing; exit 0 (issue 29)."""
+    text = prog.nothing_to_verify().replace("nothing to verify", f"nothing to {what}")
+    if getattr(args, "json", False):
+        emit_json({"program": prog.file, "nothing_to_verify": text})
+    elif not getattr(args, "quiet", False):
+        print(f"{prog.file}: {text}")
+    return EXIT_OK
+
+
 def emit_json(obj) -> None:
     """One JSON document on stdout (compact: it is for programs)."""
     json.dump(obj, sys.stdout, separators=(",", ":"))
