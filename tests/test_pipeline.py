@@ -188,3 +188,31 @@ def test_no_compare_row_is_ok_unless_its_path_is_certified():
     assert line_arc.status == "uncertified"
     assert line_arc.message.startswith("not certified: gouge failed")
     assert line_arc.figures["duration"] is not None
+
+
+def _calls(names: set[str]) -> dict[str, set[str]]:
+    """name -> the ccopt modules (paths relative to the repository) that call it."""
+    import ast
+    root = Path(__file__).resolve().parents[1]
+    found: dict[str, set[str]] = {n: set() for n in names}
+    for path in sorted((root / "ccopt").rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Call):
+                f = node.func
+                name = f.id if isinstance(f, ast.Name) else getattr(f, "attr", None)
+                if name in found:
+                    found[name].add(str(path.relative_to(root)))
+    return found
+
+
+def test_settings_are_resolved_in_one_function_and_stages_ordered_in_one_pipeline():
+    calls = _calls({"resolve_input", "Overrides", "default_style", "plan_feed"})
+    # a job is resolved by resolve_input (ccopt.cases), from the command line's options
+    # (cli.inputs), a sweep row (sweep.tasks) or the API's keywords (cases.make_job)
+    assert calls["resolve_input"] == {"ccopt/cases.py", "ccopt/cli/inputs.py",
+                                      "ccopt/sweep/tasks.py"}
+    assert calls["Overrides"] == calls["resolve_input"]
+    assert calls["default_style"] == {"ccopt/cases.py"}
+    # no command, nor run nor the sweep, plans a job's feed by itself: the pipeline
+    # does (and the comparison its variants' cycle times)
+    assert calls["plan_feed"] == {"ccopt/pipeline.py", "ccopt/compare/timing.py"}
