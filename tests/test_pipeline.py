@@ -216,3 +216,36 @@ def test_settings_are_resolved_in_one_function_and_stages_ordered_in_one_pipelin
     # no command, nor run nor the sweep, plans a job's feed by itself: the pipeline
     # does (and the comparison its variants' cycle times)
     assert calls["plan_feed"] == {"ccopt/pipeline.py", "ccopt/compare/timing.py"}
+
+
+def test_the_tolerance_travels_in_the_job_to_every_verification(tmp_path, capsys):
+    # LinuxCNC's straight joins at outside-break's shallow corners gouge by microns:
+    # within a tolerance of 0.1 those are warnings, with 0 they fail (one more
+    # violation is deeper than either and fails both ways)
+    c = find_case("outside-break")
+    prog = ccopt.read_program(c.program)
+    path = ccopt.compensate(prog, "linuxcnc", radius=c.radius)
+    strict = ccopt.verify(path, prog, radius=c.radius, tolerance=0.0)
+    loose = ccopt.verify(path, prog, radius=c.radius, tolerance=0.1)
+    assert len(strict.violations) > len(loose.violations) and loose.warnings
+    want = (len(loose.violations), len(loose.warnings), 0.1)
+
+    def seen(cert: dict):
+        return len(cert["violations"]), len(cert["warnings"]), cert["tolerance"]
+
+    assert main(["verify", "outside-break", "--style", "linuxcnc", "--tolerance", "0.1",
+                 "--json"]) == 1
+    assert seen(json.loads(capsys.readouterr().out)) == want
+    row = _run_row(tmp_path, capsys, "outside-break", "--style", "linuxcnc", "--tolerance",
+                   "0.1", "--no-compare", codes=(1,))
+    assert seen(row["certificate"]) == want
+    assert main(["compare", "outside-break", "--variants", "linuxcnc", "--tolerance", "0.1",
+                 "--workers", "1", "--json"]) == 0
+    (variant,) = json.loads(capsys.readouterr().out)["variants"]
+    assert variant["violations"] == want[0] and variant["status"] == "uncertified"
+    spec = load_spec({"programs": ["outside-break"], "tolerance": 0.1,
+                      "axes": {"style": "linuxcnc"}})
+    (task,) = expand(spec, resolve_programs(spec))
+    assert task.job.tolerance == 0.1 and task.settings["tolerance"] == 0.1
+    cert = ccopt.pipeline(task.job, program=prog).result().certificate
+    assert seen(cert.to_json()) == want
