@@ -218,8 +218,14 @@ def test_run_compares_with_the_case_radius(capsys, tmp_path):
     assert code == 0, err
     row = json.loads((tmp_path / "summary.json").read_text())["cases"][0]
     assert row["radius"] == 2.0
+    # compared, not refused: each path is built and certified; the case expects a
+    # gouge (case.toml: expect = "gouge") and every variant's path has it, so no
+    # row is ok (issue 29: a row is ok only when its path is certified)
     assert [(v["name"], v["status"]) for v in row["compare"]] == [
-        ("pmac", "ok"), ("fagor-g139-g136", "ok"), ("tangent-arc", "ok")]
+        ("pmac", "uncertified"), ("fagor-g139-g136", "uncertified"),
+        ("tangent-arc", "uncertified")]
+    assert all(v["message"].startswith("not certified: gouge failed") and
+               v["duration"] is not None for v in row["compare"])
 
 
 def test_run_rejects_unknown_variants(capsys, tmp_path):
