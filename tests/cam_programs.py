@@ -98,9 +98,26 @@ def _polygon(rng: random.Random) -> np.ndarray:
         gaps = np.diff(ang + [ang[0] + 2 * math.pi])
         if gaps.min() > 0.35 and gaps.max() < math.pi - 0.2:
             break
-    rad = [rng.uniform(25, 60) for _ in range(n)]
-    cx, cy = rng.uniform(-50, 50), rng.uniform(-50, 50)
-    return np.array([(cx + r * math.cos(a), cy + r * math.sin(a)) for a, r in zip(ang, rad)])
+    while True:
+        rad = [rng.uniform(25, 60) for _ in range(n)]
+        cx, cy = rng.uniform(-50, 50), rng.uniform(-50, 50)
+        pts = np.array([(cx + r * math.cos(a), cy + r * math.sin(a)) for a, r in zip(ang, rad)])
+        if min(abs(_turn(pts, i)) for i in range(n)) >= MIN_TURN:
+            return pts
+
+
+#: Every vertex of a star polygon turns by at least this (radians). LinuxCNC
+#: takes a turn under 0.05 rad as straight on and its join then gouges by
+#: r (1 - cos turn), more than the 1e-3 mm tolerance from 0.02 rad at r = 5:
+#: such vertices are drawn by :func:`slight_turn_program`, whose figure is
+#: known, not here.
+MIN_TURN = 0.06
+
+
+def _turn(pts: np.ndarray, i: int) -> float:
+    a, b, c = pts[i - 1], pts[i], pts[(i + 1) % len(pts)]
+    d1, d2 = _unit(b - a), _unit(c - b)
+    return math.atan2(_cross(d1, d2), float(np.dot(d1, d2)))
 
 
 def _convex(pts: np.ndarray, i: int) -> bool:
@@ -377,3 +394,29 @@ def multipass_program(seed: int) -> tuple[str, tuple[float, ...]]:
            f"G40 G1 X{x} Y{-lead}", "o100 endsub"]
     body = ["G21 G17 G90 G94", *sub] + [f"o100 call [{d}]" for d in ds] + ["M30"]
     return "\n".join(body) + "\n", tuple(ds)
+
+
+def slight_turn_program(seed: int) -> tuple[str, float, float]:
+    """G-code (6 decimals): the outside profile of a rectangle cut clockwise
+    with ``G41``, entered mid-edge by a perpendicular lead, whose top edge is
+    two lines meeting at its middle, lifted or lowered so that they turn by a
+    slight angle there (1e-3 to 0.05 rad, outward or inward); returns
+    ``(text, r, turn)``, the turn worked out from the written coordinates
+    (> 0 turning away from the tool: an outside corner)."""
+    rng = random.Random(seed)
+    w, h = round(rng.uniform(40, 120), 3), round(rng.uniform(20, 60), 3)
+    r = round(rng.uniform(0.5, 5.0), 3)
+    beta = rng.uniform(1e-3, 0.05) * rng.choice((1, -1))
+    lift = round(math.tan(beta / 2) * w / 2, 6)        # > 0: the middle lifted (outside)
+    x = round(rng.uniform(0.3, 0.7) * w, 3)
+    lead = round(r + rng.uniform(2, 6), 3)
+    top = (w / 2, h + lift)
+    body = ["G21 G17 G90 G94", "T1 M6", f"G0 X{x} Y{-lead}", f"G41 D1 G1 X{x} Y0 F600",
+            "G1 X0 Y0", f"G1 X0 Y{h}", f"G1 X{top[0]:.6f} Y{top[1]:.6f}", f"G1 X{w} Y{h}",
+            f"G1 X{w} Y0", f"G1 X{x} Y0", f"G40 G1 X{x} Y{-lead}", "M30"]
+    # written points (0, h) -> top -> (w, h), clockwise: turning right is away
+    # from the tool (on the left, outside)
+    d1 = _unit(np.array(top) - (0.0, h))
+    d2 = _unit(np.array((w, h)) - top)
+    turn = -math.atan2(_cross(d1, d2), float(np.dot(d1, d2)))
+    return "\n".join(body) + "\n", r, turn

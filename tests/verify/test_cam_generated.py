@@ -27,7 +27,7 @@ import math
 import numpy as np
 import pytest
 
-from cam_programs import cam_program, multipass_program
+from cam_programs import cam_program, multipass_program, slight_turn_program
 from ccopt.compensate import compensate
 from ccopt.program import read_text
 from ccopt.verify import verify
@@ -148,3 +148,52 @@ def test_multipass_programs_quick():
 def test_multipass_programs_200():
     for seed in range(5, 205):
         _check_multipass(seed)
+
+
+def _check_slight_turn(seed: int) -> str:
+    """LinuxCNC takes a turn under 0.05 rad as straight on: the next move
+    starts at the last offset point, r cos(turn) from the new element's line,
+    a gouge of up to r (1 - cos turn) whichever way it turns (shapely gives
+    the exact figure); PMAC extends or trims the offsets and keeps r. Returns
+    the LinuxCNC verdict."""
+    from shapely.geometry import LineString, Polygon
+
+    text, r, turn = slight_turn_program(seed)
+    prog = read_text(text, f"slight-{seed}.ngc", "gcode", tool_table={1: 2 * r})
+    assert abs(turn) < 0.05
+    cert = verify(compensate(prog, "pmac"), prog, tolerance=0.0)
+    assert cert.ok and not cert.warnings, (seed, r, turn, cert.summary())
+    path = compensate(prog, "linuxcnc")
+    cert = verify(path, prog)
+    # the depth by shapely: the plate's outline against the tool's straight
+    # pieces made with compensation in force (its corner arcs run at r)
+    ring = Polygon([b.end[:2] for b in prog.blocks
+                    if b.modal.side != 0 and b.motion.is_move][1:]).exterior
+    depth = max(r - ring.distance(LineString([s.start, s.end])) for s in path.segments
+                if s.kind == "line" and s.role.value == "compensated")
+    # at most r (1 - cos turn): the join starts r cos(turn) from the new edge's line
+    assert 0.0 < depth <= r * (1 - math.cos(turn)) * (1 + 1e-9)
+    found = max([v.depth for v in cert.violations + cert.warnings if v.kind == "gouge"],
+                default=0.0)
+    if depth <= cert.eps:                 # within the arithmetic's eps: no violation
+        assert found == 0.0 and cert.verdict == "ok", (seed, r, turn, cert.summary())
+        return cert.verdict
+    assert found == pytest.approx(depth, rel=1e-6, abs=1e-12), (seed, r, turn, cert.summary())
+    assert cert.ok is (depth <= TOL)
+    if cert.ok:
+        which = "outside" if turn > 0 else "inside"
+        for v in cert.warnings:
+            assert v.detail["cause"].startswith(
+                f"LinuxCNC straight join at a {math.degrees(abs(turn)):.3g}-degree {which}"), v
+    return cert.verdict
+
+
+def test_linuxcnc_slight_turns_gouge_by_r_one_minus_cos_quick():
+    verdicts = {_check_slight_turn(seed) for seed in range(12)}
+    assert verdicts == {"failed", "ok within tolerance"}
+
+
+@pytest.mark.slow
+def test_linuxcnc_slight_turns_gouge_by_r_one_minus_cos_300():
+    verdicts = [_check_slight_turn(seed) for seed in range(12, 312)]
+    assert verdicts.count("ok within tolerance") >= 60 and verdicts.count("failed") >= 60
