@@ -23,6 +23,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -91,6 +92,36 @@ class ExportResult:
             return ""
         return (f"; written as {self.file}, not over the existing {self.kept_existing} "
                 f"(left as it was)")
+
+
+#: The header line of every exported program (``ccopt 0.1.0 export: style ...``).
+_EXPORT_MARK = re.compile(r"ccopt \S+ export: style ")
+#: How much of a program's beginning :func:`written_by_ccopt` reads (its header).
+_HEADER_BYTES = 4096
+
+
+def written_by_ccopt(path: str | os.PathLike) -> bool:
+    """Whether the program file ``path`` is one ccopt exported (its header says so)."""
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(_HEADER_BYTES).decode("utf-8", "replace")
+    except OSError:
+        return False
+    return _EXPORT_MARK.search(head) is not None
+
+
+def refuse_foreign_programs(outputs) -> None:
+    """:class:`ProgramError` (exit 2, naming the file) when one of the program
+    files ``outputs`` (.nc, .pmc...) a command would write under names it chose
+    itself (``ccopt run -o DIR``) exists and was not written by ccopt: a program
+    of the user's (``part.pmc`` beside the ``part.nc`` being run), which the
+    run's own ``part.pmc`` would replace. An explicit ``-o FILE`` is the user's
+    choice and replaces its file as any command does."""
+    for out in outputs:
+        out = Path(out)
+        if (out.exists() or out.is_symlink()) and not written_by_ccopt(out):
+            raise ProgramError("not written: a program ccopt did not write is there (one of "
+                               "yours?); give -o another folder, or move it", str(out))
 
 
 def failed_name(out: Path) -> Path:
@@ -356,8 +387,8 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
     :class:`ProgramError`, nothing written, when ``out`` is one of the files
     ``program`` was read from (the same file once links are resolved).
     """
+    refuse_overwriting_inputs([out], inputs_of(program))      # named as the caller gave it
     out = Path(out)
-    refuse_overwriting_inputs([out], inputs_of(program))
     fmt = fmt or FORMATS.get(out.suffix.lower())
     if fmt is None:
         raise ProgramError(f"unknown export format {out.suffix!r}; use one of "
@@ -379,4 +410,5 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
 
 
 __all__ = ["DEFAULT_TOL", "ExportResult", "FORMATS", "export", "failed_name", "readback_path",
-           "roundtrip_error", "write_gcode", "write_pmac", "write_svg"]
+           "refuse_foreign_programs", "roundtrip_error", "write_gcode", "write_pmac", "write_svg",
+           "written_by_ccopt"]
