@@ -72,12 +72,12 @@ def roundtrip_gaps(path, back, tol: float):
     computed ``path`` to the read-back ``back`` (a move missing from the
     file), and from a point of ``back`` to ``path`` (a move the file adds),
     each with its point. Moves of no in-plane length are left out; curves
-    other than lines and arcs are sampled at ``tol / 50`` (an upper bound,
-    at most ``tol / 100`` above the distance)."""
+    other than lines and arcs are sampled at ``tol / 10`` (an upper bound,
+    at most ``tol / 20`` above the distance; measured: at most 0.5 tol)."""
     computed = [seg for seg in path.segments if seg.length > 0]
     read = [seg for seg in back.segments if seg.length > 0]
     out = []
-    for these, those, spacing in ((computed, read, None), (read, computed, tol / 50)):
+    for these, those, spacing in ((computed, read, None), (read, computed, tol / 10)):
         pts = np.vstack([seg.geom.point(np.linspace(0, seg.length, 41)) for seg in these])
         d = distance_bound(pts, [s.geom for s in those], spacing=spacing)
         worst = int(np.argmax(d))
