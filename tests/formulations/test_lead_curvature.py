@@ -37,9 +37,13 @@ def test_optimised_leads_within_the_curvature_bound(case, variant):
     bound = bc.lead_curvature_bound(ref)
     cmp = compare(prog, [variant], limits=job.limits(), radius=job.radius, side=job.side)
     row = cmp[variant]
-    if row.status != "ok":
+    # a path the verifier does not certify (its row "uncertified" since issue 29: the
+    # cases that expect a gouge keep it in the part of PMAC's path the leads do not
+    # touch) is checked as a certified one; only a rejected blend has no path
+    if row.toolpath is None:
         assert row.status == "rejected", row.message
         return
+    assert row.status in ("ok", "uncertified")
     assert row.figures["max_curvature"] <= bound
     curves = [s.geom for s in row.toolpath.segments if isinstance(s.geom, BezierCurve)]
     for g in curves:
