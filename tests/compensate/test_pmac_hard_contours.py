@@ -223,3 +223,37 @@ def test_hard_contours():
 @pytest.mark.slow
 def test_many_hard_contours():
     run(SLOW)
+
+
+def test_array_route_equals_reference_on_hard_contours():
+    """The vectorised, column route gives the reference route's path on the
+    hard contours too, or the same refusal at the same block."""
+    from ccopt.compensate.pmac import PmacStyle, assemble
+    from ccopt.compensate.scan import scan_program
+    from test_column_path import same_segments
+    tally = Counter()
+
+    def route(prog, fast: bool):
+        try:
+            return assemble(PmacStyle(), scan_program(prog, bulk=fast), prog,
+                            vectorised=fast, columns=fast)
+        except CompensationError as exc:
+            return exc
+
+    @settings(max_examples=QUICK, deadline=None, suppress_health_check=list(HealthCheck))
+    @given(hard_contours())
+    def one(contour):
+        prog = contour_program(*contour)
+        fast, ref = route(prog, True), route(prog, False)
+        if isinstance(ref, CompensationError) or isinstance(fast, CompensationError):
+            assert isinstance(fast, CompensationError) and isinstance(ref, CompensationError), \
+                (fast, ref)
+            assert (fast.line, str(fast)) == (ref.line, str(ref))
+            tally["same refusal"] += 1
+            return
+        same_segments(fast.segments, ref.segments)
+        tally["same path"] += 1
+
+    one()
+    assert_share("pmac hard contours, column route", tally, {"same path", "same refusal"},
+                 1.0, QUICK)
