@@ -9,7 +9,7 @@ from ccopt.cli.inputs import limits_text, reading
 from ccopt.cli.options import (add_limit_options, add_output_option, add_program,
                                add_quiet_option, add_reading_options, add_style_options,
                                add_ts_option, describe, positive_float)
-from ccopt.cli.output import EXIT_OK, emit_json, nothing_to_do
+from ccopt.cli.output import EXIT_OK, emit_json
 from ccopt.feed import PLANNERS
 from ccopt.pipeline import StageClock, pipeline
 
@@ -54,8 +54,6 @@ def cmd_feed(args: argparse.Namespace) -> int:
     if not args.planner:
         own["planners"] = ("toppra",)
     with reading(args, "feed", **own) as (work, prog, say):
-        if prog.nothing_to_verify():
-            return nothing_to_do(args, prog, "plan")
         # each planner shown as it starts (the pipeline's checkpoints)
         done = pipeline(work, program=prog, verify=False, clock=StageClock(say),
                         checkpoint=say).result()
