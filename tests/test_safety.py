@@ -292,3 +292,16 @@ def test_bad_programs_are_located_and_bounded(tmp_path, name, command):
     line, col = where
     located = [ln for ln in err.splitlines() if ln.startswith(f"{prog}:{line}:{col}: ")]
     assert code == 2 and located and says in located[0], err
+
+
+def test_the_arc_fit_limit_is_located(capsys, tmp_path, monkeypatch):
+    # a spiral the G-code export fits with ~2000 arcs, against a limit lowered to
+    # 64 (the real one, 65536, is the same code): exit 2 at the spiral's line,
+    # nothing written (it was a ValueError, exit 3)
+    from ccopt.export import arcfit
+    monkeypatch.setattr(arcfit.fit_arcs, "__defaults__", (64,))
+    prog = tmp_path / "spiral.pmc"
+    prog.write_text("LINEAR ABS F10\nX1 Y0\nCIRCLE1 X-900000 Y0 I-1 J0\n")
+    code, _, err = run_cli(capsys, "export", str(prog), "-o", str(tmp_path / "spiral.nc"))
+    assert code == 2 and err.startswith(f"{prog}:3:9: cannot fit the spiral within "), err
+    assert not (tmp_path / "spiral.nc").exists()

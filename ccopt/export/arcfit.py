@@ -53,6 +53,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from ccopt.errors import ProgramError
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
 from ccopt.geometry.curve import (
@@ -101,6 +102,26 @@ _CHORD_ALONG_TANGENT_REL = 1e-12
 #: Angular slack (radians) when testing that a sample's polar angle lies in an
 #: arc's sweep: the ends themselves come back from atan2 a few ulps off.
 _SWEEP_SLACK = 1e-12
+
+
+class FitError(ProgramError, ValueError):
+    """A spiral or blend curve the fit cannot follow within its piece limit
+    (or tolerance), located at the program line of the segment: a
+    :class:`ProgramError` (exit 2, ``file:line:col: message``) and still a
+    ValueError for the callers that try a looser fit."""
+
+
+def fit_located(seg, fit, *args):
+    """``fit(*args)`` for the tool-path segment ``seg``; a ValueError it raises
+    (the piece limit) comes out as a :class:`FitError` at ``seg``'s program line."""
+    try:
+        return fit(*args)
+    except ValueError as exc:
+        src = seg.block.source if seg.block is not None else None
+        raise FitError(f"{exc} (line {src.line if src else '?'}'s move is long for the fit "
+                       "tolerance: give a larger --tol)",
+                       src.file if src else "<tool path>", src.line if src else None,
+                       src.col if src else None) from None
 
 
 def fit_tolerance(tol: float, digits: int) -> float:

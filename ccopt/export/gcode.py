@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 
-from ccopt.export.arcfit import fit_arcs, fit_bezier, fit_tolerance
+from ccopt.export.arcfit import fit_arcs, fit_bezier, fit_located, fit_tolerance
 from ccopt.export.text import gcode_comment
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
@@ -147,7 +147,7 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
         elif isinstance(g, Arc):
             wr.arc(idx, g, seg.w0, seg.w1, seg.feed)
         elif isinstance(g, Spiral):
-            pieces = fit_arcs(g, fit_tolerance(seg_tol.get(idx, tol), digits))
+            pieces = fit_located(seg, fit_arcs, g, fit_tolerance(seg_tol.get(idx, tol), digits))
             total = g.length
             s_acc = 0.0
             for piece in pieces:
@@ -156,8 +156,8 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
                 wr.arc(idx, piece.arc, seg.w0, w, seg.feed, piece.bound)
                 max_err = max(max_err, piece.bound)
         elif isinstance(g, BezierCurve):
-            for piece, w in bezier_pieces(g, seg.w0, seg.w1,
-                                          fit_tolerance(seg_tol.get(idx, tol), digits)):
+            for piece, w in fit_located(seg, bezier_pieces, g, seg.w0, seg.w1,
+                                        fit_tolerance(seg_tol.get(idx, tol), digits)):
                 if isinstance(piece.geom, Line):
                     wr.line(idx, piece.geom, w, seg.feed, piece.bound)
                 else:

@@ -13,7 +13,7 @@ segment is written in its own plane: ``NORMAL K-1`` (XY), ``J-1`` (ZX) or
 """
 from __future__ import annotations
 
-from ccopt.export.arcfit import DEFAULT_TOL, fit_tolerance
+from ccopt.export.arcfit import DEFAULT_TOL, fit_located, fit_tolerance
 from ccopt.export.gcode import bezier_pieces, fmt
 from ccopt.export.text import pmac_comment
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
@@ -121,8 +121,8 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
                 circle(idx, piece, seg.w0 + (seg.w1 - seg.w0) * min(s_acc / total, 1.0),
                        seg.feed)
         elif isinstance(g, BezierCurve):
-            for fp, w in bezier_pieces(g, seg.w0, seg.w1,
-                                       fit_tolerance(seg_tol.get(idx, tol), digits)):
+            for fp, w in fit_located(seg, bezier_pieces, g, seg.w0, seg.w1,
+                                     fit_tolerance(seg_tol.get(idx, tol), digits)):
                 if isinstance(fp.geom, Line):
                     emit(idx, "RAPID" if seg.feed is None else "LINEAR", coords(fp.geom.end, w),
                          seg.feed, fp.geom, fp.bound)
