@@ -75,7 +75,9 @@ def run_one(job: Job, out: Path | None, opts: RunOptions,
     done = pipeline(job, compare=opts.compare, export=targets, workers=opts.compare_workers,
                     clock=clock)
     _fill(row, done, files)
-    if done.error is None and out is not None:
+    # a program with no moves: nothing to plot or certify (issue 29)
+    nothing = done.program.nothing_to_verify() if done.program is not None else None
+    if done.error is None and out is not None and not nothing:
         try:
             clock("export")
             _write_files(out / job.label, done, row, files)
@@ -89,10 +91,9 @@ def run_one(job: Job, out: Path | None, opts: RunOptions,
         compensated = done.path is not None
         failed = "error (expected)" if job.expect == "error" and not compensated else "error"
         row.update(status=failed, message=str(done.error))
-    elif done.program is not None and done.program.nothing_to_verify():
+    elif nothing:
         # said in so many words, not "ok" over no checks (issue 29); exit 0
-        row.update(status="nothing to verify", message=f"{done.program.file}: "
-                                                       f"{done.program.nothing_to_verify()}")
+        row.update(status="nothing to verify", message=f"{done.program.file}: {nothing}")
     else:
         row["status"] = _status(job.expect, done.certificate.ok)
     row["stage_seconds"] = clock.seconds

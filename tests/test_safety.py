@@ -305,3 +305,13 @@ def test_the_arc_fit_limit_is_located(capsys, tmp_path, monkeypatch):
     code, _, err = run_cli(capsys, "export", str(prog), "-o", str(tmp_path / "spiral.nc"))
     assert code == 2 and err.startswith(f"{prog}:3:9: cannot fit the spiral within "), err
     assert not (tmp_path / "spiral.nc").exists()
+
+
+def test_the_feed_sampling_limit_names_the_line(capsys, tmp_path):
+    # 100 m at F100 (1.67 mm/s): 60000 s, 6e7 samples at 1 ms, past the 2e7
+    # the samples may take; the message names the line that takes the time
+    prog = tmp_path / "long.ngc"
+    prog.write_text("G21 G17 G90\nG0 X0 Y0\nG1 X1 Y0 F6000\nG1 X100000 Y0 F100\nM2\n")
+    code, _, err = run_cli(capsys, "feed", str(prog))
+    assert code == 2 and "Traceback" not in err
+    assert err.startswith(f"{prog}:4:1: sampling 59999") and "(line 4 alone takes 5999" in err
