@@ -100,11 +100,11 @@ def test_under_jerk_limits_every_entry_point_takes_the_jerk_planner(tmp_path, ca
 
 def test_run_and_verify_certify_the_same_path_with_side_and_radius(tmp_path, capsys):
     # PMAC on the right of leadin-inside-line's contour with a 1.5 cutter: certified
-    # against the overridden side; judged against the programmed side it would fail
+    # against the overridden side; judged against the programmed side (left) it fails
     c = find_case(CASE)
     prog = ccopt.read_program(c.program)
     path = ccopt.compensate(prog, "pmac", radius=1.5, side="right")
-    assert not ccopt.verify(path, prog).ok          # without the overrides: wrong side
+    assert not ccopt.verify(path, prog, radius=1.5, side="left").ok
     want = _by_hand(CASE, radius=1.5, side="right")
     assert want[1] is True
     overrides = ["--side", "right", "--radius", "1.5"]

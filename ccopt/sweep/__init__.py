@@ -118,7 +118,7 @@ def sweep(spec, client=None, *, out: str | os.PathLike | None = None,
     todo = [t for t in tasks if t.id not in have]
     last = int(done["run"].max()) if done is not None and len(done) else 0
     run = last + 1 if todo else last  # a run that computes nothing is no new run
-    flusher = Flusher(folder, done, [t.id for t in tasks], columns(spec, planned(tasks)))
+    flusher = Flusher(folder, done, [t.id for t in tasks], columns(spec, planned(spec, tasks)))
     options = {"client": client, "scheduler": scheduler, "workers": workers,
                "task_timeout": task_timeout, "progress": progress, "serial": serial}
     try:

@@ -150,10 +150,14 @@ def make_job(program: ProgramInput, settings: dict, spec: Spec) -> Job:
                          label=program.label)
 
 
-def planned(tasks: list[Task]) -> list[str]:
-    """Every planner some task plans, in the registry's order (the table's
-    ``cycle_time_<planner>`` columns); a task whose limits are bad plans none
-    (its row says why)."""
+def planned(spec: Spec, tasks: list[Task]) -> list[str]:
+    """The planners of the table's ``cycle_time_<planner>`` columns: the spec's
+    (its ``planner`` axis, else ``planners``) in its order, else every planner
+    some task plans (its certified one), in the registry's order; a task whose
+    limits are bad plans none (its row says why)."""
+    named = list(spec.axes.get("planner", [])) or list(spec.planners or ())
+    if named:
+        return named
     names: set[str] = set()
     for t in tasks:
         try:
