@@ -315,3 +315,12 @@ def test_the_feed_sampling_limit_names_the_line(capsys, tmp_path):
     code, _, err = run_cli(capsys, "feed", str(prog))
     assert code == 2 and "Traceback" not in err
     assert err.startswith(f"{prog}:4:1: sampling 59999") and "(line 4 alone takes 5999" in err
+
+
+def test_api_export_refuses_the_paths_own_program_without_program(workdir):
+    # no program= given: the tool path's moves still say which file they came from
+    path = ccopt.compensate(read_program("p.pmc"))
+    before = tree(workdir)
+    with pytest.raises(ProgramError, match="not written: the output is a link to the input"):
+        ccopt.export(path, "link-p.pmc")
+    assert tree(workdir) == before

@@ -130,10 +130,16 @@ def failed_name(out: Path) -> Path:
     return out.with_name(f"{out.stem}.failed{out.suffix}")
 
 
-def inputs_of(program: Program | None) -> tuple[str, ...]:
+def inputs_of(program: Program | None, path: ToolPath | None = None) -> tuple[str, ...]:
     """The files ``program`` was read from (:data:`~ccopt.program.model.INPUT_FILES`;
-    none for a program read from text)."""
-    return tuple(program.meta.get(INPUT_FILES, ())) if program is not None else ()
+    none for a program read from text), and those ``path``'s moves and dwells
+    come from (their blocks' source files: the program even when none is given)."""
+    files = dict.fromkeys(program.meta.get(INPUT_FILES, ()) if program is not None else ())
+    if path is not None:
+        files.update(dict.fromkeys(
+            [seg.block.source.file for seg in path.segments if seg.block is not None]
+            + [blk.source.file for _, _, blk in path.dwells if blk is not None]))
+    return tuple(files)
 
 
 def _write_checked(res: ExportResult, out: Path, text: str, program: Program | None) -> None:
@@ -385,9 +391,10 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
     verification fails is written to ``NAME.failed.EXT`` when ``out`` exists
     (``res.file`` then names it, ``res.kept_existing`` the file left alone).
     :class:`ProgramError`, nothing written, when ``out`` is one of the files
-    ``program`` was read from (the same file once links are resolved).
+    ``program`` or ``path``'s moves were read from (the same file once links
+    are resolved).
     """
-    refuse_overwriting_inputs([out], inputs_of(program))      # named as the caller gave it
+    refuse_overwriting_inputs([out], inputs_of(program, path))      # named as the caller gave it
     out = Path(out)
     fmt = fmt or FORMATS.get(out.suffix.lower())
     if fmt is None:
