@@ -45,6 +45,14 @@ class Role(str, enum.Enum):
 #: controller itself makes: e.g. a fitted arc with role ``corner`` is a piece
 #: of a blend, not an added corner arc about a programmed corner.
 FITTED_PIECES = "fitted_pieces"
+#: ``ToolPath.meta`` key: the settings compensation made the path with, what
+#: it knew beyond the program: ``{"radius": float | None, "side": int | None}``,
+#: the cutter radius and side (+1 left, -1 right) that overrode the program's
+#: (``None``: the program's own). With the blocks each segment carries, they
+#: give every segment's side and radius in force
+#: (:meth:`PathSegment.compensation`); the verifier reads them instead of
+#: being told the overrides again, and the JSON schema carries them.
+COMPENSATION = "compensation"
 #: ``ToolPath.meta`` key: segment index -> corner angle (radians, > 0 turning
 #: away from the tool side) of the tool segments that start at the previous
 #: move's offset end because the controller took a slight turn as straight on
@@ -161,9 +169,22 @@ class PathSegment:
         _set_plane(obj, plane)
         return obj
 
-    def to_json(self) -> dict:
+    def compensation(self, overrides: dict | None = None) -> tuple[int, float | None]:
+        """``(side, radius)`` in force for this segment's block (+1 left, -1
+        right, 0 off; program units), after the ``overrides`` the path was made
+        with (:data:`COMPENSATION`); ``(0, 0.0)`` without a block."""
+        if self.block is None:
+            return 0, 0.0
+        o = overrides or {}
+        return self.block.compensation_in_force(o.get("radius"), o.get("side"))
+
+    def to_json(self, overrides: dict | None = None) -> dict:
         """The segment as the tool-path JSON schema (README, ``ccopt compensate``):
-        in-plane ``start``/``end`` in its ``plane``, machine ``start_xyz``/``end_xyz``."""
+        in-plane ``start``/``end`` in its ``plane``, machine ``start_xyz``/``end_xyz``;
+        ``side`` and ``radius_in_force`` of its block after ``overrides``
+        (:meth:`compensation`), and ``surface: "air"`` for the moves
+        compensation itself knows are no part surface (rapids, lead-ins,
+        lead-outs, uncompensated moves)."""
         out: dict[str, Any] = {
             "kind": self.kind,
             "plane": self.plane,
@@ -190,8 +211,18 @@ class PathSegment:
             out["degree"] = int(getattr(g, "degree", 0))
         if self.feed is not None:
             out["feed"] = self.feed
+        if self.block is not None:
+            k, r = self.compensation(overrides)
+            out["side"] = k
+            out["radius_in_force"] = r
+        if self.role in _AIR_ROLES:
+            out["surface"] = "air"
         return out
 
+
+#: Roles of segments that are no part surface whatever the program: the tool
+#: is moving to or from the contour, or compensation is off.
+_AIR_ROLES = frozenset((Role.RAPID, Role.LEAD_IN, Role.LEAD_OUT, Role.UNCOMPENSATED))
 
 # the slots' own descriptors (PathSegment.trusted): no frozen __setattr__
 _set_geom, _set_role, _set_block, _set_w0, _set_w1, _set_feed, _set_plane = (
@@ -372,14 +403,24 @@ class ToolPath:
             return columns.planes() or (self.plane,)
         return tuple(dict.fromkeys(s.plane for s in self.segments)) or (self.plane,)
 
+    @property
+    def compensation(self) -> dict | None:
+        """The overrides compensation made the path with (:data:`COMPENSATION`),
+        ``None`` for a path that does not say (a foreign path, one built by hand)."""
+        return self.meta.get(COMPENSATION)
+
     def to_json(self) -> dict:
-        return {
+        out = {
             "style": self.style,
             "radius": self.radius,
             "plane": self.plane,
             "units": self.units,
-            "segments": [s.to_json() for s in self.segments],
         }
+        overrides = self.compensation
+        if overrides is not None:
+            out["overrides"] = {"radius": overrides.get("radius"), "side": overrides.get("side")}
+        out["segments"] = [s.to_json(overrides) for s in self.segments]
+        return out
 
 
 def effective_side_radius(block: Block, radius: float | None,

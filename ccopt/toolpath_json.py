@@ -11,7 +11,13 @@ convenience and not read: they follow from ``start``/``end``, ``w`` and
 ``plane``, which are what a segment is rebuilt from; arcs and spirals
 ``center``, ``ccw`` and the signed ``sweep`` (radians), arcs ``radius``,
 spirals ``radius`` as ``[rho0, rho1]``; curves ``control_points`` (a Bezier
-curve of ``degree`` = points - 1). Another CAM system, a controller log or an
+curve of ``degree`` = points - 1). A path ccopt made also says what
+compensation knew: ``overrides`` (``{"radius", "side"}``, the cutter radius and
+side that replaced the program's, null for the program's own; read back, the
+verifier applies them as compensation did) and per segment ``side``,
+``radius_in_force`` and ``surface: "air"`` (written for the reader: they follow
+from the block and the overrides). Files without them (older ones, other
+systems') are read as before and their settings inferred. Another CAM system, a controller log or an
 older export written in it can be certified against the program's contour
 (``ccopt verify PROGRAM --toolpath FILE.json``).
 
@@ -37,7 +43,7 @@ from ccopt.errors import ProgramError
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.curve import BezierCurve
 from ccopt.program.model import PLANE_AXES, Block, Program
-from ccopt.toolpath import PathSegment, Role, ToolPath
+from ccopt.toolpath import COMPENSATION, PathSegment, Role, ToolPath
 
 #: A segment's stated ``start``/``end`` may differ from the rebuilt primitive's by
 #: this fraction of ``max(1, size)`` (radius or length): the JSON writer prints
@@ -194,8 +200,25 @@ def toolpath_from_json(data: Any, program: Program | None = None,
     if not isinstance(style, str):
         raise reader.fail(f"'style' must be a string, not {style!r}")
     out = tuple(reader.segment(s, k) for k, s in enumerate(segs))
+    meta = {}
+    if "overrides" in data:
+        meta[COMPENSATION] = _overrides(reader, data["overrides"])
     return ToolPath(out, plane=out[0].plane if out else plane, style=style, radius=radius,
-                    units=units)
+                    units=units, meta=meta)
+
+
+def _overrides(reader: _Reader, value) -> dict:
+    """The ``overrides`` object: ``{"radius": number >= 0 | null, "side": 1 | -1 | null}``."""
+    if not isinstance(value, dict):
+        raise reader.fail(f"'overrides' must be an object with 'radius' and 'side', not {value!r}")
+    radius, side = value.get("radius"), value.get("side")
+    if radius is not None:
+        radius = reader.number(radius, "'overrides' 'radius'", "")
+        if radius < 0:
+            raise reader.fail(f"'overrides' 'radius' must be >= 0, not {radius!r}")
+    if side not in (None, 1, -1) or isinstance(side, bool):
+        raise reader.fail(f"'overrides' 'side' must be 1 (left), -1 (right) or null, not {side!r}")
+    return {"radius": radius, "side": side}
 
 
 def read_toolpath_json(path: str | Path, program: Program | None = None) -> ToolPath:

@@ -155,3 +155,36 @@ def test_arc_end_edited_without_its_arc_is_refused(capsys, tmp_path):
     f.write_text(json.dumps(data))
     code, _, err = run(capsys, "verify", "pocket", "--toolpath", str(f))
     assert code == 2 and f"{f}: segment 4: 'end' (6, 3.5) is not the arc's own end" in err
+
+
+def test_overrides_and_each_segments_side_and_radius_travel_in_the_json():
+    # compensated on the right with r = 2.5 (the pocket is programmed CC1, r 3):
+    # the file says so, per segment too, and verifying it read back without
+    # being told gives the certificate of the path verified as made
+    case = next(c for c in bundled_cases() if c.name == "pocket")
+    prog = ccopt.read_program(case.program)
+    path = ccopt.compensate(prog, "pmac", radius=2.5, side="right")
+    data = json.loads(json.dumps(path.to_json()))
+    assert data["overrides"] == {"radius": 2.5, "side": -1}
+    on = [s for s in data["segments"] if s["role"] in ("compensated", "corner")]
+    assert on and all(s["side"] == -1 and s["radius_in_force"] == 2.5 for s in on)
+    assert all(s.get("surface") == "air" for s in data["segments"]
+               if s["role"] in ("rapid", "lead-in", "lead-out", "uncompensated"))
+    back = toolpath_from_json(data, prog)
+    assert back.compensation == {"radius": 2.5, "side": -1}
+    got, want = ccopt.verify(back, prog), ccopt.verify(path, prog, radius=2.5, side="right")
+    assert got.verdict == want.verdict and got.radius == want.radius == 2.5
+    for a, b in zip(got.checks, want.checks):   # figures up to the rebuild's rounding
+        assert (a.name, a.ok, a.count, a.violations) == (b.name, b.ok, b.count, b.violations)
+        assert a.figure == pytest.approx(b.figure, abs=1e-12)
+    # a file without them (older, or another system's) is read and inferred as before
+    del data["overrides"]
+    assert toolpath_from_json(data, prog).compensation is None
+
+
+@pytest.mark.parametrize("bad", [{"radius": -1, "side": None}, {"radius": None, "side": 2},
+                                 "left", {"radius": None, "side": True}])
+def test_bad_overrides_are_refused(bad):
+    data = {"segments": [], "overrides": bad}
+    with pytest.raises(ccopt.ProgramError, match="overrides"):
+        toolpath_from_json(data, None)

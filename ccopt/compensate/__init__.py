@@ -15,7 +15,7 @@ from ccopt.compensate.linuxcnc import LinuxcncStyle
 from ccopt.compensate.pmac import PmacStyle
 from ccopt.errors import ProgramError
 from ccopt.program.model import Program
-from ccopt.toolpath import ToolPath
+from ccopt.toolpath import COMPENSATION, ToolPath
 
 SIDES = {"left": 1, "right": -1, None: None}
 
@@ -59,7 +59,11 @@ def compensate(program: Program, style: str = "pmac", *, radius: float | None = 
         engine = STYLES[style](**options)
     except (TypeError, ValueError) as exc:
         raise ProgramError(f"bad option for style {style}: {exc}", program.file) from None
-    return engine.compensate(program, radius=radius, side=side)
+    path = engine.compensate(program, radius=radius, side=side)
+    # what compensation knew beyond the program: recorded, not inferred again
+    path.meta[COMPENSATION] = {"radius": None if radius is None else float(radius),
+                               "side": None if side is None else int(side)}
+    return path
 
 
 __all__ = ["STYLES", "compensate"]

@@ -131,9 +131,7 @@ class _Move:
     centre: np.ndarray | None = None      # arcs
     turn: int = 0                          # arcs: LinuxCNC turn (+-n)
     programmed_sweep: float = 0.0          # arcs: 0 = never checked (corner arcs)
-    join: float = 0.0                      # LinuxCNC's corner angle beta when the move
-                                           # starts at the last offset point (a slight
-                                           # turn taken as straight on), else 0
+    join: float = 0.0                      # beta of a slight turn taken as straight on
 
 
 @dataclass
@@ -143,9 +141,8 @@ class _Dwell:
 
 
 def _straight_join(beta: float, small: float) -> float:
-    """``beta`` when a move with corner angle ``beta`` starts at the last offset
-    point (a turn of at most ``small`` either way, taken as straight on), else 0."""
-    return beta if beta != 0.0 and -small <= beta <= small else 0.0
+    """``beta`` for a turn of at most ``small`` either way (straight on), else 0."""
+    return beta if -small <= beta <= small else 0.0
 
 
 def _err(block: Block, message: str) -> CompensationError:
@@ -207,8 +204,7 @@ class _Interpreter:
         else:
             geom = self._arc_geometry(s, item)
         feed = None if item.rapid else item.block.feed
-        if item.join != 0.0:
-            self.joins[len(self.segs)] = item.join
+        self.joins.update({len(self.segs): item.join} if item.join else {})
         self.segs.append(PathSegment(geom, item.role, item.block, self.tip_w, item.w1, feed))
         self.tip = np.asarray(item.end, float).copy()
         self.tip_w = item.w1

@@ -238,7 +238,7 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
     cblocks = tuple(mv.moves[q] for q in sel) if sel.size < n else tuple(mv.moves)
     elements = mv.elements(sel, cblocks)
     if decisions.OPEN_END_EXEMPTION:
-        _close_joined_ends(elements, open_start, open_end, eps)
+        _close_joined_ends(elements, open_start, open_end, np.cumsum(~prev_in[sel]), eps)
     clearance = np.where(radius_change[sel], np.minimum(r[sel], prev_r[sel]), r[sel])
     return Contour(cblocks, elements, k[sel], r[sel], clearance, steady[sel], open_start,
                    open_end, mv.plane, tuple(mv.moves), status, k, r, elem_idx, tuple(notes),
@@ -246,13 +246,15 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
 
 
 def _close_joined_ends(elements: Packed, open_start: np.ndarray, open_end: np.ndarray,
-                       eps: float) -> None:
-    """An end is open only where the surface really stops: a start that another
-    element of the contour ends at (within ``eps``), or an end another one
-    starts at, is a joint of the surface, not an open end (in place). A
-    closed loop entered by a lead is the case: its first element follows the
-    lead in the program, but its start is where its last element ends, so a
-    lead leaving the loop's corner is held to that corner."""
+                       episode: np.ndarray, eps: float) -> None:
+    """An end is open only where the surface really stops: a start that
+    another element of the same run of contour moves (``episode``) ends at
+    within ``eps``, or an end another one starts at, is a joint of the
+    surface, not an open end (in place). A closed loop entered by a lead is
+    the case: its first element follows the lead in the program, but its start
+    is where its last element ends, so a lead leaving the loop's corner is
+    held to that corner. Another pass's element meeting it there is no joint
+    (passes are separate runs, each with its own leads)."""
     if not (open_start.any() or open_end.any()):
         return
     # deferred: scipy.spatial would add 0.3 s to every `import ccopt`
@@ -262,12 +264,10 @@ def _close_joined_ends(elements: Packed, open_start: np.ndarray, open_end: np.nd
         q = np.flatnonzero(opened)
         if not q.size:
             continue
-        k = min(2, there.shape[0])
-        dist, idx = cKDTree(there).query(here[q], k=k)
-        dist, idx = dist.reshape(q.size, k), idx.reshape(q.size, k)
-        # another element's end (not the element's own other end)
-        joined = ((dist <= eps) & (idx != q[:, None])).any(axis=1)
-        opened[q[joined]] = False
+        near = cKDTree(there).query_ball_point(here[q], eps)
+        for j, others in zip(q.tolist(), near):
+            if any(o != j and episode[o] == episode[j] for o in others):
+                opened[j] = False
 
 
 def _approaches(k: np.ndarray, prev_k: np.ndarray, side_change: np.ndarray) -> dict[int, str]:

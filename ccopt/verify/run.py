@@ -210,6 +210,11 @@ def _verify(toolpath, program, profile, eps, radius, side, limits_tol,
                            program.file)
     if side not in SIDES:
         raise ProgramError(f"side must be left or right, not {side!r}", program.file)
+    if radius is None and side is None and toolpath.compensation is not None:
+        # a path ccopt made says the overrides it was made with: apply them
+        # as compensation did, rather than infer them from its radius
+        radius = toolpath.compensation.get("radius")
+        side = toolpath.compensation.get("side")
     runs = plane_runs(toolpath, program)
     if runs is not None:
         # in several planes: each run of one plane against its own contour

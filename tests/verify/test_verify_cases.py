@@ -180,7 +180,11 @@ def test_wrong_side_fails_the_side_check():
     # The pocket is cut with CC1 (tool inside). Compensating it on the right
     # puts every fully compensated segment at distance r = 3 on the other side:
     # its signed offset is -3, not +3.
-    case, prog, path = run_case("pocket", side="right")
+    case, prog, made = run_case("pocket", side="right")
+    # a path that says it was made on the right is verified as made
+    # (test_recorded_overrides_verify_as_given); one that does not (another
+    # system's, or ccopt's with the record dropped) is held to the program
+    path = replace(made, meta={})
     cert = verify(path, prog)
     side = cert.check("side")
     assert not side.ok
@@ -190,6 +194,20 @@ def test_wrong_side_fails_the_side_check():
     # and the right path against a right-side program is fine again
     cert2 = verify(path, prog, side="right")
     assert cert2.check("side").ok and cert2.check("side").figure == pytest.approx(3.0, abs=1e-9)
+
+
+def test_recorded_overrides_verify_as_given():
+    # compensate(side=, radius=) records them on the path: verify without them
+    # certifies the same path exactly as verify told them does
+    prog = ccopt.read_program(find_case("pocket").program)
+    path = compensate(prog, "pmac", side="right", radius=2.5)
+    assert path.compensation == {"radius": 2.5, "side": -1}
+    told = verify(path, prog, side="right", radius=2.5)
+    recorded = verify(path, prog)
+    assert recorded.to_json() == told.to_json()
+    # on the right of the pocket's wall: at r = 2.5 on the side it was made
+    assert recorded.check("side").ok
+    assert recorded.check("side").figure == pytest.approx(2.5, abs=1e-9)
 
 
 def test_contact_gap_where_the_tool_is_pulled_away():
