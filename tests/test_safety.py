@@ -284,8 +284,8 @@ def test_bad_programs_are_located_and_bounded(tmp_path, name, command):
             assert code == 0 and "programmed path 0.0000 mm" in out
         elif command == "export":      # the written file's line says it
             assert code == 0 and "nothing to verify: the program has no moves" in out
-        elif command == "feed":        # plans what there is: a dwell's time, or none
-            assert code == 0 and "toppra" in out
+        elif command == "feed":        # says so, and plans what there is: a dwell's time
+            assert code == 0 and f"{prog}: nothing to verify" in out and "toppra" in out
         else:
             assert code == 0 and f"{prog}: {says}" in out + err, (out, err)
         return

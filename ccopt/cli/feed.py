@@ -70,6 +70,8 @@ def cmd_feed(args: argparse.Namespace) -> int:
                                             "max_feed_ratio")},
                    "planners": out})
     elif not args.quiet:
+        if prog.nothing_to_verify():    # said so; the table is its dwells' time (issue 29)
+            print(f"{prog.file}: {prog.nothing_to_verify()} (below: its dwells' time, if any)")
         print(f"{prog.file}: style {path.style}, tool path {path.length:.4f} {path.units}, "
               f"{limits_text(limits, work)}")
         print("planner   duration_s  vs_first  max_vel_ratio  max_acc_ratio  max_jerk_ratio  "
