@@ -32,6 +32,7 @@ def overrides(args: argparse.Namespace, **command) -> Overrides:
     given = {name: getattr(args, name, None) for name in STYLE_OPTIONS}
     lead_radius = getattr(args, "lead_radius", None)
     planners = [n for group in getattr(args, "planner", None) or () for n in group]
+    variants = chosen_variants(args) if hasattr(args, "variants") else None
     settings = dict(
         style=getattr(args, "style", None), radius=getattr(args, "radius", None),
         side=getattr(args, "side", None), vmax=getattr(args, "vmax", None),
@@ -45,8 +46,7 @@ def overrides(args: argparse.Namespace, **command) -> Overrides:
         limits_tol=getattr(args, "limits_tol", None),
         part_lines=getattr(args, "part_lines", None),
         toolpath=getattr(args, "toolpath", None),
-        variants=tuple(chosen_variants(args) or ()) or None if hasattr(args, "variants")
-        else None,
+        variants=tuple(variants) if variants else None,
         blend_options={} if lead_radius is None else {"lead_radius": lead_radius},
         reading=ReadOptions(
             dialect=getattr(args, "dialect", None), tool_table=getattr(args, "tool_table", None),
