@@ -35,8 +35,10 @@ import blend_checks as bc
 #: never below the true one, so asserting it <= delta is conservative.
 SPACING = 2e-4
 FEED_ROLES = (Role.LEAD_IN, Role.COMPENSATED, Role.CORNER, Role.LEAD_OUT)
-#: Sampled at 10 kHz no axis exceeds a limit by more than 0.5 % (issue 18's acceptance).
-OVER = 1.005
+#: Sampled at 10 kHz no axis exceeds a limit by more than the certificate's tolerance
+#: (0.1 %, what `ccopt verify --feed` and `run` hold the jerk planner's profiles to;
+#: issue 18's acceptance allowed 0.5 %).
+OVER = 1.0 + LIMITS_TOL
 
 
 def _samples(path) -> np.ndarray:
@@ -93,10 +95,8 @@ def test_smoother_is_20_percent_faster_under_jerk(name):
     smp = prof.sample(1e-4)
     assert smp.axis_velocity_ratio.max() <= OVER
     assert smp.axis_acceleration_ratio.max() <= OVER
+    # (the blend curves' jerk between the LP's gridpoints too: inner rows, coarser grid)
     assert smp.axis_jerk_ratio.max() <= OVER
-    # and within the certificate's own tolerance (what `ccopt verify --feed` checks):
-    # the blend curves' jerk between the LP's gridpoints (inner rows, coarser grid)
-    assert smp.axis_jerk_ratio.max() <= 1.0 + LIMITS_TOL
     assert prof.duration <= 0.8 * t_ref
     # and no faster than the programmed feed allows along the smoothed path
     assert prof.duration > feed_limited_time(path, limits)
