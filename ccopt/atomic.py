@@ -97,11 +97,6 @@ def protect_input(path: str | os.PathLike) -> None:
         _protected[key] = str(path)
 
 
-def protected_inputs() -> list[str]:
-    """The input files :func:`protect_input` has remembered (names as read)."""
-    return list(_protected.values())
-
-
 def _how(out: str, inp: str) -> str:
     """Why ``out`` is the file ``inp``: the same name, a link, or a hard link."""
     if os.path.islink(out):
@@ -117,9 +112,8 @@ def refuse_overwriting_inputs(outputs: Iterable[str | os.PathLike | None],
     """Raise :class:`ProgramError` (exit 2, naming the output) when one of
     ``outputs`` is one of ``inputs`` or an input this process has read
     (:func:`protect_input`, within :func:`inputs_guarded`): the same file once
-    links are resolved (same device
-    and inode). ``None`` entries are skipped; outputs that do not exist yet
-    replace nothing. Call it with every file a command will write before
+    links are resolved (same device and inode). ``None`` entries are skipped;
+    outputs that do not exist yet replace nothing. Call it with every file a command will write before
     writing the first, so a refusal leaves everything as it was."""
     given = {}
     for p in inputs:
