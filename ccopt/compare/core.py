@@ -6,9 +6,11 @@ under the same limits, with TOPPRA, or with the jerk planner when the limits
 carry jerk (``max_acc_ratio`` is the largest axis acceleration over its limit
 in the profile sampled every 0.2 ms; the feed grid follows the turning inside
 blend curves, :mod:`ccopt.feed.grid`), and measure it (:mod:`.figures`)
-against the reference, PMAC's path. A variant that a controller refuses
-(``refused``), that cannot be built or certified (``rejected``) or that fails
-unexpectedly (``failed``) is still listed, with the reason and no figures.
+against the reference, PMAC's path. A row is ``ok`` only when the verifier
+certifies its path; a path it does not certify is ``uncertified``, with its
+figures and why. A variant that a controller refuses (``refused``), that
+cannot be built or certified (``rejected``) or that fails unexpectedly
+(``failed``) is still listed, with the reason and no figures.
 
 The reference is planned once, whole; a variant's cycle time reuses the
 reference's time on every stretch between two stops that it shares and
