@@ -74,7 +74,7 @@ def bezier_points(basis: np.ndarray, P: np.ndarray) -> np.ndarray:
     control points ``(n + 1, 2)`` of one curve, or ``(N, n + 1, 2)`` one curve
     per row. Summed term by term in one order either way, so a row comes out
     bit for bit as its curve alone gives it (a matrix product's summation
-    order is the BLAS's: :mod:`ccopt.verify.certified_batch` relies on this)."""
+    order is the BLAS's: :mod:`ccopt.verify.distance.certified_batch` relies on this)."""
     out = basis[:, 0, None] * P[..., 0, :]
     for i in range(1, basis.shape[1]):
         out += basis[:, i, None] * P[..., i, :]

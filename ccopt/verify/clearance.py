@@ -1,13 +1,13 @@
 """No gouge: the smallest distance from the tool path to every contour element.
 
 For every tool segment and every contour element the broad phase
-(:mod:`.broadphase`) says could be within reach (required clearance plus a
+(:func:`~ccopt.verify.distance.candidate_pairs`) says could be within reach (required clearance plus a
 margin), the distance is computed:
 
 - exactly for line/arc pairs, by the closed-form kernels of
   :mod:`ccopt.geometry.distance` (one vectorised call for all pairs);
 - as a certified lower bound for pairs with a spiral or curve
-  (:mod:`.certified`), tight to a fraction of ``eps``.
+  (:mod:`ccopt.verify.distance`), tight to a fraction of ``eps``.
 
 Open ends (:data:`ccopt.verify.decisions.OPEN_END_EXEMPTION`): for an
 element where the contour stops, tool points whose nearest point on the
@@ -31,9 +31,9 @@ import numpy as np
 from ccopt.geometry import Arc, Line, distance, pair_distance
 from ccopt.geometry.angles import TWO_PI, angle_along, sweep_sign
 from ccopt.tolerances import VERIFY_CERTIFIED_GAP
-from ccopt.verify import certified, decisions
-from ccopt.verify.broadphase import candidate_pairs
-from ccopt.verify.certified_batch import batchable, min_distances
+from ccopt.verify import decisions
+from ccopt.verify.distance import (batchable, candidate_pairs, is_exact, min_distance,
+                                   min_distances)
 from ccopt.verify.contour import Contour
 
 #: Units of clearance given up per unit past an open end
@@ -474,13 +474,13 @@ def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: 
     for q in pairs:
         j = int(je[q])
         tg, eg = tool.geom(it[q]), E.geom(j)
-        regions = exempt_regions(contour, j) if open_elem[j] and certified.is_exact(eg) else []
+        regions = exempt_regions(contour, j) if open_elem[j] and is_exact(eg) else []
         ex = None
         if regions:
             ex = (lambda pts, m, R=regions: in_regions(R, pts, m),
                   lambda pts, R=regions: in_regions(R, pts))
         # the curved one first (an exact element only ever has the exemption)
-        swapped = certified.is_exact(tg) and not certified.is_exact(eg)
+        swapped = is_exact(tg) and not is_exact(eg)
         a, b = (eg, tg) if swapped else (tg, eg)
         if batchable(a, b):
             batch.append((q, a, b, swapped, ex))
@@ -492,7 +492,7 @@ def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: 
                            [ex for *_, ex in batch])
     results = list(zip(batch, bounds))
     results += [((q, a, b, swapped, ex),
-                 certified.min_distance(a, b, tol, cap=float(reach[je[q]]), exempt=ex))
+                 min_distance(a, b, tol, cap=float(reach[je[q]]), exempt=ex))
                 for q, a, b, swapped, ex in one_by_one]
     for (q, _, _, swapped, _), b in results:
         d[q], ub[q] = b.lb, b.ub

@@ -16,8 +16,8 @@ largest value is at an end of the part of ``T`` inside the band, and for an
 arc concentric with its element it is ``|R_T - R_e|``: both in closed form,
 vectorised. Any other line/arc pair (a displaced segment) is cut at the band
 boundaries and measured with the exact farthest-point kernel
-(:mod:`.maxdist`); spirals and curves get a certified upper bound over the
-whole segment (:func:`.certified.max_distance`, conservative). A tool segment
+(:func:`~ccopt.verify.distance.max_distance`); spirals and curves get a certified upper bound over the
+whole segment (:func:`~ccopt.verify.distance.max_distance_bound`, conservative). A tool segment
 that runs alongside its element over no length at all (it only touches the
 band's edge, or it is an arc about the element's centre turning the other
 way, e.g. swept 270 degrees the long way round instead of 90) does not run
@@ -43,11 +43,10 @@ from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import PLANE_AXES
 from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
 from ccopt.toolpath import FITTED_PIECES, Role
-from ccopt.verify import certified
 from ccopt.verify.certificate import CERTIFIED, EXACT, Check, Violation
 from ccopt.verify.clearance import clip_pieces, end_regions
 from ccopt.verify.contour import Contour
-from ccopt.verify.maxdist import max_distance, max_distance_to_point
+from ccopt.verify.distance import max_distance, max_distance_bound, max_distance_to_point
 from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed, pack
 
 
@@ -306,7 +305,7 @@ def farthest_alongside(tool: Packed, contour: Contour, si: np.ndarray, ej: np.nd
                                   contour.elements, int(ej[q]))
     tol = VERIFY_CERTIFIED_GAP * eps
     for q in np.flatnonzero(~exact):
-        b = certified.max_distance(tool.geom(si[q]), contour.elements.geom(ej[q]), tol)
+        b = max_distance_bound(tool.geom(si[q]), contour.elements.geom(ej[q]), tol)
         dmax[q] = b.ub
         wq[q] = b.wa if b.wa is not None else T.p0[si[q]]
     return dmax, wq, exact

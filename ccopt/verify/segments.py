@@ -5,13 +5,13 @@
 assignment (100,000 rows in a few tens of milliseconds) and adds what the
 verifier needs besides: exact bounding boxes and the rows that have no
 closed-form distance (spirals and parametric curves), which
-:mod:`ccopt.verify.certified` bounds instead.
+:mod:`ccopt.verify.distance.certified` bounds instead.
 
 Row kinds: :data:`~ccopt.geometry.KIND_LINE`, :data:`~ccopt.geometry.KIND_ARC`,
 :data:`~ccopt.geometry.KIND_SPIRAL`, and :data:`KIND_CURVE` for any other
 curve object (a blend), which must offer ``start``, ``end``, ``length``,
 ``point(s)`` by arc length, ``bbox()`` and ``d2_bound(s0, s1)`` (see
-:mod:`ccopt.verify.certified`).
+:mod:`ccopt.verify.distance.certified`).
 """
 from __future__ import annotations
 

@@ -20,9 +20,8 @@ from ccopt.geometry import Line
 from ccopt.geometry.distance import point_arc, point_segment
 from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
 from ccopt.toolpath import Role
-from ccopt.verify import certified
 from ccopt.verify.certificate import CERTIFIED, EXACT, Check, Violation
-from ccopt.verify.certified_batch import batchable, min_distances
+from ccopt.verify.distance import batchable, min_distance, min_distances
 from ccopt.verify.contour import Contour
 from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed
 
@@ -94,7 +93,7 @@ def check_side(tool: Packed, contour: Contour, eps: float, lengths, info, table)
         w[m] = b.wa
     for m, g, p in items:
         if not batchable(g, p):
-            w[m] = certified.min_distance(g, p, tol).wa
+            w[m] = min_distance(g, p, tol).wa
     t = _tangent_at(E, ej, w)
     v = q - w
     signed = contour.side[ej] * (t[:, 0] * v[:, 1] - t[:, 1] * v[:, 0])

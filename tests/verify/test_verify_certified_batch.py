@@ -10,9 +10,9 @@ from scipy.optimize import minimize_scalar
 
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.curve import BezierCurve
-from ccopt.verify import certified
-from ccopt.verify.certified_batch import batchable, min_distances
-from ccopt.verify.concentric import polar_gap
+from ccopt.verify.distance import certified
+from ccopt.verify.distance.certified_batch import batchable, min_distances
+from ccopt.verify.distance.concentric import polar_gap
 
 
 def spiral_point(sp: Spiral, phi):

@@ -16,10 +16,11 @@ from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.curve import BezierCurve
 from ccopt.geometry.distance import point_arc, point_segment
 from ccopt.toolpath import block_geometry
-from ccopt.verify import certified, contour_of
-from ccopt.verify.broadphase import MAX_CELLS, candidate_pairs
+from ccopt.verify import contour_of
+from ccopt.verify.distance import certified
+from ccopt.verify.distance.broadphase import MAX_CELLS, candidate_pairs
 from ccopt.verify.clearance import clipped_distance, end_regions, in_regions
-from ccopt.verify.maxdist import max_distance
+from ccopt.verify.distance.maxdist import max_distance
 from ccopt.verify.segments import pack
 
 

@@ -41,8 +41,8 @@ from ccopt.geometry.distance import (
     point_arc, point_segment, segment_arc, segment_segment,
 )
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
-from ccopt.verify.concentric import farthest_concentric, polar_gap, same_angle
-from ccopt.verify.maxdist import max_distance as exact_max_distance
+from ccopt.verify.distance.concentric import farthest_concentric, polar_gap, same_angle
+from ccopt.verify.distance.maxdist import max_distance as exact_max_distance
 
 #: Pieces per pair are never more than this (the bound is then reported with its gap).
 MAX_PIECES = 1 << 18

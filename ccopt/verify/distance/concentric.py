@@ -5,7 +5,7 @@ tool's offset of it is a spiral about the same centre. Their distance is
 nearly the radial gap everywhere, which chords reach only when cut to pieces
 whose sagitta is below the tolerance: thousands per pair. Here the common
 centre gives bounds directly (``SpiralParam``-like arguments: ``c, rho0, b,
-th0, sg, U`` and ``eval``; :mod:`ccopt.verify.certified` uses them):
+th0, sg, U`` and ``eval``; :mod:`ccopt.verify.distance.certified` uses them):
 
 - :func:`same_angle`: an upper bound of the distance from the points at one
   polar angle;

@@ -1,20 +1,20 @@
 """Certified minimum distances of many curve pairs at once.
 
-:func:`ccopt.verify.certified.min_distance` runs one pair's branch and bound
+:func:`ccopt.verify.distance.certified.min_distance` runs one pair's branch and bound
 at a time: a program with hundreds of spirals (LinuxCNC's crazy-paths, whose
 arcs end a few 1e-7 off their radius) pays a dozen small numpy calls per
 round per pair. :func:`min_distances` runs the same branch and bound for
 every pair together: each round evaluates the live pieces of all pairs in
 one vectorised pass, and each pair keeps its own best upper bound, dropped
 lower bound, round count and piece limit. Per pair the pieces, their order
-and every number are those of :func:`~ccopt.verify.certified.min_distance`
+and every number are those of :func:`~ccopt.verify.distance.certified.min_distance`
 (the kernels work element by element), so the bounds are the same, bit for
 bit (tested).
 
 Pairs covered: a spiral or arc ``a`` (the curved one) against a line or arc
 ``b`` (exact, with or without an open-end exemption) or a spiral or arc ``b``
 (curved); a Bezier curve ``a`` (a blend's, by its own parameter,
-:class:`~ccopt.verify.certified.BezierParam`) against a line or arc ``b``
+:class:`~ccopt.verify.distance.certified.BezierParam`) against a line or arc ``b``
 (the smoothed freeform-hsm: 1,556 such pairs, 1.3 s one at a time);
 :func:`batchable` says which. Other curves go one at a time.
 """
@@ -27,9 +27,9 @@ import numpy as np
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.distance import point_arc, point_segment, segment_arc, segment_segment
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
-from ccopt.verify.concentric import polar_gap, same_angle
+from ccopt.verify.distance.concentric import polar_gap, same_angle
 from ccopt.geometry.bezier_arclength import bernstein_basis, bezier_points
-from ccopt.verify.certified import (
+from ccopt.verify.distance.certified import (
     MAX_PIECES, BezierParam, Bound, SpiralParam, _first_pieces, _fraction, is_bezier,
     is_exact,
 )
@@ -87,7 +87,7 @@ class _Spirals:
 class _Beziers:
     """The :class:`BezierParam` of many Bezier curves of one degree as arrays,
     evaluated per piece's pair with the same operations as one curve's
-    (:func:`~ccopt.verify.certified.bezier_points`, so the same numbers)."""
+    (:func:`~ccopt.verify.distance.certified.bezier_points`, so the same numbers)."""
 
     concentric = False
 
@@ -164,7 +164,7 @@ def _dist_and_witness(r):
 
 def min_distances(pairs, tol: float, caps, exempts=None,
                   max_rounds: int = VERIFY_CERTIFIED_MAX_ROUNDS) -> list[Bound]:
-    """:func:`ccopt.verify.certified.min_distance` ``(a, b, tol, cap, exempt)`` of
+    """:func:`ccopt.verify.distance.certified.min_distance` ``(a, b, tol, cap, exempt)`` of
     every ``(a, b)`` in ``pairs`` (each :func:`batchable`) with ``caps[i]`` and
     ``exempts[i]`` (``None``: no exemption; only with an exact ``b``), at once."""
     if not pairs:
@@ -193,7 +193,7 @@ def min_distances(pairs, tol: float, caps, exempts=None,
 
 def _concentric_b(A: _Spirals | _Beziers, sel, bs, curved: bool):
     """Per pair: whether ``b`` shares ``a``'s centre (a polar radius gap is then a
-    lower bound, :func:`ccopt.verify.certified._radial_gap`), and for an arc ``b``
+    lower bound, :func:`ccopt.verify.distance.certified._radial_gap`), and for an arc ``b``
     its radius."""
     conc = np.zeros(len(bs), bool)
     Rb = np.zeros(len(bs))
@@ -239,7 +239,7 @@ class _State:
         self.npieces = np.zeros(P, np.int64)
 
     def update(self, pid, lb, dq, qa, qb, live, ok, tol, caps, last: bool, curved: bool):
-        """One round of :func:`ccopt.verify.certified.min_distance` for every pair;
+        """One round of :func:`ccopt.verify.distance.certified.min_distance` for every pair;
         the pieces to halve."""
         P = self.P
         # each pair's smallest genuine dq (its first in piece order on ties, as argmin)
@@ -275,7 +275,7 @@ class _State:
 
 def _round(geo, pieces, exempts):
     """Bounds of every live piece (pair): ``(lb, dq, qa, qb, live, ok)`` as
-    :func:`ccopt.verify.certified._bound_pieces` gives them (``ok``: ``dq`` is a
+    :func:`ccopt.verify.distance.certified._bound_pieces` gives them (``ok``: ``dq`` is a
     genuine distance outside the pair's exemption)."""
     A, B, sel, curved, conc, Rb = geo
     pid, ua0, ua1, ub0, ub1 = pieces
@@ -351,7 +351,7 @@ def _first(A: _Spirals | _Beziers, B, sel, curved: bool):
 
 
 def _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb, curved):
-    """:func:`ccopt.verify.certified._radial_gap` of each piece (0 where ``b`` is not
+    """:func:`ccopt.verify.distance.certified._radial_gap` of each piece (0 where ``b`` is not
     about ``a``'s centre)."""
     c = conc[pid]
     if not c.any():
