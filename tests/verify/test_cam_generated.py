@@ -74,10 +74,28 @@ def test_generated_cam_programs_quick():
     assert runs == len(QUICK) * len(STYLES)
 
 
+def _features(seed: int) -> set[str]:
+    cp = cam_program(seed)
+    return {"corner entry" if "corner entry" in cp.description else "mid-edge entry",
+            "lead-in " + cp.lead_in, "lead-out " + cp.lead_out, cp.dialect,
+            f"{cp.decimals} decimals", "rectangle" if "rectangle" in cp.description else "star",
+            "overlap" if "overlap 0," not in cp.description else "no overlap"}
+
+
 @pytest.mark.slow
 def test_generated_cam_programs_500():
     runs = sum(_check_program(seed) for seed in SLOW)
     assert runs == len(SLOW) * len(STYLES)
+    # every kind of program was drawn, each at least 5 % of the time (leads
+    # that meet, the rarest, need a corner entry and arcs both ways)
+    seen: dict[str, int] = {}
+    for seed in SLOW:
+        for f in _features(seed):
+            seen[f] = seen.get(f, 0) + 1
+    kinds = {"corner entry", "mid-edge entry", "lead-in arc", "lead-in perpendicular",
+             "lead-out arc", "lead-out meet", "lead-out perpendicular", "gcode", "pmac",
+             "3 decimals", "4 decimals", "6 decimals", "rectangle", "star", "overlap"}
+    assert {k: seen.get(k, 0) for k in kinds if seen.get(k, 0) < 0.05 * len(SLOW)} == {}
 
 
 def _dist_point_segment(p, a, b) -> float:
