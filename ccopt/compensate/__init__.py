@@ -15,9 +15,8 @@ from ccopt.compensate.linuxcnc import LinuxcncStyle
 from ccopt.compensate.pmac import PmacStyle
 from ccopt.errors import ProgramError
 from ccopt.program.model import Program
+from ccopt.sides import side_sign
 from ccopt.toolpath import COMPENSATION, ToolPath
-
-SIDES = {"left": 1, "right": -1, None: None}
 
 #: style name -> class taking the style's options as keywords, whose instances
 #: have ``compensate(program, radius=, side=) -> ToolPath``.
@@ -45,10 +44,10 @@ def compensate(program: Program, style: str = "pmac", *, radius: float | None = 
     if style not in STYLES:
         raise ProgramError(f"unknown compensation style {style!r}; choose one of "
                            f"{', '.join(sorted(STYLES))}", program.file)
-    if isinstance(side, str) or side is None:
-        if side not in SIDES:
-            raise ProgramError(f"side must be left or right, not {side!r}", program.file)
-        side = SIDES[side]
+    try:
+        side = side_sign(side)
+    except ValueError as exc:
+        raise ProgramError(str(exc), program.file) from None
     # Controller settings written in a PMAC file (Isx99, DEFINE CCBUF) apply
     # unless the caller overrides them.
     if style == "pmac":

@@ -9,6 +9,7 @@ import numpy as np
 
 from ccopt.errors import ProgramError
 from ccopt.program.model import Program
+from ccopt.sides import side_sign
 from ccopt.tolerances import VERIFY_EPS
 from ccopt.toolpath import Role, ToolPath, tool_centre_path
 from ccopt.verify import decisions
@@ -23,7 +24,6 @@ from ccopt.verify.segments import Packed, lengths, pack
 from ccopt.verify.side import check_side
 from ccopt.verify.tolerance import apply_tolerance, resolve_tolerance
 
-SIDES = {"left": 1, "right": -1, 1: 1, -1: -1, None: None}
 
 
 ROLE_CODES = {r: q for q, r in enumerate(Role)}
@@ -208,8 +208,10 @@ def _verify(toolpath, program, profile, eps, radius, side, limits_tol,
     if not (0.0 <= limits_tol < np.inf):
         raise ProgramError(f"limits_tol must be a finite number >= 0, got {limits_tol!r}",
                            program.file)
-    if side not in SIDES:
-        raise ProgramError(f"side must be left or right, not {side!r}", program.file)
+    try:
+        side = side_sign(side)
+    except ValueError as exc:
+        raise ProgramError(str(exc), program.file) from None
     if radius is None and side is None and toolpath.compensation is not None:
         # a path ccopt made says the overrides it was made with: apply them
         # as compensation did, rather than infer them from its radius
@@ -221,7 +223,7 @@ def _verify(toolpath, program, profile, eps, radius, side, limits_tol,
         certs = [_verify(path, sub, None, eps, radius, side, limits_tol, part_lines)
                  for path, sub, _ in runs]
         return join_certificates(certs, runs, toolpath, profile, eps, limits_tol)
-    contour = contour_of(program, radius=radius, side=SIDES[side],
+    contour = contour_of(program, radius=radius, side=side,
                          toolpath_radius=toolpath.radius if radius is None else None,
                          part_lines=part_lines, eps=eps)
     segs = toolpath.segments
