@@ -221,7 +221,7 @@ def test_api_may_export_again_over_a_file_it_read(workdir):
 # (an empty program has no place: "nothing to ..." and exit 0)
 BAD = {
     "turns.ngc": ("G21 G17 G90\nG0 X0 Y0\nG1 X10 Y0 F100\nG2 X10 Y0 I-10 J0 P2147483647\nM2\n",
-                  (4, 19), "at most 1000 turns"),
+                  (4, 19), "at most 100 turns"),
     "far.ngc": ("G21 G17 G90\nG0 X0 Y0\nG1 X1000000000 Y0 F100\nM2\n", (3, 4), "out of range"),
     "far.pmc": ("LINEAR ABS F10\nX0 Y0\nX1000000000 Y0\n", (3, 1), "out of range"),
     "empty.ngc": ("", None, "nothing to"),

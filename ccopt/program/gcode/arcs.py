@@ -20,14 +20,18 @@ from ccopt.program.gcode.units import MM_PER_INCH, output_units
 from ccopt.program.gcode.words import fmt
 from ccopt.program.model import PLANE_AXES
 
-#: Largest G2/G3 ``P`` (number of turns) ccopt reads: 1000. LinuxCNC takes
-#: any int (2^31 - 1), but a helix of 1000 turns is already a 100 mm bore
-#: at a 0.1 mm pitch or a 1 m one at 1 mm, past any helical milling or
-#: thread milling pass; each turn costs the feed planner about 126 grid
-#: intervals (0.05 rad each) and the samples of its time, so ``P2147483647``
-#: asked for terabytes (exit 3) and ``P10000`` took 34 s and 2 GB before a
-#: refusal (issue 29). Beyond it the ``P`` word is a located error.
-MAX_ARC_TURNS = 1000
+#: Largest G2/G3 ``P`` (number of turns) ccopt reads: 100. LinuxCNC takes
+#: any int (2^31 - 1), but a helix of 100 turns is already a 100 mm bore at
+#: a 1 mm pitch or a 50 mm thread single-pointed at 0.5 mm, past the helical
+#: and thread milling passes parts need (more turns: several G2 blocks).
+#: Every turn costs: ~126 feed grid intervals, its share of the samples of
+#: the cycle time, a CIRCLE of its own in a PMAC export (each read back and
+#: verified). Measured on a radius-12 helix at F600 (issue 29): 100 turns
+#: took ``compare`` 33 s and 3.6 GB and a PMAC export 16 s; 1000 turns a
+#: PMAC export 143 s and ``compare`` over 24 GB (killed); ``P10000`` took
+#: ``feed`` 34 s and 2 GB before a refusal and ``P2147483647`` asked it for
+#: terabytes (exit 3). Beyond it the ``P`` word is a located error.
+MAX_ARC_TURNS = 100
 #: A P word within this of a whole number is that number of turns.
 _TURNS_WHOLE_TOL = 1e-3
 #: Radii below this fraction of the arc tolerance are zero (LinuxCNC).
