@@ -324,3 +324,27 @@ def test_api_export_refuses_the_paths_own_program_without_program(workdir):
     with pytest.raises(ProgramError, match="not written: the output is a link to the input"):
         ccopt.export(path, "link-p.pmc")
     assert tree(workdir) == before
+
+
+def test_a_subroutine_file_is_an_input_too(capsys, workdir):
+    # known only once the program is read: export refuses it before writing
+    (workdir / "side.ngc").write_text("o<side> sub\nG1 X-20 Y0\nG1 X-20 Y20\no<side> endsub\n")
+    (workdir / "main.ngc").write_text("G21 G17 G90\nG0 X0 Y-20\nG1 F1200\nG41.1 D4\nG1 X0 Y0\n"
+                                      "o<side> call\nG40\nG1 X-40 Y20\nM2\n")
+    before = tree(workdir)
+    code, _, err = run_cli(capsys, "export", "main.ngc", "--sub-path", ".", "-o", "side.ngc")
+    assert code == 2 and err.startswith("side.ngc: not written: the output is the input")
+    assert tree(workdir) == before
+
+
+def test_inputs_are_guarded_only_within_a_command(workdir):
+    from ccopt import atomic
+    with atomic.inputs_guarded():
+        read_program("p.pmc")
+        with pytest.raises(ProgramError, match="never writes over its inputs"):
+            atomic.write_text_atomic("link-p.pmc", "x")
+    # outside, the writer remembers nothing (the API's explicit checks apply):
+    # here it replaces the link itself, the program stays as it was
+    read_program("p.pmc")
+    atomic.write_text_atomic("link-p.pmc", "x")
+    assert not (workdir / "link-p.pmc").is_symlink() and (workdir / "p.pmc").read_text() == PMAC
