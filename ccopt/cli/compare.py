@@ -24,7 +24,8 @@ from ccopt.workers import default_workers
 
 #: the comparison table: header, figure of :meth:`Comparison.to_json`'s variants, format
 COLUMNS = [("variant", "name", "{}"), ("status", "status", "{}"), ("cycle_s", "duration", "{:.4f}"),
-           ("vs_pmac", "duration_ratio", "{:.4f}"), ("length", "length", "{:.3f}"),
+           ("vs_pmac", "duration_ratio", "{:.4f}"),
+           ("gain_best", "gain_vs_fastest_controller", "{:+.4f}"), ("length", "length", "{:.3f}"),
            ("max_curv", "max_curvature", "{:.3f}"), ("curv_jump", "max_curvature_jump", "{:.3f}"),
            ("joins", "continuity", "{}"), ("path", "path_continuity", "{}"),
            ("min_clear", "min_clearance", "{:.6f}"), ("certified", "certified", "{}"),

@@ -174,6 +174,9 @@ ENTRY_POINT_GROUP = "ccopt.blends"
 #: of one of these names is ignored.
 BUILTIN_NAMES = ("pmac", "linuxcnc", "fagor-g138", "fagor-g139-g136", "fagor-g139-g137",
                  "tangent-arc", "line-arc")
+#: The built-in variants that are a controller's own path (the others are
+#: geometric leads): the baselines an optimised blend must beat.
+CONTROLLER_NAMES = BUILTIN_NAMES[:5]
 
 
 def blend_entry_points() -> dict[str, EntryPoint]:

@@ -30,6 +30,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Callable
 
+from ccopt.compare.baseline import apply_baseline
 from ccopt.compare.contract import BUILTIN_NAMES, BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.figures import max_deviation, path_figures
 from ccopt.compare.leads import lead_joins
@@ -255,6 +256,8 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
         d = row.figures.get("duration")
         if d is not None and ref_duration:
             row.figures["duration_ratio"] = d / ref_duration
+    if limits is not None:
+        apply_baseline(rows, REFERENCE)
     return Comparison(rows, ref.path, limits, program)
 
 

@@ -100,7 +100,11 @@ def test_leads_stay_local_on_the_fagor_episodes(name):
     c = find_case("fagor-g136-g139")
     prog = ccopt.read_program(c.program)
     row = compare(prog, [name], radius=c.radius)[name]
-    assert row.status == "ok", row.message
+    # the case expects a gouge: where PMAC's own leads are kept (no blend
+    # replaces them) they gouge and the row is uncertified (a row is ok only
+    # when certified); what is asserted is that no blend gouges
+    assert row.status in ("ok", "uncertified"), row.message
+    assert row.status == "ok" or row.certificate.violations
     curves = [s for s in row.toolpath.segments if isinstance(s.geom, BezierCurve)]
     assert curves
     # PMAC's own leads gouge in some episodes (the case expects it); no blend does. (A

@@ -1,0 +1,77 @@
+"""Optimised blends never lose to a controller: the gains and the fallback.
+
+A researcher quotes an optimised blend against what the machines already
+do. So every row gets its **gain** against PMAC (the reference) and against
+the fastest certified controller variant of the same program
+(:data:`~ccopt.compare.contract.CONTROLLER_NAMES`): ``gain = 1 - t / t_base``,
+positive when the row is faster. And a blend that is not a controller's own
+path nor a built-in geometric lead (the plug-ins: opt-casadi, opt-cvxpy, the
+smoother) is only reported when it is a **certified improvement**: a blend
+that is not certified, or slower than that fastest controller variant by
+more than :data:`SAME_TIME_REL`, is replaced by the controller's path, its
+row saying "no faster certified blend" and keeping what the optimiser found
+in ``info["optimised"]`` (status, cycle time, message, figures), so the table never
+shows a slower blend as the optimised answer.
+"""
+from __future__ import annotations
+
+from dataclasses import replace
+
+from ccopt.compare.contract import BUILTIN_NAMES, CONTROLLER_NAMES
+
+#: Two cycle times within this relative difference are the same time (the
+#: planners' own rounding is far below it).
+SAME_TIME_REL = 1e-9
+
+#: Status of a plug-in row that kept the fastest controller variant's path.
+NO_FASTER = "no faster certified blend"
+
+
+def fastest_controller(rows) -> object | None:
+    """The certified controller row with the shortest cycle time (``None``
+    when no controller variant is certified and timed)."""
+    timed = [r for r in rows if r.name in CONTROLLER_NAMES and r.status == "ok"
+             and r.figures.get("duration") is not None]
+    return min(timed, key=lambda r: r.figures["duration"], default=None)
+
+
+def apply_baseline(rows, reference_name: str) -> None:
+    """Gains on every timed row, and the fallback of every plug-in row that is
+    no certified improvement (in place; see the module docstring)."""
+    best = fastest_controller(rows)
+    ref = next((r for r in rows if r.name == reference_name and r.status == "ok"), None)
+    if best is not None:
+        t_best = best.figures["duration"]
+        for i, row in enumerate(rows):
+            if row.name in BUILTIN_NAMES or row.status in ("refused",):
+                continue
+            t = row.figures.get("duration")
+            improved = row.status == "ok" and t is not None \
+                and t <= t_best * (1.0 + SAME_TIME_REL)
+            if not improved:
+                rows[i] = _kept(row, best)
+    t_ref = ref.figures.get("duration") if ref is not None else None
+    t_best = best.figures["duration"] if best is not None else None
+    for row in rows:
+        t = row.figures.get("duration")
+        row.figures["gain_vs_pmac"] = None if t is None or not t_ref else 1.0 - t / t_ref
+        row.figures["gain_vs_fastest_controller"] = \
+            None if t is None or not t_best else 1.0 - t / t_best
+        if best is not None:
+            row.figures["fastest_controller"] = best.name
+
+
+def _kept(row, best):
+    """``row`` carrying ``best``'s path and figures, and its own in ``info``."""
+    own = {"status": row.status, "duration": row.figures.get("duration"),
+           "message": row.message, "certified": row.figures.get("certified"),
+           "figures": dict(row.figures)}
+    t = own["duration"]
+    why = ("it is not certified" if row.status != "ok" else
+           "it has no cycle time" if t is None else
+           f"{t:.6g} s is slower than {best.name}'s {best.figures['duration']:.6g} s")
+    message = f"{NO_FASTER}: {best.name}'s path kept ({row.name}'s own blend: {why})"
+    info = {**row.info, "optimised": own, "baseline": best.name}
+    figures = {**best.figures, "solve_time": row.figures.get("solve_time")}
+    return replace(row, status="ok", message=message, toolpath=best.toolpath,
+                   certificate=best.certificate, figures=figures, info=info)

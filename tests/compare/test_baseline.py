@@ -1,0 +1,94 @@
+"""Optimised blends never lose to a controller (issue 30): the gains and the
+fallback of :mod:`ccopt.compare.baseline`.
+
+The stadium (two straights of 200 joined by half circles of radius 30, cut
+clockwise with CC1, r = 2, entered mid-straight by a perpendicular lead from
+outside, 200 mm/s and 2000 mm/s^2 per axis) is a program where LinuxCNC's
+straight entry is faster than PMAC's, and the optimised leads do not all beat
+it: those rows keep LinuxCNC's path and say so.
+"""
+from __future__ import annotations
+
+import pytest
+
+import ccopt
+from ccopt.compare import compare
+from ccopt.compare.baseline import NO_FASTER, SAME_TIME_REL, apply_baseline
+from ccopt.compare.contract import CONTROLLER_NAMES
+from ccopt.compare.core import VariantResult
+from ccopt.feed import AxisLimits
+from ccopt.program import read_text
+
+STADIUM = """; stadium, clockwise with CC1 (tool outside), r 2
+OPEN PROG 1 CLEAR
+RAPID X50 Y60
+LINEAR ABS F100
+CCR2 CC1
+X50 Y30
+X200 Y30
+CIRCLE1 X200 Y-30 I0 J-30
+LINEAR X0 Y-30
+CIRCLE1 X0 Y30 I0 J30
+LINEAR X50 Y30
+CC0
+LINEAR X50 Y60
+CLOSE
+"""
+
+
+def _row(name, status, duration, path="p"):
+    return VariantResult(name, status, None, path, "cert", {"duration": duration,
+                                                            "certified": status == "ok"})
+
+
+def test_gains_and_fallback_by_hand():
+    rows = [_row("pmac", "ok", 10.0, "P"), _row("linuxcnc", "ok", 9.0, "L"),
+            _row("fagor-g138", "uncertified", 8.0, "F"), _row("tangent-arc", "ok", 9.5),
+            _row("opt-a", "ok", 8.5, "A"), _row("opt-b", "ok", 9.2, "B"),
+            _row("opt-c", "uncertified", 7.0, "C"), _row("opt-d", "rejected", None, None)]
+    apply_baseline(rows, "pmac")
+    by = {r.name: r for r in rows}
+    # the fastest certified controller is LinuxCNC (Fagor's 8.0 is uncertified)
+    assert {r.figures["fastest_controller"] for r in rows} == {"linuxcnc"}
+    assert by["opt-a"].toolpath == "A" and by["opt-a"].status == "ok"
+    assert by["opt-a"].figures["gain_vs_fastest_controller"] == pytest.approx(1 - 8.5 / 9.0)
+    assert by["opt-a"].figures["gain_vs_pmac"] == pytest.approx(0.15)
+    for name in ("opt-b", "opt-c", "opt-d"):
+        r = by[name]
+        assert r.status == "ok" and r.toolpath == "L" and r.figures["duration"] == 9.0
+        assert r.message.startswith(f"{NO_FASTER}: linuxcnc's path kept")
+        assert r.info["baseline"] == "linuxcnc"
+        assert r.figures["gain_vs_fastest_controller"] == 0.0
+    assert by["opt-b"].info["optimised"]["duration"] == 9.2
+    assert by["opt-c"].info["optimised"]["status"] == "uncertified"
+    # the built-ins are reported as they are, slower or not
+    assert by["tangent-arc"].toolpath == "p" and by["fagor-g138"].status == "uncertified"
+
+
+def test_no_certified_controller_leaves_rows_as_they_are():
+    rows = [_row("pmac", "uncertified", 10.0), _row("opt-a", "ok", 11.0, "A")]
+    apply_baseline(rows, "pmac")
+    assert rows[1].toolpath == "A" and rows[1].figures["gain_vs_fastest_controller"] is None
+
+
+@pytest.mark.slow
+def test_stadium_optimised_rows_never_slower_than_the_fastest_controller(tmp_path):
+    prog = read_text(STADIUM, "stadium.pmc", "pmac")
+    cmp = compare(prog, ["pmac", "linuxcnc", "opt-casadi", "opt-cvxpy", "smooth"],
+                  limits=AxisLimits((200.0, 200.0), (2000.0, 2000.0)))
+    rows = {r.name: r for r in cmp}
+    best = min((rows[n] for n in ("pmac", "linuxcnc")), key=lambda r: r.figures["duration"])
+    assert best.name == "linuxcnc"
+    t_best = best.figures["duration"]
+    for name in ("opt-casadi", "opt-cvxpy", "smooth"):
+        r = rows[name]
+        assert r.status == "ok" and r.certificate.ok
+        assert r.figures["duration"] <= t_best * (1 + SAME_TIME_REL)
+        own = r.info.get("optimised")
+        if own is not None:                   # its own blend lost: the baseline is kept
+            assert r.message.startswith(NO_FASTER) and r.toolpath is best.toolpath
+            assert own["status"] != "ok" or own["duration"] > t_best
+    js = cmp.to_json()["variants"]
+    assert all(v["fastest_controller"] == "linuxcnc" for v in js)
+    assert all(v["gain_vs_fastest_controller"] >= -SAME_TIME_REL for v in js
+               if v["name"] not in CONTROLLER_NAMES)
