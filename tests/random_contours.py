@@ -86,7 +86,7 @@ def contour_program(pts, bulges, r, k) -> Program:
 
 
 @st.composite
-def hard_contours(draw):
+def hard_contours(draw, smallest_arc: float = 0.7):
     """``(pts, bulges, r, k)`` as :func:`contours`, the tool near feature size:
     a star-shaped polygon of 4 to 7 vertices at radius 20..35, a radius
     0.5..3, and on one to three edges (never the first, which the lead-in
@@ -95,7 +95,9 @@ def hard_contours(draw):
     ``b``, ``b'`` the end of a short move whose chord turns up to 145 degrees
     from the one before: a line of 0.3..4 radii, or an arc of radius 0.7..2.5
     tool radii over 0.3 rad to a half circle, bulging either way or (half of
-    the arcs) concave for the tool after a turn toward it."""
+    the arcs) concave for the tool after a turn toward it. ``smallest_arc``:
+    the short arcs' least radius in tool radii (above 1: the tool fits every
+    arc, so every contour compensates)."""
     n = draw(st.integers(4, 7))
     gaps = draw(st.lists(st.floats(0.6, 1.4), min_size=n, max_size=n))
     total = sum(gaps)
@@ -124,11 +126,11 @@ def hard_contours(draw):
             if draw(st.booleans()):
                 phi, c, bulge = draw(st.floats(-2.53, 2.53)), draw(st.floats(0.3, 4.0)) * r, 0.0
             else:
-                # an arc of radius 0.7..2.5 r over 0.3 rad to a half circle; half of
+                # an arc of radius 0.7 (smallest_arc)..2.5 r over 0.3 rad to a half circle; half of
                 # them concave for the tool after a turn toward it of 0.2..2.5 rad (its
                 # start tangent turns by phi minus half its angle), where the offsets
                 # of a line before it miss its offset circle when R (1 + cos turn) < 2 r
-                R = draw(st.floats(0.7, 2.5)) * r
+                R = draw(st.floats(smallest_arc, 2.5)) * r
                 alpha = draw(st.floats(0.3, math.pi))
                 c = 2.0 * R * math.sin(alpha / 2.0)
                 if draw(st.booleans()):

@@ -257,3 +257,82 @@ def test_array_route_equals_reference_on_hard_contours():
     one()
     assert_share("pmac hard contours, column route", tally, {"same path", "same refusal"},
                  1.0, QUICK)
+
+
+#: Spacing (program units) of the tool path's samples in the independent gouge
+#: check: the clearance to a line or an arc changes by at most the distance
+#: moved, so the sampled smallest clearance is at most SAMPLE / 2 above the true.
+SAMPLE = 2e-3
+
+
+def sampled_depth(path, prog, r: float) -> float:
+    """``r`` minus the smallest distance from points of the compensated moves and
+    corner arcs (every SAMPLE along them) to the programmed contour's elements
+    (lead-in and lead-out left out), by the closed-form point distances."""
+    from ccopt.geometry.distance import point_arc, point_segment
+    pts = np.vstack([s.geom.point(np.linspace(0.0, s.length, max(2, math.ceil(s.length / SAMPLE) + 1)))[:, :2]
+                     for s in path.segments
+                     if s.length > 0 and s.role.value in ("compensated", "corner")])
+    best = np.full(len(pts), np.inf)
+    m = len(pts)
+    for b in prog.blocks[1:-1]:
+        if b.motion.is_arc:
+            e = Element(b, 0, 0.0)
+            d = point_arc(pts, np.tile(e.c, (m, 1)), np.full(m, e.R),
+                          np.full(m, math.atan2(*(e.p - e.c)[::-1])), np.full(m, e.blk_sweep()))[0]
+        else:
+            d = point_segment(pts, np.tile(b.start[:2], (m, 1)), np.tile(b.end[:2], (m, 1)))[0]
+        best = np.minimum(best, d)
+    return r - float(best.min())
+
+
+def certificate_agrees(contour, tally: Counter) -> None:
+    """On a hard contour that compensates, the certificate's deepest gouge and a
+    dense sampling of the tool path against the contour agree: a sampled gouge
+    is certified at least as deep (the samples are points of the path, so their
+    depth is a lower bound), and a certified one is found by the samples to
+    within half their spacing."""
+    from ccopt.verify import verify
+    prog = contour_program(*contour)
+    try:
+        path = compensate(prog, "pmac")
+    except CompensationError:
+        tally["refused"] += 1
+        return
+    cert = verify(path, prog)
+    # the gouge check's figure: smallest distance - r, exact (a gouge within the
+    # certificate's tolerance is a warning, not a violation, with the same figure)
+    certified = max(0.0, -cert.check("gouge").figure)
+    sampled = sampled_depth(path, prog, contour[2])
+    if sampled > cert.eps:
+        assert certified >= sampled - 1e-9, (certified, sampled, contour)
+        tally["gouge: certified and sampled"] += 1
+    else:
+        tally["clean: certified and sampled"] += 1
+    if certified > cert.eps:
+        assert sampled >= certified - SAMPLE / 2 - 1e-9, (certified, sampled, contour)
+
+
+def _agreement(examples: int) -> None:
+    tally = Counter()
+
+    # short arcs of at least 1.05 r: the tool fits every one, so every contour
+    # compensates (refusals are the first test's property), gouging or not
+    @settings(max_examples=examples, deadline=None, suppress_health_check=list(HealthCheck))
+    @given(hard_contours(smallest_arc=1.05))
+    def one(contour):
+        certificate_agrees(contour, tally)
+
+    one()
+    assert_share("pmac hard contours, certificate against samples", tally,
+                 {"gouge: certified and sampled", "clean: certified and sampled"}, SHARE, examples)
+    assert tally["gouge: certified and sampled"] and tally["clean: certified and sampled"], tally
+
+
+def test_certificate_agrees_with_samples_on_hard_contours():
+    _agreement(30)
+
+
+@pytest.mark.slow
+def test_certificate_agrees_with_samples_on_many_hard_contours():
+    _agreement(300)
