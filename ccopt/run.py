@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING, Callable, Protocol
 from ccopt.cases import DEFAULT_LIMITS, Job  # noqa: F401 - re-exported for ccopt run
 from ccopt.errors import CcoptError, ProgramError
 from ccopt.atomic import job_inputs, refuse_overwriting_inputs, write_text_atomic
-from ccopt.export import refuse_foreign_programs
+from ccopt.export import refuse_foreign_files
 from ccopt.pipeline import Outcome, StageClock, Target, pipeline
 from ccopt.program.model import Program
 from ccopt.report.html import render
@@ -187,13 +187,12 @@ def run_all(jobs: list[Job], out: Path | None, opts: RunOptions,
     each stage of each input and each input done.
     A :class:`ProgramError`, nothing written, when one of the files it would
     write (:func:`planned_files`) is one of the inputs (``-o .`` beside them),
-    or a program there ccopt did not write (:func:`ccopt.export.refuse_foreign_programs`).
+    or a program there ccopt did not write (:func:`ccopt.export.refuse_foreign_files`).
     """
     if out is not None:
         refuse_overwriting_inputs(planned_files(jobs, out), job_inputs(*jobs))
-        # nor a program of the user's under one of the names run chooses
-        refuse_foreign_programs(f for f in planned_files(jobs, out)
-                                if f.suffix in (".nc", ".pmc"))
+        # nor a program (or index.html) of the user's under a name run chooses
+        refuse_foreign_files(planned_files(jobs, out))
         try:
             out.mkdir(parents=True, exist_ok=True)
         except OSError as exc:

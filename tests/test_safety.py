@@ -144,7 +144,17 @@ def test_run_does_not_replace_a_program_it_did_not_write(capsys, workdir):
     code, _, err = run_cli(capsys, "run", "g.ngc", "-o", "sub/up", "--workers", "1",
                            "--no-compare")
     assert code == 2 and "Traceback" not in err
-    assert err.startswith("sub/up/g.pmc: not written: a program ccopt did not write is there")
+    assert err.startswith("sub/up/g.pmc: not written: a file ccopt did not write is there")
+    assert tree(workdir) == before
+
+
+def test_run_does_not_replace_an_index_html_it_did_not_write(capsys, workdir):
+    (workdir / "out").mkdir()
+    (workdir / "out" / "index.html").write_text("<html><title>my site</title></html>\n")
+    before = tree(workdir)
+    code, _, err = run_cli(capsys, "run", "p.pmc", "-o", "out", "--workers", "1",
+                           "--no-compare")
+    assert code == 2 and err.startswith("out/index.html: not written: a file ccopt did not")
     assert tree(workdir) == before
 
 

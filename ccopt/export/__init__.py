@@ -94,33 +94,42 @@ class ExportResult:
                 f"(left as it was)")
 
 
-#: The header line of every exported program (``ccopt 0.1.0 export: style ...``).
-_EXPORT_MARK = re.compile(r"ccopt \S+ export: style ")
-#: How much of a program's beginning :func:`written_by_ccopt` reads (its header).
+#: What marks a file ccopt wrote, by suffix: the header line of every exported
+#: program (``ccopt 0.1.0 export: style ...``) and the report's title.
+_MADE_BY_CCOPT = {".nc": re.compile(r"ccopt \S+ export: style "),
+                  ".pmc": re.compile(r"ccopt \S+ export: style "),
+                  ".html": re.compile(r"<title>ccopt run</title>")}
+#: How much of a file's beginning :func:`written_by_ccopt` reads (its header).
 _HEADER_BYTES = 4096
 
 
-def written_by_ccopt(path: str | os.PathLike) -> bool:
-    """Whether the program file ``path`` is one ccopt exported (its header says so)."""
+def written_by_ccopt(path: str | os.PathLike) -> bool | None:
+    """Whether ``path`` (a .nc or .pmc program, or a run's index.html) is one
+    ccopt wrote: its header says so; ``None`` for other kinds (no mark to tell)."""
+    mark = _MADE_BY_CCOPT.get(Path(path).suffix.lower())
+    if mark is None:
+        return None
     try:
         with open(path, "rb") as fh:
             head = fh.read(_HEADER_BYTES).decode("utf-8", "replace")
     except OSError:
         return False
-    return _EXPORT_MARK.search(head) is not None
+    return mark.search(head) is not None
 
 
-def refuse_foreign_programs(outputs) -> None:
-    """:class:`ProgramError` (exit 2, naming the file) when one of the program
-    files ``outputs`` (.nc, .pmc...) a command would write under names it chose
-    itself (``ccopt run -o DIR``) exists and was not written by ccopt: a program
-    of the user's (``part.pmc`` beside the ``part.nc`` being run), which the
-    run's own ``part.pmc`` would replace. An explicit ``-o FILE`` is the user's
-    choice and replaces its file as any command does."""
+def refuse_foreign_files(outputs) -> None:
+    """:class:`ProgramError` (exit 2, naming the file) when one of the files
+    ``outputs`` a command would write under names it chose itself (``ccopt
+    run -o DIR``) exists and was not written by ccopt (:func:`written_by_ccopt`:
+    programs and the report's index.html; other kinds are not checked): a
+    program of the user's (``part.pmc`` beside the ``part.nc`` being run), or
+    the ``index.html`` of a folder, which the run's own would replace. An
+    explicit ``-o FILE`` is the user's choice and replaces its file as any
+    command does."""
     for out in outputs:
         out = Path(out)
-        if (out.exists() or out.is_symlink()) and not written_by_ccopt(out):
-            raise ProgramError("not written: a program ccopt did not write is there (one of "
+        if (out.exists() or out.is_symlink()) and written_by_ccopt(out) is False:
+            raise ProgramError("not written: a file ccopt did not write is there (one of "
                                "yours?); give -o another folder, or move it", str(out))
 
 
@@ -417,5 +426,5 @@ def export(path: ToolPath, out: str | os.PathLike, *, program: Program | None = 
 
 
 __all__ = ["DEFAULT_TOL", "ExportResult", "FORMATS", "export", "failed_name", "readback_path",
-           "refuse_foreign_programs", "roundtrip_error", "write_gcode", "write_pmac", "write_svg",
+           "refuse_foreign_files", "roundtrip_error", "write_gcode", "write_pmac", "write_svg",
            "written_by_ccopt"]
