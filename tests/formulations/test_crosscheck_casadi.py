@@ -87,7 +87,9 @@ def test_search_never_deeper_on_random_contours(data, draw):
         g2 = Arc(g.center, g.radius + np.sign(R_e - g.radius) * push, g.theta0, g.sweep)
     segs = list(path.segments)
     segs[i] = replace(seg, geom=g2)
-    cert = verify(replace(path, segments=tuple(segs)), prog)
+    # at the arithmetic's tolerance: a push below the default gouge tolerance
+    # (1e-3 mm) must still be a violation the search agrees with
+    cert = verify(replace(path, segments=tuple(segs)), prog, tolerance=0.0)
     res = F.crosscheck(cert)
     assert res["agree"] and res["deeper_than_certified"] == 0
     worst = max((v.depth for v in cert.violations_of("gouge")), default=0.0)
