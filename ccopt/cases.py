@@ -309,7 +309,8 @@ class Overrides:
     input; ``None`` (or empty) where it says nothing. Units are the program's.
 
     style: controller style; radius: cutter radius (>= 0); side: ``"left"``/``"right"``;
-    vmax, amax, jmax: axis limits ``(X, Y[, Z])`` in units/s, units/s^2 and units/s^3;
+    vmax, amax, jmax: axis limits ``(X, Y[, Z])`` in units/s, units/s^2 and units/s^3
+    (``jmax=()``: no jerk limit, whatever the case says: a sweep's limits row without j);
     tangential_acc, centripetal_acc: path acceleration limits, units/s^2;
     ts: the jerk-limited planners' interpolation period, s; planner: the planner whose
     profile is certified and timed (``None``: :func:`ccopt.feed.certified_planner`);
@@ -513,7 +514,8 @@ def resolve_input(what: str | Case, overrides: Overrides = Overrides(),
         radius=overrides.radius if overrides.radius is not None else (
             case.radius if case else None),
         vmax=vmax, amax=amax, limits_from=limits_from,
-        jmax=overrides.jmax or (case.jmax if case else None) or default_limits.get("j"),
+        jmax=(overrides.jmax or None) if overrides.jmax is not None else (
+            (case.jmax if case else None) or default_limits.get("j")),
         style_options=dict(overrides.style_options),
         blend_options=dict(overrides.blend_options),
         toolpath=Path(overrides.toolpath) if overrides.toolpath is not None else None,

@@ -30,7 +30,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Callable
 
-from ccopt.compare.baseline import apply_baseline, fastest_controller
+from ccopt.compare.baseline import apply_baseline, rebase
 from ccopt.compare.contract import BUILTIN_NAMES, BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.figures import max_deviation, path_figures
 from ccopt.compare.leads import lead_joins
@@ -257,43 +257,20 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
         if d is not None and ref_duration:
             row.figures["duration_ratio"] = d / ref_duration
     if limits is not None and problem is not None:
-        _from_fastest_controller(rows, problem, ref_duration, progress)
+        rebase(rows, problem, ref_duration, REFERENCE, _solved_and_timed, progress)
         apply_baseline(rows, REFERENCE)
     return Comparison(rows, ref.path, limits, program)
 
 
-def _from_fastest_controller(rows: list, problem: BlendProblem, ref_duration, progress) -> None:
-    """Each plug-in blend that did not beat the fastest certified controller
-    variant, when that is not PMAC, solved again from that variant's path (its
-    leads the starting point) and kept when certified and faster (in place;
-    figures measured as every row's: deviation from PMAC's path, cycle time
-    planned whole). The row says which path it started from (``info["base"]``)."""
-    best = fastest_controller(rows)
-    if best is None or best.name == REFERENCE:
-        return
-    t_best = best.figures["duration"]
-    base = replace(problem, reference=best.toolpath)
-    for i, row in enumerate(rows):
-        t = row.figures.get("duration")
-        if row.name in BUILTIN_NAMES or (row.status == "ok" and t is not None and t <= t_best):
-            continue
-        _say(progress, f"{row.name} from {best.name}'s path")
-        again = _solve(row.name, base)
-        if again.status != "ok" or again.toolpath is None:
-            continue
-        dev = max_deviation(again.toolpath, problem.reference)
-        again.figures.update(max_deviation=dev[0], max_deviation_bound=dev[1])
-        again = _with_duration(again, _duration(again.toolpath, problem.limits))
-        t2 = again.figures.get("duration")
-        if t2 is None or (row.status == "ok" and t is not None and t2 >= t):
-            continue
-        again.figures["duration_ratio"] = t2 / ref_duration if ref_duration else None
-        again.figures["solve_time"] = (row.figures.get("solve_time") or 0.0) + \
-            again.figures.get("solve_time", 0.0)
-        again.info["base"] = best.name
-        note = f"started from {best.name}'s path (the fastest certified controller variant)"
-        again.message = note if again.message is None else f"{note}; {again.message}"
-        rows[i] = again
+def _solved_and_timed(name: str, base: BlendProblem, problem: BlendProblem) -> VariantResult:
+    """Blend ``name`` solved on ``base`` (another reference path), measured as every
+    row: deviation from ``problem``'s reference (PMAC's), cycle time planned whole."""
+    row = _solve(name, base)
+    if row.status != "ok" or row.toolpath is None:
+        return row
+    dev = max_deviation(row.toolpath, problem.reference)
+    row.figures.update(max_deviation=dev[0], max_deviation_bound=dev[1])
+    return _with_duration(row, _duration(row.toolpath, problem.limits))
 
 
 @dataclass

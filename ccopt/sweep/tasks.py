@@ -142,7 +142,8 @@ def make_job(program: ProgramInput, settings: dict, spec: Spec) -> Job:
     overrides = Overrides(
         style=settings.get("style"), radius=settings.get("radius"), side=settings.get("side"),
         vmax=tuple(limits["v"]) if limits else None, amax=tuple(limits["a"]) if limits else None,
-        jmax=tuple(limits["j"]) if limits and "j" in limits else None,
+        # a limits row is a whole set: without j, no jerk limit (not the case's)
+        jmax=(tuple(limits["j"]) if "j" in limits else ()) if limits else None,
         planner=planners[0] if planners else None, planners=planners,
         variant=settings.get("variant"), delta=settings.get("delta"),
         tolerance=settings.get("tolerance"))
