@@ -1,9 +1,9 @@
 """Optimised blends never lose to a controller: the gains and the fallback.
 
 A researcher quotes an optimised blend against what the machines already
-do. A plug-in blend that did not beat the fastest certified controller
-variant, when that is not PMAC, is first solved again from that variant's
-path (its leads the starting point, :func:`rebase`). So every row gets its **gain** against PMAC (the reference) and against
+do. The plug-in blends are solved after the controllers, from the fastest
+certified controller variant's path (its leads their starting point;
+:func:`ccopt.compare.compare`). So every row gets its **gain** against PMAC (the reference) and against
 the fastest certified controller variant of the same program
 (:data:`~ccopt.compare.contract.CONTROLLER_NAMES`): ``gain = 1 - t / t_base``,
 positive when the row is faster. And a blend that is not a controller's own
@@ -18,9 +18,9 @@ shows a slower blend as the optimised answer.
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import Callable
 
 from ccopt.compare.contract import BUILTIN_NAMES, CONTROLLER_NAMES
+from ccopt.compare.figures import max_deviation
 
 #: Two cycle times within this relative difference are the same time (the
 #: planners' own rounding is far below it).
@@ -36,6 +36,26 @@ def fastest_controller(rows) -> object | None:
     timed = [r for r in rows if r.name in CONTROLLER_NAMES and r.status == "ok"
              and r.figures.get("duration") is not None]
     return min(timed, key=lambda r: r.figures["duration"], default=None)
+
+
+def base_row(rows, reference_name: str):
+    """The fastest certified controller variant's row when it is not the
+    reference's (the plug-in blends then start from its path), else ``None``."""
+    best = fastest_controller([r for r in rows if r is not None])
+    return best if best is not None and best.name != reference_name else None
+
+
+def from_base(row, base: str, reference):
+    """A plug-in ``row`` solved from controller ``base``'s path: its deviation
+    measured from the ``reference`` path as every row's, and saying where it
+    started (``info["base"]``)."""
+    if row.toolpath is not None:
+        dev, bound = max_deviation(row.toolpath, reference)
+        row.figures.update(max_deviation=dev, max_deviation_bound=bound)
+    row.info["base"] = base
+    note = f"started from {base}'s path (the fastest certified controller variant)"
+    row.message = note if row.message is None else f"{note}; {row.message}"
+    return row
 
 
 def apply_baseline(rows, reference_name: str) -> None:
@@ -79,35 +99,3 @@ def _kept(row, best):
     return replace(row, status="ok", message=message, toolpath=best.toolpath,
                    certificate=best.certificate, figures=figures, info=info)
 
-
-def rebase(rows, problem, ref_duration, reference_name: str,
-           solve: Callable, progress: Callable[[str], None] | None = None) -> None:
-    """Each plug-in row that did not beat the fastest certified controller
-    variant, when that is not the reference, solved again from that variant's
-    path with ``solve(name, base_problem, problem) -> row`` (measured as every
-    row: deviation from the reference, cycle time) and kept when certified and
-    faster than the row (in place). The row says which path it started from
-    (``info["base"]``)."""
-    best = fastest_controller(rows)
-    if best is None or best.name == reference_name:
-        return
-    t_best = best.figures["duration"]
-    base = replace(problem, reference=best.toolpath)
-    for i, row in enumerate(rows):
-        t = row.figures.get("duration")
-        if row.name in BUILTIN_NAMES or (row.status == "ok" and t is not None and t <= t_best):
-            continue
-        if progress is not None:
-            progress(f"{row.name} from {best.name}'s path")
-        again = solve(row.name, base, problem)
-        t2 = again.figures.get("duration")
-        if again.status != "ok" or t2 is None or (row.status == "ok" and t is not None
-                                                  and t2 >= t):
-            continue
-        again.figures["duration_ratio"] = t2 / ref_duration if ref_duration else None
-        again.figures["solve_time"] = (row.figures.get("solve_time") or 0.0) + \
-            again.figures.get("solve_time", 0.0)
-        again.info["base"] = best.name
-        note = f"started from {best.name}'s path (the fastest certified controller variant)"
-        again.message = note if again.message is None else f"{note}; {again.message}"
-        rows[i] = again

@@ -30,7 +30,7 @@ from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Callable
 
-from ccopt.compare.baseline import apply_baseline, rebase
+from ccopt.compare.baseline import apply_baseline, base_row, from_base
 from ccopt.compare.contract import BUILTIN_NAMES, BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.figures import max_deviation, path_figures
 from ccopt.compare.leads import lead_joins
@@ -247,8 +247,17 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
         _say(progress, f"variant {ref_index + 1}/{len(names)} {REFERENCE}")
         return [(ref_index, measure(REFERENCE, ref.path, problem, ref.seconds, times=times))]
 
-    for i, row in _run_jobs(jobs, ref, reference_row, len(names), workers, progress):
+    # the controllers and built-in leads first; the plug-in blends then start
+    # from the fastest certified controller variant's path (issue 30)
+    first = [job for job in jobs if job[1] in BUILTIN_NAMES]
+    for i, row in _run_jobs(first, ref, reference_row, len(names), workers, progress):
         rows[i] = row
+    later = [job for job in jobs if job[1] not in BUILTIN_NAMES]
+    base = base_row(rows, REFERENCE) if limits is not None and problem is not None else None
+    if base is not None:
+        later = [(i, name, replace(problem, reference=base.toolpath)) for i, name, _ in later]
+    for i, row in _run_jobs(later, ref, lambda _: [], len(names), workers, progress):
+        rows[i] = row if base is None else from_base(row, base.name, problem.reference)
     ref_duration = rows[ref_index].figures.get("duration") if ref_index is not None else None
     if ref_duration is None and problem is not None and limits is not None:
         ref_duration = _duration(ref.path, limits, ref.times())[0]
@@ -257,20 +266,8 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
         if d is not None and ref_duration:
             row.figures["duration_ratio"] = d / ref_duration
     if limits is not None and problem is not None:
-        rebase(rows, problem, ref_duration, REFERENCE, _solved_and_timed, progress)
         apply_baseline(rows, REFERENCE)
     return Comparison(rows, ref.path, limits, program)
-
-
-def _solved_and_timed(name: str, base: BlendProblem, problem: BlendProblem) -> VariantResult:
-    """Blend ``name`` solved on ``base`` (another reference path), measured as every
-    row: deviation from ``problem``'s reference (PMAC's), cycle time planned whole."""
-    row = _solve(name, base)
-    if row.status != "ok" or row.toolpath is None:
-        return row
-    dev = max_deviation(row.toolpath, problem.reference)
-    row.figures.update(max_deviation=dev[0], max_deviation_bound=dev[1])
-    return _with_duration(row, _duration(row.toolpath, problem.limits))
 
 
 @dataclass
