@@ -203,24 +203,12 @@ class Certificate:
             lines.append(f"  {c.name:11s} {'ok ' if c.ok else 'FAIL'}  {fig:>16s} {c.unit:5s} "
                          f"[{c.basis}] {c.requirement} ({c.count} checked, {c.violations} violations)")
         for v in self.violations[:20]:
-            where = f"tool segment {v.tool_segment} (line {v.tool_block}, {v.tool_role})" \
-                if v.tool_segment is not None else ""
-            elem = f" vs element {v.element} (line {v.element_block})" if v.element is not None else ""
-            wit = ""
-            if v.witness_tool is not None:
-                wit = f" at ({v.witness_tool[0]:.6g}, {v.witness_tool[1]:.6g})"
-            lines.append(f"  - {v.kind}: depth {v.depth:.9g}, {where}{elem}{wit}".rstrip())
+            lines.append(f"  - {v.kind}: depth {v.depth:.9g}, {_place(v)}".rstrip())
         if len(self.violations) > 20:
             lines.append(f"  ... {len(self.violations) - 20} more")
         for v in self.warnings[:20]:
-            where = f"tool segment {v.tool_segment} (line {v.tool_block}, {v.tool_role})" \
-                if v.tool_segment is not None else ""
-            elem = f" vs element {v.element} (line {v.element_block})" if v.element is not None else ""
-            wit = ""
-            if v.witness_tool is not None:
-                wit = f" at ({v.witness_tool[0]:.6g}, {v.witness_tool[1]:.6g})"
             lines.append(f"  ~ warning, {v.kind} within tolerance: depth {v.depth:.3g} "
-                         f"{self.units}, {where}{elem}{wit}: {v.detail.get('cause', '')}".rstrip())
+                         f"{self.units}, {_place(v)}: {v.detail.get('cause', '')}".rstrip())
         if len(self.warnings) > 20:
             lines.append(f"  ... {len(self.warnings) - 20} more warnings")
         for n in self.notes:
@@ -263,6 +251,17 @@ class Certificate:
         elif self.limits_tol is not None:
             lim += f" at tolerance {self.limits_tol:g}"
         return f"geometry {'ok' if self.geometry_ok else 'FAIL'}, limits {lim}"
+
+def _place(v: Violation) -> str:
+    """Where a violation is: its tool segment, element and witness point."""
+    where = f"tool segment {v.tool_segment} (line {v.tool_block}, {v.tool_role})" \
+        if v.tool_segment is not None else ""
+    elem = f" vs element {v.element} (line {v.element_block})" if v.element is not None else ""
+    wit = ""
+    if v.witness_tool is not None:
+        wit = f" at ({v.witness_tool[0]:.6g}, {v.witness_tool[1]:.6g})"
+    return f"{where}{elem}{wit}"
+
 
 def _lines_text(ranges) -> str:
     return ", ".join(str(a) if a == b else f"{a}-{b}" for a, b in ranges) or "none"
