@@ -92,3 +92,28 @@ def test_stadium_optimised_rows_never_slower_than_the_fastest_controller(tmp_pat
     assert all(v["fastest_controller"] == "linuxcnc" for v in js)
     assert all(v["gain_vs_fastest_controller"] >= -SAME_TIME_REL for v in js
                if v["name"] not in CONTROLLER_NAMES)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", [2, 4, 7, 11])
+def test_generated_plates_optimised_rows_never_slower(seed):
+    # CAM-style plates (tests/cam_programs.py) under 200 mm/s and 2000 mm/s^2 per
+    # axis: every optimised row is certified and no slower than the fastest
+    # certified controller variant, its gains as the rows' own times give them
+    from cam_programs import cam_program
+
+    cp = cam_program(seed)
+    prog = read_text(cp.text, cp.file, cp.dialect, tool_table=cp.tool_table)
+    cmp = compare(prog, list(CONTROLLER_NAMES) + ["opt-casadi", "opt-cvxpy", "smooth"],
+                  limits=AxisLimits((200.0, 200.0, 100.0), (2000.0, 2000.0, 1000.0)))
+    timed = [r for r in cmp if r.name in CONTROLLER_NAMES and r.status == "ok"]
+    assert timed, cp.description
+    t_best = min(r.figures["duration"] for r in timed)
+    t_pmac = cmp["pmac"].figures["duration"]
+    for name in ("opt-casadi", "opt-cvxpy", "smooth"):
+        r = cmp[name]
+        assert r.status == "ok" and r.certificate.ok, (cp.description, name, r.message)
+        t = r.figures["duration"]
+        assert t <= t_best * (1 + SAME_TIME_REL), (cp.description, name)
+        assert r.figures["gain_vs_fastest_controller"] == pytest.approx(1 - t / t_best, abs=1e-15)
+        assert r.figures["gain_vs_pmac"] == pytest.approx(1 - t / t_pmac, abs=1e-15)
