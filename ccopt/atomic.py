@@ -23,8 +23,9 @@ with every file they are about to write before they write the first
 (``ccopt run p.pmc -o .`` writes nothing), :func:`ccopt.export.export`
 with the files its program was read from. As a backstop, while a command of
 the command line runs (:func:`inputs_guarded`, which :func:`ccopt.cli.main`
-enters) every file the readers read (programs, subroutine files, tool
-tables, parameter files: :func:`protect_input`) is remembered, and every
+enters) every file a job's program was read from (the program, subroutine
+files, tool table, parameter file: its ``INPUT_FILES``, remembered by
+:meth:`ccopt.cases.ReadOptions.read` with :func:`protect_input`), and every
 write through this module whose target is one of them is refused before
 anything is written. Outside it (the Python API) only the explicit checks
 apply, so a session may read a file it exported and export it again.

@@ -34,10 +34,11 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ccopt.compensate import STYLES, compensate
+from ccopt.atomic import protect_input
 from ccopt.errors import ProgramError
 from ccopt.feed import PLANNERS, AxisLimits, certified_planner
 from ccopt.program import read_program
-from ccopt.program.model import MAX_COORDINATE, Program
+from ccopt.program.model import INPUT_FILES, MAX_COORDINATE, Program
 from ccopt.tolerances import LIMIT_RANGE
 from ccopt.toolpath import ToolPath
 
@@ -296,11 +297,15 @@ class ReadOptions:
     max_loop_iterations: int | None = None
 
     def read(self, program: str | os.PathLike) -> Program:
-        """``program`` read with these options."""
-        return read_program(program, self.dialect, tool_table=self.tool_table,
+        """``program`` read with these options; the files it was read from
+        remembered as inputs within a command (:func:`ccopt.atomic.protect_input`)."""
+        prog = read_program(program, self.dialect, tool_table=self.tool_table,
                             var_file=self.var_file, units=self.units,
                             table_units=self.table_units, sub_path=self.sub_path,
                             max_loop_iterations=self.max_loop_iterations)
+        for f in prog.meta.get(INPUT_FILES, ()):
+            protect_input(f)
+        return prog
 
 
 @dataclass(frozen=True)

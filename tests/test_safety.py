@@ -349,12 +349,13 @@ def test_a_subroutine_file_is_an_input_too(capsys, workdir):
 
 def test_inputs_are_guarded_only_within_a_command(workdir):
     from ccopt import atomic
+    from ccopt.cases import ReadOptions
     with atomic.inputs_guarded():
-        read_program("p.pmc")
+        ReadOptions().read("p.pmc")         # as every command reads its program
         with pytest.raises(ProgramError, match="never writes over its inputs"):
             atomic.write_text_atomic("link-p.pmc", "x")
     # outside, the writer remembers nothing (the API's explicit checks apply):
     # here it replaces the link itself, the program stays as it was
-    read_program("p.pmc")
+    ReadOptions().read("p.pmc")
     atomic.write_text_atomic("link-p.pmc", "x")
     assert not (workdir / "link-p.pmc").is_symlink() and (workdir / "p.pmc").read_text() == PMAC

@@ -10,7 +10,6 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
-from ccopt.atomic import protect_input
 from ccopt.errors import ProgramError
 from ccopt.program.gcode import read_gcode
 from ccopt.program.gcode.coordinates import read_var_file
@@ -81,7 +80,6 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
         raw = Path(path).read_bytes()
     except OSError as exc:
         raise ProgramError(f"cannot read program: {exc.strerror or exc}", file) from None
-    protect_input(path)     # an input: never written over (ccopt.atomic)
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -101,7 +99,7 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
                      table_units=table_units, sub_path=sub_path,
                      max_loop_iterations=max_loop_iterations)
     # every file it was read from: what no output may replace (ccopt.export)
-    read_from = [file, *(b.source.file for b in prog.blocks),
+    read_from = [file, *prog.meta.get(INPUT_FILES, ()), *(b.source.file for b in prog.blocks),
                  *(str(f) for f in (tool_table, var_file)
                    if isinstance(f, (str, os.PathLike)) and os.path.isfile(f))]
     prog.meta[INPUT_FILES] = tuple(dict.fromkeys(read_from))

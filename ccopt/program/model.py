@@ -72,7 +72,9 @@ PLANE_CHANGES_CHECKED = "plane_changes_checked"
 
 #: ``Program.meta`` key: the files a program was read from (the program, its
 #: subroutine files, tool table and parameter file), set by
-#: :func:`ccopt.program.read_program`; no export may write over one of them.
+#: :func:`ccopt.program.read_program` (the G-code reader records the
+#: subroutine files it read); no output may write over one of them
+#: (:mod:`ccopt.atomic`, :func:`ccopt.cases.ReadOptions.read`).
 INPUT_FILES = "input_files"
 
 

@@ -25,7 +25,6 @@ import os
 import re
 from pathlib import Path
 
-from ccopt.atomic import protect_input
 from ccopt.errors import ProgramError
 from ccopt.program.model import MAX_PROGRAM_COORDINATE, out_of_range
 
@@ -64,7 +63,6 @@ def _load(path_or_text) -> tuple[str, str]:
                            "<tool table>")
     try:
         text = path.read_text(encoding="utf-8", errors="replace")
-        protect_input(path)     # an input: never written over (ccopt.atomic)
         return text, str(path)
     except OSError as exc:
         raise ProgramError(f"cannot read tool table: {exc.strerror or exc}", str(path)) from None

@@ -34,7 +34,6 @@ import os
 import re
 from pathlib import Path
 
-from ccopt.atomic import protect_input
 from ccopt.errors import ProgramError
 from ccopt.program.gcode.parameters import MAX_PARAMETER
 from ccopt.program.gcode.state import GCodeState
@@ -176,7 +175,6 @@ def read_var_file(path: str | os.PathLike) -> dict[int, float]:
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8", errors="replace")
-        protect_input(path)     # an input: never written over (ccopt.atomic)
     except OSError as exc:
         raise ProgramError(f"cannot read parameter file: {exc.strerror or exc}",
                            str(path)) from None

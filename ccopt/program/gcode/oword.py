@@ -13,7 +13,6 @@ import math
 import os
 from pathlib import Path
 
-from ccopt.atomic import protect_input
 from ccopt.program.expr import ExprError, parse_bracketed
 from ccopt.program.gcode.parameters import (
     SUB_PARAMS,
@@ -249,7 +248,6 @@ def load_sub_file(state: GCodeState, label: str, col: int) -> tuple[int, int]:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
         raise state.error(f"{olabel(label)} call: cannot read {path}: {exc}", col) from None
-    protect_input(path)     # an input: never written over (ccopt.atomic)
     first = len(state.lines)
     state.lines.extend(LINE_SPLIT.split(text))
     state.sub_files.append((first, len(state.lines), str(path)))

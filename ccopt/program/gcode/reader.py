@@ -20,7 +20,7 @@ from ccopt.program.gcode.parameters import MAX_PARAMETER, attach_grammar, set_pa
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import output_units
 from ccopt.program.gcode.words import Lexed, lex, olabel, program_span
-from ccopt.program.model import PLANE_CHANGES_CHECKED, Program
+from ccopt.program.model import INPUT_FILES, PLANE_CHANGES_CHECKED, Program
 from ccopt.program.tooltable import ToolTable
 
 
@@ -98,6 +98,8 @@ def run(state: GCodeState) -> Program:
             gc.enable()
     units = output_units(state)
     state.meta[PLANE_CHANGES_CHECKED] = True     # execute._set_modes refuses them
+    # the subroutine files read from the sub path, called or not: inputs too
+    state.meta[INPUT_FILES] = tuple(dict.fromkeys(f for _, _, f in state.sub_files))
     return Program(tuple(state.blocks), file=state.file, dialect="gcode", units=units,
                    start=state.start, meta=state.meta)
 
