@@ -17,24 +17,15 @@ from pathlib import Path
 import pytest
 
 from ccopt.cases import load_case
-from ccopt.cli import main
 from ccopt.errors import ProgramError
 from ccopt.program import read_program, read_text
 from ccopt.program.gcode import LOOP_LINES_PER_ITERATION, MAX_LOOP_ITERATIONS, read_gcode
 from ccopt.program.model import MAX_PROGRAM_COORDINATE
 from ccopt.program.pmac import read_pmac
 from ccopt.program.tooltable import read_tool_table
+from cli_run import run_cli
 
 CASES = Path(__file__).resolve().parents[1] / "cases"
-
-
-def run_cli(capsys, *argv: str) -> tuple[int, str, str]:
-    try:
-        code = main(list(argv))
-    except SystemExit as exc:  # argparse's own exit
-        code = exc.code
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def one_line(err: str) -> str:

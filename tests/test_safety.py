@@ -22,9 +22,10 @@ from pathlib import Path
 import pytest
 
 import ccopt
-from ccopt.cli import main
 from ccopt.errors import ProgramError
 from ccopt.program import read_program
+
+from cli_run import run_cli
 
 ROOT = Path(__file__).resolve().parents[1]
 PMAC = (ROOT / "cases" / "leadin-inside-line" / "part.pmc").read_text()
@@ -34,15 +35,6 @@ PROGRAMS = {"pmac": ("p.pmc", PMAC), "gcode": ("p.nc", GCODE)}
 
 #: the message every refusal carries
 REFUSED = "ccopt never writes over its inputs"
-
-
-def run_cli(capsys, *argv: str) -> tuple[int, str, str]:
-    try:
-        code = main(list(argv))
-    except SystemExit as exc:  # argparse's own exit
-        code = exc.code
-    out, err = capsys.readouterr()
-    return code, out, err
 
 
 def tree(folder: Path) -> dict[str, tuple]:
