@@ -3,17 +3,18 @@
 A researcher quotes an optimised blend against what the machines already
 do. The plug-in blends are solved after the controllers, from the fastest
 certified controller variant's path (its leads their starting point;
-:func:`ccopt.compare.compare`). So every row gets its **gain** against PMAC (the reference) and against
-the fastest certified controller variant of the same program
+:func:`ccopt.compare.compare`), and every row gets its **gain** against PMAC
+(the reference) and against that fastest certified controller variant
 (:data:`~ccopt.compare.contract.CONTROLLER_NAMES`): ``gain = 1 - t / t_base``,
-positive when the row is faster. And a blend that is not a controller's own
-path nor a built-in geometric lead (the plug-ins: opt-casadi, opt-cvxpy, the
-smoother) is only reported when it is a **certified improvement**: a blend
-that is not certified, or slower than that fastest controller variant by
-more than :data:`SAME_TIME_REL`, is replaced by the controller's path, its
-row saying "no faster certified blend" and keeping what the optimiser found
-in ``info["optimised"]`` (status, cycle time, message, figures), so the table never
-shows a slower blend as the optimised answer.
+positive when the row is faster. A plug-in blend (opt-casadi, opt-cvxpy, the
+smoother: neither a controller's path nor a built-in geometric lead) that
+made a path is only reported when it is a **certified improvement**: one
+that is not certified, or slower than that controller variant by more than
+:data:`SAME_TIME_REL`, is replaced by the controller's path, its row saying
+"no faster certified blend" and keeping what the optimiser found in
+``info["optimised"]`` (status, cycle time, message, figures), so the table
+never shows a slower blend as the optimised answer. A plug-in that made no
+path (refused, rejected, failed) keeps its row and its reason.
 """
 from __future__ import annotations
 
@@ -66,8 +67,8 @@ def apply_baseline(rows, reference_name: str) -> None:
     if best is not None:
         t_best = best.figures["duration"]
         for i, row in enumerate(rows):
-            if row.name in BUILTIN_NAMES or row.status in ("refused",):
-                continue
+            if row.name in BUILTIN_NAMES or row.toolpath is None:
+                continue            # a controller's or geometric lead's, or no path made
             t = row.figures.get("duration")
             improved = row.status == "ok" and t is not None \
                 and t <= t_best * (1.0 + SAME_TIME_REL)

@@ -53,7 +53,9 @@ def test_gains_and_fallback_by_hand():
     assert by["opt-a"].toolpath == "A" and by["opt-a"].status == "ok"
     assert by["opt-a"].figures["gain_vs_fastest_controller"] == pytest.approx(1 - 8.5 / 9.0)
     assert by["opt-a"].figures["gain_vs_pmac"] == pytest.approx(0.15)
-    for name in ("opt-b", "opt-c", "opt-d"):
+    # a plug-in that made no path keeps its row and its reason
+    assert by["opt-d"].status == "rejected" and by["opt-d"].toolpath is None
+    for name in ("opt-b", "opt-c"):
         r = by[name]
         assert r.status == "ok" and r.toolpath == "L" and r.figures["duration"] == 9.0
         assert r.message.startswith(f"{NO_FASTER}: linuxcnc's path kept")
