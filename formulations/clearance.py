@@ -32,6 +32,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from ccopt.geometry import Arc, Line, angle_in_sweep, distance, point_arc, point_segment
 from ccopt.geometry.bezier import DIVISION_FLOOR
@@ -100,11 +101,44 @@ def element_distance(el: Element, pts: np.ndarray) -> np.ndarray:
         return point_segment(pts, g.p0, g.p1)[0]
     if el.kind == "arc":
         return point_arc(pts, g.center, g.radius, g.theta0, g.sweep)[0]
-    q = _dense(el, 2049)
-    d = np.full(len(pts), np.inf)
-    for a, b in zip(q[:-1], q[1:]):
-        d = np.minimum(d, point_segment(pts, a, b)[0])
-    return d
+    return polyline_distance(_dense(el, DENSE_SAMPLES), pts)
+
+
+#: Samples of an element of another kind (a spiral, a Bezier curve) for the
+#: fine polyline the models measure it by.
+DENSE_SAMPLES = 2049
+#: :func:`polyline_distance` measures a point against pieces a block at a time,
+#: and only against blocks whose bounding box may hold its nearest point.
+PIECE_BLOCK = 64
+
+
+def polyline_distance(q: np.ndarray, pts: np.ndarray) -> np.ndarray:
+    """Distance from each point of ``pts`` (``(N, 2)``) to the polyline ``q``
+    (``(M, 2)``, M >= 2), exact for the polyline.
+
+    The pieces go in blocks of :data:`PIECE_BLOCK`; a point is measured against a
+    block only when the block's bounding box comes no farther from it than the
+    point's nearest vertex (an upper bound of its distance), so a point far from
+    most of a long curve meets only the blocks around its nearest piece."""
+    pts = np.asarray(pts, float).reshape(-1, 2)
+    q = np.asarray(q, float).reshape(-1, 2)
+    upper = cKDTree(q).query(pts)[0]
+    out = upper.copy()
+    for k in range(0, len(q) - 1, PIECE_BLOCK):
+        a = q[k:k + PIECE_BLOCK + 1]
+        lo, hi = a.min(axis=0), a.max(axis=0)
+        gap = np.maximum(np.maximum(lo - pts, pts - hi), 0.0)
+        idx = np.flatnonzero(np.hypot(gap[:, 0], gap[:, 1]) < out)
+        if len(idx) == 0:
+            continue
+        d = np.diff(a, axis=0)
+        dd = np.einsum("ij,ij->i", d, d)
+        dd = np.where(dd > 0.0, dd, 1.0)      # a zero-length piece is its start point
+        w = pts[idx, None, :] - a[None, :-1, :]
+        t = np.clip(np.einsum("nmj,mj->nm", w, d) / dd, 0.0, 1.0)
+        w -= t[..., None] * d[None, :, :]
+        out[idx] = np.minimum(out[idx], np.sqrt(np.min(np.einsum("nmj,nmj->nm", w, w), axis=1)))
+    return out
 
 
 def checked_distance(el: Element, pts: np.ndarray) -> np.ndarray:
@@ -173,7 +207,7 @@ def classify(el: Element, p: np.ndarray):
             if is_open:
                 kind[m], vec[m], scal[m] = EXEMPT, u, float(u @ E)
         return kind, vec, scal
-    q = _dense(el, 2049)
+    q = _dense(el, DENSE_SAMPLES)
     k = np.argmin(np.hypot(p[:, None, 0] - q[None, :, 0], p[:, None, 1] - q[None, :, 1]), axis=1)
     vec[:] = q[k]
     return kind, vec, scal

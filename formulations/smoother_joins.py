@@ -59,7 +59,8 @@ from ccopt.geometry import Arc, BezierCurve, Line, point_arc, point_segment
 from ccopt.geometry.bezier import DIVISION_FLOOR, g2_end, g2_start
 from ccopt.geometry.curve import bernstein, derivative_matrix
 from ccopt.toolpath import PathSegment, Role, ToolPath
-from ccopt_formulations.clearance import Element, checked_distance, contour_elements
+from ccopt_formulations.clearance import (Element, checked_distance, contour_elements,
+                                          polyline_distance)
 
 DEGREE = 7
 #: Share of a segment a blend may take when another blend uses its other end, and
@@ -254,11 +255,8 @@ def ref_distance(geom, pts: np.ndarray) -> np.ndarray:
         return point_segment(pts, geom.p0, geom.p1)[0]
     if isinstance(geom, Arc):
         return point_arc(pts, geom.center, geom.radius, geom.theta0, geom.sweep)[0]
-    q = np.asarray(geom.point(np.linspace(0.0, geom.length, 513)), float)
-    d = np.full(len(pts), np.inf)
-    for a, b in zip(q[:-1], q[1:]):
-        d = np.minimum(d, point_segment(pts, a, b)[0])
-    return d
+    q = np.asarray(geom.point(np.linspace(0.0, geom.length, 513)), float).reshape(-1, 2)
+    return polyline_distance(q, pts)
 
 
 def curvature_bound(fr: BlendFrame) -> float:
