@@ -29,7 +29,7 @@ join holds whatever the iterate).
 
 The curvature bound (issue 18 item 6): ``kappa = |r' x r''| / |r'|^3 <= K`` with
 ``K = CURVATURE_MODEL_SHARE * kappa_max``
-(:func:`ccopt_formulations.lead_setup.curvature_bound`, ``4 max(1/r, kappa_ref)``),
+(:func:`ccopt_formulations.lead_setup.curvature_bound`, ``a / v^2``),
 i.e. ``+-q(x) <= K |r'(x)|^3`` with ``q = r' x r''``. Neither side is concave,
 so each row is replaced by a convex *restriction* that is exact at ``x_k``
 (the convex-concave procedure; every point the subproblem admits with

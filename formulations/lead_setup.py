@@ -21,14 +21,17 @@ arc, or an end point), re-classified at every iterate. The curve's two ends
 are PMAC's own points and are not constrained.
 
 Curvature: every blend turns no tighter than :func:`curvature_bound`,
-``LEAD_CURVATURE_FACTOR * max(1/r, kappa_ref)`` with ``r`` the cutter radius
-and ``kappa_ref`` the largest curvature of the reference's feed path (PMAC's
-own corner arcs): a lead is then a curve a machinist accepts, with no
-micrometre hook at the approach point or just after the join. The CasADi
-model imposes :data:`CURVATURE_MODEL_SHARE` of it at its samples, and
+``a / v^2``: ``v`` the speed the lead must carry (its programmed feed, at most
+the slowest in-plane axis speed) and ``a`` the smallest in-plane axis
+acceleration, so that the tool can follow any turn of the lead at that speed
+with a normal acceleration no axis exceeds (a tighter turn forces the feed
+down, and a hook of a micrometre radius is not a lead). The CasADi model
+imposes :data:`CURVATURE_MODEL_SHARE` of it at its samples, and
 :func:`run_leads` checks it densely (:func:`too_tight`) before such a blend is
-taken. (The CVXPY model does not impose it yet: see
-:func:`ccopt_formulations.blend_cvxpy.opt_cvxpy`.)
+taken. (The CVXPY model imposes it through its curvature rows.) What jerk does
+to the speed (the normal acceleration ``v^2 kappa`` must build up at the jerk
+limit) is the planner's to time: the search of :mod:`ccopt_formulations.lead_timing`
+minimises the planned cycle time itself.
 
 The verifier has the last word (:meth:`BlendProblem.check`, on the segments a
 blend changed).
@@ -41,12 +44,12 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
-from ccopt.compare.figures import FEED_ROLES, curvature_samples
 from ccopt.compare.leads import Lead, LeadGeometry, splice
 from ccopt.geometry import Arc, BezierCurve, Line
 from ccopt.geometry.bezier import DIVISION_FLOOR, g2_end, jerk_gram, speed_profile_time
 from ccopt.geometry.curve import bernstein, derivative_matrix
 from ccopt_formulations.clearance import checked_distance, contour_elements, near, row_margin
+from ccopt_formulations.lead_timing import SEARCH_EVALUATIONS, LeadTimer, refine
 
 DEGREE = 5
 
@@ -64,27 +67,24 @@ E_MAX = 8
 #: thousands of mm away on fagor-g136-g139, certified but 30x slower.)
 CONTROL_REACH = 3.0
 
-#: The curvature bound of a lead, as a multiple of ``max(1/r, kappa_ref)``
-#: (:func:`curvature_bound`): no turn tighter than a quarter of the cutter radius,
-#: or than a quarter of the radius of the tightest turn the reference path makes.
-#: (With 1, IPOPT finds no blend around PMAC's own outside-corner arcs on the
-#: Fagor cases; with 2, the inside lead-in of leadin-inside-line is 0.2 % slower
-#: than PMAC's diagonal; with 4 it is 0.7 % faster, and pocket's 0.2 %. The
-#: hooks this removes turned at 150 to 2,500 times 1/r.)
-LEAD_CURVATURE_FACTOR = 4.0
 #: The share of the bound the models impose at their samples (the curve between
 #: samples may turn a little tighter; :func:`too_tight` checks the whole bound).
 CURVATURE_MODEL_SHARE = 0.8
 
 
-def curvature_bound(problem: BlendProblem) -> float:
-    """Largest curvature (1/units) an optimised lead may have:
-    ``LEAD_CURVATURE_FACTOR * max(1/r, kappa_ref)``, ``r`` the cutter radius,
-    ``kappa_ref`` the largest curvature of the reference's feed segments."""
-    ref = problem.reference
-    kref = max((float(np.max(np.abs(curvature_samples(s.geom)))) for s in ref.segments
-                if s.role in FEED_ROLES and s.length > 0), default=0.0)
-    return LEAD_CURVATURE_FACTOR * max(1.0 / problem.cutter_radius, kref)
+def curvature_bound(problem: BlendProblem, feed: float) -> float:
+    """Largest curvature (1/units) an optimised lead with programmed ``feed``
+    (units/s) may have: ``a / v^2`` with ``v = min(feed, slowest in-plane axis
+    speed)`` and ``a`` the smallest in-plane axis acceleration (the problem's
+    limits, else :data:`~ccopt.compare.contract.DEFAULT_ACC` and the feed).
+    At that curvature and speed the normal acceleration ``v^2 kappa`` is ``a``,
+    which every axis can give whatever the direction of the turn."""
+    a = float(np.min(problem.acc()))
+    v = float(feed)
+    if problem.limits is not None:
+        vmax, _ = problem.limits.in_plane(problem.reference.plane, 2)
+        v = min(v, float(np.min(vmax)))
+    return a / (v * v) if v > 0.0 else math.inf
 
 
 @dataclass
@@ -355,7 +355,7 @@ def lead_setup(problem: BlendProblem, lead: Lead, *, join: str = "start",
     elements = near(contour_elements(problem.contour), corridor,
                     REACH * r + 0.5 * float(np.linalg.norm(H0 - A)), limit=E_MAX)
     return LeadSetup(lead, lg, A, kind, H0, t0, n_free, center, rho, sgn, outside, th0, lo, hi,
-                     r, feed, acc, L0, elements, curvature_bound(problem), w_jerk, int(degree),
+                     r, feed, acc, L0, elements, curvature_bound(problem, feed), w_jerk, int(degree),
                      int(refine))
 
 
@@ -407,6 +407,30 @@ def too_tight(setup: "LeadSetup", geom) -> str | None:
     return None
 
 
+def _is_blend(setup: LeadSetup, x, curvature_bounded: bool) -> bool:
+    """Whether ``x`` is a blend the search may take: within the bounds of ``x``,
+    regular (:func:`near_cusp`), within the curvature bound when the model
+    imposes it (:func:`too_tight`) and clear of the contour at the models'
+    clearance samples (the verifier checks between them)."""
+    lo, hi = setup.bounds()
+    slack = BOUND_SLACK * setup.L0          # a solver's rounding at an active bound
+    if np.any(x < lo - slack) or np.any(x > hi + slack):
+        return False
+    geom = blend_geometry(setup, x)
+    if near_cusp(setup, geom) is not None or (curvature_bounded and too_tight(setup, geom)):
+        return False
+    return setup.clearance_violation(x, m=CLEARANCE_SAMPLES * setup.refine) <= 0.0
+
+
+#: How far (relative to ``L0``) a decision vector may lie outside
+#: :meth:`LeadSetup.bounds` and still count as within them (CLARABEL returns
+#: a fixed join ``sigma = 0`` as ``-1e-12``).
+BOUND_SLACK = 1e-9
+
+#: Curve samples at which the search of :func:`run_leads` checks a blend's
+#: clearance (the verifier then checks the chosen one exactly).
+CLEARANCE_SAMPLES = 401
+
 #: Clearance sample multipliers tried in turn when the verifier rejects a blend
 #: (between samples a curve may come closer than at them; denser samples, less).
 ATTEMPTS = (1, 3, 9)
@@ -434,6 +458,36 @@ def _beside(problem: BlendProblem, path, cand) -> bool:
     return True
 
 
+def _searched(problem: BlendProblem, path, lead: Lead, setup: LeadSetup, x, name: str,
+              curvature_bounded: bool, evaluations: int):
+    """``(decision vectors to try in turn, what the search reports)``: the
+    planner search's faster blend (:func:`ccopt_formulations.lead_timing.refine`,
+    ``evaluations`` planner runs) before the model's ``x``, or ``x`` alone when
+    there are no limits or no runs to spend."""
+    if problem.limits is None or evaluations <= 0:
+        return [x], {}
+    fast, timed = refine(setup, x, LeadTimer(problem, path, lead, name),
+                         lambda z: _is_blend(setup, z, curvature_bounded), evaluations)
+    return ([fast, x] if fast is not x else [x]), timed
+
+
+def _first_certified(problem: BlendProblem, path, lead: Lead, setup: LeadSetup, tries,
+                     name: str):
+    """``(x, candidate path, None)`` for the first decision vector of ``tries`` whose
+    blend, spliced into ``path``, the verifier certifies on the segments it made
+    (:meth:`BlendProblem.check`), else ``(last x, its path, the last reason)``."""
+    err = None
+    for x in tries:
+        cand = splice(path, lead, [blend_geometry(setup, x)], float(x[-1]), style=name)
+        try:
+            problem.check(cand, _made(path, cand))
+        except BlendRejected as exc:
+            err = str(exc)
+            continue
+        return x, cand, None
+    return x, cand, err
+
+
 def run_leads(problem: BlendProblem, solve_lead, name: str,
               attempts: tuple[int, ...] = ATTEMPTS,
               curvature_bounded: bool = True) -> BlendOutcome:
@@ -452,6 +506,7 @@ def run_leads(problem: BlendProblem, solve_lead, name: str,
     join = str(opts.get("join", "start"))
     w_jerk = float(opts.get("w_jerk", W_JERK))
     degree = int(opts.get("degree", DEGREE))
+    search = int(opts.get("search", SEARCH_EVALUATIONS))
     if degree < 5:
         raise BlendRejected(f"degree must be at least 5 for a G2 blend with a free start, "
                             f"got {degree}")
@@ -486,16 +541,17 @@ def run_leads(problem: BlendProblem, solve_lead, name: str,
             if cusp is not None:
                 last_err = cusp      # denser samples next time (the models scale with refine)
                 continue
-            cand = splice(path, ld, [geom], float(x[-1]), style=name)
-            try:
-                problem.check(cand, _made(path, cand))
-            except BlendRejected as exc:
-                last_err = str(exc)
+            tries, timed = _searched(problem, path, ld, setup, x, name, curvature_bounded,
+                                     search)
+            x, cand, last_err = _first_certified(problem, path, ld, setup, tries, name)
+            geom = blend_geometry(setup, x)
+            if last_err is not None:
                 if _beside(problem, path, cand):
                     break
                 continue
             path = cand
             entry.update({f"solver_{k}": v for k, v in info.items()})
+            entry.update(timed)
             entry.update(status="ok", refine=scale, sigma=float(x[-1]),
                          curvature_bound=setup.kappa_max if curvature_bounded else None,
                          proxy_time=float(setup.objective(x)),

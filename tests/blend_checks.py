@@ -110,13 +110,22 @@ def largest_curvature(g) -> float:
     return float(np.max(np.abs(g.curvature(s))))
 
 
-def lead_curvature_bound(ref) -> float:
-    """The optimised leads' stated bound, 4 max(1/r, kappa_ref): ``r`` the cutter
-    radius of PMAC's path ``ref``, ``kappa_ref`` the largest curvature of its feed
-    segments."""
-    kref = max((largest_curvature(s.geom) for s in ref.segments
-                if s.role in FEED_ROLES and s.length > 0), default=0.0)
-    return 4.0 * max(1.0 / ref.radius, kref)
+def lead_curvature_bound(seg, limits, plane: str = "XY") -> float:
+    """The optimised leads' stated bound for the lead segment ``seg`` (issue 30
+    item 3): ``a / v^2``, ``a`` the smaller of the in-plane axis accelerations of
+    ``limits`` and ``v`` the segment's programmed feed, at most the slower
+    in-plane axis speed: the turn whose normal acceleration at that speed is
+    what every axis can give."""
+    axes = {"XY": (0, 1), "ZX": (2, 0), "YZ": (1, 2)}[plane]
+    a = min(limits.a[i] for i in axes)
+    v = min([seg.feed] + [limits.v[i] for i in axes])
+    return a / v ** 2
+
+
+def lead_curves(path):
+    """``(segment, Bezier curve)`` of each lead of ``path`` an optimised blend made."""
+    return [(s, s.geom) for s in path.segments
+            if s.role in (Role.LEAD_IN, Role.LEAD_OUT) and s.geom.__class__.__name__ == "BezierCurve"]
 
 
 def _basis(t, n):

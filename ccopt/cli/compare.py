@@ -8,7 +8,8 @@ from ccopt.cli.inputs import limits_text, reading
 from ccopt.cli.options import (add_limit_options, add_output_option, add_program,
                                add_quiet_option, add_radius_side, add_reading_options,
                                add_tolerance_option, add_ts_option, add_variants_option,
-                               add_workers_option, chosen_variants, describe, positive_float)
+                               add_workers_option, chosen_variants, describe, nonneg_int,
+                               positive_float)
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, aligned, emit_json, figure, nothing_to_do
 from ccopt.compare import REFERENCE, BlendProblem, Comparison, available
 from ccopt.compare.plot import plot_comparison
@@ -253,6 +254,10 @@ def add_commands(sub, commands: dict) -> None:
     _add_blend_options(p)
     p.add_argument("--lead-radius", type=positive_float, metavar="R",
                    help="radius of the tangent-arc and line-arc leads (default: the cutter radius)")
+    p.add_argument("--search", type=nonneg_int, metavar="N",
+                   help="planner runs each optimised lead may spend searching for a blend of "
+                        "lower cycle time, timed by the comparison's planner (default: 0, the "
+                        "models' blends as they are)")
     add_output_option(p, "FILE", help="plot the variants over the contour (.png/.svg/.pdf)",
                       old=("--plot",))
     add_workers_option(p, "variants run in N worker processes (default: one per core; 1: one "

@@ -30,7 +30,8 @@ def overrides(args: argparse.Namespace, **command) -> Overrides:
     nothing. ``command``: the :class:`Overrides` a command sets itself, not
     from an option (``ccopt run``'s planners)."""
     given = {name: getattr(args, name, None) for name in STYLE_OPTIONS}
-    lead_radius = getattr(args, "lead_radius", None)
+    blend_options = {name: getattr(args, name) for name in ("lead_radius", "search")
+                     if getattr(args, name, None) is not None}
     planners = [n for group in getattr(args, "planner", None) or () for n in group]
     variants = chosen_variants(args) if hasattr(args, "variants") else None
     settings = dict(
@@ -47,7 +48,7 @@ def overrides(args: argparse.Namespace, **command) -> Overrides:
         part_lines=getattr(args, "part_lines", None),
         toolpath=getattr(args, "toolpath", None),
         variants=tuple(variants) if variants else None,
-        blend_options={} if lead_radius is None else {"lead_radius": lead_radius},
+        blend_options=blend_options,
         reading=ReadOptions(
             dialect=getattr(args, "dialect", None), tool_table=getattr(args, "tool_table", None),
             var_file=getattr(args, "var_file", None), units=getattr(args, "units", None),

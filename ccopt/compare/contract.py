@@ -69,6 +69,8 @@ class BlendProblem:
         ``None`` (the default, and in worker processes): silent.
     tolerance: the verifier's gouge tolerance, program units (``None``: its
         default), as the job that asked for the comparison has it.
+    ts: the jerk planner's interpolation period (s; ``None``: its default), as
+        the comparison times the variants with it.
     """
 
     program: Program
@@ -80,6 +82,7 @@ class BlendProblem:
     side: Any = None
     progress: Callable[[str], None] | None = None
     tolerance: float | None = None
+    ts: float | None = None
 
     def report(self, line: str) -> None:
         """Pass ``line`` (e.g. "blend 2/6") to :attr:`progress`, if any."""

@@ -236,7 +236,7 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     """
     names = list(variants) if variants else available()
     ref = _Reference.of(program, radius, side, limits, ts, reference)
-    settings = (limits, delta, dict(options or {}), radius, side, None, tolerance)
+    settings = (limits, delta, dict(options or {}), radius, side, None, tolerance, ts)
     problem = BlendProblem(program, ref.path, *settings) if ref.path is not None else None
     rows, jobs, ref_index = _jobs(names, program, problem, ref.error, settings)
 

@@ -19,6 +19,8 @@ from ccopt.compare.core import VariantResult
 from ccopt.feed import AxisLimits
 from ccopt.program import read_text
 
+import blend_checks as bc
+
 STADIUM = """; stadium, clockwise with CC1 (tool outside), r 2
 OPEN PROG 1 CLEAR
 RAPID X50 Y60
@@ -94,6 +96,26 @@ def test_stadium_optimised_rows_never_slower_than_the_fastest_controller(tmp_pat
     assert all(v["fastest_controller"] == "linuxcnc" for v in js)
     assert all(v["gain_vs_fastest_controller"] >= -SAME_TIME_REL for v in js
                if v["name"] not in CONTROLLER_NAMES)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("search", [0, 48])
+def test_stadium_optimised_leads_beat_pmac_and_linuxcnc(search):
+    # issue 30's acceptance: on the stadium under 200 mm/s and 2000 mm/s^2 per
+    # axis both optimised leads are their own blends, certified, and faster than
+    # PMAC's and LinuxCNC's paths (whose times the same planner gives); with the
+    # planner search (``search`` planner runs per lead) no slower than without
+    prog = read_text(STADIUM, "stadium.pmc", "pmac")
+    cmp = compare(prog, ["pmac", "linuxcnc", "opt-casadi", "opt-cvxpy"],
+                  limits=AxisLimits((200.0, 200.0), (2000.0, 2000.0)),
+                  options={"search": search})
+    rows = {r.name: r for r in cmp}
+    for name in ("opt-casadi", "opt-cvxpy"):
+        r = rows[name]
+        assert r.status == "ok" and r.certificate.ok and "optimised" not in r.info, r.message
+        assert len(bc.lead_curves(r.toolpath)) == 2
+        for ctrl in ("pmac", "linuxcnc"):
+            assert r.figures["duration"] < rows[ctrl].figures["duration"]
 
 
 @pytest.mark.slow

@@ -1,8 +1,8 @@
-"""Optimised leads without hooks (issue 18 item 6), opt-cvxpy, quick: the blend
-alone on three cases where the convex model's leads used to turn far tighter
-than the stated bound 4 max(1/r, kappa_ref) (worked out from the geometry by
-:func:`blend_checks.lead_curvature_bound`). Every bundled case, with the
-comparison table's ``max_curv``, is test_lead_curvature.py's (slow).
+"""Optimised leads without hooks (issue 18 item 6, issue 30 item 3), opt-cvxpy,
+quick: the blend alone on three cases where the convex model's leads used to
+turn far tighter than their bound, now ``a / v^2`` from the limits and the
+lead's feed (worked out by :func:`blend_checks.lead_curvature_bound`). Every
+bundled case and generated plates are test_lead_curvature.py's (slow).
 """
 from __future__ import annotations
 
@@ -12,7 +12,6 @@ import ccopt
 from ccopt.cases import resolve_input
 from ccopt.compare.contract import BlendProblem
 from ccopt.compare.registry import load
-from ccopt.geometry import BezierCurve
 
 import blend_checks as bc
 
@@ -26,10 +25,10 @@ def test_opt_cvxpy_blends_within_the_curvature_bound(case):
     job = resolve_input(case)
     prog = job.read()
     ref = ccopt.compensate(prog, "pmac", radius=job.radius, side=job.side)
-    bound = bc.lead_curvature_bound(ref)
     out = load("opt-cvxpy")(BlendProblem(prog, ref, job.limits(), None, {}, job.radius,
                                          job.side))
-    curves = [s.geom for s in out.toolpath.segments if isinstance(s.geom, BezierCurve)]
+    curves = bc.lead_curves(out.toolpath)
     assert len(curves) == 2, out.info["leads"]       # both leads replaced
-    for g in curves:
+    for seg, g in curves:
+        bound = bc.lead_curvature_bound(seg, job.limits(), ref.plane)
         assert bc.bezier_max_curvature(g) <= bound * (1 + 1e-9)
