@@ -17,7 +17,7 @@ from ccopt.feed import ExactPath
 from ccopt.feed.junction import boundary_speed_caps
 
 #: toppra's own margin: its forward pass lowers squared speeds by up to 1e-8,
-#: "a few 1e-7 of the duration at most" (ccopt.feed.toppra_planner); a stretch
+#: "a few 1e-7 of the duration at most" (ccopt.feed.toppra.planner); a stretch
 #: planned alone runs in another time unit, so the two agree to that margin.
 TOPPRA_MARGIN = 1e-6
 

@@ -1,6 +1,6 @@
 """The ``jerk`` planner's windows: the pseudo-jerk rounds on each, in parallel.
 
-See :mod:`ccopt.feed.jerk_planner` for the formulation. Here: how the
+See :mod:`ccopt.feed.jerk.planner` for the formulation. Here: how the
 gridpoints are cut into windows (:func:`windows`), the rounds that tighten a
 window's speed bound ``bhat`` (:func:`solve_rounds`), and
 :func:`plan_windows`, which solves every window and gathers ``(b, alpha)``.
@@ -26,7 +26,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ccopt.feed.jerk_lp import JerkGrid, WindowLP
+from ccopt.feed.jerk.lp import JerkGrid, WindowLP
 from ccopt.workers import die_with_parent
 
 #: Relative agreement of ``b`` and ``bhat`` that ends the pseudo-jerk rounds.
@@ -95,7 +95,7 @@ def windows(g: JerkGrid) -> list[tuple[int, int, int]]:
     for a, b in zip(stops[:-1], stops[1:]):
         a, b = int(a), int(b)
         if g.lone is not None and g.lone[a]:
-            # a lone straight segment: its S-curve is exact, no window (jerk_planner.lone_lines)
+            # a lone straight segment: its S-curve is exact, no window (planner.lone_lines)
             if a > i0:
                 out.append((i0, a, a))
             i0 = b
@@ -120,7 +120,7 @@ def windows(g: JerkGrid) -> list[tuple[int, int, int]]:
 
 def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: float,
                  bhat0: np.ndarray | None = None):
-    """The pseudo-jerk rounds on one window (see :mod:`ccopt.feed.jerk_planner`):
+    """The pseudo-jerk rounds on one window (see :mod:`ccopt.feed.jerk.planner`):
     ``(b, alpha, rounds, bhat)`` scaled, or None when an LP is infeasible.
 
     ``bhat`` starts at ``cap`` (TOPPRA's speed, scaled), or on the first
@@ -292,7 +292,7 @@ def rest_bound(s: np.ndarray, stop: np.ndarray, q1: np.ndarray, a: np.ndarray, j
 
     A start for the pseudo-jerk rounds, not a bound they rely on (``b`` is
     capped by ``bmax`` and the LP's own rows): where it is low the rounds
-    raise it (by at most :data:`~ccopt.feed.jerk_windows.BHAT_RISE` a
+    raise it (by at most :data:`~ccopt.feed.jerk.windows.BHAT_RISE` a
     round), where high they lower it. It replaces TOPPRA's speed there at no
     cost, and starts closer on jerk-limited stretches."""
     at = np.flatnonzero(stop)
@@ -315,9 +315,9 @@ def _solve_task(g: JerkGrid, cap: np.ndarray | None, chains, scale: float,
     A window from rest to rest is capped by the box bound ``g.bmax`` (0 at
     stops) and starts from :func:`rest_bound`; a chain of overlapping
     windows is capped by and starts from ``cap``, TOPPRA's speed (see
-    :mod:`ccopt.feed.jerk_planner`), or with ``cap`` None from ``bound(s,
+    :mod:`ccopt.feed.jerk.planner`), or with ``cap`` None from ``bound(s,
     stop, bmax) / scale`` (the speed bound of the task's own stretch,
-    :class:`~ccopt.feed.jerk_bound.StretchBound`), computed only when the
+    :class:`~ccopt.feed.jerk.speed_bound.StretchBound`), computed only when the
     task has such a chain."""
     in_chain = [chained(c, g.stop) for c in chains]
     if cap is None and any(in_chain):
@@ -357,7 +357,7 @@ def _tasks(g: JerkGrid, cap: np.ndarray | None, chains, scale: float, bound_of=N
 
 def split(g: JerkGrid) -> bool:
     """Whether the speed bound of ``g`` is computed per task
-    (:class:`~ccopt.feed.jerk_bound.StretchBound`, in the processes that solve
+    (:class:`~ccopt.feed.jerk.speed_bound.StretchBound`, in the processes that solve
     the tasks' windows): a program of :data:`SPLIT_BOUND_POINTS` gridpoints or
     more, with more than one chain. A decision on the program alone: the
     result never depends on how many processes solve it."""
@@ -457,7 +457,7 @@ def _run_in_processes(tasks: list[tuple], workers: int) -> list[list[tuple]]:
 PARENT_ENV = "CCOPT_JERK_PARENT"
 
 #: What a worker process runs (see :func:`_run_in_processes`).
-WORKER_COMMAND = "from ccopt.feed.jerk_windows import _worker_main; _worker_main()"
+WORKER_COMMAND = "from ccopt.feed.jerk.windows import _worker_main; _worker_main()"
 
 
 def _worker_main() -> None:
