@@ -3,8 +3,9 @@
 Each variant is two jobs: its blend and what needs no feed plan
 (:func:`.variant.solve`), then its cycle time (:func:`_duration`) under the
 reference's stretch times. :func:`run_jobs` does them one after the other
-here, or hands them to ``workers`` processes as they free up, while a
-thread of this process plans the reference; either way the rows are the same (:mod:`.core` states the comparison itself, and
+here, or hands them to ``workers`` processes (:func:`ccopt.workers.process_pool`)
+as they free up, while a thread of this process plans the reference; either
+way the rows are the same (:mod:`.core` states the comparison itself, and
 :mod:`.timing` why a cycle time planned before the reference is the same).
 
 ``ref``, below, is the comparison's reference (:class:`.core._Reference`):
@@ -13,10 +14,8 @@ planned when first asked) and stretch keys (``ref.keys()``).
 """
 from __future__ import annotations
 
-import os
 from collections import deque
-from concurrent.futures import (FIRST_COMPLETED, ProcessPoolExecutor, ThreadPoolExecutor,
-                                wait)
+from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from contextlib import contextmanager
 from dataclasses import replace
 
@@ -27,7 +26,7 @@ from ccopt.compare.timing import (PartialTime, StretchTimes, duration_figures, l
 from ccopt.compare.variant import VariantResult, gets_cycle_time, solve, with_duration
 from ccopt.feed.limits import AxisLimits
 from ccopt.toolpath import ToolPath
-from ccopt.workers import fork_context, kill_processes, start_child
+from ccopt.workers import process_pool
 
 def _duration(path: ToolPath, limits: AxisLimits | None, times: StretchTimes | None = None):
     """A path's cycle time: ``(duration, max axis acceleration ratio sampled
@@ -140,24 +139,18 @@ def _run_in_processes(jobs, ref, reference_row, total: int, workers: int,
 
 @contextmanager
 def _pools(n_workers: int):
-    """``(pool, planner)``: ``n_workers`` worker processes (forked where the
-    platform can: they start with ccopt and its libraries loaded) and a
-    thread for the reference's plan. Left normally, after both are done; on a
-    Ctrl-C or an error, at once: the workers killed (a library pool lets
-    each finish its task first, seconds on a long plan) and the thread not
-    waited for."""
-    pool = ProcessPoolExecutor(max_workers=n_workers, mp_context=fork_context(),
-                               initializer=start_child, initargs=(os.getpid(),))
-    planner = ThreadPoolExecutor(max_workers=1)
-    done = False
-    try:
-        yield pool, planner
-        done = True
-    finally:
-        if not done:
-            kill_processes(list((getattr(pool, "_processes", None) or {}).values()))
-        planner.shutdown(wait=done, cancel_futures=True)
-        pool.shutdown(wait=done, cancel_futures=True)
+    """``(pool, planner)``: ``n_workers`` worker processes
+    (:func:`ccopt.workers.process_pool`) and a thread for the reference's
+    plan. Left normally, after both are done; on a Ctrl-C or an error, at
+    once: the workers killed and the thread not waited for."""
+    with process_pool(n_workers) as pool:
+        planner = ThreadPoolExecutor(max_workers=1)
+        done = False
+        try:
+            yield pool, planner
+            done = True
+        finally:
+            planner.shutdown(wait=done, cancel_futures=True)
 
 
 def _finish_partial(partial: list, known: list, to_time) -> list:
