@@ -53,6 +53,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from ccopt.compensate import compensate
 from ccopt.feed import AxisLimits, ExactPath, GridOptions, plan_feed
 from ccopt.program.model import Block, Modal, Motion, Program, Source
+from ccopt.workers import default_workers
 
 EDGE = 2.0          # mm, edge length of the contour
 RADIUS = 0.5        # cutter radius, mm
@@ -183,7 +184,7 @@ def bench_jerk(tp, toppra_cpu: float, toppra_wall: float, toppra_n: int, toppra_
         runs.append((m1 - m0 + k1 - k0, w1 - w0, m1 - m0, k1 - k0))
     cpu, wall, own, kids = (statistics.median(r[i] for r in runs) for i in range(4))
     load = os.getloadavg()[0]
-    procs = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    procs = default_workers()           # the CPUs the jerk windows' workers may use
     N = prof.info["gridpoints"]
     stop = plan_feed(tp, lim, planner="stop")
     junction = plan_feed(tp, lim, planner="junction")

@@ -1,4 +1,18 @@
-"""Independent jobs in worker processes, stoppable at once (``ccopt run``).
+"""Worker processes: the one place ccopt starts them.
+
+Three ways to hand work to them, for three shapes of work, over the same
+child start (:func:`start_child`, :func:`die_with_parent`), kill
+(:func:`kill_processes`) and count (:func:`resolve_workers`, ``--workers``):
+
+- :func:`run_in_workers`: independent jobs known in advance, with progress
+  (``ccopt run``'s cases);
+- :func:`process_pool`: jobs handed out one at a time as earlier ones finish
+  (the comparison's variants and cycle times, :mod:`ccopt.compare.schedule`);
+- :func:`run_in_interpreters`: tasks for fresh interpreters fed over pipes
+  (the jerk planner's windows, :mod:`ccopt.feed.jerk.windows`).
+
+The sweep's Dask cluster starts its own processes (Dask's), of the size
+:func:`resolve_workers` gives.
 
 :func:`run_in_workers` calls ``work(item, progress)`` for every item in
 ``workers`` child processes and hands back the results in the items' order,
@@ -17,13 +31,20 @@ files a killed child leaves behind (``.NAME.ccopt-PID-N.tmp``,
 """
 from __future__ import annotations
 
+import importlib
 import multiprocessing
 import os
 import pickle
 import queue
 import re
 import signal
+import subprocess
+import sys
+import threading
 import traceback
+from collections import deque
+from concurrent.futures import ProcessPoolExecutor
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Callable, Iterable, Sequence
 
@@ -53,6 +74,14 @@ def default_workers() -> int:
         return max(1, len(os.sched_getaffinity(0)))
     except (AttributeError, OSError):
         return max(1, os.cpu_count() or 1)
+
+
+def resolve_workers(workers: int | None) -> int:
+    """How many worker processes ``--workers N`` (``workers=`` in the API)
+    means: ``N``, or when not given one per core (:func:`default_workers`).
+    The commands, the jerk planner's windows and the sweep's local Dask
+    cluster all count their workers here."""
+    return workers or default_workers()
 
 
 def die_with_parent(parent: int) -> None:
@@ -227,3 +256,113 @@ def run_in_workers(work: Callable[[Any, Callable[[str], None]], Any], items: Seq
     if errors:
         raise errors[min(errors)]
     return [out[i] for i in range(len(items))]
+
+
+@contextmanager
+def process_pool(workers: int):
+    """A ``concurrent.futures`` pool of ``workers`` processes for jobs handed
+    out one at a time (``pool.submit``), each process started by
+    :func:`start_child` and forked where the platform can (they start with
+    ccopt and its libraries loaded, :func:`fork_context`). Left normally,
+    after every job is done; on a Ctrl-C or an error, at once: the workers
+    killed (a library pool lets each finish its task first, seconds on a
+    long plan)."""
+    pool = ProcessPoolExecutor(max_workers=workers, mp_context=fork_context(),
+                               initializer=start_child, initargs=(os.getpid(),))
+    done = False
+    try:
+        yield pool
+        done = True
+    finally:
+        if not done:
+            kill_processes(list((getattr(pool, "_processes", None) or {}).values()))
+        pool.shutdown(wait=done, cancel_futures=True)
+
+
+#: The environment variable that gives a worker of :func:`run_in_interpreters`
+#: its parent's process id.
+PARENT_ENV = "CCOPT_WORKER_PARENT"
+
+
+def interpreter_command(module: str, function: str) -> str:
+    """What a worker of :func:`run_in_interpreters` runs (``python -c``):
+    :func:`serve_pipe` of ``module.function``."""
+    return f"from ccopt.workers import serve_pipe; serve_pipe({module!r}, {function!r})"
+
+
+def run_in_interpreters(module: str, function: str, tasks: Sequence[tuple],
+                        workers: int) -> list:
+    """``[module.function(*args) for args in tasks]``, in ``workers`` processes,
+    in order.
+
+    Each process runs :func:`serve_pipe` (a fresh interpreter that imports
+    only ``module``, never the caller's main script, as ``multiprocessing``'s
+    ``spawn`` would), fed one task at a time by a thread of this process, so
+    the processes stay evenly loaded. A task a process could not return (it
+    could not start, or died) is done here afterwards, so a failure in it
+    shows with its own traceback. ``function`` must be a module-level
+    function; its arguments and results cross the pipes pickled."""
+    call = getattr(importlib.import_module(module), function)
+    command = interpreter_command(module, function)
+    missing = object()
+    results: list = [missing] * len(tasks)
+    todo = deque(range(len(tasks)))
+    env = dict(os.environ)
+    # the ccopt this process runs, first on the path (a source tree, say)
+    root = str(Path(__file__).resolve().parents[1])
+    env["PYTHONPATH"] = os.pathsep.join([root] + [p for p in [env.get("PYTHONPATH")] if p])
+    env[PARENT_ENV] = str(os.getpid())
+
+    def serve():
+        try:
+            proc = subprocess.Popen([sys.executable, "-c", command], stdin=subprocess.PIPE,
+                                    stdout=subprocess.PIPE, env=env)
+        except OSError:
+            return
+        try:
+            while todo:
+                try:
+                    i = todo.popleft()
+                except IndexError:
+                    break
+                pickle.dump(tasks[i], proc.stdin, protocol=pickle.HIGHEST_PROTOCOL)
+                proc.stdin.flush()
+                results[i] = pickle.load(proc.stdout)
+        except (OSError, EOFError, pickle.UnpicklingError):
+            pass                        # that task is done here afterwards
+        finally:
+            try:
+                proc.stdin.close()
+            except OSError:
+                pass
+            proc.wait()
+
+    threads = [threading.Thread(target=serve, daemon=True) for _ in range(workers)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    return [r if r is not missing else call(*tasks[i]) for i, r in enumerate(results)]
+
+
+def serve_pipe(module: str, function: str) -> None:
+    """A worker of :func:`run_in_interpreters`: pickled argument tuples on
+    stdin, ``module.function``'s results on stdout, until stdin closes.
+    Anything else written to the standard output (a solver's banner from C,
+    HiGHS's) goes to the standard error, so the result stream stays clean.
+    It dies with its parent (:func:`die_with_parent`): a parent killed in
+    the middle of a plan leaves no process solving on alone."""
+    if os.environ.get(PARENT_ENV):
+        die_with_parent(int(os.environ[PARENT_ENV]))
+    results = os.fdopen(os.dup(1), "wb")
+    os.dup2(2, 1)
+    sys.stdout = sys.stderr
+    call = getattr(importlib.import_module(module), function)
+    tasks = sys.stdin.buffer
+    while True:
+        try:
+            args = pickle.load(tasks)
+        except EOFError:
+            break
+        pickle.dump(call(*args), results, protocol=pickle.HIGHEST_PROTOCOL)
+        results.flush()

@@ -450,7 +450,7 @@ def smooth(problem: BlendProblem, delta: float | None = None, solver: str = "CLA
     (``segment``: the index in PMAC's path of the segment that starts at the join,
     or of the corner arc an absorbed corner replaced). ``deviation``: also measure
     the Hausdorff distance to PMAC's path (``info["max_deviation"]`` and its bound;
-    :func:`smooth_variant` leaves it to :func:`ccopt.compare.core.measure`, which
+    :func:`smooth_variant` leaves it to :func:`ccopt.compare.variant.measure`, which
     measures every variant so).
     """
     t0 = time.perf_counter()

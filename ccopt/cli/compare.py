@@ -21,7 +21,7 @@ from ccopt.feed.bounds import feed_limited_time
 from ccopt.pipeline import StageClock, pipeline
 from ccopt.program.model import Program
 from ccopt.toolpath import ToolPath
-from ccopt.workers import default_workers
+from ccopt.workers import resolve_workers
 
 #: the comparison table: header, figure of :meth:`Comparison.to_json`'s variants, format
 COLUMNS = [("variant", "name", "{}"), ("status", "status", "{}"), ("cycle_s", "duration", "{:.4f}"),
@@ -77,7 +77,7 @@ def cmd_compare(args: argparse.Namespace) -> int:
         if prog.nothing_to_verify():
             return nothing_to_do(args, prog, "compare")
         done = pipeline(work, program=prog, compensate=False, feed=False, verify=False,
-                        compare=True, workers=args.workers or default_workers(),
+                        compare=True, workers=resolve_workers(args.workers),
                         clock=StageClock(say)).result()
         cmp, limits = done.comparison, done.limits
     doc = cmp.to_json()

@@ -16,7 +16,7 @@ from ccopt.cli.progress import cases_progress
 from ccopt.compare.registry import require_known
 from ccopt.errors import ProgramError
 from ccopt.run import DEFAULT_LIMITS, PLANNERS, RunOptions, default_out, exit_code, run_all
-from ccopt.workers import default_workers
+from ccopt.workers import resolve_workers
 
 DESCRIPTION = """\
 The main job, for every bundled case (no argument) or the given cases and
@@ -51,7 +51,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     variants = chosen_variants(args)
     if variants:
         require_known(variants, "--variants")
-    workers = args.workers or default_workers()
+    workers = resolve_workers(args.workers)
     # cases share the workers; a single case's comparison gets them instead
     opts = RunOptions(compare=not args.no_compare,
                       compare_workers=workers if len(jobs) == 1 else 1)

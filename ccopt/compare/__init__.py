@@ -13,11 +13,13 @@ Variants are the controller styles and geometric leads built in
 blends and the smoother of :mod:`formulations` register there). A blend is
 ``blend(problem: BlendProblem) -> ToolPath | BlendOutcome`` (:mod:`.contract`);
 leads are found and replaced with :mod:`.leads`; figures are in
-:mod:`.figures`.
+:mod:`.figures` and cycle times in :mod:`.timing`. :mod:`.core` is the
+comparison itself, :mod:`.variant` one variant's row, and :mod:`.schedule`
+runs the variants here or in worker processes.
 """
 from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
-from ccopt.compare.core import (FIGURES, REFERENCE, Comparison, GivenReference, VariantResult,
-                                compare, measure)
+from ccopt.compare.core import REFERENCE, Comparison, GivenReference, compare
+from ccopt.compare.variant import FIGURES, VariantResult, measure
 from ccopt.compare.contract import ENTRY_POINT_GROUP
 from ccopt.compare.registry import available, load
 

@@ -8,7 +8,7 @@ controllable set at a stop is ``[0, 0]``, so its backward pass cannot carry
 a later stretch's braking into an earlier one and its forward pass starts
 again from 0, and every segment's gridpoints are its own
 (:mod:`ccopt.feed.grid`); the jerk planner cuts at the same stops itself
-(:mod:`ccopt.feed.jerk_planner`). So the cycle time of a path is the sum,
+(:mod:`ccopt.feed.jerk.planner`). So the cycle time of a path is the sum,
 over its *stretches* (the runs of segments between consecutive stops), of
 each stretch planned from rest to rest, plus its dwells.
 
@@ -21,12 +21,12 @@ holds for ``max_acc_ratio`` (the largest sampled axis acceleration over its
 limit): the reference's samples inside a shared stretch, a new stretch's own.
 
 What is not shared bit for bit: toppra works in a time unit set by the
-path's largest cruise speed (:func:`ccopt.feed.toppra_planner.speed_scale`),
+path's largest cruise speed (:func:`ccopt.feed.toppra.planner.speed_scale`),
 so a stretch planned alone can differ from the same stretch inside the whole
 path in the last digits (the tests compare both on a case: within 1e-9
 relative); the jerk planner groups stretches into LP windows and stops its
 rounds per window, so there the difference is within its round tolerance
-(:data:`ccopt.feed.jerk_planner.BHAT_TOL`, on a squared speed).
+(:data:`ccopt.feed.jerk.planner.BHAT_TOL`, on a squared speed).
 """
 from __future__ import annotations
 
@@ -63,8 +63,8 @@ def load_planner(limits: AxisLimits) -> None:
     """Import the planner :func:`~ccopt.feed.certified_planner` picks (with toppra, ~0.5 s): a
     parallel comparison does it before it forks its workers, so that each
     does not import it again for its first cycle time."""
-    for name in ("ccopt.feed.path", "ccopt.feed.plan", "ccopt.feed.toppra_planner",
-                 "ccopt.feed.jerk_planner" if certified_planner(limits) == "jerk" else None):
+    for name in ("ccopt.feed.path", "ccopt.feed.plan", "ccopt.feed.toppra.planner",
+                 "ccopt.feed.jerk.planner" if certified_planner(limits) == "jerk" else None):
         if name is not None:
             importlib.import_module(name)
 
@@ -241,7 +241,7 @@ class StretchTimes:
         the reference is: on freeform-hsm, where another controller style
         changes every one of the reference's 302 stretches, one plan instead
         of 302 (the jerk planner then gathers the short stretches into LP
-        windows, :data:`~ccopt.feed.jerk_windows.BATCH_POINTS`)."""
+        windows, :data:`~ccopt.feed.jerk.windows.BATCH_POINTS`)."""
         return self.time_partial(path).finish(self)
 
     def time_partial(self, path: ToolPath, defer=frozenset()) -> "PartialTime":

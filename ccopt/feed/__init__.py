@@ -1,19 +1,22 @@
 """Feed planning: how fast the machine can run a compensated tool path.
 
 ``feed`` consumes a :class:`~ccopt.toolpath.ToolPath` and never compensates.
-One concept per module, after toppra's layout:
+One concept per module, after toppra's layout; one subpackage per planner:
 
 - :mod:`.limits`: :class:`AxisLimits` (per-axis velocity and acceleration,
   optional tangential and centripetal limits);
 - :mod:`.path`: :class:`ExactPath`, the tool path as a toppra
   ``AbstractGeometricPath`` parameterised by arc length, exact derivatives;
 - :mod:`.grid`: gridpoints (every segment boundary, per-segment density);
-- :mod:`.constraints`: the limits as small toppra constraint objects;
 - :mod:`.junction`: corner speeds (stop, or grbl's junction deviation);
-- :mod:`.toppra_planner`: the time-optimal planner (TOPPRA);
+- :mod:`.toppra`: the time-optimal planner (TOPPRA): :mod:`.toppra.planner`,
+  the limits as small toppra constraint objects (:mod:`.toppra.constraints`)
+  and toppra itself, imported lightly (:mod:`.toppra.library`);
 - :mod:`.baselines`: stop-per-block and grbl-style junction planners;
-- :mod:`.jerk_planner` (with :mod:`.jerk_lp`): the jerk-limited time-optimal
-  planner; :mod:`.jerk_profile`: its profiles and the S-curve;
+- :mod:`.jerk`: the jerk-limited time-optimal planner (:mod:`.jerk.planner`)
+  over its window LPs (:mod:`.jerk.lp`, :mod:`.jerk.windows`) and their speed
+  bound (:mod:`.jerk.speed_bound`); its profiles (:mod:`.jerk.profile`) and
+  the 7-phase S-curve (:mod:`.jerk.scurve`);
 - :mod:`.bounds`: :func:`feed_limited_time`, the time no planner can beat;
 - :mod:`.profile`: :class:`FeedProfile`, its samples and CSV;
 - :mod:`.planners`: the planner registry; :mod:`.plan`: :func:`plan_feed` itself.
@@ -45,11 +48,11 @@ _LAZY = {
     "FeedProfile": "ccopt.feed.profile",
     "FeedSamples": "ccopt.feed.profile",
     "GridOptions": "ccopt.feed.grid",
-    "plan_toppra": "ccopt.feed.toppra_planner",
+    "plan_toppra": "ccopt.feed.toppra.planner",
     "plan_stop_per_block": "ccopt.feed.baselines",
     "plan_junction": "ccopt.feed.baselines",
-    "plan_jerk": "ccopt.feed.jerk_planner",
-    "JerkProfile": "ccopt.feed.jerk_profile",
+    "plan_jerk": "ccopt.feed.jerk.planner",
+    "JerkProfile": "ccopt.feed.jerk.profile",
     "feed_limited_time": "ccopt.feed.bounds",
 }
 
@@ -82,14 +85,14 @@ def plan_feed(toolpath: ToolPath | ExactPath, limits: AxisLimits, *, planner: st
     planner: ``"toppra"`` (time-optimal, default), ``"stop"`` (stop after
         every block; an S-curve per block when ``limits.j`` is given),
         ``"junction"`` (grbl-style look-ahead) or ``"jerk"`` (jerk-limited
-        time-optimal, needs ``limits.j``; :mod:`ccopt.feed.jerk_planner`).
+        time-optimal, needs ``limits.j``; :mod:`ccopt.feed.jerk.planner`).
     junction_deviation: ``None`` (default) stops at every tangent
         discontinuity; a length ``delta > 0`` (program units) allows grbl's
         corner speed there instead (an approximation, see
         :mod:`ccopt.feed.junction`). Used by ``toppra`` and ``junction``.
     grid: gridpoint options for TOPPRA and the jerk planner (:class:`GridOptions`;
         ``None``: TOPPRA's default, and for the jerk planner
-        :data:`~ccopt.feed.jerk_planner.JERK_GRID`, coarser on curves).
+        :data:`~ccopt.feed.jerk.planner.JERK_GRID`, coarser on curves).
     ts: the interpolation period (s) of the ``"jerk"`` planner and of the
         jerk-limited ``"junction"`` baseline, which bounds the acceleration
         step at a curvature break by ``jmax * ts`` (default 1 ms).

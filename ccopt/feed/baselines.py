@@ -18,7 +18,7 @@ same limits everywhere along it (a block "budget"):
 
 With jerk limits ``J_i`` (``AxisLimits.j``) the stop baseline runs a
 closed-form 7-phase S-curve per block instead
-(:func:`ccopt.feed.jerk_profile.scurve_rest_to_rest`), with a path jerk
+(:func:`ccopt.feed.jerk.scurve.scurve_rest_to_rest`), with a path jerk
 budget: axis ``i``'s jerk is ``q_i''' s'^3 + 3 q_i'' s' s'' + q_i' s'''``, so
 with ``M_i = max |q_i'''|`` also taken over the segment, the speed cap obeys
 ``M_i v^3 <= J_i / 3`` too, the acceleration ``3 N_i v a <= J_i / 3``, and the
@@ -28,7 +28,7 @@ path jerk is ``j = min_i (J_i - M_i v^3 - 3 N_i v a) / T_i`` (on a line
 The junction baseline under jerk limits runs the same look-ahead with
 jerk-limited speed changes: per block a speed change from its start speed up
 to a peak, a cruise and one down to its end speed, each with the
-acceleration 0 at its ends (:func:`ccopt.feed.jerk_profile.scurve_between`),
+acceleration 0 at its ends (:func:`ccopt.feed.jerk.scurve.scurve_between`),
 under the same jerk budget; its passes use the distance of such a change
 (its mean speed times its duration), and a junction at a curvature break is
 capped as the jerk planner caps it, ``|Delta q_i''| v^2 <= J_i ts``
@@ -51,8 +51,9 @@ import math
 
 import numpy as np
 
-from ccopt.feed.jerk_profile import (BISECTION_STEPS, CUBIC, JerkProfile, integrate_phases,
-                                     scurve_between, scurve_rest_to_rest, speed_change_distance)
+from ccopt.feed.jerk.profile import CUBIC, JerkProfile
+from ccopt.feed.jerk.scurve import (BISECTION_STEPS, integrate_phases, scurve_between,
+                                    scurve_rest_to_rest, speed_change_distance)
 from ccopt.feed.junction import boundary_speed_caps
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
@@ -297,7 +298,7 @@ def _jerk_junction_speeds(path, limits, v_cap, a_tan, j_path, junction_deviation
     :func:`_junction_speeds` and, at a curvature break, ``|Delta q_i''| v^2 <=
     J_i ts`` (the jerk planner's rule); then the backward and forward passes
     with the distance of a jerk-limited speed change
-    (:func:`~ccopt.feed.jerk_profile.speed_change_distance`)."""
+    (:func:`~ccopt.feed.jerk.scurve.speed_change_distance`)."""
     _, alim = limits.in_plane(path.toolpath.plane, path.dof)
     jlim = limits.jerk_in_plane(path.toolpath.plane, path.dof)
     vb = boundary_speed_caps(path, alim, junction_deviation)

@@ -9,7 +9,7 @@ planes, planned in machine coordinates (:data:`MACHINE_FRAME`).
 
 ``j`` (optional) gives per-axis jerk limits in program units per second
 cubed, in the same axis order; only the ``jerk`` planner and the jerk-limited
-``stop`` baseline use them (:mod:`ccopt.feed.jerk_planner`), and samples
+``stop`` baseline use them (:mod:`ccopt.feed.jerk.planner`), and samples
 report the jerk against them.
 
 Two optional limits act along the path rather than per axis:

@@ -29,7 +29,7 @@ against them in the tests); spirals and other curves call their own methods.
 
 At a segment boundary the path has two one-sided derivatives. ``__call__``
 (what toppra calls) is right-continuous, and :meth:`ExactPath.eval_sided`
-gives either side, so the constraints in :mod:`ccopt.feed.constraints`
+gives either side, so the constraints in :mod:`ccopt.feed.toppra.constraints`
 evaluate each grid interval with its own segment's derivatives on both of its
 ends: a curvature break (line to arc) lies exactly on a gridpoint and each
 side is checked with its own curvature.
@@ -51,7 +51,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ccopt.feed.limits import MACHINE_FRAME
-from ccopt.feed.toppra_import import AbstractGeometricPath
+from ccopt.feed.toppra.library import AbstractGeometricPath
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.bezier_batch import batches_by_degree
 from ccopt.geometry.curve import RECENT_INVERSIONS, d2_from, d3_from, unit_tangent

@@ -8,16 +8,16 @@ from __future__ import annotations
 import importlib
 
 #: The jerk planner's default interpolation period ``ts`` (s): the acceleration
-#: step at a curvature break is at most ``jmax * ts`` (:mod:`ccopt.feed.jerk_planner`).
+#: step at a curvature break is at most ``jmax * ts`` (:mod:`ccopt.feed.jerk.planner`).
 DEFAULT_TS = 1e-3
 
 #: planner name -> "module:function"; each takes (path, limits, junction_deviation=..., grid=...);
 #: ``jerk`` also takes ``ts`` and needs ``limits.j``
 PLANNERS: dict[str, str] = {
-    "toppra": "ccopt.feed.toppra_planner:plan_toppra",
+    "toppra": "ccopt.feed.toppra.planner:plan_toppra",
     "stop": "ccopt.feed.baselines:plan_stop_per_block",
     "junction": "ccopt.feed.baselines:plan_junction",
-    "jerk": "ccopt.feed.jerk_planner:plan_jerk",
+    "jerk": "ccopt.feed.jerk.planner:plan_jerk",
 }
 
 

@@ -20,10 +20,10 @@ value within the piece a sample falls in. A profile of constant-acceleration
 pieces has ``s''' = 0`` inside them and an acceleration step at every knot
 (an unbounded jerk the samples do not show): its jerk figure is that of the
 curvature alone. The ``jerk`` planner and the jerk-limited ``stop`` baseline
-produce :class:`~ccopt.feed.jerk_profile.JerkProfile` objects, whose pieces
+produce :class:`~ccopt.feed.jerk.profile.JerkProfile` objects, whose pieces
 have bounded ``s'''`` and continuous ``s''`` (see there), so their sampled
 jerk is the whole jerk but for the acceleration steps at curvature breaks,
-bounded by ``jmax * ts`` (:mod:`ccopt.feed.jerk_planner`).
+bounded by ``jmax * ts`` (:mod:`ccopt.feed.jerk.planner`).
 """
 from __future__ import annotations
 

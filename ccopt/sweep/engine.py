@@ -10,7 +10,6 @@ each worker receives a program once, not once per task.
 from __future__ import annotations
 
 import importlib.util
-import os
 import sys
 import uuid
 from dataclasses import dataclass
@@ -19,6 +18,7 @@ from typing import Callable
 from ccopt.errors import ProgramError
 from ccopt.sweep.execute import run_task
 from ccopt.sweep.tasks import Task
+from ccopt.workers import resolve_workers
 
 #: Seconds to wait for a scheduler given by address before giving up.
 CONNECT_TIMEOUT = 30
@@ -71,7 +71,7 @@ def open_client(client=None, scheduler: str | None = None, workers: int | None =
     # HTTP server still answers, so do not print its address either).
     bokeh = importlib.util.find_spec("bokeh") is not None
     with dask.config.set({UNTRIMMED: None}):
-        cluster = LocalCluster(n_workers=workers or os.cpu_count() or 1, threads_per_worker=1,
+        cluster = LocalCluster(n_workers=resolve_workers(workers), threads_per_worker=1,
                                processes=True, dashboard_address=":0" if bokeh else None)
     return Session(Client(cluster), owned=True, cluster=cluster, has_dashboard=bokeh)
 

@@ -18,7 +18,7 @@ on anything shaped like its samples (duck typing, so other planners plug in):
   the jerk at the samples does not show) fails. A profile planned with an
   interpolation period ``ts`` (``info["ts"]``: the ``jerk`` planner and the
   jerk-limited ``junction`` baseline, which allow a step of ``J ts`` at a
-  curvature break, :mod:`ccopt.feed.jerk_planner`) is allowed ``J (dt + ts)``.
+  curvature break, :mod:`ccopt.feed.jerk.planner`) is allowed ``J (dt + ts)``.
 
 A sample fails when ``|value| > limit * (1 + limits_tol)``, a stated relative
 tolerance: :data:`LIMITS_TOL` (0.1 %) by default, the certificate's

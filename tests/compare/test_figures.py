@@ -60,7 +60,7 @@ def test_duration_keeps_the_limits_on_a_tight_curve():
     inside curves (:mod:`ccopt.feed.grid`), so a quintic turning 90 degrees in its
     last 0.1 mm keeps the axis limits between gridpoints, sampled every 0.2 ms, to
     the 0.1 % the comparison's tests ask (an even grid on the curve: 1.13)."""
-    from ccopt.compare.core import _duration
+    from ccopt.compare.schedule import _duration
     from ccopt.feed import AxisLimits
     from ccopt.geometry import BezierCurve
     P = [(0, 0), (5, 0), (9, 0), (10, 0.0), (10.05, 0.05), (10.05, 1.0)]

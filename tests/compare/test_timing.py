@@ -17,7 +17,7 @@ from ccopt.feed import ExactPath
 from ccopt.feed.junction import boundary_speed_caps
 
 #: toppra's own margin: its forward pass lowers squared speeds by up to 1e-8,
-#: "a few 1e-7 of the duration at most" (ccopt.feed.toppra_planner); a stretch
+#: "a few 1e-7 of the duration at most" (ccopt.feed.toppra.planner); a stretch
 #: planned alone runs in another time unit, so the two agree to that margin.
 TOPPRA_MARGIN = 1e-6
 
@@ -171,7 +171,7 @@ def test_the_callers_reference_plan_is_used_only_when_it_is_the_one_compare_make
 def test_a_variant_with_anothers_path_takes_its_cycle_time_planned_once(monkeypatch, workers):
     # on leadin-inside-line Fagor's G138 and G139 with G136 build the same
     # path (checked here): one plan serves both, serial or in processes
-    import ccopt.compare.core as core
+    import ccopt.compare.schedule as core
 
     c, prog = _case("leadin-inside-line")
     limits = ccopt.AxisLimits(c.vmax, c.amax)
@@ -227,7 +227,7 @@ def test_a_cycle_time_planned_before_the_reference_is_the_same(style):
     # reference's plan afterwards: the same figures, bit for bit, as timing it
     # with the reference's stretch times known
     from ccopt.compare.contract import BlendProblem
-    from ccopt.compare.core import _solve
+    from ccopt.compare.variant import solve as _solve
     from ccopt.compare.timing import PartialTime, stretch_keys
     c, prog = _case("freeform-hsm")
     limits = ccopt.AxisLimits(c.vmax, c.amax, j=c.jmax)

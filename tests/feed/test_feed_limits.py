@@ -30,7 +30,7 @@ FEED_ROUNDING = 1e-9
 #: TOPPRA vs a baseline: toppra's forward pass lowers each squared speed by
 #: 1e-8 (toppra.constants.TINY) as a numerical margin. In the planner's time
 #: unit (squared cruise speed about 1 on the fastest cut, see
-#: ccopt.feed.toppra_planner.speed_scale) slower cuts and the starts from rest
+#: ccopt.feed.toppra.planner.speed_scale) slower cuts and the starts from rest
 #: feel it more: up to 5e-7 of the duration seen on random contours.
 NEVER_SLOWER = 1e-6
 PLANNERS = ("toppra", "stop", "junction")

@@ -27,7 +27,7 @@ import math
 import numpy as np
 import pytest
 
-import ccopt.feed.jerk_lp as jerk_lp
+import ccopt.feed.jerk.lp as jerk_lp
 from ccopt.feed import AxisLimits, FeedError, plan_feed
 from ccopt.geometry import Arc, Line
 from ccopt.toolpath import PathSegment, Role, ToolPath
@@ -88,7 +88,7 @@ def test_short_diagonal_line_pure_jerk_limited():
     prof = plan_feed(tp, lim, planner="jerk")
     assert prof.info["scurve_stretches"] == 0
     # a short rest-to-rest move: the README's 0.5 % (measured 0.43 % above;
-    # ccopt.feed.jerk_planner's STOP_RATIO note states 0.44 %)
+    # ccopt.feed.jerk.planner's STOP_RATIO note states 0.44 %)
     assert prof.duration == pytest.approx(closed, rel=SHORT_LINE_REL)
     assert prof.duration >= closed * (1 - 1e-9)       # nothing beats the optimum
     v, a, j, _ = sampled_ratios(prof)
@@ -111,7 +111,7 @@ def test_circle_at_constant_feed():
     assert max(v, a, j) <= OVER
     # it runs at F: the speed reaches F and stays within the certificate's
     # tolerance of it (measured: 3.4e-4 above, the speed's peak inside curved
-    # intervals that ccopt.feed.jerk_planner's docstring states)
+    # intervals that ccopt.feed.jerk.planner's docstring states)
     assert F * (1 - 1e-9) <= smp.feed.max() <= F * OVER
 
 

@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 from ccopt.feed import AxisLimits, ExactPath, plan_feed
-from ccopt.feed import jerk_windows
-from ccopt.feed.jerk_bound import StretchBound
+from ccopt.feed.jerk import windows as jerk_windows
+from ccopt.feed.jerk.speed_bound import StretchBound
 from ccopt.geometry import Line
 from ccopt.toolpath import PathSegment, Role, ToolPath
 from ccopt.verify.limits import LIMITS_TOL, check_limits
@@ -124,7 +124,7 @@ def test_a_window_worker_dies_with_its_parent(tmp_path):
     import sys
     import time
 
-    from ccopt.feed import jerk_windows as jw
+    from ccopt.feed.jerk import windows as jw
 
     script = tmp_path / "parent.py"
     script.write_text(

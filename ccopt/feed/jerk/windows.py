@@ -1,6 +1,6 @@
 """The ``jerk`` planner's windows: the pseudo-jerk rounds on each, in parallel.
 
-See :mod:`ccopt.feed.jerk_planner` for the formulation. Here: how the
+See :mod:`ccopt.feed.jerk.planner` for the formulation. Here: how the
 gridpoints are cut into windows (:func:`windows`), the rounds that tighten a
 window's speed bound ``bhat`` (:func:`solve_rounds`), and
 :func:`plan_windows`, which solves every window and gathers ``(b, alpha)``.
@@ -9,25 +9,19 @@ Windows are grouped into *chains*: a chain starts at a stop and goes on as
 long as each window starts where the last one kept its solution (a stretch
 with no stop, planned in overlapping windows). Chains are independent (a stop
 fixes ``b = alpha = 0`` between them), so on a long program they are solved
-by :data:`WORKERS` processes (fresh interpreters fed over pipes, see
-:func:`_run_in_processes`); the result does not depend on how many.
+by :data:`WORKERS` processes (fresh interpreters fed over pipes,
+:func:`ccopt.workers.run_in_interpreters`); the result does not depend on how
+many.
 """
 from __future__ import annotations
 
 import multiprocessing
-import os
-import pickle
-import subprocess
-import sys
-import threading
-from collections import deque
 from dataclasses import replace
-from pathlib import Path
 
 import numpy as np
 
-from ccopt.feed.jerk_lp import JerkGrid, WindowLP
-from ccopt.workers import die_with_parent
+from ccopt.feed.jerk.lp import JerkGrid, WindowLP
+from ccopt.workers import PARENT_ENV, interpreter_command, resolve_workers, run_in_interpreters
 
 #: Relative agreement of ``b`` and ``bhat`` that ends the pseudo-jerk rounds.
 BHAT_TOL = 2e-3
@@ -95,7 +89,7 @@ def windows(g: JerkGrid) -> list[tuple[int, int, int]]:
     for a, b in zip(stops[:-1], stops[1:]):
         a, b = int(a), int(b)
         if g.lone is not None and g.lone[a]:
-            # a lone straight segment: its S-curve is exact, no window (jerk_planner.lone_lines)
+            # a lone straight segment: its S-curve is exact, no window (planner.lone_lines)
             if a > i0:
                 out.append((i0, a, a))
             i0 = b
@@ -120,7 +114,7 @@ def windows(g: JerkGrid) -> list[tuple[int, int, int]]:
 
 def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: float,
                  bhat0: np.ndarray | None = None):
-    """The pseudo-jerk rounds on one window (see :mod:`ccopt.feed.jerk_planner`):
+    """The pseudo-jerk rounds on one window (see :mod:`ccopt.feed.jerk.planner`):
     ``(b, alpha, rounds, bhat)`` scaled, or None when an LP is infeasible.
 
     ``bhat`` starts at ``cap`` (TOPPRA's speed, scaled), or on the first
@@ -292,7 +286,7 @@ def rest_bound(s: np.ndarray, stop: np.ndarray, q1: np.ndarray, a: np.ndarray, j
 
     A start for the pseudo-jerk rounds, not a bound they rely on (``b`` is
     capped by ``bmax`` and the LP's own rows): where it is low the rounds
-    raise it (by at most :data:`~ccopt.feed.jerk_windows.BHAT_RISE` a
+    raise it (by at most :data:`~ccopt.feed.jerk.windows.BHAT_RISE` a
     round), where high they lower it. It replaces TOPPRA's speed there at no
     cost, and starts closer on jerk-limited stretches."""
     at = np.flatnonzero(stop)
@@ -315,9 +309,9 @@ def _solve_task(g: JerkGrid, cap: np.ndarray | None, chains, scale: float,
     A window from rest to rest is capped by the box bound ``g.bmax`` (0 at
     stops) and starts from :func:`rest_bound`; a chain of overlapping
     windows is capped by and starts from ``cap``, TOPPRA's speed (see
-    :mod:`ccopt.feed.jerk_planner`), or with ``cap`` None from ``bound(s,
+    :mod:`ccopt.feed.jerk.planner`), or with ``cap`` None from ``bound(s,
     stop, bmax) / scale`` (the speed bound of the task's own stretch,
-    :class:`~ccopt.feed.jerk_bound.StretchBound`), computed only when the
+    :class:`~ccopt.feed.jerk.speed_bound.StretchBound`), computed only when the
     task has such a chain."""
     in_chain = [chained(c, g.stop) for c in chains]
     if cap is None and any(in_chain):
@@ -357,7 +351,7 @@ def _tasks(g: JerkGrid, cap: np.ndarray | None, chains, scale: float, bound_of=N
 
 def split(g: JerkGrid) -> bool:
     """Whether the speed bound of ``g`` is computed per task
-    (:class:`~ccopt.feed.jerk_bound.StretchBound`, in the processes that solve
+    (:class:`~ccopt.feed.jerk.speed_bound.StretchBound`, in the processes that solve
     the tasks' windows): a program of :data:`SPLIT_BOUND_POINTS` gridpoints or
     more, with more than one chain. A decision on the program alone: the
     result never depends on how many processes solve it."""
@@ -370,11 +364,7 @@ def _workers(points: int, n_chains: int) -> int:
         return 1
     if multiprocessing.current_process().daemon:
         return 1                      # a daemonic process (a Dask worker) may not have children
-    n = WORKERS
-    if n is None:
-        n = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    n = n or 1
-    return max(1, min(n, n_chains))
+    return max(1, min(resolve_workers(WORKERS), n_chains))
 
 
 def plan_windows(g: JerkGrid, cap: np.ndarray | None, scale: float, bound_of=None):
@@ -397,85 +387,15 @@ def plan_windows(g: JerkGrid, cap: np.ndarray | None, scale: float, bound_of=Non
     if workers == 1:
         parts = [_solve_task(*args) for _, args in tasks]
     else:
-        parts = _run_in_processes([args for _, args in tasks], workers)
+        parts = run_in_interpreters(__name__, "_solve_task", [args for _, args in tasks], workers)
     results: list[tuple] = []
     for (lo, _), part in zip(tasks, parts):
         results.extend((i0 + lo, i1 + lo, keep + lo, *rest) for i0, i1, keep, *rest in part)
     return results, len(wins), workers
 
 
-def _run_in_processes(tasks: list[tuple], workers: int) -> list[list[tuple]]:
-    """:func:`_solve_task` on each of ``tasks`` in ``workers`` processes, in order.
+#: What a worker process runs (:func:`ccopt.workers.run_in_interpreters`):
+#: :func:`_solve_task` on each task it is sent; it knows its parent by the
+#: environment variable ``PARENT_ENV`` (:data:`ccopt.workers.PARENT_ENV`).
+WORKER_COMMAND = interpreter_command(__name__, "_solve_task")
 
-    Each process runs :func:`_worker_main` (a fresh interpreter that imports
-    only this module, never the caller's main script, as ``multiprocessing``'s
-    ``spawn`` would), fed one task at a time by a thread of this process, so
-    the processes stay evenly loaded. A task a process could not return (it
-    could not start, or died) is solved here afterwards, so a failure in it
-    shows with its own traceback."""
-    results: list = [None] * len(tasks)
-    todo = deque(range(len(tasks)))
-    env = dict(os.environ)
-    # the ccopt this process runs, first on the path (a source tree, say)
-    root = str(Path(__file__).resolve().parents[2])
-    env["PYTHONPATH"] = os.pathsep.join([root] + [p for p in [env.get("PYTHONPATH")] if p])
-    env[PARENT_ENV] = str(os.getpid())
-
-    def serve():
-        try:
-            proc = subprocess.Popen([sys.executable, "-c", WORKER_COMMAND], stdin=subprocess.PIPE,
-                                    stdout=subprocess.PIPE, env=env)
-        except OSError:
-            return
-        try:
-            while todo:
-                try:
-                    i = todo.popleft()
-                except IndexError:
-                    break
-                pickle.dump(tasks[i], proc.stdin, protocol=pickle.HIGHEST_PROTOCOL)
-                proc.stdin.flush()
-                results[i] = pickle.load(proc.stdout)
-        except (OSError, EOFError, pickle.UnpicklingError):
-            pass                        # that task is solved here afterwards
-        finally:
-            try:
-                proc.stdin.close()
-            except OSError:
-                pass
-            proc.wait()
-
-    threads = [threading.Thread(target=serve, daemon=True) for _ in range(workers)]
-    for t in threads:
-        t.start()
-    for t in threads:
-        t.join()
-    return [r if r is not None else _solve_task(*tasks[i]) for i, r in enumerate(results)]
-
-
-#: The environment variable that gives a worker its parent's process id.
-PARENT_ENV = "CCOPT_JERK_PARENT"
-
-#: What a worker process runs (see :func:`_run_in_processes`).
-WORKER_COMMAND = "from ccopt.feed.jerk_windows import _worker_main; _worker_main()"
-
-
-def _worker_main() -> None:
-    """A worker process: pickled tasks on stdin, their results on stdout, until
-    stdin closes. Anything else written to the standard output (HiGHS's banner
-    from C) goes to the standard error, so the result stream stays clean.
-    It dies with its parent (:func:`ccopt.workers.die_with_parent`): a parent
-    killed in the middle of a plan leaves no process solving on alone."""
-    if os.environ.get(PARENT_ENV):
-        die_with_parent(int(os.environ[PARENT_ENV]))
-    results = os.fdopen(os.dup(1), "wb")
-    os.dup2(2, 1)
-    sys.stdout = sys.stderr
-    tasks = sys.stdin.buffer
-    while True:
-        try:
-            args = pickle.load(tasks)
-        except EOFError:
-            break
-        pickle.dump(_solve_task(*args), results, protocol=pickle.HIGHEST_PROTOCOL)
-        results.flush()

@@ -18,25 +18,25 @@ bound on the speed (the *pseudo-jerk* linearisation): first ``bhat`` is the
 speed of straight motion from the nearest stop under the acceleration and
 jerk the axes allow along the tangent, capped by the box bound on ``b`` (axis
 velocities, feed, the caps at curvature breaks), on a window from rest to
-rest (:func:`~ccopt.feed.jerk_windows.rest_bound`; ``b`` is capped by the box
+rest (:func:`~ccopt.feed.jerk.windows.rest_bound`; ``b`` is capped by the box
 bound there), or on the overlapping windows of a stretch with
 no stop the TOPPRA solution (acceleration-limited, so an upper bound of every
 feasible speed, which also keeps a window's kept end able to brake for what
 lies beyond it), then ``bhat`` is updated to the geometric mean of itself and the LP's
 new ``b`` until the two agree within
-:data:`~ccopt.feed.jerk_windows.BHAT_TOL` (relative, on ``b``), or the
-window's duration settles (:data:`~ccopt.feed.jerk_windows.DURATION_TOL`),
-at most :data:`~ccopt.feed.jerk_windows.MAX_ROUNDS` rounds; a last round
+:data:`~ccopt.feed.jerk.windows.BHAT_TOL` (relative, on ``b``), or the
+window's duration settles (:data:`~ccopt.feed.jerk.windows.DURATION_TOL`),
+at most :data:`~ccopt.feed.jerk.windows.MAX_ROUNDS` rounds; a last round
 imposes ``b <= bhat`` so that ``sqrt(b) <= sqrt(bhat)`` and the jerk bound
 holds exactly at the gridpoints, and that round's solution is the profile
 (where HiGHS would take long over it, ``bhat`` is first raised to the last
-``b`` where that rose above it: :func:`~ccopt.feed.jerk_windows.solve_rounds`).
+``b`` where that rose above it: :func:`~ccopt.feed.jerk.windows.solve_rounds`).
 The objective is the duration ``sum h / sqrt(b)`` linearised at ``bhat``:
 maximise ``sum h b / bhat^(3/2)``. Each round is one LP solved by HiGHS's
 simplex (``highspy``, ranged rows). A jerk row divided by its
 ``sqrt(bhat)`` is a fixed row whose bounds move, so a window's LP is built
 once and each round starts from the last one's basis
-(:class:`~ccopt.feed.jerk_lp.WindowLP`).
+(:class:`~ccopt.feed.jerk.lp.WindowLP`).
 
 Between gridpoints the model is exact, so the profile the samples show is the
 one the LP constrained:
@@ -56,7 +56,7 @@ one the LP constrained:
 On an interval whose curvature changes along it (a blend curve, a spiral)
 the jerk is also imposed at a quarter, half and three quarters of its length,
 where the model is linear in the unknowns too
-(:func:`~ccopt.feed.jerk_lp._inner_rows`): there every factor of the jerk
+(:func:`~ccopt.feed.jerk.lp._inner_rows`): there every factor of the jerk
 varies along the interval and it bulged 0.87 % over the limit between
 gridpoints that both met it. With these rows such curves need far fewer
 gridpoints than TOPPRA's (:data:`JERK_GRID`).
@@ -72,7 +72,7 @@ reaches 1 + 1.9e-4 and the feed 1 + 2.8e-4), which one case misses: twelve
 tangent quarter arcs planned in windows of 100 gridpoints reach a jerk of
 1.00101 (tests/feed/test_jerk_windows.py). On a straight interval that
 peak is covered exactly where it would break the jerk limit
-(:meth:`~ccopt.feed.jerk_lp.WindowLP.peaks_over`: the row's speed factor
+(:meth:`~ccopt.feed.jerk.lp.WindowLP.peaks_over`: the row's speed factor
 raised by the largest rise the row allows, and the window solved again).
 
 Where the loss is: inside an interval the path jerk grows with ``s'``, so a
@@ -88,13 +88,13 @@ see that jump spread over one period, so it is bounded by
 a speed cap at the break. The samples' jerk is the jerk inside pieces; these
 steps are bounded by this rule instead.
 
-Windows (:mod:`ccopt.feed.jerk_windows`): the path is cut at its stops
+Windows (:mod:`ccopt.feed.jerk.windows`): the path is cut at its stops
 (exactly: the pieces between stops are independent), and the pieces are
-gathered into windows of about :data:`~ccopt.feed.jerk_windows.BATCH_POINTS`
+gathered into windows of about :data:`~ccopt.feed.jerk.windows.BATCH_POINTS`
 gridpoints, each solved as its own LP, so the cost grows linearly with the
 length of the program. A stretch between two stops with more gridpoints than
 that is planned in overlapping windows: a window plans
-:data:`~ccopt.feed.jerk_windows.WINDOW_OVERLAP` of its size further than it
+:data:`~ccopt.feed.jerk.windows.WINDOW_OVERLAP` of its size further than it
 keeps, and the next starts from the kept end's ``(b, alpha)`` with the last
 ``bhat`` of the one before on their overlap (with a fresh ``bhat`` from
 TOPPRA's speed that state can be infeasible: the jerk rows at the start
@@ -104,7 +104,7 @@ with the one before (``info["merged_windows"]``).
 Windows that start at a stop are independent of those before, and on a long
 program are solved in several processes (``info["workers"]``); there each
 task also computes TOPPRA's bound on its own stretch, stop to stop
-(:mod:`ccopt.feed.jerk_bound`), rather than one TOPPRA over the whole path
+(:mod:`ccopt.feed.jerk.speed_bound`), rather than one TOPPRA over the whole path
 running alone first.
 
 Last, on every stretch between two stops the profile is the faster of the
@@ -122,12 +122,12 @@ import numpy as np
 from ccopt.feed.baselines import scurve_pieces
 from ccopt.feed.errors import FeedError
 from ccopt.feed.grid import GridOptions, gridpoints
-from ccopt.feed.jerk_lp import (FROM_REST, INNER_POINTS, SLINEAR, TO_REST, JerkGrid,
+from ccopt.feed.jerk.lp import (FROM_REST, INNER_POINTS, SLINEAR, TO_REST, JerkGrid,
                                 piece_times)
-from ccopt.feed.jerk_profile import CUBIC, JerkProfile, slinear_time
-from ccopt.feed.jerk_profile import SLINEAR as PIECE_SLINEAR
-from ccopt.feed.jerk_bound import StretchBound, speed_bound
-from ccopt.feed.jerk_windows import any_chained, plan_windows, split
+from ccopt.feed.jerk.profile import CUBIC, JerkProfile, slinear_time
+from ccopt.feed.jerk.profile import SLINEAR as PIECE_SLINEAR
+from ccopt.feed.jerk.speed_bound import StretchBound, speed_bound
+from ccopt.feed.jerk.windows import any_chained, plan_windows, split
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.feed.planners import DEFAULT_TS
@@ -138,7 +138,7 @@ from ccopt.geometry import Line
 #: change and bend, so blend curves and spirals get far fewer gridpoints
 #: (lines and arcs, spaced by braking distance and turning angle, keep
 #: theirs); the jerk inside their intervals is imposed at three inner points
-#: instead (:data:`~ccopt.feed.jerk_lp.INNER_POINTS`). On freeform-hsm's
+#: instead (:data:`~ccopt.feed.jerk.lp.INNER_POINTS`). On freeform-hsm's
 #: smoothed path (302 blend curves, one stretch with no stop) TOPPRA's default
 #: grid, 4x and 8x its budgets planned 11.1491, 11.1601 and 11.1723 s with
 #: 53,358, 19,171 and 13,946 gridpoints in 62.8, 10.3 and 4.6-5.0 s, the jerk
@@ -187,7 +187,7 @@ def _stop_refinement(path: ExactPath, stops: np.ndarray, a: np.ndarray, j: np.nd
 
 def build_grid(path: ExactPath, limits: AxisLimits, ts: float,
                grid: GridOptions | None = None) -> JerkGrid:
-    """The gridpoints and their data (see :class:`~ccopt.feed.jerk_lp.JerkGrid`)."""
+    """The gridpoints and their data (see :class:`~ccopt.feed.jerk.lp.JerkGrid`)."""
     plane = path.frame
     v, a = limits.in_plane(plane, path.dof)
     j = limits.jerk_in_plane(plane, path.dof)
@@ -278,10 +278,10 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         # every window from rest to rest: no TOPPRA bound needed (it was 14 %
         # of the CPU on the 10,000-block pocket of bench/feed.py; the
         # 1,000-block one planned 157.72 s starting from it, 157.34 s from the
-        # box bound and 157.07 s from jerk_windows.rest_bound)
+        # box bound and 157.07 s from windows.rest_bound)
         scale, cap, bound_of = _scale(g.bmax), None, None
     elif split(g):
-        # each task computes its stretch's bound (jerk_bound): scale from the box bound
+        # each task computes its stretch's bound (speed_bound): scale from the box bound
         scale, cap = _scale(g.bmax), None
 
         def bound_of(i0, i1):

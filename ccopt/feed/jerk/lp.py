@@ -1,6 +1,6 @@
 """The linear programme of the ``jerk`` planner on one window of gridpoints.
 
-See :mod:`ccopt.feed.jerk_planner` for the formulation. Here: the gridpoint
+See :mod:`ccopt.feed.jerk.planner` for the formulation. Here: the gridpoint
 data (:class:`JerkGrid`), the LP of a window (:class:`WindowLP`, built once
 and solved for each speed bound ``bhat`` of the pseudo-jerk rounds), and the
 piece durations (:func:`piece_times`).
@@ -62,7 +62,7 @@ class JerkGrid:
     m2: np.ndarray
     m3: np.ndarray
     #: ``(N,)`` intervals of a stretch between two stops that is one straight
-    #: segment (no LP there: see :func:`~ccopt.feed.jerk_planner.lone_lines`);
+    #: segment (no LP there: see :func:`~ccopt.feed.jerk.planner.lone_lines`);
     #: None: every stretch goes to the LP
     lone: np.ndarray | None = None
 

@@ -25,7 +25,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ccopt.feed.toppra_import import DiscretizationType, LinearConstraint
+from ccopt.feed.toppra.library import DiscretizationType, LinearConstraint
 
 
 def _sided(path, gridpoints, order):

@@ -2,7 +2,7 @@
 
 One TOPPRA instance runs over the whole path, on gridpoints from
 :mod:`ccopt.feed.grid`, with the constraints of
-:mod:`ccopt.feed.constraints` and toppra's ``seidel`` solver. Stops
+:mod:`ccopt.feed.toppra.constraints` and toppra's ``seidel`` solver. Stops
 (tangent breaks, dwells) are imposed as a zero speed cap at their gridpoint,
 which is equivalent to planning each piece between stops from rest to rest.
 The output is parametrised with constant acceleration between gridpoints
@@ -34,7 +34,7 @@ from __future__ import annotations
 import numpy as np
 
 from ccopt.feed.baselines import baseline_knot_positions, segment_budgets
-from ccopt.feed.constraints import (
+from ccopt.feed.toppra.constraints import (
     AxisAccelerationConstraint,
     AxisVelocityConstraint,
     CentripetalAccelerationConstraint,
@@ -49,7 +49,7 @@ from ccopt.feed.junction import boundary_speed_caps
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.feed.profile import FeedProfile
-from ccopt.feed.toppra_import import TOPPRA, ParameterizationReturnCode
+from ccopt.feed.toppra.library import TOPPRA, ParameterizationReturnCode
 from ccopt.tolerances import CROSSING_TOL
 
 #: Relative lowerings of the current squared speed tried when a forward step's

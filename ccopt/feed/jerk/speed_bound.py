@@ -1,13 +1,13 @@
 """The speed bound of the ``jerk`` planner: TOPPRA's acceleration-limited speed.
 
-See :mod:`ccopt.feed.jerk_planner`: on a stretch with no stop, planned in
+See :mod:`ccopt.feed.jerk.planner`: on a stretch with no stop, planned in
 overlapping windows, the pseudo-jerk rounds start from the squared speed of
 the time-optimal profile under the velocity and acceleration limits alone
 (TOPPRA), an upper bound of every jerk-limited speed, and never let ``b``
 rise above it (a window from rest to rest needs none of this: it starts from
-:func:`ccopt.feed.jerk_windows.rest_bound`).
+:func:`ccopt.feed.jerk.windows.rest_bound`).
 
-On a program planned in worker processes (:mod:`ccopt.feed.jerk_windows`)
+On a program planned in worker processes (:mod:`ccopt.feed.jerk.windows`)
 TOPPRA runs in the workers too, one instance per task: a task's gridpoints
 go from a stop to a stop, and the path between them is a path of its own
 (:meth:`~ccopt.feed.path.ExactPath.stretch`) that TOPPRA plans from rest to
@@ -26,7 +26,7 @@ import numpy as np
 from ccopt.feed.grid import GridOptions
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
-from ccopt.feed.toppra_planner import plan_toppra
+from ccopt.feed.toppra.planner import plan_toppra
 from ccopt.toolpath import ToolPath
 
 

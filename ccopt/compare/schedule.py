@@ -1,0 +1,231 @@
+"""How the comparison's work is run: in this process, or in worker processes.
+
+Each variant is two jobs: its blend and what needs no feed plan
+(:func:`.variant.solve`), then its cycle time (:func:`_duration`) under the
+reference's stretch times. :func:`run_jobs` does them one after the other
+here, or hands them to ``workers`` processes (:func:`ccopt.workers.process_pool`)
+as they free up, while a thread of this process plans the reference; either
+way the rows are the same (:mod:`.core` states the comparison itself, and
+:mod:`.timing` why a cycle time planned before the reference is the same).
+
+``ref``, below, is the comparison's reference (:class:`.core._Reference`):
+its ``path``, ``limits`` and ``ts``, its stretch times (``ref.times()``,
+planned when first asked) and stretch keys (``ref.keys()``).
+"""
+from __future__ import annotations
+
+from collections import deque
+from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
+from contextlib import contextmanager
+from dataclasses import replace
+
+from ccopt.compare.contract import BUILTIN_NAMES
+from ccopt.compare.registry import load
+from ccopt.compare.timing import (PartialTime, StretchTimes, duration_figures, load_planner,
+                                  partial_figures)
+from ccopt.compare.variant import VariantResult, gets_cycle_time, solve, with_duration
+from ccopt.feed.limits import AxisLimits
+from ccopt.toolpath import ToolPath
+from ccopt.workers import process_pool
+
+def _duration(path: ToolPath, limits: AxisLimits | None, times: StretchTimes | None = None):
+    """A path's cycle time: ``(duration, max axis acceleration ratio sampled
+    every 0.2 ms, message)`` (:func:`ccopt.compare.timing.duration_figures`),
+    in this process or a worker."""
+    return duration_figures(path, limits, times)
+
+
+def say(progress, line: str) -> None:
+    if progress is not None:
+        progress(line)
+
+
+def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress):
+    """``(row index, VariantResult)`` of the reference (``reference_row(times)``)
+    and of every job ``(index, name, problem)``: here, one after the other, or
+    in ``workers`` processes (:func:`_run_in_processes`).
+
+    A job is done in two parts: the blend and what needs no feed plan
+    (:func:`solve`), then the cycle time (:func:`_duration`) under the
+    reference's stretch times (``ref.times()``). A variant whose
+    tool path is another's takes that one's cycle time, planned once (Fagor's
+    G138 and G139 with G136 leave the same path on 15 of the 27 bundled
+    cases, all three Fagor styles on 7)."""
+    if workers > 1 and len(jobs) > 1:
+        yield from _run_in_processes(jobs, ref, reference_row, total, workers, progress)
+        return
+    times = ref.times()
+    yield from reference_row(times)
+    timed: list[tuple[ToolPath, tuple]] = []
+    for i, name, problem in jobs:
+        say(progress, f"variant {i + 1}/{total} {name}")
+        local = problem if progress is None else replace(problem, progress=progress)
+        row = solve(name, local)
+        if gets_cycle_time(row):
+            got = _of_path(timed, row.toolpath)
+            if got is None:
+                got = _duration(row.toolpath, problem.limits,
+                                times.copy() if times is not None else None)
+                timed.append((row.toolpath, got))
+            row = with_duration(row, got)
+        yield i, row
+
+
+def _run_in_processes(jobs, ref, reference_row, total: int, workers: int,
+                      progress):
+    """:func:`run_jobs` in ``workers`` processes: at most one task per worker,
+    a cycle time before a blend (a long blend's plan, the smoother's, starts
+    as soon as its path is there), the blends in :func:`_longest_first`
+    order. This process plans the reference in a thread meanwhile, handing
+    out work as workers free up: a cycle time asked before the reference is
+    planned plans the stretches it does not share with the reference
+    (:func:`.timing.partial_figures`) and takes the shared ones from the
+    reference's plan when it is there (:meth:`.timing.PartialTime.finish`),
+    the same figures as a serial run."""
+    n_workers = min(workers, len(jobs))
+    if ref.limits is not None:
+        load_planner(ref.limits)
+    to_solve = deque(job for _, job in _longest_first(jobs))
+    to_time: deque = deque()                  # [path, limits, rows waiting for its time]
+    timed: list[tuple[ToolPath, object]] = []   # path, its cycle-time future
+    running: dict = {}                        # future -> (job, rows waiting for it)
+    partial: list = []                        # (PartialTime, rows): the reference's part to come
+    known: list = []                          # [the reference's stretch times], once planned
+    done = 0
+    with _pools(n_workers) as (pool, planner):
+
+        def refill():
+            while len(running) < n_workers and (to_time or to_solve):
+                if to_time:
+                    path, limits, rows = to_time.popleft()
+                    if known or limits is None or ref.path is None:
+                        times = ref.times()
+                        fut = pool.submit(_duration, path, limits,
+                                          times.copy() if times is not None else None)
+                    else:
+                        fut = pool.submit(partial_figures, path, limits, ref.ts, ref.keys())
+                    timed.append((path, fut))
+                    running[fut] = (None, rows, path, limits)
+                else:
+                    job = to_solve.popleft()
+                    running[pool.submit(solve, job[1], job[2])] = (job, None, None, None)
+
+        refill()
+        ref.keys()          # here, before the thread plans the same geometry
+        reference = planner.submit(ref.times)
+        while running or not known:
+            finished, _ = wait(set(running) | ({reference} if not known else set()),
+                               return_when=FIRST_COMPLETED)
+            ready = []
+            now_known = reference in finished
+            if now_known:
+                known.append(reference.result())
+            for fut in finished - {reference}:
+                job, rows, path, limits = running.pop(fut)
+                if job is None:               # a cycle time: to every row that waits for it
+                    partial.append((fut.result(), rows, path, limits))
+                else:
+                    ready.extend(_timed_or_queued(job, fut.result(), timed, to_time, running,
+                                                  partial, known))
+            ready.extend(_finish_partial(partial, known, to_time))
+            refill()
+            if now_known:
+                yield from reference_row(ref.times())
+            for i, name, row in sorted(ready, key=lambda r: r[0]):
+                done += 1
+                say(progress, f"variant {i + 1}/{total} {name} done ({done}/{len(jobs)})")
+                yield i, row
+
+
+@contextmanager
+def _pools(n_workers: int):
+    """``(pool, planner)``: ``n_workers`` worker processes
+    (:func:`ccopt.workers.process_pool`) and a thread for the reference's
+    plan. Left normally, after both are done; on a Ctrl-C or an error, at
+    once: the workers killed and the thread not waited for."""
+    with process_pool(n_workers) as pool:
+        planner = ThreadPoolExecutor(max_workers=1)
+        done = False
+        try:
+            yield pool, planner
+            done = True
+        finally:
+            planner.shutdown(wait=done, cancel_futures=True)
+
+
+def _finish_partial(partial: list, known: list, to_time) -> list:
+    """The rows whose cycle time is complete: each ``(figures, rows, path,
+    limits)`` of ``partial`` (emptied of them) whose figures are ``(duration,
+    max_acc_ratio, message)`` or, once the reference is planned (``known``), a
+    :class:`~.timing.PartialTime` finished with its stretch times; a path the
+    reference's times cannot finish is queued to be timed with them."""
+    ready, waiting = [], []
+    for fig, rows, path, limits in partial:
+        if isinstance(fig, PartialTime):
+            if not known:
+                waiting.append((fig, rows, path, limits))
+                continue
+            whole = fig.finish(known[0])
+            if whole is None:
+                to_time.append((path, limits, rows))
+                continue
+            fig = (*whole, None)
+        ready.extend((i, name, with_duration(row, fig)) for i, name, row in rows)
+    partial[:] = waiting
+    return ready
+
+
+def _timed_or_queued(job, row: VariantResult, timed, to_time, running, partial,
+                     known) -> list:
+    """The rows ready now for a solved ``job``: the row itself when it has no
+    path to time, or with the cycle time of the same path planned already;
+    else none, the row waiting for a plan of its path (running, waiting for
+    the reference's, queued, or queued here)."""
+    i, name, problem = job
+    entry = (i, name, row)
+    if not gets_cycle_time(row):
+        return [entry]
+    twin = _of_path(timed, row.toolpath)
+    if twin is not None and twin in running:
+        running[twin][1].append(entry)
+        return []
+    if twin is not None:
+        fig = twin.result()
+        if isinstance(fig, PartialTime):
+            held = _of_path(((p[2], p) for p in partial), row.toolpath)
+            if held is not None:
+                held[1].append(entry)
+                return []
+            whole = fig.finish(known[0]) if known else None
+            fig = None if whole is None else (*whole, None)
+        if fig is not None:
+            return [(i, name, with_duration(row, fig))]
+    waiting = _of_path(((w[0], w) for w in to_time), row.toolpath)
+    if waiting is not None:
+        waiting[2].append(entry)
+    else:
+        to_time.append((row.toolpath, problem.limits, [entry]))
+    return []
+
+
+def _of_path(pairs, path: ToolPath):
+    """The value paired with a tool path equal to ``path`` in ``(path, value)``
+    ``pairs``, or None."""
+    return next((value for p, value in pairs if p == path), None)
+
+
+def _longest_first(jobs):
+    """``(position, job)`` of ``jobs`` in the order to hand them to the workers,
+    longest first so that none starts last and leaves the other workers idle:
+    the plug-in blends, the last listed first (they solve optimisation
+    problems over the path: on freeform-hsm the smoother, listed last, took
+    8 s, the optimised leads 1.5-2.5 s each), then the other controller
+    styles (they change every stretch of the path, all planned again: 0.8-1.2 s
+    each there), then the geometric leads (only the leads: 0.2 s)."""
+    def rank(kj):
+        name = kj[1][1]
+        if name not in BUILTIN_NAMES:
+            return (0, -kj[0])
+        return (1 if getattr(load(name), "compensates", False) else 2, kj[0])
+
+    return sorted(enumerate(jobs), key=rank)

@@ -1,0 +1,154 @@
+"""One variant's row of the comparison: its blend solved, its path certified
+and measured (:class:`VariantResult`).
+
+:func:`solve` runs a blend on a :class:`~.contract.BlendProblem` and gives
+its row with every figure but the cycle time (:func:`measure_shape`); the
+cycle time joins it afterwards (:func:`with_duration`), planned under the
+reference's stretch times (:mod:`.timing`) by :mod:`.schedule`, which hands
+both parts of every variant to this process or to worker processes.
+:func:`measure` does both at once for a path made elsewhere.
+"""
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
+from ccopt.compare.figures import max_deviation, path_figures
+from ccopt.compare.leads import lead_joins
+from ccopt.compare.registry import load
+from ccopt.compare.timing import StretchTimes, duration_figures
+from ccopt.errors import CcoptError
+from ccopt.toolpath import ToolPath
+
+#: Figures every listed variant has (``None`` when it has no tool path).
+FIGURES = ("length", "max_curvature", "max_curvature_jump", "continuity", "path_continuity",
+           "tangent_breaks", "duration", "duration_ratio", "max_acc_ratio", "min_clearance",
+           "certified", "max_deviation", "max_deviation_bound", "solve_time")
+
+
+@dataclass
+class VariantResult:
+    """One row of the comparison."""
+
+    name: str
+    status: str                     # ok | uncertified | refused | rejected | failed
+    message: str | None = None
+    toolpath: ToolPath | None = None
+    certificate: object | None = None
+    figures: dict = field(default_factory=dict)
+    info: dict = field(default_factory=dict)
+
+    def __getitem__(self, key):
+        return self.to_json()[key]
+
+    def to_json(self) -> dict:
+        out = {"name": self.name, "status": self.status, "message": self.message}
+        for k in FIGURES:
+            out[k] = self.figures.get(k)
+        for k, v in self.figures.items():
+            out.setdefault(k, v)
+        if self.info:
+            out["info"] = self.info
+        return out
+
+
+def measure(name: str, path: ToolPath, problem: BlendProblem, solve_time: float,
+            info: dict | None = None, certificate=None,
+            times: StretchTimes | None = None) -> VariantResult:
+    """Certify, time and measure one variant's tool path (``times``: the
+    reference's stretch times, :mod:`.timing`; ``None`` plans the whole path;
+    the cycle time is :func:`.timing.duration_figures`)."""
+    row = measure_shape(name, path, problem, solve_time, info, certificate)
+    return with_duration(row, duration_figures(path, problem.limits, times))
+
+
+def measure_shape(name: str, path: ToolPath, problem: BlendProblem, solve_time: float,
+                  info: dict | None = None, certificate=None) -> VariantResult:
+    """:func:`measure` but the cycle time: certificate, path figures, deviation
+    from the reference (what needs no feed plan)."""
+    cert = certificate if certificate is not None else problem.certify(path)
+    fig = path_figures(path, lead_joins(path))
+    if problem.reference is not None:
+        dev, dev_bound = max_deviation(path, problem.reference)
+    else:  # no reference to measure against (PMAC refused the program)
+        dev = dev_bound = None
+    gouge = cert.check("gouge")
+    fig.update(min_clearance=cert.min_clearance, certified=bool(cert.ok),
+               verdict=cert.verdict,
+               clearance_ok=bool(gouge.ok), violations=len(cert.violations),
+               max_deviation=dev, max_deviation_bound=dev_bound, solve_time=solve_time)
+    status, message = ("ok", _warnings_note(cert)) if cert.ok else \
+        ("uncertified", uncertified_reason(cert))
+    return VariantResult(name, status, message, path, cert, fig, dict(info or {}))
+
+
+def _warnings_note(cert) -> str | None:
+    """``ok within tolerance: ...`` for a certified path with shallow violations
+    the verifier lists as warnings (program units), else ``None``."""
+    if not cert.warnings:
+        return None
+    v = max(cert.warnings, key=lambda v: v.depth)
+    line = f" at line {v.tool_block}" if v.tool_block is not None else ""
+    return (f"ok within tolerance: {len(cert.warnings)} warning(s), deepest {v.kind} "
+            f"{v.depth:.3g}{line}")
+
+
+def uncertified_reason(cert) -> str:
+    """Why a row whose path the verifier did not certify is not ``ok``: the
+    checks that failed and the deepest violation (program units for a
+    gouge, side or gap; a ratio over the limit for the feed limits)."""
+    failed = [c.name for c in cert.checks if not c.ok]
+    text = f"not certified: {', '.join(failed) or 'a check'} failed"
+    if cert.violations:
+        v = max(cert.violations, key=lambda v: v.depth)
+        line = f" at line {v.tool_block}" if v.tool_block is not None else ""
+        text += f" (deepest: {v.kind} {v.depth:.3g}{line}, {len(cert.violations)} violation(s))"
+    return text
+
+
+def gets_cycle_time(row: VariantResult) -> bool:
+    """Whether ``row`` gets a cycle time: it has a tool path (``ok`` or
+    ``uncertified``; the time of an uncertified path is still a figure)."""
+    return row.status in ("ok", "uncertified") and row.toolpath is not None
+
+
+def with_duration(row: VariantResult, duration) -> VariantResult:
+    """``row`` with a cycle time's ``(duration, max_acc_ratio, message)``
+    (:func:`.timing.duration_figures`; the planner's refusal joins the row's
+    own message, if any)."""
+    dur, acc_ratio, feed_msg = duration
+    row.figures.update(duration=dur, max_acc_ratio=acc_ratio)
+    if feed_msg:
+        row.message = feed_msg if row.message is None else f"{row.message}; {feed_msg}"
+    return row
+
+
+def solve(name: str, problem: BlendProblem) -> VariantResult:
+    """The blend ``name`` on ``problem``, certified and measured but for its cycle
+    time (:func:`measure_shape`); a blend that is refused, rejected or fails
+    gives its row with the reason."""
+    t0 = time.perf_counter()
+    try:
+        blend = load(name)
+        out = blend(problem)
+    except BlendRejected as exc:
+        return VariantResult(name, "rejected", str(exc),
+                             figures={"solve_time": time.perf_counter() - t0})
+    except CcoptError as exc:
+        return VariantResult(name, "refused", str(exc),
+                             figures={"solve_time": time.perf_counter() - t0})
+    except Exception as exc:  # a plug-in's bug must not hide the other variants
+        return VariantResult(name, "failed", f"{type(exc).__name__}: {exc}",
+                             figures={"solve_time": time.perf_counter() - t0})
+    seconds = time.perf_counter() - t0
+    info: dict = {}
+    cert = None
+    if isinstance(out, BlendOutcome):
+        info = dict(out.info)
+        cert = info.pop("certificate", None)
+        out = out.toolpath
+    if not isinstance(out, ToolPath):
+        return VariantResult(name, "failed", f"blend returned {type(out).__name__}, "
+                             "not a ToolPath or BlendOutcome", figures={"solve_time": seconds})
+    return measure_shape(name, out, problem, seconds, info, cert)
