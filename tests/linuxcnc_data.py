@@ -72,10 +72,7 @@ def canonical_moves(path):
         g = seg.geom
         if isinstance(g, Line):
             kind = "STRAIGHT_TRAVERSE" if seg.block.motion is Motion.RAPID else "STRAIGHT_FEED"
-            if seg.plane == "ZX":       # in-plane (u, v) = (Z, X), w = Y
-                out.append((kind, [g.end[1], seg.w1, g.end[0]]))
-            else:
-                out.append((kind, [g.end[0], g.end[1], seg.w1]))
+            out.append((kind, list(seg.end_xyz)))
         else:
             turns = math.floor(abs(g.sweep) / (2 * math.pi) - 1e-9) + 1
             out.append(("ARC_FEED", [g.end[0], g.end[1], g.center[0], g.center[1],
@@ -88,8 +85,14 @@ def expected_moves(folder: str) -> list[tuple[str, list[float]]]:
     path = CONFORMANCE / folder / "expected"
     if not path.is_file():
         pytest.fail(f"LinuxCNC conformance data missing: {path}")
+    return parse_canon(path.read_text())
+
+
+def parse_canon(text: str) -> list[tuple[str, list[float]]]:
+    """The STRAIGHT_TRAVERSE, STRAIGHT_FEED and ARC_FEED calls of canon output
+    ``text`` (an ``expected`` file), in order, with their numbers."""
     items = []
-    for line in path.read_text().splitlines():
+    for line in text.splitlines():
         m = _CANON.search(line)
         if m and m.group(1) != "COMMENT":
             items.append((m.group(1), [float(a) for a in m.group(2).split(",")]))

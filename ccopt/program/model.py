@@ -178,6 +178,8 @@ class Block:
     surface: ``"part"`` or ``"air"`` when a comment on the block's line says
         so (``(ccopt: part)``, ``; ccopt: air``: :mod:`ccopt.program.markers`),
         else ``None``; read by the verifier.
+    cycle: the canned cycle (``"G81"``, ``"G83"``, ...) whose move or dwell this
+        is, ``None`` for a programmed move (:mod:`ccopt.program.gcode.cycles`).
     """
 
     source: Source
@@ -192,6 +194,7 @@ class Block:
     move_time: float | None = None
     mcodes: tuple[int, ...] = ()
     surface: str | None = None
+    cycle: str | None = None
 
     # -- plane helpers -------------------------------------------------
     def uvw(self, p: Vec3) -> tuple[float, float, float]:
