@@ -19,6 +19,8 @@ from ccopt.program.gcode.cycles import (CYCLE_CODES, P_CYCLES, PECK_CYCLES, end_
                                         run_cycle, set_retract_mode)
 from ccopt.program.gcode.coordinates import (select_origin, set_axis_offset, set_origin,
                                              work_offset)
+from ccopt.program.gcode.machine_words import (frame_of, record_after_motion, record_line,
+                                               with_words)
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import (feed_factor, length_factor, output_units,
                                        scale_lengths, set_units)
@@ -44,6 +46,7 @@ def execute_words(state: GCodeState, words: Words) -> None:
     is_arc = motion in (20, 30)
     _check_word_usage(state, gc, L, motion)
     mcodes = tuple(words.mcodes)
+    record_line(state, gc, L, mcodes)
     first_col = words.first if words.first is not None else 0
     units = gc.get("units")
     if units is not None and state.units is None:
@@ -74,6 +77,7 @@ def execute_words(state: GCodeState, words: Words) -> None:
         end_series(state)   # a motion that is not a cycle ends a series of cycles
     if motion is not None and motion not in CYCLE_CODES and (axis or is_arc):
         _move(state, motion, L, mcodes, first_col, gcol, machine="machine_coords" in gc)
+    record_after_motion(state, mcodes)
     if any(m in (2, 30) for m in mcodes):
         raise ProgramEnd()
 
@@ -338,7 +342,7 @@ def _emit(state: GCodeState, block: Block) -> None:
         raise state.error(f"the move's end point, centre or feed is beyond "
                           f"+-{MAX_PROGRAM_COORDINATE:g} program units: check the values on "
                           "this line", block.source.col - 1)
-    state.blocks.append(block)
+    state.blocks.append(with_words(state, block))
 
 
 def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int,
@@ -369,6 +373,8 @@ def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int
                       state.modal(), center=center, turns=turns, feed=feed, mcodes=mcodes)
     if surface is not None:
         block = replace(block, surface=surface)
+    if machine:
+        block = replace(block, frame=frame_of(state, machine=True))
     _emit(state, block)
     state.moved = True
     state.pos = end_t

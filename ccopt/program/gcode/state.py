@@ -144,6 +144,10 @@ class GCodeState:
         self.corner = "circular"
         self.spindle = "stopped"   # "cw" (M3), "ccw" (M4), "stopped" (M5, at start)
         self.cycle = CycleState()  # sticky canned-cycle values (cycles.py)
+        # machine words read since the last block, and the work frame (machine_words.py)
+        self.pending_words: list[str] = []
+        self.frame = None
+        self.frame_key: tuple | None = None
         self.start_end = "contour"
         self._modal: Modal | None = None
         self.meta: dict = {"tool_length": []}
