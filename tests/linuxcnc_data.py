@@ -12,7 +12,7 @@ from pathlib import Path
 import pytest
 
 from ccopt.geometry import Line
-from ccopt.program.model import Motion
+from ccopt.program.model import PLANE_AXES, Motion
 
 CONFORMANCE = Path(__file__).resolve().parent / "conformance" / "linuxcnc"
 DATA = CONFORMANCE / "crazy-paths"
@@ -59,27 +59,31 @@ def expected_calls(comments: bool = False) -> list[list[tuple[str, object]]]:
 
 
 def canonical_moves(path):
-    """The tool path as LinuxCNC canonical moves.
+    """The tool path as LinuxCNC canonical moves, in the program's work
+    coordinates as LinuxCNC's canon prints them (each block's recorded frame
+    offset taken off).
 
     A line of a ``G0`` block is a STRAIGHT_TRAVERSE ``[x, y, z]``, any other
-    line a STRAIGHT_FEED; an arc (or spiral) is ARC_FEED ``[end x, end y,
-    centre x, centre y, turn, z]`` with ``turn = sign(sweep) * (number of
+    line a STRAIGHT_FEED; an arc (or spiral) is ARC_FEED ``[end u, end v,
+    centre u, centre v, turn, w]`` with ``turn = sign(sweep) * (number of
     started turns)`` (in-plane coordinates first, as LinuxCNC prints them: in
     G18 an arc's are (Z, X), and a straight move's are always (X, Y, Z)).
     """
     out = []
     for seg in path.segments:
         g = seg.geom
+        frame = seg.block.frame if seg.block is not None else None
+        off = frame.offset if frame is not None else (0.0, 0.0, 0.0)
         if isinstance(g, Line):
             kind = "STRAIGHT_TRAVERSE" if seg.block.motion is Motion.RAPID else "STRAIGHT_FEED"
-            if seg.plane == "ZX":       # in-plane (u, v) = (Z, X), w = Y
-                out.append((kind, [g.end[1], seg.w1, g.end[0]]))
-            else:
-                out.append((kind, [g.end[0], g.end[1], seg.w1]))
+            out.append((kind, [c - o for c, o in zip(seg.end_xyz, off)]))
         else:
+            iu, iv, iw = PLANE_AXES[seg.plane or "XY"]
+            du, dv = off[iu], off[iv]
             turns = math.floor(abs(g.sweep) / (2 * math.pi) - 1e-9) + 1
-            out.append(("ARC_FEED", [g.end[0], g.end[1], g.center[0], g.center[1],
-                                     math.copysign(turns, g.sweep), seg.w1]))
+            out.append(("ARC_FEED", [g.end[0] - du, g.end[1] - dv, g.center[0] - du,
+                                     g.center[1] - dv, math.copysign(turns, g.sweep),
+                                     seg.w1 - off[iw]]))
     return out
 
 
@@ -88,8 +92,14 @@ def expected_moves(folder: str) -> list[tuple[str, list[float]]]:
     path = CONFORMANCE / folder / "expected"
     if not path.is_file():
         pytest.fail(f"LinuxCNC conformance data missing: {path}")
+    return parse_canon(path.read_text())
+
+
+def parse_canon(text: str) -> list[tuple[str, list[float]]]:
+    """The STRAIGHT_TRAVERSE, STRAIGHT_FEED and ARC_FEED calls of canon output
+    ``text`` (an ``expected`` file), in order, with their numbers."""
     items = []
-    for line in path.read_text().splitlines():
+    for line in text.splitlines():
         m = _CANON.search(line)
         if m and m.group(1) != "COMMENT":
             items.append((m.group(1), [float(a) for a in m.group(2).split(",")]))

@@ -36,7 +36,7 @@ from ccopt.export.svg import write_svg
 from ccopt.geometry import Arc, Line
 from ccopt.program import read_text
 from ccopt.program.gcode.execute import LATHE_DIAMETER_MODE_USED
-from ccopt.program.model import INPUT_FILES, Program
+from ccopt.program.model import INPUT_FILES, START_PARAMETERS, Program
 from ccopt.tolerances import EXPORT_REFIT_MIN_TOL, EXPORT_REFIT_ROUNDS, EXPORT_REFIT_SHRINK
 from ccopt.toolpath import (FITTED_PIECES, TOOL_TIP, PathSegment, Role, ToolPath,
                             programmed_path)
@@ -165,10 +165,13 @@ def _write_checked(res: ExportResult, out: Path, text: str, program: Program | N
     write_text_atomic(out, text)
 
 
-def readback_path(text: str, dialect: str, original: ToolPath, moves: list, file: str) -> ToolPath:
+def readback_path(text: str, dialect: str, original: ToolPath, moves: list, file: str,
+                  parameters: dict | None = None) -> ToolPath:
     """Read exported text back and give each move the role and source block of
-    the tool-path segment it came from (``moves`` as the writers return it)."""
-    prog = read_text(text, file, dialect)
+    the tool-path segment it came from (``moves`` as the writers return it);
+    ``parameters``: the numbered parameters (a parameter file's) the program
+    was read with, so its work offsets read back the same."""
+    prog = read_text(text, file, dialect, parameters=parameters if dialect == "gcode" else None)
     back = programmed_path(prog)
     if len(back.segments) != len(moves):
         raise ProgramError(f"read-back has {len(back.segments)} moves, {len(moves)} were written",
@@ -278,7 +281,7 @@ class _ProgramExport:
             radius_mode = bool(self.program is not None
                                and self.program.meta.get(LATHE_DIAMETER_MODE_USED))
             return write_gcode(self.path, self.tol, header, seg_tol=seg_tol,
-                               radius_mode=radius_mode)[:2]
+                               radius_mode=radius_mode, program=self.program)[:2]
         # the program number the PMAC program was read from, kept
         number = (self.program.meta.get("program") if self.program is not None
                   and self.program.dialect == "pmac" else None)
@@ -288,7 +291,9 @@ class _ProgramExport:
     def attempt(self, seg_tol: dict[int, float]):
         """Write, read back, verify: ``(moves, round-trip error, certificate)``."""
         text, moves = self.write(self.header, seg_tol)
-        back = readback_path(text, self.fmt, self.path, moves, str(self.out))
+        params = self.program.meta.get(START_PARAMETERS) if self.program is not None else None
+        back = readback_path(text, self.fmt, self.path, moves, str(self.out),
+                             parameters=params)
         return moves, roundtrip_error(back, moves), _verify(back, self.program)
 
     def refit(self, seg_tol, moves, roundtrip, cert):
@@ -365,6 +370,10 @@ def _export_program(res: ExportResult, path: ToolPath, out: Path, program: Progr
               f"{path.units}, tool-centre path (no compensation words)"]
     if title:
         header.insert(0, title)
+    if res.format == "gcode" and program is not None and program.dialect == "gcode":
+        header.append("kept from the program: tool, spindle, coolant and other machine words, "
+                      "its work coordinates and G54-G59.3, its program end; canned cycles and "
+                      "subroutines written as their moves")
     job = _ProgramExport(path, res.format, res.tolerance, out, program, header)
     seg_tol: dict[int, float] = {}
     moves, roundtrip, cert = job.attempt(seg_tol)

@@ -4,15 +4,17 @@ Each segment is written in its own plane: ``G17``/``G18``/``G19`` stands in
 the first line and again wherever the plane changes.
 
 The exported program carries no compensation words: it is the tool-centre
-path itself. Spirals become arcs and Bezier blend curves arcs and lines
-within ``tol`` (:mod:`.arcfit`, certified bound). Feeds are written per
-minute (G94).
+path itself. Given the program, it keeps the machine's words and the
+program's work coordinates (:mod:`.machine`). Spirals become arcs and Bezier
+blend curves arcs and lines within ``tol`` (:mod:`.arcfit`, certified
+bound). Feeds are written per minute (G94).
 """
 from __future__ import annotations
 
 import math
 
 from ccopt.export.arcfit import fit_arcs, fit_bezier, fit_located, fit_tolerance
+from ccopt.export.machine import MachineWords, machine_prefix, written_offset
 from ccopt.export.text import gcode_comment
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
@@ -43,6 +45,16 @@ class _Writer:
         self.source: list[int] = []   # original segment index of each move line
         self.intended: list = []      # (geometry meant by the line, certified bound)
         self.feed: float | None = None
+        self.shift = (0.0, 0.0, 0.0)   # machine minus written (u, v, w) of the next moves
+        self.prefix = ""               # "G53 " for moves written in machine coordinates
+
+    def set_frame(self, block) -> None:
+        """Write the next moves in ``block``'s frame (work coordinates, or
+        machine coordinates under G53)."""
+        off = written_offset(block)
+        iu, iv, iw = PLANE_AXES[self.plane]
+        self.shift = (off[iu], off[iv], off[iw])
+        self.prefix = machine_prefix(block)
 
     def set_plane(self, plane: str) -> None:
         """Write the coordinates of ``plane`` from now on: its ``(u, v, w)`` axis
@@ -53,8 +65,9 @@ class _Writer:
         self.ci, self.cj = CENTRE[iu], CENTRE[iv]
 
     def coords(self, uv, w) -> str:
-        return (f"{self.u}{fmt(uv[0], self.digits)} {self.v}{fmt(uv[1], self.digits)} "
-                f"{self.w}{fmt(w, self.digits)}")
+        du, dv, dw = self.shift
+        return (f"{self.u}{fmt(uv[0] - du, self.digits)} {self.v}{fmt(uv[1] - dv, self.digits)} "
+                f"{self.w}{fmt(w - dw, self.digits)}")
 
     def feed_word(self, feed: float | None) -> str:
         if feed is None or feed == self.feed:
@@ -69,17 +82,19 @@ class _Writer:
 
     def line(self, idx: int, g: Line, w1: float, feed, bound: float = 0.0) -> None:
         if feed is None:
-            self.move(idx, f"G0 {self.coords(g.end, w1)}", g, bound)
+            self.move(idx, f"{self.prefix}G0 {self.coords(g.end, w1)}", g, bound)
         else:
-            self.move(idx, f"G1 {self.coords(g.end, w1)}{self.feed_word(feed)}", g, bound)
+            self.move(idx, f"{self.prefix}G1 {self.coords(g.end, w1)}{self.feed_word(feed)}", g,
+                      bound)
 
     def arc(self, idx: int, arc: Arc, w0: float, w1: float, feed, bound: float = 0.0) -> None:
         s, e = arc.start, arc.end
         word = "G3" if arc.sweep > 0 else "G2"
         # Incremental centre from the *written* start keeps the reader's
         # start and end radii consistent after rounding.
-        su, sv = round(s[0], self.digits), round(s[1], self.digits)
-        i, j = arc.center[0] - su, arc.center[1] - sv
+        du, dv, _ = self.shift
+        su, sv = round(s[0] - du, self.digits), round(s[1] - dv, self.digits)
+        i, j = arc.center[0] - du - su, arc.center[1] - dv - sv
         turns = max(int(math.ceil(abs(arc.sweep) / TWO_PI - _TURNS_SLACK)) - 1, 0)
         p = f" P{turns + 1}" if turns else ""
         self.move(idx, f"{word} {self.coords(e, w1)} {self.ci}{fmt(i, self.digits)} "
@@ -106,7 +121,8 @@ def bezier_pieces(g: BezierCurve, w0: float, w1: float, tol: float):
 
 
 def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, digits: int = 6,
-                seg_tol: dict[int, float] | None = None, radius_mode: bool = False):
+                seg_tol: dict[int, float] | None = None, radius_mode: bool = False,
+                program=None):
     """G-code text of ``path``.
 
     Returns ``(text, moves, max_fit_error)``: ``moves[m] = (source, geometry,
@@ -119,28 +135,39 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
     fit tolerance than ``tol``. ``radius_mode``: the mode line says ``G8``
     (lathe radius mode), for a program that used G7: the written X words are
     radii, which a lathe left in diameter mode would read as diameters.
+    ``program``: the program the path was made from; its machine words and
+    work coordinates are kept (:class:`~ccopt.export.machine.MachineWords`).
     """
     wr = _Writer(path, digits)
+    machine = MachineWords(program)
     seg_tol = seg_tol or {}
     out = ["%"]
     for h in header or []:
         out.append(gcode_comment(h))
     modes = f"{PLANE_WORD[path.plane]} G90 G94" + (" G8" if radius_mode else "")
+    number = program.meta.get("program_number") if program is not None else None
+    if isinstance(number, int):
+        out.append(f"O{number}")
     out.append(f"G21 {modes}" if path.units == "mm" else f"G20 {modes}")
     max_err = 0.0
-    dwell_at: dict[int, list[float]] = {}
-    for idx, seconds, _ in path.dwells:
-        dwell_at.setdefault(idx, []).append(seconds)
+    dwell_at: dict[int, list] = {}
+    for idx, seconds, block in path.dwells:
+        dwell_at.setdefault(idx, []).append((seconds, block))
     if path.segments and not starts_at_origin(path):
         first = path.segments[0]
+        wr.lines += machine.before(first.block)
+        wr.set_frame(first.block)
         wr.move(-1, f"G0 {wr.coords(first.start, first.w0)}")  # positioning, no segment
     for idx, seg in enumerate(path.segments):
-        for seconds in dwell_at.get(idx, ()):
+        for seconds, block in dwell_at.get(idx, ()):
+            wr.lines += machine.before(block)
             wr.lines.append(f"G4 P{fmt(seconds, 4)}")
         if seg.plane != wr.plane:
             # a path in several planes: the plane word before its first move
             wr.lines.append(PLANE_WORD[seg.plane])
             wr.set_plane(seg.plane)
+        wr.lines += machine.before(seg.block)
+        wr.set_frame(seg.block)
         g = seg.geom
         if isinstance(g, Line):
             wr.line(idx, g, seg.w1, seg.feed)
@@ -165,8 +192,9 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
                 max_err = max(max_err, piece.bound)
         else:
             raise ValueError(f"cannot export a {type(g).__name__} segment to G-code yet")
-    for seconds in dwell_at.get(len(path.segments), ()):
+    for seconds, block in dwell_at.get(len(path.segments), ()):
+        wr.lines += machine.before(block)
         wr.lines.append(f"G4 P{fmt(seconds, 4)}")
     out += wr.lines
-    out += ["M2", "%"]
+    out += machine.finish() + ["%"]
     return "\n".join(out) + "\n", list(zip(wr.source, *zip(*wr.intended))), max_err

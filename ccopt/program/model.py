@@ -155,6 +155,43 @@ class Modal:
 
 
 @dataclass(frozen=True, slots=True)
+class Frame:
+    """The work coordinate frame a G-code block was programmed in, as the
+    reader knew it: ``machine = work + offset`` per axis, program units.
+
+    Attributes
+    ----------
+    system: the coordinate system in force, 1 .. 9 for ``G54`` .. ``G59.3``.
+    origin: that system's origin in machine coordinates (``G10 L2`` or the
+        parameter file).
+    axis_offset: the ``G92``/``G52`` offset in force.
+    machine: the block's end was programmed in machine coordinates (``G53``).
+    """
+
+    system: int = 1
+    origin: Vec3 = (0.0, 0.0, 0.0)
+    axis_offset: Vec3 = (0.0, 0.0, 0.0)
+    machine: bool = False
+
+    @property
+    def offset(self) -> Vec3:
+        """Machine minus work coordinates."""
+        o, a = self.origin, self.axis_offset
+        return (o[0] + a[0], o[1] + a[1], o[2] + a[2])
+
+
+#: ``Program.meta`` key: how the program ends, ``"M2"`` or ``"M30"`` as written
+#: (absent: it ends with its text or a ``%``).
+PROGRAM_END = "program_end"
+#: ``Program.meta`` key: the machine words after the last block (``M5``, ``M9``
+#: before the end), in order (:attr:`Block.words`).
+TRAILING_WORDS = "trailing_words"
+#: ``Program.meta`` key: the numbered parameters the program was read with
+#: (a parameter file's), so that an export is read back in the same frames.
+START_PARAMETERS = "start_parameters"
+
+
+@dataclass(frozen=True, slots=True)
 class Block:
     """One executed move or dwell. See the module docstring for conventions.
 
@@ -178,6 +215,15 @@ class Block:
     surface: ``"part"`` or ``"air"`` when a comment on the block's line says
         so (``(ccopt: part)``, ``; ccopt: air``: :mod:`ccopt.program.markers`),
         else ``None``; read by the verifier.
+    cycle: the canned cycle (``"G81"``, ``"G83"``, ...) whose move or dwell this
+        is, ``None`` for a programmed move (:mod:`ccopt.program.gcode.cycles`).
+    words: the machine's non-motion words that execute before this block,
+        one line each in execution order (``"T1 M6"``, ``"S8000 M3"``,
+        ``"M8"``, ``"G43 H1"``): tool changes, spindle, coolant, tool length,
+        program stops and other M-codes, as the G-code reader read them
+        (:mod:`ccopt.program.gcode.machine_words`); an export writes them back.
+    frame: the work coordinate frame the block was programmed in (G-code), or
+        ``None`` (PMAC: machine coordinates).
     """
 
     source: Source
@@ -192,6 +238,9 @@ class Block:
     move_time: float | None = None
     mcodes: tuple[int, ...] = ()
     surface: str | None = None
+    cycle: str | None = None
+    words: tuple[str, ...] = ()
+    frame: Frame | None = None
 
     # -- plane helpers -------------------------------------------------
     def uvw(self, p: Vec3) -> tuple[float, float, float]:

@@ -422,9 +422,9 @@ def test_refit_rounds_are_each_verified_and_bounded(smoothed_pocket, tmp_path, m
 
     real_readback = ex.readback_path
 
-    def readback(text, fmt, original, moves, file):
+    def readback(text, fmt, original, moves, file, **kw):
         calls.append(("read", moves))
-        return real_readback(text, fmt, original, moves, file)
+        return real_readback(text, fmt, original, moves, file, **kw)
 
     def fake_verify(p, program):
         if p is path:                           # the computed path: clean

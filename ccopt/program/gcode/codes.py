@@ -25,6 +25,10 @@ _G_NUMBER_LIMIT = 1e6
 # G-codes ccopt knows, in tenths (G41.1 -> 411), with their modal group.
 G_GROUPS: dict[int, str] = {
     0: "motion", 10: "motion", 20: "motion", 30: "motion", 800: "motion",
+    # canned cycles (cycles.py)
+    730: "motion", 740: "motion", 810: "motion", 820: "motion", 830: "motion", 840: "motion",
+    850: "motion", 860: "motion", 870: "motion", 880: "motion", 890: "motion",
+    980: "retract", 990: "retract",
     40: "dwell",
     170: "plane", 180: "plane", 190: "plane",
     200: "units", 210: "units",
@@ -46,14 +50,13 @@ G_GROUPS: dict[int, str] = {
 }
 _KNOWN_G = ("G0 G1 G2 G3 G4 G7 G8 G10 G17 G18 G19 G20 G21 G40 G41 G42 G41.1 G42.1 G43 G49 "
             "G52 G53 G54-G59.3 G61 G61.1 G64 G80 G90 G91 G90.1 G91.1 G92 G92.1 G92.2 G92.3 "
-            "G93 G94 G136 G137 G138 G139")
+            "G73 G74 G81-G87 G89 G93 G94 G98 G99 G136 G137 G138 G139")
 _G_UNSUPPORTED_HINT: dict[int, str] = {
-    950: "feed per revolution is not supported: use G94 (units per minute) or G93",
-    280: "homing moves are not supported", 300: "homing moves are not supported",
-    **{t: "canned cycles (lathe G70-G72, G73 drilling, G74 tapping, G76 threading, "
-          "G81-G89) are not supported: write the moves out"
-       for t in (700, 710, 711, 720, 721, 730, 740, 760, 810, 820, 830, 840, 841, 850, 860,
-                 870, 880, 890)},
+    950: "feed per revolution: use G94 (units per minute) or G93",
+    280: "homing moves", 300: "homing moves",
+    **{t: "lathe cycles G70-G72 and G76 threading: write the moves out (the drilling "
+          "cycles G73, G74, G81-G87 and G89 are read)"
+       for t in (700, 710, 711, 720, 721, 760)},
 }
 # M-code modal groups that may not appear twice on a line.
 _M_GROUPS: dict[int, str] = {0: "stop", 1: "stop", 2: "stop", 30: "stop", 60: "stop",
@@ -174,6 +177,8 @@ def _g_tenths(state: GCodeState, value: float, col: int) -> int:
     if tenths < 0 or abs(value * 10 - tenths) > _G_TENTHS_TOL or tenths not in G_GROUPS:
         hint = _G_UNSUPPORTED_HINT.get(tenths) if tenths >= 0 and \
             abs(value * 10 - tenths) <= _G_TENTHS_TOL else None
-        raise state.error(f"unknown G-code G{fmt(value)}: "
-                          + (hint if hint else f"ccopt reads {_KNOWN_G}"), col)
+        if hint:
+            # a code ccopt knows and refuses is "not supported", never "unknown"
+            raise state.error(f"G{fmt(value)} is not supported: {hint}", col)
+        raise state.error(f"unknown G-code G{fmt(value)}: ccopt reads {_KNOWN_G}", col)
     return tenths

@@ -15,8 +15,12 @@ from dataclasses import replace
 
 from ccopt.program.gcode.arcs import arc_geometry, is_modal_arc_without_plane_motion
 from ccopt.program.gcode.codes import Words, classify
+from ccopt.program.gcode.cycles import (CYCLE_CODES, P_CYCLES, PECK_CYCLES, end_series,
+                                        run_cycle, set_retract_mode)
 from ccopt.program.gcode.coordinates import (select_origin, set_axis_offset, set_origin,
                                              work_offset)
+from ccopt.program.gcode.machine_words import (frame_of, record_after_motion, record_line,
+                                               with_words)
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import (feed_factor, length_factor, output_units,
                                        scale_lengths, set_units)
@@ -40,8 +44,9 @@ def execute_words(state: GCodeState, words: Words) -> None:
     L = words.letters
     motion = _motion_of(state, gc, L)
     is_arc = motion in (20, 30)
-    _check_word_usage(state, gc, L, is_arc)
+    _check_word_usage(state, gc, L, motion)
     mcodes = tuple(words.mcodes)
+    record_line(state, gc, L, mcodes)
     first_col = words.first if words.first is not None else 0
     units = gc.get("units")
     if units is not None and state.units is None:
@@ -61,11 +66,18 @@ def execute_words(state: GCodeState, words: Words) -> None:
     if "machine_coords" in gc:
         _check_machine_coords(state, gc, motion)
     motion_g = gc.get("motion")
+    previous_mode = state.motion_mode
     if motion_g is not None:
         state.motion_mode = None if motion_g[0] == 800 else motion_g[0]
-    if motion is not None and (any(a in L for a in _AXES) or is_arc):
-        _move(state, motion, L, mcodes, first_col, motion_g[1] if motion_g else first_col,
-              machine="machine_coords" in gc)
+    axis = any(a in L for a in _AXES)
+    gcol = motion_g[1] if motion_g else first_col
+    if motion in CYCLE_CODES and (axis or motion_g is not None):
+        run_cycle(state, motion, gcol, L, mcodes, first_col, previous_mode, _emit)
+    elif motion_g is not None or (motion is not None and axis):
+        end_series(state)   # a motion that is not a cycle ends a series of cycles
+    if motion is not None and motion not in CYCLE_CODES and (axis or is_arc):
+        _move(state, motion, L, mcodes, first_col, gcol, machine="machine_coords" in gc)
+    record_after_motion(state, mcodes)
     if any(m in (2, 30) for m in mcodes):
         raise ProgramEnd()
 
@@ -105,28 +117,34 @@ def _motion_of(state: GCodeState, gc: dict, L: dict) -> int | None:
     return None
 
 
-def _check_word_usage(state: GCodeState, gc: dict, L: dict, is_arc: bool) -> None:
+def _check_word_usage(state: GCodeState, gc: dict, L: dict, motion: int | None) -> None:
     """Every word needs a code on its line that uses it (LinuxCNC ``check_other_codes``)."""
+    is_arc = motion in (20, 30)
+    cycle = motion in CYCLE_CODES
     comp = gc.get("comp")
-    if "D" in L and (comp is None or comp[0] == 400):
-        raise state.error("D word with no G41, G42, G41.1 or G42.1 to use it", L["D"][1])
+    if "D" in L and (comp is None or comp[0] == 400) and motion not in PECK_CYCLES:
+        raise state.error("D word with no G41, G42, G41.1, G42.1, G73 or G83 to use it",
+                          L["D"][1])
     if "H" in L and (gc.get("length") is None or gc["length"][0] != 430):
         raise state.error("H word with no G43 to use it", L["H"][1])
     for w in "IJK":
-        if w in L and not is_arc:
-            raise state.error(f"{w} word with no G2 or G3 to use it", L[w][1])
-    if "R" in L and not (is_arc or gc.get("axis_setting", (None,))[0] == 100):
-        raise state.error("R word with no G2, G3 or G10 to use it", L["R"][1])
+        if w in L and not (is_arc or motion == 870):
+            raise state.error(f"{w} word with no G2, G3 or G87 to use it", L[w][1])
+    if "R" in L and not (is_arc or cycle or gc.get("axis_setting", (None,))[0] == 100):
+        raise state.error("R word with no G2, G3, G10 or canned cycle to use it", L["R"][1])
     dwell = gc.get("dwell")
     path = gc.get("path")
     g10 = gc.get("axis_setting", (None,))[0] == 100
-    if "P" in L and not (is_arc or dwell or g10 or (path and path[0] == 640)):
-        raise state.error("P word with no G2, G3, G4, G10 or G64 to use it", L["P"][1])
+    if "P" in L and not (is_arc or dwell or g10 or (path and path[0] == 640)
+                         or motion in P_CYCLES):
+        raise state.error("P word with no G2, G3, G4, G10, G64, G74, G82, G84, G86 or G89 "
+                          "to use it", L["P"][1])
     lathe = comp is not None and comp[0] in (411, 421)
-    if "L" in L and not (g10 or lathe):
-        raise state.error("L word with no G10, G41.1 or G42.1 to use it", L["L"][1])
-    if "Q" in L and not (path and path[0] == 640):
-        raise state.error("Q word with no G64 to use it", L["Q"][1])
+    if "L" in L and not (g10 or lathe or cycle):
+        raise state.error("L word with no G10, G41.1, G42.1 or canned cycle to use it",
+                          L["L"][1])
+    if "Q" in L and not (path and path[0] == 640 or motion in PECK_CYCLES):
+        raise state.error("Q word with no G64, G73 or G83 to use it", L["Q"][1])
     if dwell and is_arc:
         raise state.error("G4 and G2/G3 on one line would share the P word: put the dwell on "
                           "its own line", dwell[1])
@@ -159,6 +177,9 @@ def _set_feed_and_tool(state: GCodeState, gc: dict, L: dict, mcodes: tuple) -> N
         state.selected_tool = int(round(t))
     if 6 in mcodes:
         state.loaded_tool = state.selected_tool
+    for m, turning in ((3, "cw"), (4, "ccw"), (5, "stopped")):
+        if m in mcodes:
+            state.spindle = turning
 
 
 def _dwell(state: GCodeState, dwell: tuple[int, int], L: dict, mcodes: tuple,
@@ -232,6 +253,9 @@ def _set_modes(state: GCodeState, gc: dict, L: dict) -> None:
     if corner is not None:
         state.corner = "circular" if corner[0] == 1360 else "linear"
         state.modal_changed()
+    retract = gc.get("retract")
+    if retract is not None:
+        set_retract_mode(state, retract)
     se = gc.get("start_end")
     if se is not None:
         state.start_end = "direct" if se[0] == 1380 else "contour"
@@ -318,7 +342,7 @@ def _emit(state: GCodeState, block: Block) -> None:
         raise state.error(f"the move's end point, centre or feed is beyond "
                           f"+-{MAX_PROGRAM_COORDINATE:g} program units: check the values on "
                           "this line", block.source.col - 1)
-    state.blocks.append(block)
+    state.blocks.append(with_words(state, block))
 
 
 def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int,
@@ -349,6 +373,8 @@ def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int
                       state.modal(), center=center, turns=turns, feed=feed, mcodes=mcodes)
     if surface is not None:
         block = replace(block, surface=surface)
+    if machine:
+        block = replace(block, frame=frame_of(state, machine=True))
     _emit(state, block)
     state.moved = True
     state.pos = end_t

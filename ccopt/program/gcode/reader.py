@@ -20,7 +20,8 @@ from ccopt.program.gcode.parameters import MAX_PARAMETER, attach_grammar, set_pa
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import output_units
 from ccopt.program.gcode.words import Lexed, lex, olabel, program_span
-from ccopt.program.model import INPUT_FILES, PLANE_CHANGES_CHECKED, Program
+from ccopt.program.model import (INPUT_FILES, PLANE_CHANGES_CHECKED, START_PARAMETERS,
+                                 TRAILING_WORDS, Program)
 from ccopt.program.tooltable import ToolTable
 
 
@@ -61,6 +62,7 @@ def open_program(text: str, file: str, tool_table: dict[int, float] | None,
             raise ProgramError(f"parameter #{number} = {value!r}: numbers run from 1 to "
                                f"{MAX_PARAMETER} and values must be finite", file)
         state.params[number] = float(value)
+    state.meta[START_PARAMETERS] = dict(state.params)
     init_coordinates(state)
     attach_grammar(state)
     state.first_line, state.end_line = program_span(state)
@@ -98,6 +100,7 @@ def run(state: GCodeState) -> Program:
             gc.enable()
     units = output_units(state)
     state.meta[PLANE_CHANGES_CHECKED] = True     # execute._set_modes refuses them
+    state.meta[TRAILING_WORDS] = tuple(state.pending_words)
     # the subroutine files read from the sub path, called or not: inputs too
     state.meta[INPUT_FILES] = tuple(dict.fromkeys(f for _, _, f in state.sub_files))
     return Program(tuple(state.blocks), file=state.file, dialect="gcode", units=units,

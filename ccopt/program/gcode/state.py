@@ -63,6 +63,24 @@ class Frame:
     named: dict = field(default_factory=dict)   # local named parameters
     ctrl: list = field(default_factory=list)    # open Ctrl structures, innermost last
 
+@dataclass(slots=True)
+class CycleState:
+    """The sticky cycle values (LinuxCNC ``cycle_r``, ``cycle_cc``, ``cycle_p``,
+    ``cycle_q``, ``cycle_i/j/k``, ``cycle_il``), program units and seconds.
+
+    ``level`` is the initial level in work coordinates, ``None`` when no
+    series of cycles is running; ``retract`` is ``"initial"`` (G98) or
+    ``"r"`` (G99, LinuxCNC's start-up mode).
+    """
+
+    retract: str = "r"
+    r: float = 0.0
+    w: float = 0.0
+    p: float = 0.0
+    q: float = 0.0
+    ijk: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    level: float | None = None
+
 
 class GCodeState:
     """Everything the reader knows while it runs one program text.
@@ -124,6 +142,12 @@ class GCodeState:
         self.selected_tool: int | None = None
         self.loaded_tool: int | None = None
         self.corner = "circular"
+        self.spindle = "stopped"   # "cw" (M3), "ccw" (M4), "stopped" (M5, at start)
+        self.cycle = CycleState()  # sticky canned-cycle values (cycles.py)
+        # machine words read since the last block, and the work frame (machine_words.py)
+        self.pending_words: list[str] = []
+        self.frame = None
+        self.frame_key: tuple | None = None
         self.start_end = "contour"
         self._modal: Modal | None = None
         self.meta: dict = {"tool_length": []}

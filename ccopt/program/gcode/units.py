@@ -58,6 +58,9 @@ def scale_lengths(state: GCodeState, L: dict, gcodes: dict) -> dict:
     comp = gcodes.get("comp")
     if comp and comp[0] in (411, 421):      # G41.1/G42.1 D is a diameter
         letters += "D"
+    motion = gcodes.get("motion")
+    if (motion[0] if motion else state.motion_mode) in (730, 830):
+        letters += "QD"                     # G73/G83 peck depth and clearance
     for letter in letters:
         if letter in scaled:
             value, col = scaled[letter]

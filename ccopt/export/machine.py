@@ -1,0 +1,111 @@
+"""What an exported G-code program keeps for the machine that runs it.
+
+The reader recorded, per block, the machine words read before it
+(:attr:`Block.words`: tool changes, spindle, coolant, tool length, stops) and
+the work coordinate frame it was programmed in (:attr:`Block.frame`). The
+G-code writer asks :class:`MachineWords`, segment by segment, what to write
+before a move and in which frame to write its coordinates, so the export
+
+* writes every block's words before its first move or dwell, in program
+  order (a block that makes no segment still has its words written, at the
+  next one), the words after the last block and the program end as written
+  (``M30`` stays ``M30``; ``M2`` when the program had none);
+* writes coordinates in the program's work coordinates, selecting the same
+  ``G54``-``G59.3``, with ``G10 L2`` where the program set an origin to other
+  values than the parameters it was read with, ``G52`` where the
+  ``G92``/``G52`` offset changes, and ``G53`` (machine coordinates) on the
+  moves the program wrote under ``G53``.
+
+Coordinates are program units; an offset is machine minus work coordinates.
+"""
+from __future__ import annotations
+
+from ccopt.program.model import (PROGRAM_END, START_PARAMETERS, TRAILING_WORDS, Block, Frame,
+                                 Program, Vec3)
+
+#: Coordinate system 1 .. 9 -> its G-code.
+SYSTEM_CODE = {1: "G54", 2: "G55", 3: "G56", 4: "G57", 5: "G58", 6: "G59",
+               7: "G59.1", 8: "G59.2", 9: "G59.3"}
+_NO_OFFSET: Vec3 = (0.0, 0.0, 0.0)
+
+
+def _fmt(x: float) -> str:
+    s = f"{x:.6f}".rstrip("0").rstrip(".")
+    return "0" if s in ("-0", "") else s
+
+
+def _xyz(p: Vec3) -> str:
+    return f"X{_fmt(p[0])} Y{_fmt(p[1])} Z{_fmt(p[2])}"
+
+
+class MachineWords:
+    """The machine's words and frames of ``program`` for one export.
+
+    ``program`` may be ``None`` (a foreign path, a PMAC program): then nothing
+    is added, coordinates are machine coordinates and the program ends ``M2``.
+    """
+
+    def __init__(self, program: Program | None):
+        blocks = program.blocks if program is not None else ()
+        self.blocks = blocks
+        self.index = {id(b): i for i, b in enumerate(blocks)}
+        self.flushed = 0              # blocks whose words are written: [0, flushed)
+        meta = program.meta if program is not None else {}
+        self.trailing = tuple(meta.get(TRAILING_WORDS, ()))
+        self.end = meta.get(PROGRAM_END) or "M2"
+        params = meta.get(START_PARAMETERS) or {}
+        # what the machine holds before the program runs (its parameter file)
+        self.origins = {n: tuple(params.get(5201 + 20 * n + k, 0.0) for k in range(3))
+                        for n in SYSTEM_CODE}
+        applied = params.get(5210, 0.0) == 1.0
+        self.axis_offset = (tuple(params.get(5211 + k, 0.0) for k in range(3))
+                            if applied else _NO_OFFSET)
+        self.system: int | None = None
+        self.uses_frames = any(b.frame is not None for b in blocks)
+
+    def before(self, block: Block | None) -> list[str]:
+        """Lines to write before a move or dwell made from ``block``."""
+        out: list[str] = []
+        k = self.index.get(id(block)) if block is not None else None
+        if k is not None and k >= self.flushed:
+            for b in self.blocks[self.flushed:k + 1]:
+                out += b.words
+            self.flushed = k + 1
+        if block is not None and block.frame is not None:
+            out += self._frame_lines(block.frame)
+        return out
+
+    def _frame_lines(self, frame: Frame) -> list[str]:
+        out = []
+        if self.origins.get(frame.system) != frame.origin:
+            out.append(f"G10 L2 P{frame.system} {_xyz(frame.origin)}")
+            self.origins[frame.system] = frame.origin
+        if frame.system != self.system:
+            out.append(SYSTEM_CODE[frame.system])
+            self.system = frame.system
+        if frame.axis_offset != self.axis_offset:
+            out.append(f"G52 {_xyz(frame.axis_offset)}")
+            self.axis_offset = frame.axis_offset
+        return out
+
+    def finish(self) -> list[str]:
+        """The words not yet written, those after the last block, the end."""
+        out: list[str] = []
+        for b in self.blocks[self.flushed:]:
+            out += b.words
+        self.flushed = len(self.blocks)
+        return out + list(self.trailing) + [self.end]
+
+
+def written_offset(block: Block | None) -> Vec3:
+    """Machine minus written coordinates of a move made from ``block``: its
+    frame's offset, none under ``G53`` or without a frame."""
+    if block is None or block.frame is None or block.frame.machine:
+        return _NO_OFFSET
+    return block.frame.offset
+
+
+def machine_prefix(block: Block | None) -> str:
+    """``"G53 "`` for a move the program wrote in machine coordinates."""
+    return "G53 " if block is not None and block.frame is not None and block.frame.machine \
+        else ""
