@@ -22,7 +22,7 @@ import pytest
 import ccopt
 from ccopt.compare.contract import BlendProblem
 from ccopt.feed import AxisLimits, certified_planner, plan_feed
-from ccopt.feed.jerk_windows import DURATION_TOL
+from ccopt.feed.jerk.windows import DURATION_TOL
 from ccopt.feed.path import ExactPath
 from ccopt.program import read_text
 from ccopt_formulations.blend_casadi import solve_lead
