@@ -20,12 +20,14 @@ on it (:mod:`ccopt_formulations.clearance`: the supporting line, the circle of a
 arc, or an end point), re-classified at every iterate. The curve's two ends
 are PMAC's own points and are not constrained.
 
-Curvature: every blend turns no tighter than :func:`curvature_bound`,
-``a / v^2``: ``v`` the speed the lead must carry (its programmed feed, at most
-the slowest in-plane axis speed) and ``a`` the smallest in-plane axis
-acceleration, so that the tool can follow any turn of the lead at that speed
-with a normal acceleration no axis exceeds (a tighter turn forces the feed
-down, and a hook of a micrometre radius is not a lead). The CasADi model
+Curvature: every blend turns no tighter than :func:`curvature_bound`, the
+larger of ``a / v^2`` and ``kappa_ref``: ``v`` the speed the lead must carry
+(its programmed feed, at most the slowest in-plane axis speed) and ``a`` the
+smallest in-plane axis acceleration, so that the tool can follow any turn of
+the lead at that speed with a normal acceleration no axis exceeds, unless the
+reference path itself turns tighter (``kappa_ref``, its largest curvature: the
+machine slows for that turn anyway). A hook of a micrometre radius is not a
+lead. The CasADi model
 imposes :data:`CURVATURE_MODEL_SHARE` of it at its samples, and
 :func:`run_leads` checks it densely (:func:`too_tight`) before such a blend is
 taken. (The CVXPY model imposes it through its curvature rows.) What jerk does
@@ -44,6 +46,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
+from ccopt.compare.figures import FEED_ROLES, curvature_samples
 from ccopt.compare.leads import Lead, LeadGeometry, splice
 from ccopt.geometry import Arc, BezierCurve, Line
 from ccopt.geometry.bezier import DIVISION_FLOOR, g2_end, jerk_gram, speed_profile_time
@@ -74,17 +77,26 @@ CURVATURE_MODEL_SHARE = 0.8
 
 def curvature_bound(problem: BlendProblem, feed: float) -> float:
     """Largest curvature (1/units) an optimised lead with programmed ``feed``
-    (units/s) may have: ``a / v^2`` with ``v = min(feed, slowest in-plane axis
-    speed)`` and ``a`` the smallest in-plane axis acceleration (the problem's
-    limits, else :data:`~ccopt.compare.contract.DEFAULT_ACC` and the feed).
-    At that curvature and speed the normal acceleration ``v^2 kappa`` is ``a``,
-    which every axis can give whatever the direction of the turn."""
+    (units/s) may have: the larger of ``a / v^2`` and ``kappa_ref``.
+
+    ``a / v^2``: ``v = min(feed, slowest in-plane axis speed)`` and ``a`` the
+    smallest in-plane axis acceleration (the problem's limits, else
+    :data:`~ccopt.compare.contract.DEFAULT_ACC` and the feed): at that curvature
+    and speed the normal acceleration ``v^2 kappa`` is ``a``, which every axis
+    can give whatever the direction of the turn, so the lead is cut at its feed.
+    ``kappa_ref``: the largest curvature of the reference path's feed moves (a
+    controller's corner arcs of the cutter radius, the contour's own arcs): the
+    machine slows for that turn on this program anyway, so a lead may turn as
+    tightly."""
     a = float(np.min(problem.acc()))
     v = float(feed)
     if problem.limits is not None:
         vmax, _ = problem.limits.in_plane(problem.reference.plane, 2)
         v = min(v, float(np.min(vmax)))
-    return a / (v * v) if v > 0.0 else math.inf
+    kref = max((float(np.max(np.abs(curvature_samples(s.geom)))) for s in
+                problem.reference.segments if s.role in FEED_ROLES and s.length > 0),
+               default=0.0)
+    return max(a / (v * v) if v > 0.0 else math.inf, kref)
 
 
 @dataclass

@@ -110,16 +110,20 @@ def largest_curvature(g) -> float:
     return float(np.max(np.abs(g.curvature(s))))
 
 
-def lead_curvature_bound(seg, limits, plane: str = "XY") -> float:
+def lead_curvature_bound(seg, limits, ref) -> float:
     """The optimised leads' stated bound for the lead segment ``seg`` (issue 30
-    item 3): ``a / v^2``, ``a`` the smaller of the in-plane axis accelerations of
-    ``limits`` and ``v`` the segment's programmed feed, at most the slower
-    in-plane axis speed: the turn whose normal acceleration at that speed is
-    what every axis can give."""
-    axes = {"XY": (0, 1), "ZX": (2, 0), "YZ": (1, 2)}[plane]
+    item 3), the larger of ``a / v^2`` and ``kappa_ref``: ``a`` the smaller of
+    the in-plane axis accelerations of ``limits``, ``v`` the segment's
+    programmed feed, at most the slower in-plane axis speed (the turn whose
+    normal acceleration at that speed is what every axis can give), and
+    ``kappa_ref`` the largest curvature of the feed segments of ``ref``, the
+    path the blends were made from (lines 0, arcs 1/R, other curves sampled)."""
+    axes = {"XY": (0, 1), "ZX": (2, 0), "YZ": (1, 2)}[ref.plane]
     a = min(limits.a[i] for i in axes)
     v = min([seg.feed] + [limits.v[i] for i in axes])
-    return a / v ** 2
+    kref = max((largest_curvature(s.geom) for s in ref.segments
+                if s.role in FEED_ROLES and s.length > 0), default=0.0)
+    return max(a / v ** 2, kref)
 
 
 def lead_curves(path):

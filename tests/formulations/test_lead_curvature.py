@@ -1,10 +1,11 @@
 """Optimised leads without hooks (issue 18 item 6, issue 30 item 3): the leads
-of opt-casadi and opt-cvxpy turn no tighter than their stated bound ``a / v^2``
-on every bundled case and on generated CAM plates.
+of opt-casadi and opt-cvxpy turn no tighter than their stated bound, the larger of
+``a / v^2`` and the reference's tightest turn, on every bundled case.
 
 The bound is worked out here from the limits (:func:`blend_checks.lead_curvature_bound`:
 ``a`` the smaller in-plane axis acceleration, ``v`` the lead's feed, at most
-the slower in-plane axis speed); the figure checked is each Bezier lead's own
+the slower in-plane axis speed; ``kappa_ref`` from PMAC's path: lines 0, arcs
+1/R, other curves sampled); the figure checked is each Bezier lead's own
 curvature at 20,001 parameter values (:func:`blend_checks.bezier_max_curvature`,
 derivatives by the hodograph).
 """
@@ -44,5 +45,5 @@ def test_optimised_leads_within_the_curvature_bound(case, variant):
     assert row.toolpath is not None, (row.status, row.message)
     assert row.status in ("ok", "uncertified")
     for seg, g in bc.lead_curves(row.toolpath):
-        bound = bc.lead_curvature_bound(seg, job.limits(), ref.plane)
+        bound = bc.lead_curvature_bound(seg, job.limits(), ref)
         assert bc.bezier_max_curvature(g) <= bound * (1 + 1e-9)

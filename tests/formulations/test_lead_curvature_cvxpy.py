@@ -30,5 +30,5 @@ def test_opt_cvxpy_blends_within_the_curvature_bound(case):
     curves = bc.lead_curves(out.toolpath)
     assert len(curves) == 2, out.info["leads"]       # both leads replaced
     for seg, g in curves:
-        bound = bc.lead_curvature_bound(seg, job.limits(), ref.plane)
+        bound = bc.lead_curvature_bound(seg, job.limits(), ref)
         assert bc.bezier_max_curvature(g) <= bound * (1 + 1e-9)
