@@ -18,6 +18,11 @@ its feed, no acceleration limit) with each lead run replaced by its chord
 fastest controller's cycle time: no lead blend of the program can gain more
 (the smoother, which also changes corners, is not bound by it).
 
+It also checks the property the comparison promises: every optimised row is
+certified and no slower than the fastest certified controller variant
+(relative :data:`~ccopt.compare.baseline.SAME_TIME_REL`); exit 1 and the rows
+that break it otherwise.
+
     python bench/blend_gains.py [--programs 20] [--first 0] [--search 0] [--workers N]
 """
 from __future__ import annotations
@@ -35,6 +40,7 @@ sys.path.insert(0, str(ROOT / "tests"))
 from cam_programs import cam_program  # noqa: E402
 
 from ccopt.compare import compare  # noqa: E402
+from ccopt.compare.baseline import SAME_TIME_REL  # noqa: E402
 from ccopt.compare.contract import CONTROLLER_NAMES  # noqa: E402
 from ccopt.compare.leads import find_leads  # noqa: E402
 from ccopt.feed import AxisLimits, feed_limited_time  # noqa: E402
@@ -72,6 +78,7 @@ def main(argv=None) -> int:
     ap.add_argument("--workers", type=int, default=None)
     args = ap.parse_args(argv)
     gains: dict = {(k, v): [] for k in LIMITS for v in OPTIMISED}
+    broken: list[str] = []      # rows not certified, or slower than the fastest controller
     bounds: dict = {k: [] for k in LIMITS}
     print("seed limits fastest_controller  " + "  ".join(OPTIMISED) + "  lead_bound")
     for seed in range(args.first, args.first + args.programs):
@@ -91,7 +98,11 @@ def main(argv=None) -> int:
             bounds[key].append(bound)
             line = []
             for name in OPTIMISED:
-                g = rows[name].figures.get("gain_vs_fastest_controller")
+                r = rows[name]
+                g = r.figures.get("gain_vs_fastest_controller")
+                if r.status != "ok" or not r.certificate.ok or g is None \
+                        or g < -SAME_TIME_REL:
+                    broken.append(f"seed {seed} ({key}) {name}: {r.status} {r.message}")
                 line.append("-" if g is None else f"{g:+.4f}")
                 if g is not None:
                     gains[(key, name)].append(g)
@@ -103,7 +114,11 @@ def main(argv=None) -> int:
         if bounds[key]:
             parts.append(f"lead bound {statistics.median(bounds[key]):+.4f}")
         print(f"  ({key}) " + ", ".join(parts))
-    return 0
+    print(f"optimised rows certified and never slower than the fastest controller: "
+          f"{'all' if not broken else f'{len(broken)} not'}")
+    for line in broken:
+        print("  " + line)
+    return 1 if broken else 0
 
 
 if __name__ == "__main__":

@@ -13,8 +13,10 @@ that is not certified, or slower than that controller variant by more than
 :data:`SAME_TIME_REL`, is replaced by the controller's path, its row saying
 "no faster certified blend" and keeping what the optimiser found in
 ``info["optimised"]`` (status, cycle time, message, figures), so the table
-never shows a slower blend as the optimised answer. A plug-in that made no
-path (refused, rejected, failed) keeps its row and its reason.
+never shows a slower blend as the optimised answer. A plug-in that found no
+blend at all (``rejected``: no lead could be replaced within its constraints)
+is the same answer, "no faster certified blend", with its reason; one that
+crashed (``failed``) or was refused keeps its row, so that the fault shows.
 """
 from __future__ import annotations
 
@@ -67,8 +69,8 @@ def apply_baseline(rows, reference_name: str) -> None:
     if best is not None:
         t_best = best.figures["duration"]
         for i, row in enumerate(rows):
-            if row.name in BUILTIN_NAMES or row.toolpath is None:
-                continue            # a controller's or geometric lead's, or no path made
+            if row.name in BUILTIN_NAMES or (row.toolpath is None and row.status != "rejected"):
+                continue            # a controller's or geometric lead's, or a fault
             t = row.figures.get("duration")
             improved = row.status == "ok" and t is not None \
                 and t <= t_best * (1.0 + SAME_TIME_REL)
@@ -91,7 +93,8 @@ def _kept(row, best):
            "message": row.message, "certified": row.figures.get("certified"),
            "figures": dict(row.figures)}
     t = own["duration"]
-    why = ("it is not certified" if row.status != "ok" else
+    why = (f"none found: {row.message}" if row.status == "rejected" else
+           "it is not certified" if row.status != "ok" else
            "it has no cycle time" if t is None else
            f"{t:.6g} s is slower than {best.name}'s {best.figures['duration']:.6g} s")
     message = f"{NO_FASTER}: {best.name}'s path kept ({row.name}'s own blend: {why})"
