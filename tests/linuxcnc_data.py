@@ -73,17 +73,23 @@ def canonical_moves(path):
     for seg in path.segments:
         g = seg.geom
         frame = seg.block.frame if seg.block is not None else None
-        off = frame.offset if frame is not None else (0.0, 0.0, 0.0)
+        # a G53 move's frame is the system in force: canon prints work coordinates
+        work = frame.to_work if frame is not None else (lambda p: p)
         if isinstance(g, Line):
             kind = "STRAIGHT_TRAVERSE" if seg.block.motion is Motion.RAPID else "STRAIGHT_FEED"
-            out.append((kind, [c - o for c, o in zip(seg.end_xyz, off)]))
+            out.append((kind, list(work(seg.end_xyz))))
         else:
             iu, iv, iw = PLANE_AXES[seg.plane or "XY"]
-            du, dv = off[iu], off[iv]
+
+            def at(u, v, w):
+                p = [0.0, 0.0, 0.0]
+                p[iu], p[iv], p[iw] = u, v, w
+                q = work(tuple(p))
+                return q[iu], q[iv], q[iw]
+            eu, ev, ew = at(g.end[0], g.end[1], seg.w1)
+            cu, cv, _ = at(g.center[0], g.center[1], seg.w1)
             turns = math.floor(abs(g.sweep) / (2 * math.pi) - 1e-9) + 1
-            out.append(("ARC_FEED", [g.end[0] - du, g.end[1] - dv, g.center[0] - du,
-                                     g.center[1] - dv, math.copysign(turns, g.sweep),
-                                     seg.w1 - off[iw]]))
+            out.append(("ARC_FEED", [eu, ev, cu, cv, math.copysign(turns, g.sweep), ew]))
     return out
 
 

@@ -157,7 +157,9 @@ class Modal:
 @dataclass(frozen=True, slots=True)
 class Frame:
     """The work coordinate frame a G-code block was programmed in, as the
-    reader knew it: ``machine = work + offset`` per axis, program units.
+    reader knew it: ``machine = R(rotation) (work + axis_offset) + origin``,
+    program units, ``R`` a rotation about Z (``machine = work + offset`` per
+    axis when ``rotation`` is 0).
 
     Attributes
     ----------
@@ -166,12 +168,25 @@ class Frame:
         parameter file).
     axis_offset: the ``G92``/``G52`` offset in force.
     machine: the block's end was programmed in machine coordinates (``G53``).
+    rotation: the system's XY rotation (``G10 L2 R``), degrees counter-clockwise.
     """
 
     system: int = 1
     origin: Vec3 = (0.0, 0.0, 0.0)
     axis_offset: Vec3 = (0.0, 0.0, 0.0)
     machine: bool = False
+    rotation: float = 0.0
+
+    def to_work(self, p: Vec3) -> Vec3:
+        """Work coordinates of machine point ``p``."""
+        o, a = self.origin, self.axis_offset
+        if self.rotation == 0.0:
+            off = self.offset
+            return (p[0] - off[0], p[1] - off[1], p[2] - off[2])
+        t = math.radians(self.rotation)
+        c, s = math.cos(t), math.sin(t)
+        x, y = p[0] - o[0], p[1] - o[1]
+        return (x * c + y * s - a[0], -x * s + y * c - a[1], p[2] - o[2] - a[2])
 
     @property
     def offset(self) -> Vec3:

@@ -14,7 +14,7 @@ import math
 
 from ccopt import tolerances
 from ccopt.geometry.angles import TWO_PI
-from ccopt.program.gcode.coordinates import work_offset
+from ccopt.program.gcode.coordinates import rotate_xy, rotation, to_machine
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.units import MM_PER_INCH, output_units
 from ccopt.program.gcode.words import fmt
@@ -142,17 +142,24 @@ def _word_centre(state: GCodeState, L: dict, start_uv, end_uv, tol: float, gname
     (u0, v0), (u1, v1) = start_uv, end_uv
     wu, wv = CENTRE_WORDS[state.plane]
     if state.arc_incremental:
-        cu = u0 + (L[wu][0] if wu in L else 0.0)
-        cv = v0 + (L[wv][0] if wv in L else 0.0)
+        du = L[wu][0] if wu in L else 0.0
+        dv = L[wv][0] if wv in L else 0.0
+        theta = rotation(state)
+        if theta != 0.0:
+            # offsets along the rotated work axes (arcs are G17 there)
+            du, dv = rotate_xy(du, dv, theta)
+        cu, cv = u0 + du, v0 + dv
     else:
         if wu not in L or wv not in L:
             missing = wu if wu not in L else wv
             raise state.error(f"G90.1 absolute arc centre needs both {wu} and {wv} "
                               f"({missing} is missing)", gcol)
         # absolute centres are programmed in work coordinates
-        offset = work_offset(state)
-        iu, iv, _ = PLANE_AXES[state.plane]
-        cu, cv = L[wu][0] + offset[iu], L[wv][0] + offset[iv]
+        iu, iv, iw = PLANE_AXES[state.plane]
+        work = [0.0, 0.0, 0.0]
+        work[iu], work[iv] = L[wu][0], L[wv][0]
+        machine = to_machine(state, work)
+        cu, cv = machine[iu], machine[iv]
     r0 = math.hypot(u0 - cu, v0 - cv)
     r1 = math.hypot(u1 - cu, v1 - cv)
     zero = _ZERO_RADIUS_FRACTION * tol

@@ -4,17 +4,23 @@ and ``convert_axis_offsets`` in ``interp_convert.cc``).
 A programmed absolute coordinate is in the *work* coordinate system; the
 reader keeps every :class:`~ccopt.program.model.Block` in machine coordinates:
 
-    machine = programmed + G5x origin (of the active system) + axis offset
+    machine = R(rotation) (programmed + axis offset) + G5x origin
 
-per axis, lengths in program units. Sign convention as LinuxCNC's: an origin
-or offset is where the work zero lies in machine coordinates.
+lengths in program units, ``R`` the rotation of the active system about Z
+(LinuxCNC's ``rotate_and_offset_pos`` in ``emccanon.cc``: the G92/G52
+offset is added before the rotation, the origin after). Sign convention as
+LinuxCNC's: an origin or offset is where the work zero lies in machine
+coordinates.
 
 - ``G54`` .. ``G59.3`` select origin 1 .. 9, kept in parameters
   ``#[5201 + 20 n]`` (X), ``+1`` (Y), ``+2`` (Z); ``#5220`` holds the active
   index. Refused while compensation is on.
-- ``G10 L2 P<n> X Y Z`` sets origin ``n`` (``P0``: the active one);
-  ``G10 L20 P<n> ...`` sets it so that the current point gets the given
-  coordinates. Refused for the active system while compensation is on.
+- ``G10 L2 P<n> X Y Z R`` sets origin ``n`` (``P0``: the active one) and its
+  XY rotation ``R`` (degrees, counter-clockwise, ``#[5210 + 20 n]``);
+  ``G10 L20 P<n> ...`` sets the origin so that the current point gets the
+  given coordinates (in the system's rotated axes; ``R`` is refused there, as
+  LinuxCNC refuses it). Refused for the active system while compensation is
+  on. The machine does not move when the active system changes.
 - ``G92 X Y Z`` sets the axis offset so that the current point gets the
   given coordinates; ``G52 X Y Z`` sets the offset itself (a local origin).
   Both write ``#5211``-``#5213`` and set ``#5210 = 1``. ``G92.1`` clears the
@@ -24,8 +30,9 @@ or offset is where the work zero lies in machine coordinates.
   absolute only, not while compensation is on).
 
 Initial values come from the parameters (e.g. a LinuxCNC parameter file,
-:func:`read_var_file`). The XY rotation of ``G10 L2 R`` is refused; only X, Y
-and Z are read.
+:func:`read_var_file`). Only X, Y and Z are read. A rotated system keeps arcs
+and compensation in G17: an arc or compensation in G18/G19 while the active
+system is rotated is refused (its plane would not be a machine plane).
 """
 from __future__ import annotations
 
@@ -64,7 +71,6 @@ def init_coordinates(state: GCodeState) -> None:
         raise ProgramError(f"parameter #{ACTIVE_ORIGIN} (active coordinate system) is "
                            f"{fmt(index)}: it must be 1 to 9 (G54 to G59.3)", state.file)
     state.origin_index = int(round(index))
-    _check_rotation(state, state.origin_index, None)
     if state.params.get(OFFSET_APPLIED, 0.0) == 1.0:
         state.axis_offset = tuple(state.params.get(OFFSET_BASE + k, 0.0) for k in range(3))
 
@@ -76,9 +82,55 @@ def origin(state: GCodeState, index: int | None = None) -> tuple[float, float, f
 
 
 def work_offset(state: GCodeState) -> tuple[float, float, float]:
-    """Machine minus programmed coordinates: active origin plus axis offset."""
+    """Machine minus programmed coordinates: active origin plus axis offset
+    (of an unrotated system; :func:`to_machine` holds for any)."""
     o = origin(state)
     return tuple(o[k] + state.axis_offset[k] for k in range(3))
+
+
+def rotation(state: GCodeState, index: int | None = None) -> float:
+    """XY rotation of system ``index`` (default: the active one), degrees."""
+    return state.params.get(rotation_parameter(state.origin_index if index is None
+                                               else index), 0.0)
+
+
+def rotate_xy(x: float, y: float, degrees: float) -> tuple[float, float]:
+    """``(x, y)`` turned counter-clockwise by ``degrees`` (LinuxCNC ``rotate``)."""
+    t = math.radians(degrees)
+    c, s = math.cos(t), math.sin(t)
+    return (x * c - y * s, x * s + y * c)
+
+
+def to_machine(state: GCodeState, work) -> tuple[float, float, float]:
+    """Machine coordinates of the work (programmed) point ``work``."""
+    theta = rotation(state)
+    if theta == 0.0:
+        off = work_offset(state)
+        return (work[0] + off[0], work[1] + off[1], work[2] + off[2])
+    o, a = origin(state), state.axis_offset
+    x, y = rotate_xy(work[0] + a[0], work[1] + a[1], theta)
+    return (x + o[0], y + o[1], work[2] + a[2] + o[2])
+
+
+def to_work(state: GCodeState, machine) -> tuple[float, float, float]:
+    """Work (programmed) coordinates of the machine point ``machine``."""
+    theta = rotation(state)
+    if theta == 0.0:
+        off = work_offset(state)
+        return (machine[0] - off[0], machine[1] - off[1], machine[2] - off[2])
+    o, a = origin(state), state.axis_offset
+    x, y = rotate_xy(machine[0] - o[0], machine[1] - o[1], -theta)
+    return (x - a[0], y - a[1], machine[2] - o[2] - a[2])
+
+
+def check_unrotated_plane(state: GCodeState, what: str, col: int) -> None:
+    """``what`` (an arc, compensation) only in G17 while the system is rotated."""
+    theta = rotation(state)
+    if theta != 0.0 and state.plane != "XY":
+        raise state.error(f"{what} in the {state.plane} plane of a rotated coordinate system "
+                          f"(G5x system {state.origin_index} turned {fmt(theta)} deg about Z) "
+                          "is not supported: its plane is not a machine plane; use G17 or "
+                          "an unrotated system", col)
 
 
 def select_origin(state: GCodeState, tenths: int, col: int) -> None:
@@ -87,7 +139,6 @@ def select_origin(state: GCodeState, tenths: int, col: int) -> None:
         raise state.error("cannot change coordinate systems with cutter radius "
                           "compensation on: turn it off (G40) first", col)
     index = ORIGIN_CODES[tenths]
-    _check_rotation(state, index, col)
     state.origin_index = index
     state.params[ACTIVE_ORIGIN] = float(index)
 
@@ -108,20 +159,44 @@ def set_origin(state: GCodeState, L: dict, col: int) -> None:
     if state.side != 0 and index == state.origin_index:
         raise state.error("cannot change the active coordinate system with cutter radius "
                           "compensation on: turn it off (G40) first", col)
-    if "R" in L and L["R"][0] != 0.0:
-        raise state.error("G10 R (XY rotation of a coordinate system) is not supported: "
-                          "ccopt reads unrotated origins only", L["R"][1])
+    if "R" in L and level[0] == 20:
+        raise state.error("R not allowed in G10 L20 (LinuxCNC refuses it): set a rotation "
+                          "with G10 L2", L["R"][1])
+    base = origin_base(index)
+    if level[0] == 20:
+        _set_origin_l20(state, index, L)
+    else:
+        for k, a in enumerate(_AXES):
+            if a in L:
+                state.params[base + k] = L[a][0]
+    if "R" in L:
+        state.params[rotation_parameter(index)] = L["R"][0]
+
+
+def _set_origin_l20(state: GCodeState, index: int, L: dict) -> None:
+    """``G10 L20``: the origin of system ``index`` such that the current point
+    gets the given coordinates in it (rotated as the system is)."""
     base = origin_base(index)
     old = origin(state, index)
-    for k, a in enumerate(_AXES):
-        if a not in L:
-            continue
-        if level[0] == 2:
-            state.params[base + k] = L[a][0]
-        else:
-            # the current point, in system ``index``, gets the given value
-            current = state.pos[k] - old[k] - state.axis_offset[k]
-            state.params[base + k] = old[k] + current - L[a][0]
+    theta = rotation(state, index)
+    a = state.axis_offset
+    if theta == 0.0:
+        for k, letter in enumerate(_AXES):
+            if letter in L:
+                current = state.pos[k] - old[k] - a[k]
+                state.params[base + k] = old[k] + current - L[letter][0]
+        return
+    # LinuxCNC's convert_setup: the current point in system ``index``
+    cx, cy = rotate_xy(state.pos[0] - old[0], state.pos[1] - old[1], -theta)
+    cx, cy = cx - a[0], cy - a[1]
+    x = L["X"][0] if "X" in L else cx
+    y = L["Y"][0] if "Y" in L else cy
+    ox, oy = rotate_xy(cx + a[0], cy + a[1], theta)
+    nx, ny = rotate_xy(x + a[0], y + a[1], theta)
+    state.params[base] = old[0] + ox - nx
+    state.params[base + 1] = old[1] + oy - ny
+    if "Z" in L:
+        state.params[base + 2] = state.pos[2] - a[2] - L["Z"][0]
 
 
 def set_axis_offset(state: GCodeState, tenths: int, L: dict, col: int) -> None:
@@ -133,11 +208,17 @@ def set_axis_offset(state: GCodeState, tenths: int, L: dict, col: int) -> None:
     if tenths in (920, 520):
         if not any(a in L for a in _AXES):
             raise state.error(f"G{fmt(tenths / 10)} needs at least one axis word", col)
-        o = origin(state)
+        if rotation(state) == 0.0:
+            o = origin(state)
+            here = tuple(state.pos[k] - o[k] for k in range(3))   # work + offset
+        else:
+            # the current point before the rotation (work + offset) stays put
+            w = to_work(state, state.pos)
+            here = tuple(w[k] + offset[k] for k in range(3))
         for k, a in enumerate(_AXES):
             if a in L:
                 value = L[a][0]
-                offset[k] = value if tenths == 520 else state.pos[k] - o[k] - value
+                offset[k] = value if tenths == 520 else here[k] - value
         state.params[OFFSET_APPLIED] = 1.0
         for k in range(3):
             state.params[OFFSET_BASE + k] = offset[k]
@@ -151,16 +232,6 @@ def set_axis_offset(state: GCodeState, tenths: int, L: dict, col: int) -> None:
         state.params[OFFSET_APPLIED] = 1.0
         offset = [state.params.get(OFFSET_BASE + k, 0.0) for k in range(3)]
     state.axis_offset = tuple(offset)
-
-
-def _check_rotation(state: GCodeState, index: int, col: int | None) -> None:
-    angle = state.params.get(rotation_parameter(index), 0.0)
-    if angle != 0.0:
-        message = (f"coordinate system {index} is rotated by {fmt(angle)} deg (parameter "
-                   f"#{rotation_parameter(index)}): rotated origins are not supported")
-        if col is None:
-            raise ProgramError(message, state.file)
-        raise state.error(message, col)
 
 
 _VAR_LINE = re.compile(r"\s*(\d+)\s+([-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)\s*(?:[;#].*)?\Z")

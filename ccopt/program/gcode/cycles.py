@@ -38,7 +38,7 @@ hole that no machine should run.
 """
 from __future__ import annotations
 
-from ccopt.program.gcode.coordinates import work_offset
+from ccopt.program.gcode.coordinates import to_machine, to_work
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, gname
 from ccopt.program.model import PLANE_AXES, Block, Motion, Source
@@ -88,13 +88,12 @@ class _Emitter:
         self.emit = emit
         self.feed = feed
         self.axes = PLANE_AXES[state.plane]
-        self.offset = work_offset(state)
 
     def _machine(self, u: float, v: float, w: float) -> tuple[float, float, float]:
         p = [0.0, 0.0, 0.0]
         for k, value in zip(self.axes, (u, v, w)):
-            p[k] = value + self.offset[k]
-        return (p[0], p[1], p[2])
+            p[k] = value
+        return to_machine(self.state, p)
 
     def _block(self, motion: Motion, end, **kw) -> None:
         cur = self.state.pos
@@ -132,8 +131,7 @@ def run_cycle(state: GCodeState, code: int, gcol: int, L: dict, mcodes: tuple,
         raise state.error(f"{wl} value unspecified in {plane} plane canned cycle: "
                           f"{gname(code)} needs {wl} (the bottom)", gcol)
     w_word = L[wl][0] if wl in L else cs.w
-    offset = work_offset(state)
-    here = [state.pos[k] - offset[k] for k in range(3)]  # work coordinates
+    here = to_work(state, state.pos)
     cur_u, cur_v, cur_w = here[iu], here[iv], here[iw]
     if cs.level is None:
         cs.level = cur_w

@@ -17,7 +17,8 @@ from ccopt.program.gcode.arcs import arc_geometry, is_modal_arc_without_plane_mo
 from ccopt.program.gcode.codes import Words, classify
 from ccopt.program.gcode.cycles import (CYCLE_CODES, P_CYCLES, PECK_CYCLES, end_series,
                                         run_cycle, set_retract_mode)
-from ccopt.program.gcode.coordinates import (select_origin, set_axis_offset, set_origin,
+from ccopt.program.gcode.coordinates import (check_unrotated_plane, rotation, select_origin,
+                                             set_axis_offset, set_origin, to_machine, to_work,
                                              work_offset)
 from ccopt.program.gcode.machine_words import (frame_of, record_after_motion, record_line,
                                                with_words)
@@ -270,6 +271,7 @@ def _compensation(state: GCodeState, comp: tuple[int, int], L: dict) -> None:
     if code == 400:
         state.side = 0
         return
+    check_unrotated_plane(state, "cutter radius compensation", col)
     side = 1 if code in (410, 411) else -1
     if code in (411, 421):
         if "D" not in L:
@@ -352,13 +354,7 @@ def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int
     ``G91`` incremental); ``gcol`` locates errors of the move. Blocks hold
     machine coordinates."""
     cur = state.pos
-    end = list(cur)
-    offset = (0.0, 0.0, 0.0) if machine else work_offset(state)
-    for k, a in enumerate(_AXES):
-        if a in L:
-            v = L[a][0]
-            end[k] = cur[k] + v if state.incremental else v + offset[k]
-    end_t = (end[0], end[1], end[2])
+    end_t = _end_point(state, L, machine)
     src = Source(*state.where(state.line_no), first_col + 1)
     surface = surface_marker(state.lines[state.line_no], "gcode", src.file, src.line)
     if motion == 0:
@@ -367,6 +363,7 @@ def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int
         feed = _feed(state, L, math.dist(cur, end_t), gcol)
         block = Block(src, Motion.LINE, cur, end_t, state.modal(), feed=feed, mcodes=mcodes)
     else:
+        check_unrotated_plane(state, f"{gname(motion)} (an arc)", gcol)
         center, turns, length = arc_geometry(state, motion, L, cur, end_t, gcol)
         feed = _feed(state, L, length, gcol)
         block = Block(src, Motion.ARC_CCW if motion == 30 else Motion.ARC_CW, cur, end_t,
@@ -378,6 +375,26 @@ def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int
     _emit(state, block)
     state.moved = True
     state.pos = end_t
+
+
+def _end_point(state: GCodeState, L: dict, machine: bool) -> tuple[float, float, float]:
+    """Machine coordinates of the axis words' end point: absolute in work
+    coordinates, under ``G53`` in machine coordinates, under ``G91``
+    incremental along the (possibly rotated) work axes."""
+    cur = state.pos
+    if not machine and rotation(state) != 0.0:
+        work = list(to_work(state, cur))
+        for k, a in enumerate(_AXES):
+            if a in L:
+                work[k] = work[k] + L[a][0] if state.incremental else L[a][0]
+        return to_machine(state, work)
+    end = list(cur)
+    offset = (0.0, 0.0, 0.0) if machine else work_offset(state)
+    for k, a in enumerate(_AXES):
+        if a in L:
+            v = L[a][0]
+            end[k] = cur[k] + v if state.incremental else v + offset[k]
+    return (end[0], end[1], end[2])
 
 
 def _set_coordinates(state: GCodeState, gc: dict, L: dict) -> None:

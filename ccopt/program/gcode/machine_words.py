@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from ccopt.program.gcode.coordinates import origin
+from ccopt.program.gcode.coordinates import origin, rotation
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.words import fmt, gname
 from ccopt.program.model import PROGRAM_END, Block, Frame
@@ -61,7 +61,7 @@ def record_after_motion(state: GCodeState, mcodes: tuple) -> None:
 
 def frame_of(state: GCodeState, machine: bool = False) -> Frame:
     """The frame in force (one shared object until it changes)."""
-    key = (state.origin_index, origin(state), state.axis_offset, machine)
+    key = (state.origin_index, origin(state), state.axis_offset, machine, rotation(state))
     if state.frame_key != key:
         state.frame_key = key
         state.frame = Frame(*key)
