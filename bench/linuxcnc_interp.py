@@ -13,7 +13,10 @@ canon prints them. Each test is then one of
 * ``differs``: read and compensated, but not the same moves (the first
   difference is printed);
 * ``refused``: ccopt stops with a located error (printed);
-* ``needs INI, plug-in or script``: ``test.sh`` runs more than a plain rs274.
+* ``needs INI, plug-in or script``: ``test.sh`` runs more than a plain rs274;
+* ``messages only``: ``test.sh`` keeps only the MESSAGE lines of the canon
+  (``awk '/MESSAGE/ ...'``), which hold ``(debug, ...)`` parameter values,
+  not moves: nothing to compare move for move.
 
     python bench/linuxcnc_interp.py LINUXCNC_SOURCE_TREE [--verbose]
 
@@ -92,6 +95,8 @@ def run_test(folder: Path) -> tuple[str, str]:
     if plain is None:
         return "needs INI, plug-in or script", ""
     program, table = plain
+    if re.search(r"awk\s+'/MESSAGE/", (folder / "test.sh").read_text()):
+        return "messages only", ""
     want = parse_canon((folder / "expected").read_text())
     try:
         tools = read_tool_table(folder / table) if table else None

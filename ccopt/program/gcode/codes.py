@@ -39,6 +39,7 @@ G_GROUPS: dict[int, str] = {
     # non-modal codes that take the line's axis words (LinuxCNC group 0)
     100: "axis_setting", 520: "axis_setting", 920: "axis_setting", 921: "axis_setting",
     922: "axis_setting", 923: "axis_setting",
+    280: "axis_setting", 281: "axis_setting", 300: "axis_setting", 301: "axis_setting",
     530: "machine_coords",
     610: "path", 611: "path", 640: "path",
     900: "distance", 910: "distance",
@@ -49,11 +50,10 @@ G_GROUPS: dict[int, str] = {
     1380: "start_end", 1390: "start_end",
 }
 _KNOWN_G = ("G0 G1 G2 G3 G4 G7 G8 G10 G17 G18 G19 G20 G21 G40 G41 G42 G41.1 G42.1 G43 G49 "
-            "G52 G53 G54-G59.3 G61 G61.1 G64 G80 G90 G91 G90.1 G91.1 G92 G92.1 G92.2 G92.3 "
+            "G28 G28.1 G30 G30.1 G52 G53 G54-G59.3 G61 G61.1 G64 G80 G90 G91 G90.1 G91.1 G92 G92.1 G92.2 G92.3 "
             "G73 G74 G81-G87 G89 G93 G94 G98 G99 G136 G137 G138 G139")
 _G_UNSUPPORTED_HINT: dict[int, str] = {
     950: "feed per revolution: use G94 (units per minute) or G93",
-    280: "homing moves", 300: "homing moves",
     **{t: "lathe cycles G70-G72 and G76 threading: write the moves out (the drilling "
           "cycles G73, G74, G81-G87 and G89 are read)"
        for t in (700, 710, 711, 720, 721, 760)},

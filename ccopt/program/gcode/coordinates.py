@@ -147,8 +147,9 @@ def set_origin(state: GCodeState, L: dict, col: int) -> None:
     """``G10 L2`` / ``G10 L20``: the origin of coordinate system ``P``."""
     level = L.get("L", (None, col))
     if level[0] not in (2, 20):
-        raise state.error("G10 is read only as L2 or L20 (coordinate system origins); "
-                          "give tool data in a tool table (--tool-table)", level[1])
+        raise state.error(f"G10 L{fmt(level[0]) if level[0] is not None else ''}: ccopt "
+                          "reads G10 L1, L10 and L11 (tool data) and L2 and L20 (coordinate "
+                          "system origins)", level[1])
     if "P" not in L:
         raise state.error(f"G10 L{level[0]} needs P, the coordinate system (0 for the "
                           "active one, 1 to 9 for G54 to G59.3)", col)

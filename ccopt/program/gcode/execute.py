@@ -22,6 +22,7 @@ from ccopt.program.gcode.coordinates import (check_unrotated_plane, rotation, se
                                              work_offset)
 from ccopt.program.gcode.machine_words import (frame_of, record_after_motion, record_line,
                                                with_words)
+from ccopt.program.gcode.setup import go_home, is_tool_setup, save_home, set_tool_data
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import (feed_factor, length_factor, output_units,
                                        scale_lengths, set_units)
@@ -63,7 +64,7 @@ def execute_words(state: GCodeState, words: Words) -> None:
     L = _lathe_diameter(state, gc, L)
     L = scale_lengths(state, L, gc)
     _set_modes(state, gc, L)
-    _set_coordinates(state, gc, L)
+    _set_coordinates(state, gc, L, mcodes, first_col)
     if "machine_coords" in gc:
         _check_machine_coords(state, gc, motion)
     motion_g = gc.get("motion")
@@ -128,14 +129,14 @@ def _check_word_usage(state: GCodeState, gc: dict, L: dict, motion: int | None) 
                           L["D"][1])
     if "H" in L and (gc.get("length") is None or gc["length"][0] != 430):
         raise state.error("H word with no G43 to use it", L["H"][1])
+    g10 = gc.get("axis_setting", (None,))[0] == 100
     for w in "IJK":
-        if w in L and not (is_arc or motion == 870):
+        if w in L and not (is_arc or motion == 870 or (g10 and w != "K")):
             raise state.error(f"{w} word with no G2, G3 or G87 to use it", L[w][1])
     if "R" in L and not (is_arc or cycle or gc.get("axis_setting", (None,))[0] == 100):
         raise state.error("R word with no G2, G3, G10 or canned cycle to use it", L["R"][1])
     dwell = gc.get("dwell")
     path = gc.get("path")
-    g10 = gc.get("axis_setting", (None,))[0] == 100
     if "P" in L and not (is_arc or dwell or g10 or (path and path[0] == 640)
                          or motion in P_CYCLES):
         raise state.error("P word with no G2, G3, G4, G10, G64, G74, G82, G84, G86 or G89 "
@@ -144,8 +145,8 @@ def _check_word_usage(state: GCodeState, gc: dict, L: dict, motion: int | None) 
     if "L" in L and not (g10 or lathe or cycle):
         raise state.error("L word with no G10, G41.1, G42.1 or canned cycle to use it",
                           L["L"][1])
-    if "Q" in L and not (path and path[0] == 640 or motion in PECK_CYCLES):
-        raise state.error("Q word with no G64, G73 or G83 to use it", L["Q"][1])
+    if "Q" in L and not (path and path[0] == 640 or motion in PECK_CYCLES or g10):
+        raise state.error("Q word with no G10, G64, G73 or G83 to use it", L["Q"][1])
     if dwell and is_arc:
         raise state.error("G4 and G2/G3 on one line would share the P word: put the dwell on "
                           "its own line", dwell[1])
@@ -397,18 +398,30 @@ def _end_point(state: GCodeState, L: dict, machine: bool) -> tuple[float, float,
     return (end[0], end[1], end[2])
 
 
-def _set_coordinates(state: GCodeState, gc: dict, L: dict) -> None:
-    """``G54``-``G59.3``, then ``G10``/``G52``/``G92``*, in RS274NGC order."""
+def _set_coordinates(state: GCodeState, gc: dict, L: dict, mcodes: tuple,
+                     first_col: int) -> None:
+    """``G54``-``G59.3``, then ``G10``/``G28``/``G30``/``G52``/``G92``*, in
+    RS274NGC order."""
     coord = gc.get("coord")
     if coord is not None:
         select_origin(state, coord[0], coord[1])
     setting = gc.get("axis_setting")
     if setting is None:
         return
-    if setting[0] == 100:
-        set_origin(state, L, setting[1])
+    code, col = setting
+    if code == 100:
+        if is_tool_setup(L):
+            set_tool_data(state, L, col)
+        else:
+            set_origin(state, L, col)
+    elif code in (280, 300):
+        end_series(state)
+        src = Source(*state.where(state.line_no), first_col + 1)
+        go_home(state, code, L, col, _end_point(state, L, False), src, mcodes, _emit)
+    elif code in (281, 301):
+        save_home(state, code, col)
     else:
-        set_axis_offset(state, setting[0], L, setting[1])
+        set_axis_offset(state, code, L, col)
 
 
 def _check_machine_coords(state: GCodeState, gc: dict, motion: int | None) -> None:
