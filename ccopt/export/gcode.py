@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 
 from ccopt.export.arcfit import fit_arcs, fit_bezier, fit_located, fit_tolerance
-from ccopt.export.machine import MachineWords, machine_prefix, written_offset
+from ccopt.export.machine import MachineWords, machine_prefix, written_frame, written_offset
 from ccopt.export.text import gcode_comment
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
@@ -46,6 +46,7 @@ class _Writer:
         self.intended: list = []      # (geometry meant by the line, certified bound)
         self.feed: float | None = None
         self.shift = (0.0, 0.0, 0.0)   # machine minus written (u, v, w) of the next moves
+        self.rotated = None            # or the rotated frame they are written in
         self.prefix = ""               # "G53 " for moves written in machine coordinates
 
     def set_frame(self, block) -> None:
@@ -54,7 +55,19 @@ class _Writer:
         off = written_offset(block)
         iu, iv, iw = PLANE_AXES[self.plane]
         self.shift = (off[iu], off[iv], off[iw])
+        self.rotated = written_frame(block)
         self.prefix = machine_prefix(block)
+
+    def written(self, u: float, v: float, w: float) -> tuple[float, float, float]:
+        """Written (work) coordinates of the machine point ``(u, v, w)`` of the plane."""
+        if self.rotated is None:
+            du, dv, dw = self.shift
+            return (u - du, v - dv, w - dw)
+        iu, iv, iw = PLANE_AXES[self.plane]
+        p = [0.0, 0.0, 0.0]
+        p[iu], p[iv], p[iw] = u, v, w
+        q = self.rotated.to_work((p[0], p[1], p[2]))
+        return (q[iu], q[iv], q[iw])
 
     def set_plane(self, plane: str) -> None:
         """Write the coordinates of ``plane`` from now on: its ``(u, v, w)`` axis
@@ -65,9 +78,9 @@ class _Writer:
         self.ci, self.cj = CENTRE[iu], CENTRE[iv]
 
     def coords(self, uv, w) -> str:
-        du, dv, dw = self.shift
-        return (f"{self.u}{fmt(uv[0] - du, self.digits)} {self.v}{fmt(uv[1] - dv, self.digits)} "
-                f"{self.w}{fmt(w - dw, self.digits)}")
+        u, v, w = self.written(uv[0], uv[1], w)
+        return (f"{self.u}{fmt(u, self.digits)} {self.v}{fmt(v, self.digits)} "
+                f"{self.w}{fmt(w, self.digits)}")
 
     def feed_word(self, feed: float | None) -> str:
         if feed is None or feed == self.feed:
@@ -92,9 +105,10 @@ class _Writer:
         word = "G3" if arc.sweep > 0 else "G2"
         # Incremental centre from the *written* start keeps the reader's
         # start and end radii consistent after rounding.
-        du, dv, _ = self.shift
-        su, sv = round(s[0] - du, self.digits), round(s[1] - dv, self.digits)
-        i, j = arc.center[0] - du - su, arc.center[1] - dv - sv
+        su, sv, _ = self.written(s[0], s[1], w0)
+        su, sv = round(su, self.digits), round(sv, self.digits)
+        cu, cv, _ = self.written(arc.center[0], arc.center[1], w0)
+        i, j = cu - su, cv - sv
         turns = max(int(math.ceil(abs(arc.sweep) / TWO_PI - _TURNS_SLACK)) - 1, 0)
         p = f" P{turns + 1}" if turns else ""
         self.move(idx, f"{word} {self.coords(e, w1)} {self.ci}{fmt(i, self.digits)} "

@@ -11,8 +11,8 @@ before a move and in which frame to write its coordinates, so the export
   next one), the words after the last block and the program end as written
   (``M30`` stays ``M30``; ``M2`` when the program had none);
 * writes coordinates in the program's work coordinates, selecting the same
-  ``G54``-``G59.3``, with ``G10 L2`` where the program set an origin to other
-  values than the parameters it was read with, ``G52`` where the
+  ``G54``-``G59.3``, with ``G10 L2`` (and its ``R`` rotation) where the
+  program set an origin to other values than the parameters it was read with, ``G52`` where the
   ``G92``/``G52`` offset changes, and ``G53`` (machine coordinates) on the
   moves the program wrote under ``G53``.
 
@@ -55,7 +55,8 @@ class MachineWords:
         self.end = meta.get(PROGRAM_END) or "M2"
         params = meta.get(START_PARAMETERS) or {}
         # what the machine holds before the program runs (its parameter file)
-        self.origins = {n: tuple(params.get(5201 + 20 * n + k, 0.0) for k in range(3))
+        self.origins = {n: (tuple(params.get(5201 + 20 * n + k, 0.0) for k in range(3)),
+                            params.get(5210 + 20 * n, 0.0))
                         for n in SYSTEM_CODE}
         applied = params.get(5210, 0.0) == 1.0
         self.axis_offset = (tuple(params.get(5211 + k, 0.0) for k in range(3))
@@ -77,9 +78,11 @@ class MachineWords:
 
     def _frame_lines(self, frame: Frame) -> list[str]:
         out = []
-        if self.origins.get(frame.system) != frame.origin:
-            out.append(f"G10 L2 P{frame.system} {_xyz(frame.origin)}")
-            self.origins[frame.system] = frame.origin
+        if self.origins.get(frame.system) != (frame.origin, frame.rotation):
+            turn = f" R{_fmt(frame.rotation)}" if frame.rotation != 0.0 or \
+                self.origins.get(frame.system, ((), 0.0))[1] != 0.0 else ""
+            out.append(f"G10 L2 P{frame.system} {_xyz(frame.origin)}{turn}")
+            self.origins[frame.system] = (frame.origin, frame.rotation)
         if frame.system != self.system:
             out.append(SYSTEM_CODE[frame.system])
             self.system = frame.system
@@ -99,10 +102,20 @@ class MachineWords:
 
 def written_offset(block: Block | None) -> Vec3:
     """Machine minus written coordinates of a move made from ``block``: its
-    frame's offset, none under ``G53`` or without a frame."""
+    frame's offset, none under ``G53`` or without a frame (of an unrotated
+    frame: :func:`written_frame` holds for any)."""
     if block is None or block.frame is None or block.frame.machine:
         return _NO_OFFSET
     return block.frame.offset
+
+
+def written_frame(block: Block | None) -> Frame | None:
+    """The rotated frame a move made from ``block`` is written in, else None
+    (unrotated frames shift by :func:`written_offset`)."""
+    if block is None or block.frame is None or block.frame.machine \
+            or block.frame.rotation == 0.0:
+        return None
+    return block.frame
 
 
 def machine_prefix(block: Block | None) -> str:

@@ -133,3 +133,25 @@ def test_cli_export_with_var_file_writes_work_coordinates(plate, capsys):
     assert code == 0, err
     text = (plate / "cli.nc").read_text()
     assert "G55\nG0 X-10 Y-10 Z5\n" in text and "X90" not in text
+
+
+def test_a_rotated_system_is_written_with_its_rotation_and_reads_back(tmp_path):
+    # G55 turned 30 deg about (30, 20): the export writes G10 L2 ... R30 and
+    # the contour, its arc and its compensation in the turned work coordinates
+    text = ("G21 G17 G90 G94\nG10 L2 P2 X30 Y20 Z0 R30\nG55\nG0 X-5 Y-5 Z5\nG1 Z-1 F300\n"
+            "G42 D1 G1 X0 Y0\nG1 Y30\nG1 X40\nG2 X50 Y20 I0 J-10\nG1 Y0\nG1 X0\n"
+            "G40 G1 X-5 Y-5\nG0 Z5\nM30\n")
+    (tmp_path / "r.ngc").write_text(text)
+    (tmp_path / "t.tbl").write_text("T1 P1 D6 ;\n")
+    prog = ccopt.read_program(tmp_path / "r.ngc", tool_table=tmp_path / "t.tbl")
+    path = ccopt.compensate(prog, style="linuxcnc")
+    res = ccopt.export(path, tmp_path / "o.nc", program=prog)
+    assert res.roundtrip_error < 1e-5
+    body = [ln for ln in (tmp_path / "o.nc").read_text().splitlines()
+            if not ln.startswith("(")]
+    assert body[2:5] == ["G10 L2 P2 X30 Y20 Z0 R30", "G55", "G0 X-5 Y-5 Z5"]
+    back = ccopt.read_program(tmp_path / "o.nc")
+    got = [b for b in back.blocks if b.motion.is_move]
+    assert len(got) == len(path.segments)
+    for seg, b in zip(path.segments, got):
+        assert math.dist(seg.end_xyz, b.end) < 1e-5

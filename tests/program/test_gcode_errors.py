@@ -87,7 +87,7 @@ CASES = [
     ("G1 X1 I1 F60", 1, 7, "I word with no G2, G3 or G87"),
     ("G1 X1 R1 F60", 1, 7, "R word with no G2, G3, G10"),
     ("G1 X1 P1 F60", 1, 7, "P word with no"),
-    ("G1 X1 Q1 F60", 1, 7, "Q word with no G64"),
+    ("G1 X1 Q1 F60", 1, 7, "Q word with no G10, G64"),
     ("G4", 1, 1, "G4 needs the dwell time"),
     ("G4 P-1", 1, 4, "negative dwell"),
     ("G4 P1 G2 X1 R1 F60", 1, 1, "share the P word"),
