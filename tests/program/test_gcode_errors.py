@@ -130,7 +130,6 @@ CASES = [
     ("o1 if [1]\no1 endif junk", 2, 10, "it takes no argument"),
     ("o1 call [1/0]", 1, 11, "division by zero"),
     ("o1 sub\no1 endsub\no1 call " + "[1] " * 31, 3, 1, "at most 30"),
-    ("o1 sub\no2 return\no1 endsub\no1 call", 2, 1, "use the label of the subroutine"),
     ("o1 sub\no1 return [1] [2]\no1 endsub\no1 call", 2, 1, "at most one value"),
     ("o1 sub\no1 endsub\no1 call [1] x", 3, 13, "unexpected 'x'"),
     ("% junk", 1, 3, "'%' line"),

@@ -17,11 +17,12 @@ from ccopt.program.expr import ExprError, parse_bracketed
 from ccopt.program.gcode.parameters import (
     SUB_PARAMS,
     bind_call_arguments,
+    read_value,
     restore_after_call,
 )
 from ccopt.program.gcode.state import (LINE_SPLIT, LOOP_LINES_PER_ITERATION, Ctrl, Frame,
                                        GCodeState)
-from ccopt.program.gcode.words import Lexed, lex, olabel, skip_blanks
+from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, Lexed, fmt, lex, olabel, skip_blanks
 
 _OPENERS = {"sub": "endsub", "if": "endif", "do": "while", "while": "endwhile",
             "repeat": "endrepeat"}
@@ -188,6 +189,8 @@ def _sub(state: GCodeState, pc: int, lx: Lexed) -> int:
 def _call(state: GCodeState, pc: int, lx: Lexed) -> int:
     ow = lx.oword
     label, col = ow.label, ow.col
+    if ow.computed is not None:
+        label = computed_label(state, lx.code, ow.computed, col)
     args = o_args(state, lx, "write the arguments in brackets, e.g. [1] [2.5]")
     if len(args) > SUB_PARAMS:
         raise state.error(f"{olabel(label)} call with {len(args)} arguments: at most "
@@ -201,6 +204,14 @@ def _call(state: GCodeState, pc: int, lx: Lexed) -> int:
     saved = bind_call_arguments(state, args)
     state.frames.append(Frame(name=label, return_pc=pc + 1, call_line=pc, saved=saved))
     return sub[0] + 1
+
+
+def computed_label(state: GCodeState, code: str, p: int, col: int) -> str:
+    """The number a parameter or expression label evaluates to, as a label."""
+    value, _ = read_value(state, code, p, "O", col)
+    if abs(value - round(value)) > WHOLE_NUMBER_TOL or value < 0:
+        raise state.error(f"O-word label {fmt(value)} is not a whole number >= 0", p)
+    return str(int(round(value)))
 
 
 def _define_ahead(state: GCodeState, pc: int, label: str, col: int) -> tuple[int, int]:
@@ -277,9 +288,11 @@ def _return(state: GCodeState, pc: int, lx: Lexed) -> int:
         raise state.error(f"{olabel(label)} {kw} outside a subroutine: there is no "
                           f"matching {olabel(label)} sub being called", ow.col)
     frame = state.frames[-1]
-    if frame.name != label:
+    if frame.name != label and kw == "endsub":
         raise state.error(f"{olabel(label)} {kw} inside subroutine {olabel(frame.name)}: "
                           "use the label of the subroutine", ow.col)
+    # a return under another label (o1010 return inside o1010 if) returns
+    # from the running subroutine, as LinuxCNC's execute_return does
     state.frames.pop()
     restore_after_call(state, frame, args[0] if args else None)
     return frame.return_pc

@@ -29,7 +29,7 @@ MAX_PARAMETER = 5601
 #: Positional parameters #1..#30 local to a call.
 SUB_PARAMS = 30
 
-_FUNC_NAMES = sorted(set(GCODE_FUNCTIONS) | {"ATAN"}, key=len, reverse=True)
+_FUNC_NAMES = sorted(set(GCODE_FUNCTIONS) | {"ATAN", "EXISTS"}, key=len, reverse=True)
 
 
 def attach_grammar(state: GCodeState) -> None:
@@ -37,9 +37,11 @@ def attach_grammar(state: GCodeState) -> None:
     operators and functions (degrees), ``ATAN[a]/[b]``, and ``#`` parameters
     as variables."""
     def variable(text: str, pos: int):
-        if text[pos] != "#":
-            return None
-        return read_parameter(state, text, pos)
+        if text[pos] == "#":
+            return read_parameter(state, text, pos)
+        if text[pos] in "eE" and text[pos:pos + 6].upper() == "EXISTS":
+            return read_exists(state, text, pos)
+        return None
 
     state.grammar = Grammar("[", "]", GCODE_BINARY, GCODE_FUNCTIONS, atan2_form=True,
                             variable=variable)
@@ -54,6 +56,48 @@ def read_parameter(state: GCodeState, code: str, pos: int) -> tuple[float, int]:
     else:
         value = state.params.get(key, 0.0)
     return value, end
+
+
+def read_exists(state: GCodeState, code: str, pos: int) -> tuple[float, int]:
+    """``EXISTS[#<name>]``: 1 when the named parameter is set where it is read
+    (the running sub's own or a global one), else 0; ``EXISTS[#n]``: 1 when
+    ``n`` is a parameter number (1 .. 5601), as LinuxCNC's ``read_parameter``
+    with ``check_exists``. The value after the closing bracket."""
+    p = skip_blanks(code, pos + 6)
+    if p >= len(code) or code[p] != "[":
+        raise ExprError("EXISTS needs a parameter in brackets, e.g. EXISTS[#<depth>]", pos)
+    q = skip_blanks(code, p + 1)
+    if q >= len(code) or code[q] != "#":
+        raise ExprError("Expected # reading parameter: EXISTS takes one parameter, e.g. "
+                        "EXISTS[#<depth>]", q)
+    r = skip_blanks(code, q + 1)
+    if r < len(code) and code[r] == "<":
+        _, name, end = parameter_target(state, code, q)
+        local = name in state.frames[-1].named if not name.startswith("_") else False
+        value = 1.0 if local or (name.startswith("_") and name in state.globals) else 0.0
+    else:
+        number, end = _parameter_number(state, code, r, q)
+        value = 1.0 if math.isfinite(number) and 1 <= round(number) <= MAX_PARAMETER else 0.0
+    end = skip_blanks(code, end)
+    if end >= len(code) or code[end] != "]":
+        raise ExprError("Expected ] reading bracketed parameter", end)
+    return value, end + 1
+
+
+def _parameter_number(state: GCodeState, code: str, p: int, pos: int) -> tuple[float, int]:
+    """The number after a ``#`` (literal, ``[expr]``, ``#n`` or a function
+    such as ``ATAN[1]/[1]``) and the position after it."""
+    n = len(code)
+    ch = code[p] if p < n else ""
+    if ch.isdigit() or ch == ".":
+        return read_number(state, code, p, "#")
+    if ch == "[":
+        return parse_bracketed(code, p, state.grammar)
+    if ch == "#":
+        return read_parameter(state, code, p)
+    if ch.isalpha() and any(code[p:p + 6].upper().startswith(f) for f in _FUNC_NAMES):
+        return parse_operand(code, p, state.grammar)
+    raise ExprError("'#' needs a parameter number or <name>, e.g. #1 or #<depth>", pos)
 
 
 def parameter_target(state: GCodeState, code: str, pos: int) -> tuple[str, object, int]:
@@ -74,14 +118,7 @@ def parameter_target(state: GCodeState, code: str, pos: int) -> tuple[str, objec
         if not name:
             raise ExprError("empty parameter name '#<>'", p)
         return "name", name, end + 1
-    if ch.isdigit() or ch == ".":
-        value, end = read_number(state, code, p, "#")
-    elif ch == "[":
-        value, end = parse_bracketed(code, p, state.grammar)
-    elif ch == "#":
-        value, end = read_parameter(state, code, p)
-    else:
-        raise ExprError("'#' needs a parameter number or <name>, e.g. #1 or #<depth>", pos)
+    value, end = _parameter_number(state, code, p, pos)
     if not math.isfinite(value) or abs(value - round(value)) > WHOLE_NUMBER_TOL:
         raise ExprError(f"parameter number {fmt(value)} is not an integer", pos)
     index = int(round(value))
@@ -136,7 +173,7 @@ def read_value(state: GCodeState, code: str, p: int, letter: str,
         value, end = read_number(state, code, p, letter)
     elif ch == "[" or ch == "#":
         value, end = parse_operand(code, p, state.grammar)
-    elif ch.isalpha() and any(code[p:p + 5].upper().startswith(f) for f in _FUNC_NAMES):
+    elif ch.isalpha() and any(code[p:p + 6].upper().startswith(f) for f in _FUNC_NAMES):
         value, end = parse_operand(code, p, state.grammar)
     else:
         raise ExprError(f"{letter} word has no value (found {ch!r}): write a number, "

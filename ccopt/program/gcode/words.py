@@ -71,6 +71,7 @@ class OWord:
     keyword: str | None  # None: Fanuc program number "O1234" alone on a line
     col: int             # 0-based column of the 'O'
     rest: int            # position after the keyword
+    computed: int | None = None  # a label computed at the call: its value's position
 
 
 @dataclass(slots=True)
@@ -158,7 +159,14 @@ def _lex_oword(state: GCodeState, code: str, p: int, i: int) -> OWord:
     """The label and keyword of the O-word whose 'O' is at ``p``."""
     n = len(code)
     col = p
-    label, q = _o_label(state, code, p, i)
+    computed = None
+    q = skip_blanks(code, p + 1)
+    if q < n and code[q] in "[#":
+        # O[#2 * 10] call, o#<sub> call: LinuxCNC's read_integer_value
+        computed, label = q, ""
+        q = _value_end(state, code, q, i)
+    else:
+        label, q = _o_label(state, code, p, i)
     q = skip_blanks(code, q)
     if q >= n:
         if not label.isdigit():
@@ -178,7 +186,34 @@ def _lex_oword(state: GCodeState, code: str, p: int, i: int) -> OWord:
         raise state.error(f"unknown O-word keyword {keyword!r}{hint}: use sub, endsub, call, "
                           "if, elseif, else, endif, do, while, endwhile, repeat, endrepeat, "
                           "break, continue or return", q, i)
-    return OWord(label, keyword, col, k)
+    if computed is not None and keyword != "call":
+        raise state.error(f"an O-word label computed from a parameter or expression is read "
+                          f"with call only, not with {keyword}: write its number", col, i)
+    return OWord(label, keyword, col, k, computed)
+
+
+def _value_end(state: GCodeState, code: str, q: int, i: int) -> int:
+    """The end of the parameter reference or bracketed expression at ``q``
+    (not evaluated: that happens at the call)."""
+    n = len(code)
+    while q < n and code[q] == "#":
+        q = skip_blanks(code, q + 1)
+    if q < n and code[q] == "<":
+        end = code.find(">", q)
+        if end < 0:
+            raise state.error("parameter name has no closing '>'", q, i)
+        return end + 1
+    if q < n and code[q] == "[":
+        depth = 0
+        for k in range(q, n):
+            depth += {"[": 1, "]": -1}.get(code[k], 0)
+            if depth == 0:
+                return k + 1
+        raise state.error("O-word label expression has no closing ']'", q, i)
+    number = _O_NUMBER.match(code, q)
+    if not any(ch.isdigit() for ch in number.group()):
+        raise state.error("O-word needs a number or a <name>, e.g. o100 or o<part>", q, i)
+    return number.end()
 
 
 def _o_label(state: GCodeState, code: str, p: int, i: int) -> tuple[str, int]:
