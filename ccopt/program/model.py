@@ -198,6 +198,9 @@ class Frame:
 #: ``Program.meta`` key: how the program ends, ``"M2"`` or ``"M30"`` as written
 #: (absent: it ends with its text or a ``%``).
 PROGRAM_END = "program_end"
+#: ``Program.meta`` key: where the main program ended with ``M99`` (a located
+#: sentence): the machine would repeat it for ever; ccopt read one pass.
+ENDLESS_MAIN = "endless_main_program"
 #: ``Program.meta`` key: the machine words after the last block (``M5``, ``M9``
 #: before the end), in order (:attr:`Block.words`).
 TRAILING_WORDS = "trailing_words"

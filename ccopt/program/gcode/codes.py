@@ -159,9 +159,11 @@ def classify(state: GCodeState, words: Words) -> None:
         if abs(value - round(value)) > WHOLE_NUMBER_TOL or not 0 <= value < _M_LIMIT:
             raise state.error(f"M-code M{fmt(value)} is not a whole number from 0 to 999", col)
         m = int(round(value))
-        if m in (98, 99):
-            raise state.error(f"M{m} (Fanuc subprogram call/return) is not supported: use "
-                              "O-word subroutines (o100 sub / o100 call)", col)
+        if m == 98 or (m == 99 and len(state.frames) > 1):
+            # a call or return is a line of its own (fanuc.py), as LinuxCNC's read_items
+            raise state.error(f"M{m} must be the first word of its line (after N): it "
+                              f"{'calls a subprogram' if m == 98 else 'returns from the subprogram'}"
+                              " and takes its line", col)
         g = _M_GROUPS.get(m)
         if g is not None:
             if g in mgroups:

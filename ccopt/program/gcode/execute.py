@@ -20,15 +20,16 @@ from ccopt.program.gcode.cycles import (CYCLE_CODES, P_CYCLES, PECK_CYCLES, end_
 from ccopt.program.gcode.coordinates import (check_unrotated_plane, rotation, select_origin,
                                              set_axis_offset, set_origin, to_machine, to_work,
                                              work_offset)
-from ccopt.program.gcode.machine_words import (frame_of, record_after_motion, record_line,
-                                               with_words)
+from ccopt.program.gcode.machine_words import (END_CODES, frame_of, record_after_motion,
+                                               record_line, with_words)
 from ccopt.program.gcode.setup import go_home, is_tool_setup, save_home, set_tool_data
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import (feed_factor, length_factor, output_units,
                                        scale_lengths, set_units)
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, gname
 from ccopt.program.markers import surface_marker
-from ccopt.program.model import MAX_PROGRAM_COORDINATE, Block, Motion, Source, out_of_range
+from ccopt.program.model import (ENDLESS_MAIN, MAX_PROGRAM_COORDINATE, Block, Motion, Source,
+                                 out_of_range)
 
 _AXES = "XYZ"
 _PLANES = {170: "XY", 180: "ZX", 190: "YZ"}
@@ -80,7 +81,13 @@ def execute_words(state: GCodeState, words: Words) -> None:
     if motion is not None and motion not in CYCLE_CODES and (axis or is_arc):
         _move(state, motion, L, mcodes, first_col, gcol, machine="machine_coords" in gc)
     record_after_motion(state, mcodes)
-    if any(m in (2, 30) for m in mcodes):
+    if any(m in END_CODES for m in mcodes):
+        if 99 in mcodes:
+            src = state.where(state.line_no)
+            state.meta[ENDLESS_MAIN] = (
+                f"{src[0]}:{src[1]}: M99 ends the main program: LinuxCNC's task would run "
+                "it again from the start for ever (an endless program); ccopt reads one "
+                "pass, as LinuxCNC's stand-alone interpreter does")
         raise ProgramEnd()
 
 

@@ -8,8 +8,8 @@ RS274NGC's order of execution (``S``, ``T``, ``M6``, ``M3``-``M5``,
 since the last block to the next block (:attr:`Block.words`); a program stop
 (``M0``, ``M1``, ``M60``) runs after its line's motion, so it goes to the
 block after. The words after the last block are
-``Program.meta[TRAILING_WORDS]`` and the program end as written (``M2`` or
-``M30``) is ``Program.meta[PROGRAM_END]``.
+``Program.meta[TRAILING_WORDS]`` and the program end as written (``M2``,
+``M30`` or the main program's ``M99``) is ``Program.meta[PROGRAM_END]``.
 
 The work coordinate frame of each block (:class:`~ccopt.program.model.Frame`)
 is recorded here too, from the state's coordinate systems.
@@ -23,8 +23,9 @@ from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.words import fmt, gname
 from ccopt.program.model import PROGRAM_END, Block, Frame
 
-#: M-codes that end the program (recorded as :data:`PROGRAM_END`).
-END_CODES = (2, 30)
+#: M-codes that end the program (recorded as :data:`PROGRAM_END`): M99 here
+#: is the main program's (a subprogram's returns, fanuc.py).
+END_CODES = (2, 30, 99)
 #: Program stops: they run after the motion of their line.
 STOP_CODES = (0, 1, 60)
 #: RS274NGC's execution order of the other M-codes ccopt keeps: tool change,

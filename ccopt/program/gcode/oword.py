@@ -119,6 +119,13 @@ def structure(state: GCodeState, i: int) -> tuple:
                 return state.matched[i]
         elif kw in ("elseif", "else"):
             _branch(state, stack, o, j, where, (kind, label), branches)
+    if kind == "sub":
+        m99 = next((j for j in range(i + 1, state.region_end(i)) if lex(state, j).fanuc == 99),
+                   None)
+        if m99 is not None:
+            raise state.error(f"'O{label} endsub' or 'O{label} return' must follow 'O{label} "
+                              f"sub' subroutine definition, not M99", lex(state, m99).start,
+                              m99)
     raise state.error(f"{olabel(label)} {kind} has no matching {olabel(label)} "
                       f"{_OPENERS[kind]}", ow.col, i)
 
@@ -170,7 +177,9 @@ def exec_oword(state: GCodeState, pc: int, lx: Lexed) -> int:
     """Execute the O-word line ``pc``; returns the next line to execute."""
     kw = lx.oword.keyword
     if kw is None:
-        state.meta.setdefault("program_number", int(lx.oword.label))
+        # a program number, or a Fanuc subprogram's head run into (fanuc.py)
+        if lx.oword.label.isdigit():
+            state.meta.setdefault("program_number", int(lx.oword.label))
         return pc + 1
     return _HANDLERS[kw](state, pc, lx)
 
@@ -221,6 +230,11 @@ def _define_ahead(state: GCodeState, pc: int, label: str, col: int) -> tuple[int
         return found
     if state.sub_path and not label.isdigit():
         return load_sub_file(state, label, col)
+    for j in range(state.first_line, state.end_line):
+        o = lex(state, j).oword if ("o" in state.lines[j] or "O" in state.lines[j]) else None
+        if o is not None and o.keyword is None and o.label == label and j != state.first_line:
+            raise state.error(f"Fanuc 'O{label}' subroutine must be called with 'M98 P{label}' "
+                              f"(line {j + 1} is its head), not {olabel(label)} call", col)
     raise state.error(f"{olabel(label)} call: no subroutine {olabel(label)} is "
                       f"defined; define it with {olabel(label)} sub ... "
                       f"{olabel(label)} endsub, or give the folder of {label}.ngc with "
@@ -288,6 +302,9 @@ def _return(state: GCodeState, pc: int, lx: Lexed) -> int:
         raise state.error(f"{olabel(label)} {kw} outside a subroutine: there is no "
                           f"matching {olabel(label)} sub being called", ow.col)
     frame = state.frames[-1]
+    if frame.fanuc:
+        raise state.error(f"Fanuc 'O{frame.name}' subroutine definition must end with 'M99', "
+                          f"not {olabel(label)} {kw}", ow.col)
     if frame.name != label and kw == "endsub":
         raise state.error(f"{olabel(label)} {kw} inside subroutine {olabel(frame.name)}: "
                           "use the label of the subroutine", ow.col)

@@ -15,6 +15,7 @@ from ccopt.program.expr import ExprError
 from ccopt.program.gcode.codes import read_words
 from ccopt.program.gcode.coordinates import init_coordinates
 from ccopt.program.gcode.execute import execute_words
+from ccopt.program.gcode.fanuc import exec_fanuc, runs_as_fanuc
 from ccopt.program.gcode.oword import exec_oword, innermost_loop, loop_lines_error
 from ccopt.program.gcode.parameters import MAX_PARAMETER, attach_grammar, set_parameter
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
@@ -127,6 +128,9 @@ def _run_lines(state: GCodeState) -> None:
             lx = lex(state, pc)
             if lx.oword is not None:
                 pc = exec_oword(state, pc, lx)
+                state.in_loop = innermost_loop(state) is not None
+            elif lx.fanuc is not None and runs_as_fanuc(state, lx):
+                pc = exec_fanuc(state, pc, lx)
                 state.in_loop = innermost_loop(state) is not None
             else:
                 if lx.first is not None:

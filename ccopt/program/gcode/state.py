@@ -62,6 +62,9 @@ class Frame:
     saved: dict = field(default_factory=dict)   # caller's #1..#30, restored on return
     named: dict = field(default_factory=dict)   # local named parameters
     ctrl: list = field(default_factory=list)    # open Ctrl structures, innermost last
+    fanuc: bool = False  # an M98 call of a Fanuc subprogram (parameters not local)
+    repeats: int = 0     # M98 L: passes still to run after this one
+    start: int = -1      # M98: 0-based line of the subprogram's O-word head
 
 @dataclass(slots=True)
 class CycleState:
@@ -151,6 +154,7 @@ class GCodeState:
         self.start_end = "contour"
         self._modal: Modal | None = None
         self.meta: dict = {"tool_length": []}
+        self.fanuc_subs: dict[str, int] = {}  # Fanuc subprogram label -> its O line
         # parameters
         self.params: dict[int, float] = {}
         self.globals: dict[str, float] = {"_value": 0.0, "_value_returned": 0.0}

@@ -83,6 +83,7 @@ class Lexed:
     start: int                # position of the first word after an N word
     oword: OWord | None = None
     percent: bool = False
+    fanuc: int | None = None  # 98 or 99: the line starts with M98/M99 (fanuc.py)
 
 
 def lex(state: GCodeState, i: int) -> Lexed:
@@ -114,6 +115,10 @@ def _lex_line(state: GCodeState, i: int) -> Lexed:
     lx = Lexed(code, first, p)
     if p < n and code[p] in "oO":
         lx.oword = _lex_oword(state, code, p, i)
+    elif p < n and code[p] in "mM":
+        m = FANUC_CALL.match(code, p)
+        if m:
+            lx.fanuc = int(m.group(1))
     return lx
 
 
@@ -155,6 +160,10 @@ def blank_comments(state: GCodeState, text: str, i: int) -> str:
         parts.append(" " * (k - stop))
 
 
+#: ``M98``/``M99`` as the first word of a line (Fanuc subprograms, fanuc.py).
+FANUC_CALL = re.compile(r"[mM][ \t]*0*(9[89])(?![0-9.])")
+
+
 def _lex_oword(state: GCodeState, code: str, p: int, i: int) -> OWord:
     """The label and keyword of the O-word whose 'O' is at ``p``."""
     n = len(code)
@@ -169,10 +178,10 @@ def _lex_oword(state: GCodeState, code: str, p: int, i: int) -> OWord:
         label, q = _o_label(state, code, p, i)
     q = skip_blanks(code, q)
     if q >= n:
-        if not label.isdigit():
-            raise state.error(f"{olabel(label)} needs a keyword: sub, endsub, call, if, "
-                              "elseif, else, endif, do, while, endwhile, repeat, endrepeat, "
-                              "break, continue or return", col, i)
+        if computed is not None:
+            raise state.error("an O-word label computed from a parameter or expression is "
+                              "read with call only", col, i)
+        # a program number, or a Fanuc subprogram's head (O1234, O<name>)
         return OWord(label, None, col, q)
     k = _O_KEYWORD.match(code, q).end()
     keyword = code[q:k].lower()

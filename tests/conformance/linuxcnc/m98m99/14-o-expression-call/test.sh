@@ -1,0 +1,2 @@
+#!/bin/bash -e
+rs274 -g test.ngc

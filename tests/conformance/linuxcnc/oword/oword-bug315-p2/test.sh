@@ -1,0 +1,3 @@
+#!/bin/bash
+rs274 -g test.ngc | awk '{$1=""; print}'
+exit "${PIPESTATUS[0]}"
