@@ -29,6 +29,7 @@ from __future__ import annotations
 import math
 import os
 import re
+import sys
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -38,7 +39,7 @@ from ccopt.atomic import protect_input
 from ccopt.errors import ProgramError
 from ccopt.feed import PLANNERS, AxisLimits, certified_planner
 from ccopt.program import read_program
-from ccopt.program.model import INPUT_FILES, MAX_COORDINATE, Program
+from ccopt.program.model import ENDLESS_MAIN, INPUT_FILES, MAX_COORDINATE, Program
 from ccopt.tolerances import LIMIT_RANGE
 from ccopt.toolpath import ToolPath
 
@@ -305,6 +306,9 @@ class ReadOptions:
                             max_loop_iterations=self.max_loop_iterations)
         for f in prog.meta.get(INPUT_FILES, ()):
             protect_input(f)
+        if ENDLESS_MAIN in prog.meta:
+            # the program is read, but a machine would not stop where ccopt did
+            print(f"{prog.meta[ENDLESS_MAIN]} (note)", file=sys.stderr)
         return prog
 
 
