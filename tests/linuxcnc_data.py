@@ -63,7 +63,8 @@ def canonical_moves(path):
     coordinates as LinuxCNC's canon prints them (each block's recorded frame
     offset taken off).
 
-    A line of a ``G0`` block is a STRAIGHT_TRAVERSE ``[x, y, z]``, any other
+    A line of a ``G0`` block is a STRAIGHT_TRAVERSE ``[x, y, z, a, b, c]``
+    (``a b c`` the block's A B C, 0 when the program moves none), any other
     line a STRAIGHT_FEED; an arc (or spiral) is ARC_FEED ``[end u, end v,
     centre u, centre v, turn, w]`` with ``turn = sign(sweep) * (number of
     started turns)`` (in-plane coordinates first, as LinuxCNC prints them: in
@@ -77,7 +78,10 @@ def canonical_moves(path):
         work = frame.to_work if frame is not None else (lambda p: p)
         if isinstance(g, Line):
             kind = "STRAIGHT_TRAVERSE" if seg.block.motion is Motion.RAPID else "STRAIGHT_FEED"
-            out.append((kind, list(work(seg.end_xyz))))
+            axes = seg.block.axes
+            abc = list(frame.axes_to_work(axes)[:3]) if axes is not None and frame is not None \
+                else list(axes[:3]) if axes is not None else [0.0, 0.0, 0.0]
+            out.append((kind, list(work(seg.end_xyz)) + abc))
         else:
             iu, iv, iw = PLANE_AXES[seg.plane or "XY"]
 

@@ -206,6 +206,9 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
                 max_err = max(max_err, piece.bound)
         else:
             raise ValueError(f"cannot export a {type(g).__name__} segment to G-code yet")
+        if idx + 1 == len(path.segments) or path.segments[idx + 1].block is not seg.block:
+            # the carried axes end with their block's last move
+            wr.lines[-1] += machine.axes_words(seg.block)
     for seconds, block in dwell_at.get(len(path.segments), ()):
         wr.lines += machine.before(block)
         wr.lines.append(f"G4 P{fmt(seconds, 4)}")

@@ -10,6 +10,8 @@ before a move and in which frame to write its coordinates, so the export
   order (a block that makes no segment still has its words written, at the
   next one), the words after the last block and the program end as written
   (``M30`` stays ``M30``; ``M2`` when the program had none);
+* writes the A B C U V W positions the program carried (:attr:`Block.axes`)
+  on the last move of each block, where they change;
 * writes coordinates in the program's work coordinates, selecting the same
   ``G54``-``G59.3``, with ``G10 L2`` (and its ``R`` rotation) where the
   program set an origin to other values than the parameters it was read with, ``G52`` where the
@@ -20,18 +22,27 @@ Coordinates are program units; an offset is machine minus work coordinates.
 """
 from __future__ import annotations
 
-from ccopt.program.model import (PROGRAM_END, START_PARAMETERS, TRAILING_WORDS, Block, Frame,
-                                 Program, Vec3)
+from ccopt.program.model import (AXES_USED, PROGRAM_END, START_PARAMETERS, TRAILING_WORDS,
+                                 Block, Frame, Program, Vec3)
 
 #: Coordinate system 1 .. 9 -> its G-code.
 SYSTEM_CODE = {1: "G54", 2: "G55", 3: "G56", 4: "G57", 5: "G58", 6: "G59",
                7: "G59.1", 8: "G59.2", 9: "G59.3"}
 _NO_OFFSET: Vec3 = (0.0, 0.0, 0.0)
+_EXTRA = "ABCUVW"
+_NO_AXES = (0.0,) * 6
 
 
 def _fmt(x: float) -> str:
     s = f"{x:.6f}".rstrip("0").rstrip(".")
     return "0" if s in ("-0", "") else s
+
+
+def _extra(axes) -> str:
+    """`` A.. B..`` for the non-zero of A B C U V W ``axes`` (none: empty)."""
+    if not axes:
+        return ""
+    return "".join(f" {a}{_fmt(v)}" for a, v in zip(_EXTRA, axes) if v != 0.0)
 
 
 def _xyz(p: Vec3) -> str:
@@ -63,6 +74,10 @@ class MachineWords:
                             if applied else _NO_OFFSET)
         self.system: int | None = None
         self.uses_frames = any(b.frame is not None for b in blocks)
+        self.axes: tuple[float, ...] | None = None   # A .. W last written
+        self.axes_used = meta.get(AXES_USED, "")
+        self.axes_offset = tuple(params.get(5214 + k, 0.0) for k in range(6)) if applied \
+            else _NO_AXES
 
     def before(self, block: Block | None) -> list[str]:
         """Lines to write before a move or dwell made from ``block``."""
@@ -78,18 +93,36 @@ class MachineWords:
 
     def _frame_lines(self, frame: Frame) -> list[str]:
         out = []
-        if self.origins.get(frame.system) != (frame.origin, frame.rotation):
+        key = (frame.origin, frame.rotation) + ((frame.axes_origin,) if frame.axes_origin
+                                                 and any(frame.axes_origin) else ())
+        if self.origins.get(frame.system) != key:
             turn = f" R{_fmt(frame.rotation)}" if frame.rotation != 0.0 or \
                 self.origins.get(frame.system, ((), 0.0))[1] != 0.0 else ""
-            out.append(f"G10 L2 P{frame.system} {_xyz(frame.origin)}{turn}")
-            self.origins[frame.system] = (frame.origin, frame.rotation)
+            out.append(f"G10 L2 P{frame.system} {_xyz(frame.origin)}{turn}"
+                       f"{_extra(frame.axes_origin)}")
+            self.origins[frame.system] = key
         if frame.system != self.system:
             out.append(SYSTEM_CODE[frame.system])
             self.system = frame.system
-        if frame.axis_offset != self.axis_offset:
-            out.append(f"G52 {_xyz(frame.axis_offset)}")
-            self.axis_offset = frame.axis_offset
+        extra = frame.axes_offset or _NO_AXES
+        if frame.axis_offset != self.axis_offset or extra != self.axes_offset:
+            changed = "".join(f" {a}{_fmt(v)}" for a, v, w in
+                              zip(_EXTRA, extra, self.axes_offset) if v != w)
+            out.append(f"G52 {_xyz(frame.axis_offset)}{changed}")
+            self.axis_offset, self.axes_offset = frame.axis_offset, extra
         return out
+
+    def axes_words(self, block: Block | None) -> str:
+        """`` A.. B..`` for the A B C U V W a move from ``block`` ends at that
+        differ from the last written (work coordinates; machine under G53)."""
+        if block is None or block.axes is None:
+            return ""
+        axes = block.axes
+        if block.frame is not None and not block.frame.machine:
+            axes = block.frame.axes_to_work(axes)
+        last, self.axes = self.axes, axes
+        return "".join(f" {a}{_fmt(v)}" for k, (a, v) in enumerate(zip(_EXTRA, axes))
+                       if a in self.axes_used and (last is None or v != last[k]))
 
     def finish(self) -> list[str]:
         """The words not yet written, those after the last block, the end."""

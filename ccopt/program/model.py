@@ -169,6 +169,9 @@ class Frame:
     axis_offset: the ``G92``/``G52`` offset in force.
     machine: the block's end was programmed in machine coordinates (``G53``).
     rotation: the system's XY rotation (``G10 L2 R``), degrees counter-clockwise.
+    axes_origin, axes_offset: the origin and ``G92``/``G52`` offset on A B C U V
+        W (``machine = work + origin + offset`` per axis), ``None`` while the
+        program moves none of them.
     """
 
     system: int = 1
@@ -176,6 +179,15 @@ class Frame:
     axis_offset: Vec3 = (0.0, 0.0, 0.0)
     machine: bool = False
     rotation: float = 0.0
+    axes_origin: tuple[float, ...] | None = None
+    axes_offset: tuple[float, ...] | None = None
+
+    def axes_to_work(self, axes: tuple[float, ...]) -> tuple[float, ...]:
+        """Work coordinates of machine A B C U V W ``axes``."""
+        if self.axes_origin is None:
+            return axes
+        o, a = self.axes_origin, self.axes_offset or (0.0,) * 6
+        return tuple(axes[k] - o[k] - a[k] for k in range(6))
 
     def to_work(self, p: Vec3) -> Vec3:
         """Work coordinates of machine point ``p``."""
@@ -201,6 +213,9 @@ PROGRAM_END = "program_end"
 #: ``Program.meta`` key: where the main program ended with ``M99`` (a located
 #: sentence): the machine would repeat it for ever; ccopt read one pass.
 ENDLESS_MAIN = "endless_main_program"
+#: ``Program.meta`` key: the letters of the axes beyond X Y Z the program
+#: writes (``"AB"``), in A B C U V W order (:attr:`Block.axes`).
+AXES_USED = "axes_used"
 #: ``Program.meta`` key: the machine words after the last block (``M5``, ``M9``
 #: before the end), in order (:attr:`Block.words`).
 TRAILING_WORDS = "trailing_words"
@@ -242,6 +257,10 @@ class Block:
         (:mod:`ccopt.program.gcode.machine_words`); an export writes them back.
     frame: the work coordinate frame the block was programmed in (G-code), or
         ``None`` (PMAC: machine coordinates).
+    axes: machine positions of A B C U V W at the block's end (degrees for A B
+        C, program units for U V W), ``None`` while the program has moved none
+        of them: carried for exports, not part of the path
+        (:mod:`ccopt.program.gcode.axes`).
     """
 
     source: Source
@@ -259,6 +278,7 @@ class Block:
     cycle: str | None = None
     words: tuple[str, ...] = ()
     frame: Frame | None = None
+    axes: tuple[float, ...] | None = None
 
     # -- plane helpers -------------------------------------------------
     def uvw(self, p: Vec3) -> tuple[float, float, float]:

@@ -64,10 +64,9 @@ _M_GROUPS: dict[int, str] = {0: "stop", 1: "stop", 2: "stop", 30: "stop", 60: "s
                              7: "coolant", 8: "coolant", 9: "coolant"}
 _M_LIMIT = 1000  # M-codes run from M0 to M999
 
-_WORD_LETTERS = set("GMXYZIJKRFPDHTSQL")
-_UNSUPPORTED_AXES = set("ABCUVW")
+_WORD_LETTERS = set("GMXYZIJKRFPDHTSQLABCUVW")
 # Words holding a length or a feed: bounded by MAX_PROGRAM_COORDINATE where they are written.
-_BOUNDED_LETTERS = set("XYZIJKRF")
+_BOUNDED_LETTERS = set("XYZIJKRFABCUVW")
 
 
 @dataclass(slots=True)
@@ -133,14 +132,12 @@ def _not_a_word(ch: str, p: int) -> ExprError:
         return ExprError("N (line number) must be the first word on the line", p)
     if up == "O":
         return ExprError("an O-word must be the first word on its line", p)
-    if up in _UNSUPPORTED_AXES:
-        return ExprError(f"axis {up} is not supported: ccopt reads X, Y and Z only", p)
     if up == "/":
         return ExprError("block delete '/' is not supported: ccopt cannot know the "
                          "switch; remove the '/' or the line", p)
     if "A" <= up <= "Z":
-        return ExprError(f"unknown word {up}: ccopt reads G M X Y Z I J K R F P D H T S L "
-                         "N Q words, #parameters and O-words", p)
+        return ExprError(f"unknown word {up}: ccopt reads G M X Y Z A B C U V W I J K R F P D H "
+                         "T S L N Q words, #parameters and O-words", p)
     return ExprError(f"unexpected character {ch!r}: expected a word such as G1 or X10", p)
 
 

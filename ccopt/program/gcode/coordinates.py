@@ -42,6 +42,7 @@ import re
 from pathlib import Path
 
 from ccopt.errors import ProgramError
+from ccopt.program.gcode.axes import any_extra, set_extra_axis_offset, set_extra_origin
 from ccopt.program.gcode.parameters import MAX_PARAMETER
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt
@@ -170,6 +171,7 @@ def set_origin(state: GCodeState, L: dict, col: int) -> None:
         for k, a in enumerate(_AXES):
             if a in L:
                 state.params[base + k] = L[a][0]
+    set_extra_origin(state, index, L, level[0])
     if "R" in L:
         state.params[rotation_parameter(index)] = L["R"][0]
 
@@ -206,8 +208,9 @@ def set_axis_offset(state: GCodeState, tenths: int, L: dict, col: int) -> None:
         raise state.error("cannot change axis offsets with cutter radius compensation on: "
                           "turn it off (G40) first", col)
     offset = list(state.axis_offset)
+    set_extra_axis_offset(state, tenths, L)   # before #5210 changes
     if tenths in (920, 520):
-        if not any(a in L for a in _AXES):
+        if not any(a in L for a in _AXES) and not any_extra(L):
             raise state.error(f"G{fmt(tenths / 10)} needs at least one axis word", col)
         if rotation(state) == 0.0:
             o = origin(state)

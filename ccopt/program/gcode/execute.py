@@ -14,6 +14,7 @@ import math
 from dataclasses import replace
 
 from ccopt.program.gcode.arcs import arc_geometry, is_modal_arc_without_plane_motion
+from ccopt.program.gcode.axes import extra_end
 from ccopt.program.gcode.codes import Words, classify
 from ccopt.program.gcode.cycles import (CYCLE_CODES, P_CYCLES, PECK_CYCLES, end_series,
                                         run_cycle, set_retract_mode)
@@ -32,6 +33,8 @@ from ccopt.program.model import (ENDLESS_MAIN, MAX_PROGRAM_COORDINATE, Block, Mo
                                  out_of_range)
 
 _AXES = "XYZ"
+#: Words that make a move: X Y Z and the axes carried along (axes.py).
+_MOVE_AXES = "XYZABCUVW"
 _PLANES = {170: "XY", 180: "ZX", 190: "YZ"}
 _TOOL_NUMBER_LIMIT = 2**31  # tool numbers are C ints in LinuxCNC
 #: Tool number 0 is LinuxCNC's "no tool": diameter 0 whatever the table says.
@@ -72,7 +75,7 @@ def execute_words(state: GCodeState, words: Words) -> None:
     previous_mode = state.motion_mode
     if motion_g is not None:
         state.motion_mode = None if motion_g[0] == 800 else motion_g[0]
-    axis = any(a in L for a in _AXES)
+    axis = any(a in L for a in _MOVE_AXES)
     gcol = motion_g[1] if motion_g else first_col
     if motion in CYCLE_CODES and (axis or motion_g is not None):
         run_cycle(state, motion, gcol, L, mcodes, first_col, previous_mode, _emit)
@@ -98,7 +101,7 @@ def _motion_of(state: GCodeState, gc: dict, L: dict) -> int | None:
     (an error under ``G80``); centre words alone repeat a modal ``G2``/``G3``
     (a full circle).
     """
-    axis = any(a in L for a in _AXES)
+    axis = any(a in L for a in _MOVE_AXES)
     motion_g = gc.get("motion")
     setting = gc.get("axis_setting")
     if setting is not None:
@@ -111,13 +114,13 @@ def _motion_of(state: GCodeState, gc: dict, L: dict) -> int | None:
         if motion_g[0] != 800:
             return motion_g[0]
         if axis:
-            a = next(a for a in _AXES if a in L)
+            a = next(a for a in _MOVE_AXES if a in L)
             raise state.error(f"{a} word with G80: G80 cancels motion, so it cannot use "
                               "axis words", L[a][1])
         return None
     if axis:
         if state.motion_mode is None:
-            a = next(a for a in _AXES if a in L)
+            a = next(a for a in _MOVE_AXES if a in L)
             raise state.error(f"{a} word with no motion mode in force: add G0, G1, G2 or G3",
                               L[a][1])
         return state.motion_mode
@@ -378,6 +381,9 @@ def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int
                       state.modal(), center=center, turns=turns, feed=feed, mcodes=mcodes)
     if surface is not None:
         block = replace(block, surface=surface)
+    extra = extra_end(state, L, machine)
+    if extra is not None:
+        state.extra = list(extra)
     if machine:
         block = replace(block, frame=frame_of(state, machine=True))
     _emit(state, block)

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+from ccopt.program.gcode.axes import extra_axis_offset, extra_origin
 from ccopt.program.gcode.coordinates import origin, rotation
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.words import fmt, gname
@@ -63,6 +64,8 @@ def record_after_motion(state: GCodeState, mcodes: tuple) -> None:
 def frame_of(state: GCodeState, machine: bool = False) -> Frame:
     """The frame in force (one shared object until it changes)."""
     key = (state.origin_index, origin(state), state.axis_offset, machine, rotation(state))
+    if state.extra is not None:
+        key += (extra_origin(state), extra_axis_offset(state))
     if state.frame_key != key:
         state.frame_key = key
         state.frame = Frame(*key)
@@ -73,8 +76,9 @@ def with_words(state: GCodeState, block: Block) -> Block:
     """``block`` with the words read since the last block, and its frame (a
     block that already has a frame, a ``G53`` move's, keeps it)."""
     frame = block.frame if block.frame is not None else frame_of(state)
+    axes = tuple(state.extra) if state.extra is not None else None
     if state.pending_words:
         words = tuple(state.pending_words)
         state.pending_words.clear()
-        return replace(block, words=words, frame=frame)
-    return replace(block, frame=frame)
+        return replace(block, words=words, frame=frame, axes=axes)
+    return replace(block, frame=frame, axes=axes)

@@ -22,6 +22,7 @@ through stored positions and tool data in the program (LinuxCNC
 """
 from __future__ import annotations
 
+from ccopt.program.gcode.axes import any_extra, extra_end, home_extra, save_home_extra
 from ccopt.program.gcode.coordinates import to_machine, to_work
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.units import length_factor, output_units
@@ -47,6 +48,7 @@ def save_home(state: GCodeState, code: int, col: int) -> None:
     base = HOME_PARAMETER[code]
     for k in range(3):
         state.params[base + k] = state.pos[k]
+    save_home_extra(state, code)
 
 
 def go_home(state: GCodeState, code: int, L: dict, col: int, waypoint, src: Source,
@@ -59,20 +61,24 @@ def go_home(state: GCodeState, code: int, L: dict, col: int, waypoint, src: Sour
     base = HOME_PARAMETER[code]
     home = tuple(state.params.get(base + k, 0.0) for k in range(3))
     written = [a in L for a in _AXES]
-    if not any(written):
+    any_written = any(written) or any_extra(L)
+    if not any_written:
         written = [True, True, True]
-    _rapid(state, waypoint, src, mcodes, emit)
+    way_extra = extra_end(state, L, False)
+    _rapid(state, waypoint, src, mcodes, emit, way_extra)
     if all(written):
         end = home
     else:
         # LinuxCNC mixes the two points in work coordinates
         way, target = to_work(state, waypoint), to_work(state, home)
         end = to_machine(state, [target[k] if written[k] else way[k] for k in range(3)])
-    _rapid(state, end, src, (), emit)
+    _rapid(state, end, src, (), emit, home_extra(state, code, L, way_extra, any_written))
 
 
-def _rapid(state: GCodeState, end, src: Source, mcodes: tuple, emit) -> None:
+def _rapid(state: GCodeState, end, src: Source, mcodes: tuple, emit, extra) -> None:
     end = (end[0], end[1], end[2])
+    if extra is not None:
+        state.extra = list(extra)
     emit(state, Block(src, Motion.RAPID, state.pos, end, state.modal(), mcodes=mcodes))
     state.pos = end
     state.moved = True

@@ -120,6 +120,8 @@ class GCodeState:
         self.in_loop = False      # a loop is open in some frame (updated after O-words)
         # machine state
         self.pos = start
+        # A B C U V W in machine coordinates (axes.py); None until a word moves one
+        self.extra: list[float] | None = None
         self.start = start
         self.blocks: list[Block] = []
         self.moved = False

@@ -16,7 +16,7 @@ from ccopt.program.gcode.state import GCodeState
 
 MM_PER_INCH = 25.4
 UNITS = ("mm", "inch")
-_LENGTH_LETTERS = "XYZIJK"
+_LENGTH_LETTERS = "XYZIJKUVW"
 
 
 def length_factor(from_units: str, to_units: str) -> float:
@@ -53,8 +53,9 @@ def scale_lengths(state: GCodeState, L: dict, gcodes: dict) -> dict:
     scaled = dict(L)
     letters = _LENGTH_LETTERS
     setting = gcodes.get("axis_setting")
-    if not (setting and setting[0] == 100):  # G10's R is a rotation in degrees
-        letters += "R"
+    tool_data = "L" in L and L["L"][0] in (1, 10, 11)
+    if not (setting and setting[0] == 100) or tool_data:
+        letters += "R"                      # G10 L2's R is a rotation in degrees
     comp = gcodes.get("comp")
     if comp and comp[0] in (411, 421):      # G41.1/G42.1 D is a diameter
         letters += "D"
