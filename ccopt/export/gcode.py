@@ -134,6 +134,36 @@ def bezier_pieces(g: BezierCurve, w0: float, w1: float, tol: float):
     return out
 
 
+def _write_segment(wr: _Writer, idx: int, seg, tol: float) -> float:
+    """Write segment ``idx``'s moves (a spiral or a blend curve fitted within
+    ``tol``); the largest fitting error."""
+    g = seg.geom
+    max_err = 0.0
+    if isinstance(g, Line):
+        wr.line(idx, g, seg.w1, seg.feed)
+    elif isinstance(g, Arc):
+        wr.arc(idx, g, seg.w0, seg.w1, seg.feed)
+    elif isinstance(g, Spiral):
+        pieces = fit_located(seg, fit_arcs, g, tol)
+        total = g.length
+        s_acc = 0.0
+        for piece in pieces:
+            s_acc += piece.arc.length
+            w = seg.w0 + (seg.w1 - seg.w0) * min(s_acc / total, 1.0)
+            wr.arc(idx, piece.arc, seg.w0, w, seg.feed, piece.bound)
+            max_err = max(max_err, piece.bound)
+    elif isinstance(g, BezierCurve):
+        for piece, w in fit_located(seg, bezier_pieces, g, seg.w0, seg.w1, tol):
+            if isinstance(piece.geom, Line):
+                wr.line(idx, piece.geom, w, seg.feed, piece.bound)
+            else:
+                wr.arc(idx, piece.geom, seg.w0, w, seg.feed, piece.bound)
+            max_err = max(max_err, piece.bound)
+    else:
+        raise ValueError(f"cannot export a {type(g).__name__} segment to G-code yet")
+    return max_err
+
+
 def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, digits: int = 6,
                 seg_tol: dict[int, float] | None = None, radius_mode: bool = False,
                 program=None):
@@ -182,30 +212,8 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
             wr.set_plane(seg.plane)
         wr.lines += machine.before(seg.block)
         wr.set_frame(seg.block)
-        g = seg.geom
-        if isinstance(g, Line):
-            wr.line(idx, g, seg.w1, seg.feed)
-        elif isinstance(g, Arc):
-            wr.arc(idx, g, seg.w0, seg.w1, seg.feed)
-        elif isinstance(g, Spiral):
-            pieces = fit_located(seg, fit_arcs, g, fit_tolerance(seg_tol.get(idx, tol), digits))
-            total = g.length
-            s_acc = 0.0
-            for piece in pieces:
-                s_acc += piece.arc.length
-                w = seg.w0 + (seg.w1 - seg.w0) * min(s_acc / total, 1.0)
-                wr.arc(idx, piece.arc, seg.w0, w, seg.feed, piece.bound)
-                max_err = max(max_err, piece.bound)
-        elif isinstance(g, BezierCurve):
-            for piece, w in fit_located(seg, bezier_pieces, g, seg.w0, seg.w1,
-                                        fit_tolerance(seg_tol.get(idx, tol), digits)):
-                if isinstance(piece.geom, Line):
-                    wr.line(idx, piece.geom, w, seg.feed, piece.bound)
-                else:
-                    wr.arc(idx, piece.geom, seg.w0, w, seg.feed, piece.bound)
-                max_err = max(max_err, piece.bound)
-        else:
-            raise ValueError(f"cannot export a {type(g).__name__} segment to G-code yet")
+        max_err = max(max_err, _write_segment(wr, idx, seg, fit_tolerance(
+            seg_tol.get(idx, tol), digits)))
         if idx + 1 == len(path.segments) or path.segments[idx + 1].block is not seg.block:
             # the carried axes end with their block's last move
             wr.lines[-1] += machine.axes_words(seg.block)
