@@ -9,8 +9,8 @@ shown: exactly, except timing figures (the ``solve_s`` column of a table and
 figures written ``N.N s`` after ``in``/``took``), and a line ``...`` stands
 for any number of lines.
 
-``python tests/doc_tour.py --write`` runs every transcript again and writes
-the outputs into the documents, so no output in them is typed by hand.
+``python tests/doc_tour.py --write [DOCUMENT.md ...]`` runs every transcript
+(of those documents) again and writes the outputs into them, so no output in them is typed by hand.
 """
 from __future__ import annotations
 
@@ -80,9 +80,15 @@ def transcripts(documents=DOCUMENTS) -> list[Transcript]:
 
 def run_command(command: str, folder: Path) -> str:
     """What ``command`` prints (stdout), run in ``folder``: ``ccopt ...``
-    (``> FILE`` redirects it), ``head -N FILE`` or ``cat FILE``."""
+    (``> FILE`` redirects it, ``| head -N`` keeps its first N lines),
+    ``head -N FILE`` or ``cat FILE``."""
     words = shlex.split(command)
-    target = None
+    target, keep = None, None
+    if "|" in words:
+        i = words.index("|")
+        if words[i + 1:i + 2] != ["head"] or len(words) != i + 3:
+            raise ValueError(f"the tour pipes into head -N only: {command!r}")
+        words, keep = words[:i], int(words[i + 2].lstrip("-n"))
     if ">" in words:
         i = words.index(">")
         words, target = words[:i], words[i + 1]
@@ -105,6 +111,8 @@ def run_command(command: str, folder: Path) -> str:
     if target:
         (folder / target).write_text(text)
         return ""
+    if keep is not None:
+        text = "".join(text.splitlines(True)[:keep])
     return text
 
 
@@ -131,7 +139,7 @@ def scratch(folder: Path):
 def run_transcript(t: Transcript, folder: Path) -> list[list[str]]:
     """Each step's output lines, its commands run in ``folder`` one after the other."""
     with scratch(folder):
-        return [run_command(s.command, folder).rstrip("\n").split("\n") if s.command else []
+        return [run_command(s.command, folder).rstrip("\n").splitlines() if s.command else []
                 for s in t.steps]
 
 
@@ -186,9 +194,9 @@ def _rewritten(t: Transcript, outputs: list[list[str]]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_all(folder: Path) -> None:
-    """Run every transcript and write what it printed into its document."""
-    for doc in DOCUMENTS:
+def write_all(folder: Path, documents=DOCUMENTS) -> None:
+    """Run every transcript of ``documents`` and write what it printed into it."""
+    for doc in documents:
         text = doc.read_text()
         for t in reversed(transcripts([doc])):
             outputs = run_transcript(t, folder)
@@ -200,7 +208,7 @@ def write_all(folder: Path) -> None:
 
 if __name__ == "__main__":
     import tempfile
-    if sys.argv[1:] != ["--write"]:
-        sys.exit("usage: python tests/doc_tour.py --write")
+    if sys.argv[1:2] != ["--write"]:
+        sys.exit("usage: python tests/doc_tour.py --write [DOCUMENT.md ...]")
     with tempfile.TemporaryDirectory() as tmp:
-        write_all(Path(tmp))
+        write_all(Path(tmp), [Path(d).resolve() for d in sys.argv[2:]] or DOCUMENTS)

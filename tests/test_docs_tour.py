@@ -48,3 +48,12 @@ def test_the_readme_and_ci_run_the_same_test_command():
 
 def test_the_readme_is_short():
     assert len((ROOT / "README.md").read_text().splitlines()) <= 220
+
+
+def test_the_cli_reference_is_the_parsers_help():
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("cli_reference", ROOT / "docs" / "cli_reference.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    assert (ROOT / "docs" / "cli.md").read_text() == module.reference(), \
+        "docs/cli.md is out of date: run python docs/cli_reference.py"
