@@ -39,7 +39,7 @@ def test_shown_output_is_what_the_command_prints(transcript, tmp_path):
 
 def test_the_readme_and_ci_run_the_same_test_command():
     ci = (ROOT / ".ci" / "run").read_text().splitlines()
-    verbatim = ci[ci.index(next(x for x in ci if "README's test command" in x)) + 1]
+    verbatim = ci[ci.index(next(x for x in ci if "test command, verbatim" in x)) + 1]
     readme = (ROOT / "README.md").read_text()
     assert f"\n{verbatim}\n" in readme
     main_job = "python3 -m venv .venv && .venv/bin/pip install -q -e . && .venv/bin/ccopt run"
