@@ -97,7 +97,7 @@ def _print_limits(rows: list[dict]) -> None:
         if r.get("limits") is not None:
             groups.setdefault(limits_words(r["limits"], r.get("limits_from")), []).append(r["name"])
     for words, names in groups.items():
-        print(f"{words}: {', '.join(names)}")
+        print(f"{words} for {', '.join(names)}")
 
 
 def add_commands(sub, commands: dict) -> None:
