@@ -18,12 +18,20 @@ Runs ``ccopt run`` twice in fresh processes on the same cases, once with
 
 Timings on a shared machine are inflated by the other load: compare ratios
 from one run, not absolute figures across runs.
+
+Run on every bundled case with the default options (no argument), it also
+writes the main job's section of ``docs/benchmarks.md``: the table, the
+machine (cores, platform), the load average before and after, the date and
+the commit (``--no-write``: print only).
 """
 from __future__ import annotations
 
 import argparse
 import json
+import datetime
 import os
+import platform
+import re
 import subprocess
 import sys
 import tempfile
@@ -75,6 +83,31 @@ def report(serial: dict, parallel: dict) -> str:
     return "\n".join(lines)
 
 
+BENCHMARKS = ROOT / "docs" / "benchmarks.md"
+#: the markers around the section this script writes in BENCHMARKS
+BEGIN, END = "<!-- bench/run.py: begin -->", "<!-- bench/run.py: end -->"
+
+
+def _commit() -> str:
+    proc = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
+                          capture_output=True, text=True)
+    return proc.stdout.strip() or "unknown"
+
+
+def write_section(table: str, load_before: tuple, load_after: tuple, workers: int) -> None:
+    """The main job's section of docs/benchmarks.md, between BEGIN and END."""
+    when = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    load = "/".join(f"{x:.2f}" for x in load_before), "/".join(f"{x:.2f}" for x in load_after)
+    section = (f"{BEGIN}\n`python bench/run.py` on {when}, commit {_commit()}: "
+               f"{os.cpu_count()} cores, {platform.platform()}, Python "
+               f"{platform.python_version()}; load average (1/5/15 min) {load[0]} before, "
+               f"{load[1]} after; parallel run with --workers {workers}.\n\n"
+               f"```\n{table}\n```\n{END}")
+    text = BENCHMARKS.read_text()
+    text = re.sub(re.escape(BEGIN) + ".*?" + re.escape(END), lambda _: section, text, flags=re.S)
+    BENCHMARKS.write_text(text)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("cases", nargs="*", help="cases or programs (default: every bundled case)")
@@ -83,7 +116,11 @@ def main() -> None:
     ap.add_argument("--no-compare", action="store_true", help="pass --no-compare")
     ap.add_argument("--variants", help="pass --variants")
     ap.add_argument("--json", action="store_true", help="print the figures as JSON")
+    ap.add_argument("--no-write", action="store_true",
+                    help="do not write docs/benchmarks.md (written only for every bundled case "
+                         "with the default options)")
     args = ap.parse_args()
+    load_before = os.getloadavg()
     extra = ["--no-compare"] if args.no_compare else []
     if args.variants:
         extra += ["--variants", args.variants]
@@ -95,6 +132,9 @@ def main() -> None:
                           "ratio": parallel["wall"] / serial["wall"]}))
     else:
         print(report(serial, parallel))
+    if not (args.no_write or args.cases or extra):
+        write_section(report(serial, parallel), load_before, os.getloadavg(), args.workers)
+        print(f"written: {BENCHMARKS.relative_to(ROOT)}")
 
 
 if __name__ == "__main__":

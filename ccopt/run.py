@@ -24,7 +24,7 @@ from ccopt.atomic import job_inputs, refuse_overwriting_inputs, write_text_atomi
 from ccopt.export import refuse_foreign_files
 from ccopt.pipeline import Outcome, StageClock, Target, pipeline
 from ccopt.program.model import Program
-from ccopt.report.html import render
+from ccopt.report.html import PAGE_SUFFIX, render
 from ccopt.report.plots import feed_plot, path_plot, speed_time_plot
 from ccopt.toolpath import ToolPath, programmed_path
 from ccopt.verify import Certificate
@@ -173,7 +173,7 @@ def planned_files(jobs: list[Job], out: Path) -> list[Path]:
     input's ``LABEL.*``): none of them may be an input."""
     return [out / "index.html", out / "summary.json",
             *(out / f"{job.label}{suffix}" for job in jobs
-              for suffix in (*EXPORTS, *FILES_PER_INPUT))]
+              for suffix in (*EXPORTS, *FILES_PER_INPUT, PAGE_SUFFIX))]
 
 
 def run_all(jobs: list[Job], out: Path | None, opts: RunOptions,
@@ -212,7 +212,8 @@ def run_all(jobs: list[Job], out: Path | None, opts: RunOptions,
                               temp_folders=[out] if out is not None else [],
                               order=longest_first(jobs))
     if out is not None:
-        write_text_atomic(out / "index.html", render(rows, "ccopt run"))
+        for name, page in render(rows).items():
+            write_text_atomic(out / name, page)
         summary = [{k: v for k, v in r.items() if k not in ("plots",)} for r in rows]
         write_text_atomic(out / "summary.json", json.dumps({"cases": summary}, default=str) + "\n")
     return rows

@@ -179,7 +179,7 @@ class PathSegment:
         return self.block.compensation_in_force(o.get("radius"), o.get("side"))
 
     def to_json(self, overrides: dict | None = None) -> dict:
-        """The segment as the tool-path JSON schema (README, ``ccopt compensate``):
+        """The segment as the tool-path JSON schema (docs/commands.md, ``ccopt compensate``):
         in-plane ``start``/``end`` in its ``plane``, machine ``start_xyz``/``end_xyz``;
         ``side`` and ``radius_in_force`` of its block after ``overrides``
         (:meth:`compensation`), and ``surface: "air"`` for the moves

@@ -147,9 +147,12 @@ def test_run_writes_report_and_exports(capsys, tmp_path):
         head = (tmp_path / f"{name}.nc").read_text().splitlines()[:6]
         assert any("read back with ccopt" in h for h in head)
         assert any("verified against the programmed contour" in h for h in head)
-    html = (tmp_path / "index.html").read_text()
-    assert html.count("data:image/png;base64,") == 6   # three plots per case
-    assert 'href="pocket.nc"' in html
+    index = (tmp_path / "index.html").read_text()
+    for name in ("pocket", "short-move-overcut"):
+        assert f'href="{name}.report.html"' in index        # the index opens each case's page
+        page = (tmp_path / f"{name}.report.html").read_text()
+        assert page.count("data:image/png;base64,") == 3   # three plots per case
+    assert 'href="pocket.nc"' in (tmp_path / "pocket.report.html").read_text()
     assert json.loads((tmp_path / "summary.json").read_text())["cases"][0]["name"] == "pocket"
 
 

@@ -1,5 +1,6 @@
-"""The README's Python example runs as written, on a bundled program copied to
-``part.pmc``, and gives figures worked out here from the program."""
+"""The Python example (docs/python.md, which the README points to) runs as
+written, on a bundled program copied to ``part.pmc``, and gives figures
+worked out here from the program."""
 from __future__ import annotations
 
 import math
@@ -16,8 +17,8 @@ FIRST_MOVE_LENGTH, FEED = 20.0, 20.0
 
 
 def _python_example() -> str:
-    blocks = re.findall(r"```python\n(.*?)```", (ROOT / "README.md").read_text(), re.S)
-    assert blocks, "the README has no Python example"
+    blocks = re.findall(r"```python\n(.*?)```", (ROOT / "docs" / "python.md").read_text(), re.S)
+    assert blocks, "docs/python.md has no Python example"
     return blocks[0]
 
 
@@ -25,7 +26,7 @@ def test_readme_python_example_runs(tmp_path, monkeypatch, capsys):
     shutil.copy(CASE / "part.pmc", tmp_path / "part.pmc")
     monkeypatch.chdir(tmp_path)
     namespace: dict = {}
-    exec(compile(_python_example(), "README.md", "exec"), namespace)
+    exec(compile(_python_example(), "docs/python.md", "exec"), namespace)
     cert, prof, path = namespace["cert"], namespace["prof"], namespace["path"]
     assert cert.ok
     # the move along the contour runs at r from it; nothing comes closer

@@ -4,7 +4,7 @@ from __future__ import annotations
 import argparse
 
 from ccopt.cases import Job
-from ccopt.cli.inputs import limits_text, reading
+from ccopt.cli.inputs import limits_text, limits_words, reading
 from ccopt.cli.options import (add_limit_options, add_output_option, add_program,
                                add_quiet_option, add_radius_side, add_reading_options,
                                add_tolerance_option, add_ts_option, add_variants_option,
@@ -44,7 +44,8 @@ controller styles, the geometric leads (tangent-arc, line-arc) and the
 optimised G2 blends registered as ccopt.blends entry points (opt-casadi,
 opt-cvxpy, smooth). Each is certified by the verifier (an optimised blend is
 only accepted certified) and timed under the axis limits (--vmax/--amax/--jmax,
-else the case's [limits]; the output prints them) against PMAC's path; a
+else the case's [limits], else 100 units/s and 1000 units/s^2 per axis; the
+output prints them and where they come from) against PMAC's path; a
 variant a controller refuses is listed with its message. Variants run in
 --workers processes (default one per core)."""
 
@@ -56,7 +57,8 @@ SMOOTH_DESCRIPTION = """\
 The whole-path smoother alone: a G2 blend at every tangent break and
 curvature jump of PMAC's path, within --delta of it (default 1% of the cutter
 radius) and at least the cutter radius from the contour, certified and timed
-against PMAC's path under the axis limits. -o exports the smoothed path
+against PMAC's path under the axis limits (as compare's; the output prints
+them and where they come from). -o exports the smoothed path
 (.nc/.pmc/.svg/.json, read back and verified). Exit 1 when the result or the
 written file is not certified."""
 
@@ -181,6 +183,7 @@ def cmd_smooth(args: argparse.Namespace) -> int:
             say("export")
             exported = _export_smoothed(path, args.output, prog)
             doc["export"] = exported.to_json()
+    doc.update(limits=limits.to_json(), limits_from=work.limits_from)
     if args.json:
         emit_json(doc)
     elif not args.quiet:
@@ -203,6 +206,7 @@ def _print_smoothed(doc: dict, prog: Program, exported: ExportResult | None) -> 
     blended = sum(1 for j in doc["joins"] if j["status"] == "blended")
     print(f"{prog.file}: smoothed within delta {doc['delta']:g} {prog.units} "
           f"(cutter radius {doc['radius']:g}): {blended} of {len(doc['joins'])} joins blended")
+    print(f"  {limits_words(doc['limits'], doc['limits_from'])}")
     floor = doc["pmac_feed_floor"]
     floor_txt = "" if floor is None or not doc["pmac_duration"] else (
         f"; feed-limited floor {floor:.4f} s ({floor / doc['pmac_duration']:.4f})")

@@ -7,6 +7,7 @@ from ccopt.atomic import job_inputs, refuse_overwriting_inputs
 from ccopt.cli.inputs import job
 from ccopt.cli.options import (add_output_option, add_program, add_reading_options,
                                add_style_options, describe, positive_float)
+from ccopt.export.arcfit import DEFAULT_TOL
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, emit_json
 from ccopt.pipeline import Target, pipeline
 
@@ -55,8 +56,9 @@ def add_commands(sub, commands: dict) -> None:
     add_output_option(p, "OUT", required=True,
                       help="output file; the suffix picks the format (.nc .ngc .pmc .svg .json)")
     p.add_argument("--tol", type=positive_float, metavar="T",
-                   help="arc-fit tolerance for spirals in G-code (default 0.001 mm or its inch "
-                        "equivalent)")
+                   help="arc-fit tolerance of spirals and blend curves written as arcs, "
+                        f"program units (default {DEFAULT_TOL['mm']:g} mm, "
+                        f"{DEFAULT_TOL['inch']:.3g} inch)")
     add_reading_options(p)
     add_style_options(p)
     commands["export"] = cmd_export

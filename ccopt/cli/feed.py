@@ -19,8 +19,8 @@ per-axis velocity and acceleration limits, the programmed F as a tangential
 cap, stopping at tangent breaks; the stop-per-block and grbl-style junction
 baselines and, with jerk limits (--jmax, or j in a case's [limits]), the
 jerk-limited planner plan the same path (--planner). Limits: --vmax/--amax,
-else the case's [limits]; the output prints the limits used and where they
-come from. -o writes the samples as CSV (time, position, velocity,
+else the case's [limits], else 100 units/s and 1000 units/s^2 per axis; the
+output prints the limits used and where they come from. -o writes the samples as CSV (time, position, velocity,
 acceleration, feed, active limit)."""
 
 EXAMPLE = """\

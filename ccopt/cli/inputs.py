@@ -13,7 +13,7 @@ from contextlib import contextmanager
 from typing import TYPE_CHECKING
 
 from ccopt.atomic import job_inputs, refuse_overwriting_inputs
-from ccopt.cases import DEFAULT_LIMITS, Case, Job, Overrides, ReadOptions, resolve_input
+from ccopt.cases import DEFAULT_LIMITS, LIMITS_FROM, Case, Job, Overrides, ReadOptions, resolve_input
 from ccopt.cli.options import chosen_variants
 from ccopt.cli.progress import stage_progress
 
@@ -92,5 +92,11 @@ def reading(args: argparse.Namespace, command: str,
 def limits_text(limits: AxisLimits, work: Job) -> str:
     """``limits v=[...] a=[...] j=[...] (where they come from)``, as every
     command prints the limits it used (units of the program, per second)."""
-    jerk = f" j={list(limits.j)}" if limits.j is not None else ""
-    return f"limits v={list(limits.v)} a={list(limits.a)}{jerk} ({work.limits_note()})"
+    return limits_words(limits.to_json(), work.limits_from)
+
+
+def limits_words(limits: dict, limits_from: str | None) -> str:
+    """:func:`limits_text` of ``AxisLimits.to_json()`` and a ``Job.limits_from``."""
+    jerk = f" j={list(limits['j'])}" if limits.get("j") is not None else ""
+    note = LIMITS_FROM.get(limits_from or "", limits_from or "")
+    return f"limits v={list(limits['v'])} a={list(limits['a'])}{jerk} ({note})"

@@ -10,11 +10,14 @@ import math
 import os
 from pathlib import Path
 
+from ccopt.cases import DEFAULT_LIMITS
 from ccopt.cli.output import EXIT_BAD_INPUT
 from ccopt.compensate import STYLES
 from ccopt.program.gcode import MAX_LOOP_ITERATIONS
 from ccopt.program.model import MAX_COORDINATE
 from ccopt.sides import SIDE_NAMES
+from ccopt.feed.planners import DEFAULT_TS
+from ccopt.tolerances import GOUGE_TOLERANCE, PMAC_BREAK_COS
 
 
 #: Old spellings of options, still taken but left out of ``--help`` so nothing
@@ -183,7 +186,7 @@ def add_ts_option(p: argparse.ArgumentParser) -> None:
     """``--ts``: the interpolation period of the jerk-limited planners."""
     p.add_argument("--ts", type=positive_float, metavar="S",
                    help="interpolation period of the jerk planner, seconds: the acceleration "
-                        "step at a curvature break is at most jmax * ts (default 0.001)")
+                        f"step at a curvature break is at most jmax * ts (default {DEFAULT_TS:g})")
 
 
 def add_radius_side(p: argparse.ArgumentParser) -> None:
@@ -198,8 +201,8 @@ def add_tolerance_option(p: argparse.ArgumentParser) -> None:
     """``--tolerance T``: the verifier's gouge tolerance, program units."""
     p.add_argument("--tolerance", type=nonneg_float, metavar="T",
                    help="gouges no deeper than T (program units) are warnings, the verdict "
-                        "'ok within tolerance'; deeper ones fail (default 1e-3 mm, or 4e-5 "
-                        "inch, by the program's units)")
+                        f"'ok within tolerance'; deeper ones fail (default {GOUGE_TOLERANCE['mm']:g} "
+                        f"mm, {GOUGE_TOLERANCE['inch']:g} inch, by the program's units)")
 
 
 def add_style_options(p: argparse.ArgumentParser) -> None:
@@ -209,22 +212,30 @@ def add_style_options(p: argparse.ArgumentParser) -> None:
                         "PMAC, linuxcnc for G-code, fagor where G136-G139 appear)")
     add_radius_side(p)
     p.add_argument("--break-cos", type=cosine, metavar="C",
-                   help="PMAC Isx99 outside-corner break (cos of the turn), default 0.9998")
+                   help="PMAC Isx99 outside-corner break (cos of the turn) (default: the "
+                        f"program's Isx99, else {PMAC_BREAK_COS:g})")
     p.add_argument("--ccbuf", type=nonneg_int, metavar="N",
                    help="Turbo PMAC DEFINE CCBUF: non-plane moves looked through at a corner")
 
 
-def add_limit_options(p: argparse.ArgumentParser, v_default: str = "the case's [limits] v",
-                      a_default: str = "the case's [limits] a",
-                      j_default: str = "the case's [limits] j, else none") -> None:
-    """The axis limits ``--vmax``/``--amax``/``--jmax``; the defaults are named in their help."""
+def _per_axis(values) -> str:
+    """``100`` when every axis has the same value, else ``100,100,30``."""
+    return f"{values[0]:g}" if len(set(values)) == 1 else ",".join(f"{x:g}" for x in values)
+
+
+def add_limit_options(p: argparse.ArgumentParser) -> None:
+    """The axis limits ``--vmax``/``--amax``/``--jmax``; their help names the real
+    defaults (the case's ``[limits]``, else :data:`ccopt.cases.DEFAULT_LIMITS`)."""
+    v, a = _per_axis(DEFAULT_LIMITS["v"]), _per_axis(DEFAULT_LIMITS["a"])
     p.add_argument("--vmax", type=axis_values, metavar="X,Y[,Z]",
-                   help=f"axis velocity limits, units/s (default: {v_default})")
+                   help=f"axis velocity limits, units/s (default: the case's [limits] v, "
+                        f"else {v} per axis)")
     p.add_argument("--amax", type=axis_values, metavar="X,Y[,Z]",
-                   help=f"axis acceleration limits, units/s^2 (default: {a_default})")
+                   help=f"axis acceleration limits, units/s^2 (default: the case's [limits] a, "
+                        f"else {a} per axis)")
     p.add_argument("--jmax", type=axis_values, metavar="X,Y[,Z]",
-                   help=f"axis jerk limits, units/s^3 (default: {j_default}); the jerk "
-                        "planner and the jerk-limited stop baseline use them")
+                   help="axis jerk limits, units/s^3 (default: the case's [limits] j, else "
+                        "none); the jerk planner and the jerk-limited stop baseline use them")
 
 
 def add_variants_option(p: argparse.ArgumentParser, help: str) -> None:

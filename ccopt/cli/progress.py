@@ -5,15 +5,45 @@ when stdout is a terminal and neither ``--json`` nor ``--quiet`` is given;
 nothing otherwise (output to a file or a pipe stays clean). ``ccopt run``
 shows the cases done of all and, beside it, each running case's stage
 (read, compensate, feed, verify, compare with its variant k of n, export);
-``compare``, ``smooth``, ``feed`` and ``verify`` show their stage.
+``compare``, ``smooth``, ``feed`` and ``verify`` show their stage. Each
+level has one counter (cases k/n; variant k/n, or variants k/n done when
+workers run them), a stage text too long is cut between words
+(:func:`clip`), and a terminal that does not say its width gets a bar of
+:data:`FALLBACK_COLUMNS`.
 """
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
 #: the longest stage text shown per case on the bar, characters
 STAGE_WIDTH = 60
+
+#: the bar's width when the terminal does not say its own (a serial console,
+#: an emulator that reports 0 columns): a bar of this many columns is drawn
+FALLBACK_COLUMNS = 100
+
+
+def clip(text: str, width: int) -> str:
+    """``text`` in at most ``width`` characters, cut between words (never
+    inside one) and ending with an ellipsis when cut."""
+    if len(text) <= width:
+        return text
+    cut = text[:width - 1]
+    space = cut.rfind(" ")
+    if space > 0:
+        cut = cut[:space]
+    return cut.rstrip(" :,|") + "\u2026"
+
+
+def terminal_columns() -> int | None:
+    """The terminal's width from stderr, ``None`` when it does not say (or says 0)."""
+    try:
+        columns = os.get_terminal_size(sys.stderr.fileno()).columns
+    except (OSError, ValueError, AttributeError):
+        return None
+    return columns or None
 
 
 def wanted(args: argparse.Namespace) -> bool:
@@ -32,8 +62,11 @@ def _bar(total: int | None, desc: str, unit: str):
     from tqdm import tqdm
     # no monitor thread: ccopt run forks its workers while the bar is up
     tqdm.monitor_interval = 0
-    return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, dynamic_ncols=True,
-                leave=False, bar_format=None if total else "{desc} [{elapsed}]{postfix}")
+    # a terminal that does not say its width still gets a bar, of a fixed width
+    known = terminal_columns() is not None
+    return tqdm(total=total, desc=desc, unit=unit, file=sys.stderr, dynamic_ncols=known,
+                ncols=None if known else FALLBACK_COLUMNS, leave=False,
+                bar_format=None if total else "{desc} [{elapsed}]{postfix}")
 
 
 class CasesProgress:
@@ -46,7 +79,7 @@ class CasesProgress:
         self.bar = _bar(len(labels), "cases", "case")
 
     def stage(self, index: int, text: str) -> None:
-        self.current[index] = f"{self.labels[index]}: {text}"[:STAGE_WIDTH]
+        self.current[index] = clip(f"{self.labels[index]}: {text}", STAGE_WIDTH)
         self._show()
 
     def done(self, index: int, row: dict) -> None:
@@ -69,7 +102,7 @@ class StageProgress:
         self.bar = _bar(None, command, "")
 
     def __call__(self, text: str) -> None:
-        self.bar.set_postfix_str(text[:STAGE_WIDTH * 2])
+        self.bar.set_postfix_str(clip(text, STAGE_WIDTH * 2))
 
     def close(self) -> None:
         self.bar.close()

@@ -6,7 +6,7 @@ import sys
 from pathlib import Path
 
 from ccopt.cases import bundled_cases
-from ccopt.cli.inputs import job
+from ccopt.cli.inputs import job, limits_words
 from ccopt.cli.options import (add_limit_options, add_output_option, add_quiet_option,
                                add_reading_options, add_style_options, add_tolerance_option,
                                add_ts_option, add_variants_option, add_workers_option,
@@ -15,7 +15,7 @@ from ccopt.cli.output import emit_json
 from ccopt.cli.progress import cases_progress
 from ccopt.compare.registry import require_known
 from ccopt.errors import ProgramError
-from ccopt.run import DEFAULT_LIMITS, PLANNERS, RunOptions, default_out, exit_code, run_all
+from ccopt.run import PLANNERS, RunOptions, default_out, exit_code, run_all
 from ccopt.workers import resolve_workers
 
 DESCRIPTION = """\
@@ -85,12 +85,19 @@ def _print_summary(rows: list[dict], out: Path) -> None:
     for r in rows:
         if r.get("message") and r["status"] != "error (expected)":
             print(r["message"], file=sys.stderr)
-    defaulted = [r["name"] for r in rows if r.get("limits_from") == "default"]
-    if defaulted:
-        print(f"limits v={list(DEFAULT_LIMITS['v'])} a={list(DEFAULT_LIMITS['a'])} "
-              f"(default: no [limits] in a case and no --vmax/--amax) for "
-              f"{', '.join(defaulted)}")
+    _print_limits(rows)
     print(f"report: {out / 'index.html'}")
+
+
+def _print_limits(rows: list[dict]) -> None:
+    """The limits each input was planned under and where they came from, one
+    line per set of limits (the cases that share it named)."""
+    groups: dict[str, list[str]] = {}
+    for r in rows:
+        if r.get("limits") is not None:
+            groups.setdefault(limits_words(r["limits"], r.get("limits_from")), []).append(r["name"])
+    for words, names in groups.items():
+        print(f"{words} for {', '.join(names)}")
 
 
 def add_commands(sub, commands: dict) -> None:
@@ -102,7 +109,7 @@ def add_commands(sub, commands: dict) -> None:
                       help="write the report and exported files into DIR (default ccopt-out)")
     add_workers_option(p, "cases (or a single case's variants) run in N worker processes "
                           "(default: one per core; 1: one after the other)")
-    add_limit_options(p, "the case's, else 100", "the case's, else 1000")
+    add_limit_options(p)
     add_ts_option(p)
     p.add_argument("--no-compare", action="store_true", help="skip the blend comparison")
     add_variants_option(p, "blend variants to compare (default: every available one; see "

@@ -13,6 +13,7 @@ import sys
 from pathlib import Path
 
 from ccopt.atomic import refuse_overwriting_inputs
+from ccopt.cases import LIMITS_FROM
 from ccopt.cli.options import (add_json_option, add_output_option, describe, positive_float,
                                positive_int)
 from ccopt.cli.output import EXIT_BAD_INPUT, EXIT_OK
@@ -38,7 +39,23 @@ def _report(table, out: Path, as_json: bool) -> None:
     if len(ran):
         print(f"cycle time {ran['cycle_time'].min():.4f} .. {ran['cycle_time'].max():.4f} s; "
               f"certified {int(ran['ok'].astype(bool).sum())} of {len(ran)}")
+        print(_limits_line(ran))
     print(f"results: {files['parquet']}, {files['csv']}; summary: {files['summary']}")
+
+
+#: how the summary names limits a task got from the spec (the Job's "command line")
+SPEC_LIMITS = "the spec's [axes] limits"
+
+
+def _limits_line(ran) -> str:
+    """Where the tasks' axis limits came from, with how many tasks each."""
+    if "limits_from" not in ran:
+        return "limits: not recorded (rows of an older ccopt)"
+    counts = ran["limits_from"].fillna("not recorded").value_counts(sort=False)
+    # in a sweep, limits "from the command line" are the spec's [axes] limits
+    said = [f"{LIMITS_FROM.get(k, k).replace('--vmax/--amax', SPEC_LIMITS)} "
+            f"({n} task{'s' if n != 1 else ''})" for k, n in counts.items()]
+    return "limits: " + "; ".join(said)
 
 
 #: the sweep's other files in DIR: the summary and its plot, the spec's copy

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import argparse
 
-from ccopt.cli.inputs import reading
+from ccopt.cli.inputs import limits_text, reading
 from ccopt.cli.options import (add_limit_options, add_program, add_quiet_option,
                                add_reading_options, add_style_options, add_tolerance_option,
                                add_ts_option, describe, nonneg_float, positive_float)
@@ -29,7 +29,8 @@ made elsewhere) against PROGRAM's contour: no gouge (every tool position at
 least r - eps from every part element), contact, side and continuity, exact
 for lines and arcs and certified bounds for spirals and curves; with --feed
 also the planned profile within the axis limits (--vmax/--amax, else the
-case's [limits]): TOPPRA's, or the jerk planner's when the limits carry jerk
+case's [limits], else 100 units/s and 1000 units/s^2 per axis; the first line
+names them and where they come from): TOPPRA's, or the jerk planner's when the limits carry jerk
 (--jmax or the case's j). Exit 1 when a check fails. A program with no
 moves (empty, or settings and dwells only) says "nothing to verify" and
 exits 0."""
@@ -47,6 +48,8 @@ def cmd_verify(args: argparse.Namespace) -> int:
         done = pipeline(work, program=prog, feed=args.feed, clock=StageClock(say)).result()
     path, cert = done.path, done.certificate
     report = cert.to_json()
+    if args.feed and done.limits is not None:
+        report.update(limits=done.limits.to_json(), limits_from=work.limits_from)
     nothing = prog.nothing_to_verify() or (None if path.segments else
                                            "nothing to verify: the tool path has no segments")
     if nothing:     # said in so many words, not "PASSED" over no checks; exit 0
@@ -64,7 +67,8 @@ def cmd_verify(args: argparse.Namespace) -> int:
         emit_json(report)
     elif not args.quiet:
         made = f"tool path {args.toolpath}" if args.toolpath else f"style {path.style}"
-        print(f"{prog.file}: {made}, {len(path.segments)} tool segments")
+        limits = f", {limits_text(done.limits, work)}" if args.feed and done.limits else ""
+        print(f"{prog.file}: {made}, {len(path.segments)} tool segments{limits}")
         print(cert.summary())
         for x in report.get("crosschecks", ()):
             print(f"  cross-check {x['name']}: {'agrees' if x['agree'] else 'DISAGREES'} - "

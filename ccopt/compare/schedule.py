@@ -133,7 +133,8 @@ def _run_in_processes(jobs, ref, reference_row, total: int, workers: int,
                 yield from reference_row(ref.times())
             for i, name, row in sorted(ready, key=lambda r: r[0]):
                 done += 1
-                say(progress, f"variant {i + 1}/{total} {name} done ({done}/{len(jobs)})")
+                # one counter: the variants done of those the workers run
+                say(progress, f"variants {done}/{len(jobs)} done: {name}")
                 yield i, row
 
 

@@ -98,7 +98,7 @@ class ExportResult:
 #: program (``ccopt 0.1.0 export: style ...``) and the report's title.
 _MADE_BY_CCOPT = {".nc": re.compile(r"ccopt \S+ export: style "),
                   ".pmc": re.compile(r"ccopt \S+ export: style "),
-                  ".html": re.compile(r"<title>ccopt run</title>")}
+                  ".html": re.compile(r"<title>ccopt run(: [^<]*)?</title>")}
 #: How much of a file's beginning :func:`written_by_ccopt` reads (its header).
 _HEADER_BYTES = 4096
 

@@ -94,13 +94,9 @@ def _step(path: ToolPath) -> float:
     return total / 2000
 
 
-def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
-              violations: list | None = None, title: str = "") -> bytes:
-    """Programmed contour (black), tool-centre path by role, tool circles
-    along it, violations marked with red crosses at their witness points."""
-    x0, x1, y0, y1 = _extent([path, contour])
-    fig, ax = _plan_figure(x0, x1, y0 - radius, y1 + radius)
-    step = _step(path)
+def _draw_path(ax, path: ToolPath, contour: ToolPath | None, radius: float,
+               violations: list | None, step: float, legend: bool = True) -> None:
+    """The contour, the tool path by role, tool circles and violations, on ``ax``."""
     if contour is not None:
         p = _polyline([s for s in contour.segments if s.role is not Role.RAPID], step)
         if p is not None:
@@ -118,44 +114,145 @@ def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
         for seg in cut:
             for s in np.arange((-acc) % spacing, seg.length, spacing):
                 c = seg.geom.point(s)
-                ax.add_patch(Circle(c, radius, fill=False, lw=0.4, color="#888888", alpha=0.6))
+                ax.add_patch(Circle(c[:2], radius, fill=False, lw=0.4, color="#888888",
+                                    alpha=0.6))
             acc = (acc + seg.length) % spacing
     for v in violations or []:
         w = v.get("witness_tool") or v.get("witness")
         if w:
             ax.plot([w[0]], [w[1]], "x", color="red", ms=10, mew=2)
     ax.set_aspect("equal")
-    ax.set_title(plot_text(title))
-    _legend_outside(ax)
+    if legend:
+        _legend_outside(ax)
     ax.grid(alpha=0.3)
+
+
+def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
+              violations: list | None = None, title: str = "") -> bytes:
+    """Programmed contour (black), tool-centre path by role, tool circles
+    along it, violations marked with red crosses at their witness points; a
+    long thin part also gets zoomed views of its lead-in and first corner
+    (:func:`zoom_windows`), at the same scale both ways."""
+    x0, x1, y0, y1 = _extent([path, contour])
+    step = _step(path)
+    windows = zoom_windows(path, radius, (x0, x1, y0, y1))
+    if not windows:
+        fig, ax = _plan_figure(x0, x1, y0 - radius, y1 + radius)
+        _draw_path(ax, path, contour, radius, violations, step)
+        ax.set_title(plot_text(title))
+        return _png(fig)
+    fig, ax, zooms = _thin_figure(x0, x1, y0 - radius, y1 + radius, windows)
+    _draw_path(ax, path, contour, radius, violations, step)
+    ax.set_title(plot_text(title))
+    for (name, box), zax in zip(windows, zooms):
+        # finer samples: the window is a small part of the path
+        _draw_path(zax, path, contour, radius, violations, step / 10, legend=False)
+        _zoom_to(zax, name, box)
     return _png(fig)
+
+
+#: A plan view thinner than this (height / width) is drawn with zoomed views:
+#: at equal scale a 500 x 20 mm part is a strip in which no lead or corner shows.
+THIN_ASPECT = 0.2
+
+
+def zoom_windows(path: ToolPath, radius: float, extent) -> list[tuple[str, tuple]]:
+    """For a long thin plan view (:data:`THIN_ASPECT`): squares (name, (x0,
+    x1, y0, y1)) around where the first lead-in meets the part and around the
+    first corner (else the last lead-out), each a few cutter radii wide and
+    taking in the lead; none for any other part."""
+    x0, x1, y0, y1 = extent
+    w, h = x1 - x0, y1 - y0
+    if w <= 0 or (h / w >= THIN_ASPECT and w / max(h, POINT_EPS) >= THIN_ASPECT):
+        return []
+    segs = [s for s in path.segments if s.length > 0 and s.role is not Role.RAPID]
+    if not segs:
+        return []
+    spots = []
+    lead_in = [s for s in segs if s.role is Role.LEAD_IN]
+    if lead_in:
+        spots.append(("lead-in", lead_in[0], lead_in[0].geom.point(lead_in[0].length)))
+    corner = next((s for s in segs if s.role is Role.CORNER), None)
+    lead_out = [s for s in segs if s.role is Role.LEAD_OUT]
+    if corner is not None:
+        spots.append(("first corner", corner, corner.geom.point(corner.length / 2)))
+    elif lead_out:
+        spots.append(("lead-out", lead_out[-1], lead_out[-1].geom.point(0.0)))
+    out = []
+    for name, seg, centre in spots:
+        bx0, by0, bx1, by1 = seg.geom.bbox()
+        half = max(4 * radius, 0.6 * max(bx1 - bx0, by1 - by0), POINT_EPS)
+        half = min(half, max(w, h) / 4)
+        cx, cy = float(centre[0]), float(centre[1])
+        out.append((name, (cx - half, cx + half, cy - half, cy + half)))
+    return out
+
+
+def _thin_figure(x0, x1, y0, y1, windows):
+    """A figure with the whole plan view on top (equal axes, as tall as it
+    needs) and one square zoom panel per window below it."""
+    from matplotlib.figure import Figure  # deferred: matplotlib is heavy and optional
+    top = float(np.clip(7.0 * (y1 - y0) / max(x1 - x0, POINT_EPS) + 0.6, 1.2, 6.0))
+    fig = Figure(figsize=(7.0, top + 3.4), dpi=110)
+    grid = fig.add_gridspec(2, max(len(windows), 1), height_ratios=[top, 3.4])
+    ax = fig.add_subplot(grid[0, :])
+    zooms = [fig.add_subplot(grid[1, k]) for k in range(len(windows))]
+    return fig, ax, zooms
+
+
+def _zoom_to(ax, name: str, box) -> None:
+    ax.set_xlim(box[0], box[1])
+    ax.set_ylim(box[2], box[3])
+    ax.set_aspect("equal")
+    ax.set_title(f"zoom: {name}", fontsize=9)
 
 
 def feed_plot(profile, title: str = "") -> bytes:
-    """Tool path coloured by the planned tangential speed."""
-    from matplotlib.collections import LineCollection  # deferred: heavy and optional
+    """Tool path coloured by the planned tangential speed; a long thin part
+    with zoomed views as :func:`path_plot` draws it."""
     samples = profile.sample(max(profile.duration / 4000, 1e-4)) if profile.duration > 0 else None
-    if samples is not None and len(samples) > 1:
-        xy = samples.position[:, :2]
-        fig, ax = _plan_figure(xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(),
-                                    xy[:, 1].max(), extra_width=1.2)
-        segs = np.stack([xy[:-1], xy[1:]], axis=1)
-        # the colours span the feed moves' speeds; a faster rapid takes the top colour
-        top = speed_axis_top({"": profile})
-        lc = LineCollection(segs, array=samples.feed[:-1], cmap="viridis", lw=2.0)
-        if top is not None:
-            lc.set_clim(0.0, top)
-        ax.add_collection(lc)
-        fig.colorbar(lc, ax=ax, label="feed (units/s)",
-                     extend="max" if top is not None and samples.feed.max() > top else "neither")
-        ax.set_xlim(xy[:, 0].min() - 1, xy[:, 0].max() + 1)
-        ax.set_ylim(xy[:, 1].min() - 1, xy[:, 1].max() + 1)
-    else:
+    if samples is None or len(samples) < 2:
         fig, ax = _figure()
+        ax.set_aspect("equal")
+        ax.set_title(plot_text(title))
+        ax.grid(alpha=0.3)
+        return _png(fig)
+    xy = samples.position[:, :2]
+    box = (xy[:, 0].min(), xy[:, 0].max(), xy[:, 1].min(), xy[:, 1].max())
+    toolpath = profile.path.toolpath
+    windows = zoom_windows(toolpath, toolpath.radius or 0.0, box)
+    if windows:
+        fig, ax, zooms = _thin_figure(*box, windows)
+    else:
+        fig, ax = _plan_figure(*box, extra_width=1.2)
+        zooms = []
+    # the colours span the feed moves' speeds; a faster rapid takes the top colour
+    top = speed_axis_top({"": profile})
+    lc = _speed_lines(ax, xy, samples.feed, top)
+    pad = 1.0
+    ax.set_xlim(box[0] - pad, box[1] + pad)
+    ax.set_ylim(box[2] - pad, box[3] + pad)
     ax.set_aspect("equal")
-    ax.set_title(plot_text(title))
     ax.grid(alpha=0.3)
+    for (name, zbox), zax in zip(windows, zooms):
+        _speed_lines(zax, xy, samples.feed, top)
+        _zoom_to(zax, name, zbox)
+        zax.grid(alpha=0.3)
+    fig.colorbar(lc, ax=[ax, *zooms], label="feed (units/s)",
+                 extend="max" if top is not None and samples.feed.max() > top else "neither")
+    ax.set_title(plot_text(title))
     return _png(fig)
+
+
+def _speed_lines(ax, xy: np.ndarray, feed: np.ndarray, top: float | None):
+    """The path ``xy`` on ``ax`` as line pieces coloured by ``feed`` (0 .. ``top``)."""
+    from matplotlib.collections import LineCollection  # deferred: heavy and optional
+    lc = LineCollection(np.stack([xy[:-1], xy[1:]], axis=1), array=feed[:-1], cmap="viridis",
+                        lw=2.0)
+    if top is not None:
+        lc.set_clim(0.0, top)
+    ax.add_collection(lc)
+    return lc
 
 
 #: Head room above the fastest feed move on the speed axes (a rapid may go

@@ -20,7 +20,8 @@ planner's with jerk limits, else TOPPRA's) and ``cycle_time_<planner>``,
 check but ``limits``), ``verdict`` (the certificate's: ``ok``, ``ok within
 tolerance`` or ``failed``), ``limits_ok`` (the feed limits check on the certified
 profile) and ``limits_ratio`` (its figure: the largest |value| / limit
-sampled), ``cutter_radius``, ``path_length``, ``max_curvature`` (1/units,
+sampled), ``limits_from`` (where the axis limits came from, :attr:`ccopt.cases.Job.limits_from`),
+``cutter_radius``, ``path_length``, ``max_curvature`` (1/units,
 largest |curvature| of the moves that cut, rapids excluded), ``deviation``,
 ``solve_time`` (building the path), ``feed_time`` (every planner),
 ``verify_time``, ``task_time`` (the whole task), ``worker`` (host:pid
@@ -45,7 +46,8 @@ from ccopt.toolpath import Role
 CURVATURE_SAMPLES = 257
 
 #: Result columns every row has, in table order (``cycle_time_<planner>`` follow ``cycle_time``).
-FIGURES = ("error", "ok", "verdict", "geometry_ok", "limits_ok", "limits_ratio", "cycle_time",
+FIGURES = ("error", "ok", "verdict", "geometry_ok", "limits_ok", "limits_ratio", "limits_from",
+           "cycle_time",
            "min_clearance", "cutter_radius", "path_length", "max_curvature", "deviation",
            "solve_time", "feed_time", "verify_time", "task_time", "worker")
 
@@ -101,6 +103,8 @@ def figures(program: Program, job: Job, deadline: float | None = None) -> dict:
         row[f"cycle_time_{planner}"] = profile.duration
     row["feed_time"] = done.seconds.get("feed")
     row["cycle_time"] = done.duration
+    # where the task's axis limits came from (Job.limits_from: case, default, ...)
+    row["limits_from"] = job.limits_from
     row["verify_time"] = done.seconds.get("verify")
     row.update(_verdicts(done.certificate))
     return row

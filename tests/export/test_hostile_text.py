@@ -161,7 +161,9 @@ def test_hostile_case_through_ccopt_run(cases, tmp_path, capsys):
     _, err = capsys.readouterr()
     assert code == 0, err
     page = _Tags()
-    page.feed((out / "index.html").read_text())
+    for html_file in sorted(out.glob("*.html")):      # the index and the case's page
+        page.feed(html_file.read_text())
+    assert {"index.html", "hostile.report.html"} <= {f.name for f in out.glob("*.html")}
     assert "script" not in page.tags
     assert one_line(HOSTILE_TITLE) in "".join(page.text)      # shown, as text
     assert one_line(HOSTILE_SOURCE) in "".join(page.text)

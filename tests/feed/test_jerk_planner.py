@@ -12,7 +12,7 @@ Reference figures are derived here, independently of ccopt's S-curve code:
   jerk amplitude is v^3 / R^2, so at constant speed the jerk allows at most
   v_j = (J R^2)^(1/3).
 
-Tolerances are the product's stated ones: the README says the planner
+Tolerances are the product's stated ones: docs/commands.md says the planner
 "matches the closed-form jerk-limited line within 0.1 % on a 100 mm move and
 within 0.5 % on short rest-to-rest moves ... a full circle at feed within
 0.03 %" (:data:`LINE_REL`, :data:`SHORT_LINE_REL`, :data:`CIRCLE_REL`), and its
@@ -36,7 +36,7 @@ from ccopt.verify.limits import LIMITS_TOL
 #: Limits: at most the certificate's tolerance over, sampled at 10 kHz
 #: (measured on these paths: at most 1 + 1.5e-4, the line's velocity).
 OVER = 1 + LIMITS_TOL
-#: README: the closed-form jerk-limited line within 0.1 % on a 100 mm move
+#: docs/commands.md: the closed-form jerk-limited line within 0.1 % on a 100 mm move
 #: (measured: 0.082 % above), within 0.5 % on short rest-to-rest moves
 #: (measured: the 2 mm diagonal 0.43 % above; jerk_planner.STOP_RATIO's note),
 #: a full circle at feed within 0.03 % (measured: 0.011 % above).
@@ -87,7 +87,7 @@ def test_short_diagonal_line_pure_jerk_limited():
     assert (2.0 / (2 * jp)) ** (1 / 3) * jp <= ap          # peak acceleration below a
     prof = plan_feed(tp, lim, planner="jerk")
     assert prof.info["scurve_stretches"] == 0
-    # a short rest-to-rest move: the README's 0.5 % (measured 0.43 % above;
+    # a short rest-to-rest move: docs/commands.md's 0.5 % (measured 0.43 % above;
     # ccopt.feed.jerk.planner's STOP_RATIO note states 0.44 %)
     assert prof.duration == pytest.approx(closed, rel=SHORT_LINE_REL)
     assert prof.duration >= closed * (1 - 1e-9)       # nothing beats the optimum

@@ -6,7 +6,7 @@ its four sides are four independent chains of windows; in two processes
 (forced on this small path) every gridpoint's speed is the one planned here.
 Each side is a rest-to-rest straight move of 20 mm along one axis, so its
 time is the closed form L / v + v / a + a / j (v j >= a^2 and room to cruise),
-four times over: within the README's 0.5 % for the closed-form jerk-limited
+four times over: within docs/commands.md's 0.5 % for the closed-form jerk-limited
 line on short rest-to-rest moves (:data:`SHORT_LINE_REL`) where the LP plans
 it, and every limit within the certificate's tolerance
 (:data:`ccopt.verify.limits.LIMITS_TOL`) at 10 kHz.
@@ -24,7 +24,7 @@ from ccopt.toolpath import PathSegment, Role, ToolPath
 from ccopt.verify.limits import LIMITS_TOL, check_limits
 
 OVER = 1 + LIMITS_TOL
-#: README: the closed-form jerk-limited line "within 0.5 % on short
+#: docs/commands.md: the closed-form jerk-limited line "within 0.5 % on short
 #: rest-to-rest moves" (the 20 mm sides: measured 0.27 % above).
 SHORT_LINE_REL = 5e-3
 
@@ -190,7 +190,7 @@ def test_chained_windows_start_from_the_last_ones_state(monkeypatch):
     # of one window over the stretch (no stated figure: measured 0.14 % faster),
     # and the limits hold as the certificate checks them (its sampling, within
     # LIMITS_TOL); at 10 kHz the velocity and acceleration do too, while the
-    # jerk reaches 1.00101 just after the first window's kept end (the README
+    # jerk reaches 1.00101 just after the first window's kept end (docs/commands.md
     # says so: windows of 100 gridpoints are far below the default).
     lim = AxisLimits((100, 100), (1000, 1000), j=(20000, 20000))
     whole = plan_feed(wiggle(), lim, planner="jerk")

@@ -31,17 +31,22 @@ def test_report_lists_a_refused_variant_with_its_message_and_the_certificate_as_
                  "pmac,fagor-g138", "-o", str(tmp_path), "--workers", "2"])
     capsys.readouterr()
     assert code == 0
-    page = (tmp_path / "index.html").read_text()
-    variants = page[page.index("<h3>Blend variants</h3>"):]
-    variants = variants[:variants.index("</table>")]
-    cells = [html.unescape(c) for c in re.findall(r"<td>(.*?)</td>", variants)]
-    assert "refused" in cells
-    message = next(c for c in cells if "must be linear" in c)
-    assert message.startswith(str(find_case("leadin-outside-arc").program) + ":8:1: the move "
-                              "that activates cutter compensation")
+    page = (tmp_path / "leadin-outside-arc.report.html").read_text()
+    variants = page[page.index("<h3>Variants</h3>"):]
+    variants = variants[:variants.index("</ul>")]
+    rows = re.findall(r"<tr.*?</tr>", variants)
+    fagor = html.unescape(re.sub(r"<[^>]+>", " ", next(r for r in rows if "fagor-g138" in r)))
+    assert fagor.split()[:2] == ["fagor-g138", "refused"]
+    # its message, in the notes under the table
+    notes = [html.unescape(re.sub(r"<[^>]+>", "", n))
+             for n in re.findall(r"<li>(.*?)</li>", variants)]
+    message = next(n for n in notes if n.startswith("fagor-g138: "))
+    assert message == "fagor-g138: " + str(find_case("leadin-outside-arc").program) + \
+        ":8:1: the move that activates cutter compensation (the first move in the plane " \
+        "after G41/G42) must be linear (G00/G01), not an arc: add a straight approach move"
     # short-move-overcut: the 1 mm step under a 2 mm cutter is a gouge 1 mm deep,
     # the certificate says so in words, one line per check and violation
-    section = page[page.index('id="short-move-overcut"'):]
+    section = (tmp_path / "short-move-overcut.report.html").read_text()
     pre = html.unescape(section[section.index("<pre>") + 5:section.index("</pre>")])
     lines = pre.splitlines()
     assert lines[0].startswith("verification FAILED (geometry FAIL")

@@ -66,7 +66,7 @@ def test_a_tighter_tolerance_fails_the_limits_only():
 
 
 def test_a_gouge_fails_the_geometry_only():
-    # short-move-overcut: PMAC's documented overcut of 1 mm (README)
+    # short-move-overcut: PMAC's documented overcut of 1 mm (docs/commands.md)
     case = find_case("short-move-overcut")
     prog = ccopt.read_program(case.program)
     cert = verify(ccopt.compensate(prog, case.style), prog, riding_samples(0.0))
