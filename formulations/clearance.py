@@ -208,8 +208,7 @@ def classify(el: Element, p: np.ndarray):
                 kind[m], vec[m], scal[m] = EXEMPT, u, float(u @ E)
         return kind, vec, scal
     q = _dense(el, DENSE_SAMPLES)
-    k = np.argmin(np.hypot(p[:, None, 0] - q[None, :, 0], p[:, None, 1] - q[None, :, 1]), axis=1)
-    vec[:] = q[k]
+    vec[:] = q[cKDTree(q).query(p)[1]]          # the nearest sample of the fine polyline
     return kind, vec, scal
 
 
