@@ -145,7 +145,10 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     base = base_row(rows, REFERENCE) if limits is not None and problem is not None else None
     if base is not None:
         later = [(i, name, replace(problem, reference=base.toolpath)) for i, name, _ in later]
-    for i, row in run_jobs(later, ref, lambda _: [], len(names), workers, progress):
+    # the plug-ins' cycle times take the base path's stretch times as the
+    # reference's: each of its stretches is planned once, not once per plug-in
+    later_ref = ref if base is None else ref.with_stretches(base.stretch_times)
+    for i, row in run_jobs(later, later_ref, lambda _: [], len(names), workers, progress):
         rows[i] = row if base is None else from_base(row, base.name, problem.reference)
     ref_duration = rows[ref_index].figures.get("duration") if ref_index is not None else None
     if ref_duration is None and problem is not None and limits is not None:
@@ -200,6 +203,16 @@ class _Reference:
                                                     self.ts) else None
                 self._times.append(_reference_times(self.path, self.limits, self.ts, planned))
         return self._times[0]
+
+    def with_stretches(self, extra: dict) -> "_Reference":
+        """This reference whose stretch times (:meth:`times`) also hold ``extra``
+        (key -> ``(seconds, max_acc_ratio)``, e.g. another row's,
+        :attr:`.variant.VariantResult.stretch_times`)."""
+        times = self.times()
+        if times is None or not extra:
+            return self
+        merged = StretchTimes(times.limits, {**times.known, **extra}, times.ts)
+        return replace(self, _times=[merged], _keys=list(self._keys))
 
     def keys(self) -> frozenset:
         """The reference's stretch keys (:func:`.timing.stretch_keys`; none

@@ -35,6 +35,15 @@ def _duration(path: ToolPath, limits: AxisLimits | None, times: StretchTimes | N
     return duration_figures(path, limits, times)
 
 
+def _timed(path: ToolPath, limits: AxisLimits | None, times: StretchTimes | None = None):
+    """:func:`_duration` and, as a fourth item, the stretch times planned for it
+    (those ``times`` did not know; :attr:`.variant.VariantResult.stretch_times`)."""
+    before = set(times.known) if times is not None else set()
+    figures = _duration(path, limits, times)
+    learned = {} if times is None else {k: v for k, v in times.known.items() if k not in before}
+    return (*figures, learned)
+
+
 def say(progress, line: str) -> None:
     if progress is not None:
         progress(line)
@@ -64,8 +73,8 @@ def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress):
         if gets_cycle_time(row):
             got = _of_path(timed, row.toolpath)
             if got is None:
-                got = _duration(row.toolpath, problem.limits,
-                                times.copy() if times is not None else None)
+                got = _timed(row.toolpath, problem.limits,
+                             times.copy() if times is not None else None)
                 timed.append((row.toolpath, got))
             row = with_duration(row, got)
         yield i, row
@@ -100,7 +109,7 @@ def _run_in_processes(jobs, ref, reference_row, total: int, workers: int,
                     path, limits, rows = to_time.popleft()
                     if known or limits is None or ref.path is None:
                         times = ref.times()
-                        fut = pool.submit(_duration, path, limits,
+                        fut = pool.submit(_timed, path, limits,
                                           times.copy() if times is not None else None)
                     else:
                         fut = pool.submit(partial_figures, path, limits, ref.ts, ref.keys())
@@ -170,7 +179,7 @@ def _finish_partial(partial: list, known: list, to_time) -> list:
             if whole is None:
                 to_time.append((path, limits, rows))
                 continue
-            fig = (*whole, None)
+            fig = (*whole, None, fig.learned)
         ready.extend((i, name, with_duration(row, fig)) for i, name, row in rows)
     partial[:] = waiting
     return ready
@@ -198,7 +207,7 @@ def _timed_or_queued(job, row: VariantResult, timed, to_time, running, partial,
                 held[1].append(entry)
                 return []
             whole = fig.finish(known[0]) if known else None
-            fig = None if whole is None else (*whole, None)
+            fig = None if whole is None else (*whole, None, fig.learned)
         if fig is not None:
             return [(i, name, with_duration(row, fig))]
     waiting = _of_path(((w[0], w) for w in to_time), row.toolpath)

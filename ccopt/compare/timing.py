@@ -260,12 +260,13 @@ class StretchTimes:
                    and k in defer]
         for i in pending:
             got[i] = _Pending(keys[i])          # not None: no run plans it
+        learned = {}
         for run in _unknown_runs(got):
             for i, fig in zip(run, self._plan_run(exact, [parts[i] for i in run])):
                 got[i] = fig
                 if keys[i] is not None:
-                    self.known[keys[i]] = fig
-        return PartialTime(dwells, got, pending)
+                    self.known[keys[i]] = learned[keys[i]] = fig
+        return PartialTime(dwells, got, pending, learned)
 
     def _plan_run(self, exact: ExactPath, run: list[Stretch]) -> list[tuple[float, float]]:
         """``(seconds, max_acc_ratio)`` of each of the consecutive stretches ``run``
@@ -306,6 +307,8 @@ class PartialTime:
     dwells: float
     got: list
     pending: list
+    #: The stretch times planned for it (key -> ``(seconds, max_acc_ratio)``).
+    learned: dict = field(default_factory=dict)
 
     def finish(self, times: StretchTimes) -> tuple[float, float] | None:
         """``(duration, max_acc_ratio)`` with the pending stretches from ``times``

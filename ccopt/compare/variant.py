@@ -38,6 +38,10 @@ class VariantResult:
     certificate: object | None = None
     figures: dict = field(default_factory=dict)
     info: dict = field(default_factory=dict)
+    #: The stretch times planned for this row's cycle time and not the
+    #: reference's (:mod:`.timing`): the plug-in blends solved from this row's
+    #: path take them, so its stretches are planned once. Not reported.
+    stretch_times: dict = field(default_factory=dict, repr=False, compare=False)
 
     def __getitem__(self, key):
         return self.to_json()[key]
@@ -116,8 +120,11 @@ def gets_cycle_time(row: VariantResult) -> bool:
 def with_duration(row: VariantResult, duration) -> VariantResult:
     """``row`` with a cycle time's ``(duration, max_acc_ratio, message)``
     (:func:`.timing.duration_figures`; the planner's refusal joins the row's
-    own message, if any)."""
-    dur, acc_ratio, feed_msg = duration
+    own message, if any) and, as a fourth item when there is one, the stretch
+    times planned for it (:attr:`VariantResult.stretch_times`)."""
+    dur, acc_ratio, feed_msg = duration[:3]
+    if len(duration) > 3:
+        row.stretch_times = dict(duration[3])
     row.figures.update(duration=dur, max_acc_ratio=acc_ratio)
     if feed_msg:
         row.message = feed_msg if row.message is None else f"{row.message}; {feed_msg}"
