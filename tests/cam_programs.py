@@ -420,3 +420,23 @@ def slight_turn_program(seed: int) -> tuple[str, float, float]:
     d2 = _unit(np.array((w, h)) - top)
     turn = -math.atan2(_cross(d1, d2), float(np.dot(d1, d2)))
     return "\n".join(body) + "\n", r, turn
+
+
+#: The stadium of issue 30: two straights of 200 joined by half circles of
+#: radius 30, cut clockwise with CC1 (r 2), entered mid-straight by a
+#: perpendicular lead from outside (PMAC).
+STADIUM = """; stadium, clockwise with CC1 (tool outside), r 2
+OPEN PROG 1 CLEAR
+RAPID X50 Y60
+LINEAR ABS F100
+CCR2 CC1
+X50 Y30
+X200 Y30
+CIRCLE1 X200 Y-30 I0 J-30
+LINEAR X0 Y-30
+CIRCLE1 X0 Y30 I0 J30
+LINEAR X50 Y30
+CC0
+LINEAR X50 Y60
+CLOSE
+"""

@@ -20,22 +20,8 @@ from ccopt.feed import AxisLimits
 from ccopt.program import read_text
 
 import blend_checks as bc
+from cam_programs import STADIUM
 
-STADIUM = """; stadium, clockwise with CC1 (tool outside), r 2
-OPEN PROG 1 CLEAR
-RAPID X50 Y60
-LINEAR ABS F100
-CCR2 CC1
-X50 Y30
-X200 Y30
-CIRCLE1 X200 Y-30 I0 J-30
-LINEAR X0 Y-30
-CIRCLE1 X0 Y30 I0 J30
-LINEAR X50 Y30
-CC0
-LINEAR X50 Y60
-CLOSE
-"""
 
 
 def _row(name, status, duration, path="p"):

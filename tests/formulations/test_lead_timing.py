@@ -29,21 +29,8 @@ from ccopt_formulations.blend_casadi import solve_lead
 from ccopt_formulations.lead_setup import _is_blend, blend_geometry, lead_setup
 from ccopt_formulations.lead_timing import LeadTimer, settle_distance
 
-STADIUM = """; stadium, clockwise with CC1 (tool outside), r 2
-OPEN PROG 1 CLEAR
-RAPID X50 Y60
-LINEAR ABS F100
-CCR2 CC1
-X50 Y30
-X200 Y30
-CIRCLE1 X200 Y-30 I0 J-30
-LINEAR X0 Y-30
-CIRCLE1 X0 Y30 I0 J30
-LINEAR X50 Y30
-CC0
-LINEAR X50 Y60
-CLOSE
-"""
+from cam_programs import STADIUM
+
 
 
 def _s_curve_distance(v, a, j, dt=1e-6):
