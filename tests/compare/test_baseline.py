@@ -138,3 +138,12 @@ def test_generated_plates_optimised_rows_never_slower(seed, jerk):
         assert t <= t_best * (1 + SAME_TIME_REL), (cp.description, name)
         assert r.figures["gain_vs_fastest_controller"] == pytest.approx(1 - t / t_best, abs=1e-15)
         assert r.figures["gain_vs_pmac"] == pytest.approx(1 - t / t_pmac, abs=1e-15)
+    # every optimised lead kept within its derived curvature bound (issue 30 item
+    # 3), the reference's tightest turn being that of the path it was made from
+    limits = cmp.limits
+    for name in ("opt-casadi", "opt-cvxpy"):
+        r = cmp[name]
+        made_from = cmp[r.info.get("base", "pmac")].toolpath
+        for seg, g in bc.lead_curves(r.toolpath):
+            bound = bc.lead_curvature_bound(seg, limits, made_from)
+            assert bc.bezier_max_curvature(g) <= bound * (1 + 1e-9), (cp.description, name)
