@@ -106,17 +106,7 @@ def _draw_path(ax, path: ToolPath, contour: ToolPath | None, radius: float,
         p = _polyline([s for s in path.segments if s.role is role], step)
         ax.plot(p[:, 0], p[:, 1], label=role.value, **ROLE_STYLE[role])
     if radius > 0:
-        from matplotlib.patches import Circle  # deferred: matplotlib is heavy and optional
-        cut = [s for s in path.segments if s.role is not Role.RAPID and s.length > 0]
-        total = sum(s.length for s in cut)
-        spacing = max(total / 60, radius)
-        acc = 0.0
-        for seg in cut:
-            for s in np.arange((-acc) % spacing, seg.length, spacing):
-                c = seg.geom.point(s)
-                ax.add_patch(Circle(c[:2], radius, fill=False, lw=0.4, color="#888888",
-                                    alpha=0.6))
-            acc = (acc + seg.length) % spacing
+        _draw_tool_circles(ax, path, radius)
     for v in violations or []:
         w = v.get("witness_tool") or v.get("witness")
         if w:
@@ -125,6 +115,28 @@ def _draw_path(ax, path: ToolPath, contour: ToolPath | None, radius: float,
     if legend:
         _legend_outside(ax)
     ax.grid(alpha=0.3)
+
+
+def _draw_tool_circles(ax, path: ToolPath, radius: float) -> None:
+    """The cutter outline every ``max(length / 60, radius)`` along the cutting
+    moves, as one collection (one artist, not one patch per circle: a patch
+    each was a tenth of a report's drawing time)."""
+    # deferred: matplotlib is heavy and optional
+    from matplotlib.collections import PatchCollection
+    from matplotlib.patches import Circle
+    cut = [s for s in path.segments if s.role is not Role.RAPID and s.length > 0]
+    total = sum(s.length for s in cut)
+    spacing = max(total / 60, radius)
+    acc = 0.0
+    circles = []
+    for seg in cut:
+        for s in np.arange((-acc) % spacing, seg.length, spacing):
+            c = seg.geom.point(s)
+            circles.append(Circle(c[:2], radius))
+        acc = (acc + seg.length) % spacing
+    if circles:
+        ax.add_collection(PatchCollection(circles, facecolor="none", edgecolor="#888888",
+                                          lw=0.4, alpha=0.6), autolim=True)
 
 
 def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
