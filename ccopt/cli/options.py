@@ -139,7 +139,7 @@ def add_json_option(p: argparse.ArgumentParser) -> None:
 
 def add_reading_options(p: argparse.ArgumentParser) -> None:
     """How to read the program, and ``--json``."""
-    p.add_argument("--dialect", choices=["gcode", "pmac"],
+    p.add_argument("--dialect", choices=["gcode", "pmac", "heidenhain"],
                    help="program dialect (default: from the file suffix)")
     # a Path, so the reader takes it as a file name, never as table text
     p.add_argument("--tool-table", metavar="FILE", type=Path,
