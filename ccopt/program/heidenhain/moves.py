@@ -75,8 +75,8 @@ class Moves:
             self._approach(pend, piece, plane)
         m.last_rapid = rapid
         w_axis = PLANE_AXES[plane][2]
-        if not in_plane and abs(w1 - m.pos[w_axis]) <= POINT_EPS:
-            return          # no motion: nothing to write (its M functions still act)
+        if not in_plane and abs(w1 - m.pos[w_axis]) <= POINT_EPS and not a.coords:
+            return          # no coordinates (L FMAX M99): no block, its M functions still act
         m.emit_piece(src, piece, w1, plane, rapid=rapid, mcodes=a.mcodes)
         if in_plane:
             m.last_piece, m.last_block_index = piece, len(m.blocks) - 1
