@@ -1,6 +1,6 @@
 """HEIDENHAIN TNC cutter radius compensation (RL/RR/R0, M97, M98, APPR/DEP).
 
-Rules: docs/compensation.md, section 7 "HEIDENHAIN TNC style", from the TNC
+Rules: docs/compensation.md, section 10 "HEIDENHAIN TNC style", from the TNC
 User's Manuals (HEIDENHAIN conversational programming: "Tool compensation",
 "Approaching and departing a contour", "Miscellaneous functions for
 contouring behavior"). The engine is PMAC's joint-by-joint walk
