@@ -171,6 +171,16 @@ FAGOR_GAP_MOVES_AFTER_TRANSITION = True
 #: intersection, the change over the next move.
 HEIDENHAIN_M97_WITHOUT_INTERSECTION = "arc"
 
+#: [ccopt decision] M98 at an inside corner ("open contour corner"): the
+#: manuals say the TNC suspends radius compensation so that both corners are
+#: machined completely, and (TNC7) that it extends the tool path by the tool
+#: radius and holds the position in the next block. ``"extend-then-next-block"``:
+#: the block ends at the end of its offset, ``P + r*o(t_in)``, and the next
+#: block runs from there to its own offset end (its offset introduced over
+#: it). Alternative ``"straight-to-next-offset"``: a straight move from there
+#: to the next block's offset start ``P + r*o(t_out)``.
+HEIDENHAIN_M98_OPEN_CORNER = "extend-then-next-block"
+
 #: [ccopt decision] A program (or a run of blocks in one plane) that ends with
 #: RL/RR in force, not by DEP or an R0 block: the last element ends at its
 #: offset end and a straight move returns to its programmed end

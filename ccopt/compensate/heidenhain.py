@@ -16,8 +16,8 @@ contouring behavior"). The engine is PMAC's joint-by-joint walk
   ``R0`` block between is an error.
 * **M97** on a block: the outside corner at its end is cut at the offsets'
   intersection, as an inside corner (rule 3). **M98**: the inside corner at
-  its end is left open: the tool goes to the end of the block's offset and
-  on from the start of the next one's (rule 4).
+  its end is left open: the tool path is extended to the end of the block's
+  offset, and the next block runs from there (rule 4).
 * **APPR / DEP** (rule 5): the approach and departure paths are built on
   the tool centre (:func:`ccopt.program.heidenhain.contour.approach` and
   ``departure`` at the radius in force); the reader marks their blocks
@@ -117,6 +117,8 @@ class HeidenhainStyle(PmacStyle):
                 return Joint(A, B, [corner_arc(a.end, r, a.t_end, b.t_start, k)])
             return Joint(A, A)
         if not m97 and kind is Corner.INSIDE:
+            if decisions.HEIDENHAIN_M98_OPEN_CORNER == "extend-then-next-block":
+                return Joint(A, A)
             return Joint(A, B, [Line((float(A[0]), float(A[1])), (float(B[0]), float(B[1])))])
         return super().joint(a, COMP, b, COMP, 0)
 

@@ -118,11 +118,12 @@ def test_m98_leaves_an_open_inside_corner():
             "7 L X+10 Y+20 R0")
     _, tp = path(body)
     comp = segs(tp, Role.COMPENSATED)
-    # the tool goes to the end of the first offset (20, 2) and on from (18, 0)
-    assert near(comp[0].geom.end, (20, 2))
-    link = segs(tp, Role.CORNER)[0]
-    assert isinstance(link.geom, Line) and near(link.geom.start, (20, 2))
-    assert near(link.geom.end, (18, 0)) and near(comp[1].geom.start, (18, 0))
+    # past the intersection (18, 2) to the end of the first offset, (20, 2); the
+    # next block runs from there to its own offset end (18, 20)
+    assert near(comp[0].geom.end, (20, 2)) and near(comp[1].geom.start, (20, 2))
+    assert near(comp[1].geom.end, (18, 20)) and not segs(tp, Role.CORNER)
+    _, plain = path(body.replace(" M98", ""))
+    assert near(segs(plain, Role.COMPENSATED)[0].geom.end, (18, 2))
 
 
 # -- approach and departure --------------------------------------------------------
