@@ -262,3 +262,46 @@ def test_a_gcode_program_compensated_as_a_tnc_would():
     p = read_text(text, "sq.ngc", "gcode", tool_table={1: 4.0})
     tp = compensate(p, style="heidenhain")
     assert len(segs(tp, Role.CORNER)) == 3 and verify(tp, p).ok
+
+
+def test_manual_example_appr_ct():
+    """``7 L X+40 Y+10 R0 FMAX M3``, ``8 APPR CT X+10 Y+20 Z-10 CCA180 R+10 RR
+    F100``, ``9 L X+20 Y+35``: a half circle of radius 10 ending at PA_t,
+    its centre 10 to the right of the first element (RR), clockwise."""
+    r = 2.5
+    _, tp = path("7 L X+40 Y+10 R0 FMAX M3\n8 APPR CT X+10 Y+20 Z-10 CCA180 R+10 RR F100\n"
+                 "9 L X+20 Y+35\n10 L X+40 Y+35\n11 DEP LT LEN5", r)
+    t1 = np.array([10.0, 15.0]) / math.hypot(10, 15)
+    n = np.array([t1[1], -t1[0]])
+    pa_t = np.array([10.0, 20.0]) + r * n
+    arc = [s.geom for s in segs(tp, Role.COMPENSATED) if isinstance(s.geom, Arc)][0]
+    assert near(arc.center, pa_t + 10 * n) and near(arc.start, pa_t + 20 * n)
+    assert near(arc.end, pa_t) and arc.sweep == pytest.approx(-math.pi)
+    assert near(segs(tp, Role.LEAD_IN)[0].geom.end, pa_t + 20 * n)
+
+
+@pytest.mark.parametrize("dep, check", [
+    ("DEP LT LEN12.5 F100", "lt"), ("DEP LN LEN+20 F100", "ln"),
+    ("DEP CT CCA 180 R+8 F100", "ct"), ("DEP LCT X+10 Y+12 R+8 F100", "lct")])
+def test_manual_examples_dep(dep, check):
+    """The manuals' departures after ``23 L Y+20 RR F100`` (here from (30, 0)
+    up to (30, 20)): last element along +Y, RR: n = (1, 0), PE_t = (30 + r, 20)."""
+    r = 2.0
+    _, tp = path(f"3 L X+30 Y-20 R0 FMAX\n4 APPR LT X+30 Y+0 LEN5 RR F100\n"
+                 f"23 L Y+20 RR F100\n24 {dep}\n25 L Z+100 R0 FMAX M2", r)
+    pe_t = np.array([30.0 + r, 20.0])
+    last = [s.geom for s in segs(tp, Role.COMPENSATED)]
+    if check == "lt":
+        assert near(last[-1].start, pe_t) and near(last[-1].end, pe_t + [0, 12.5])
+    elif check == "ln":
+        # PN is LEN plus the tool radius from PE
+        assert near(last[-1].end, (30 + 20 + r, 20))
+    elif check == "ct":
+        assert near(last[-1].center, pe_t + [8, 0]) and near(last[-1].end, pe_t + [16, 0])
+        assert last[-1].sweep == pytest.approx(-math.pi)
+    else:
+        arc, line = last[-2], last[-1]
+        c = pe_t + [8, 0]
+        T = np.asarray(arc.end)
+        assert near(arc.start, pe_t) and near(arc.center, c) and arc.sweep < 0
+        assert near(line.end, (10, 12)) and abs(np.dot(np.array([10.0, 12.0]) - T, T - c)) < 1e-7

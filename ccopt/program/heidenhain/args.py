@@ -21,6 +21,8 @@ _VALUED = (("IPA", "ipa"), ("IPR", "ipr"), ("CCA", "cca"), ("LEN", "length"), ("
            ("PR", "pr"), ("DL", "dl"), ("DR", "dr_value"), ("R", "radius"), ("F", "feed"),
            ("S", "speed"))
 _M_RE = re.compile(r"M(\d+)$")
+_ADDRESSES = {addr for addr, _ in _VALUED}
+_VALUE_RE = re.compile(r"[+-]?(\d+\.?\d*|\.\d+|Q[LR]?\d+)$")
 
 
 @dataclass
@@ -83,6 +85,10 @@ def read_args(st: Statement, words: list[Word], q: Parameters, file: str) -> Arg
                     a.extra.append(words[i])
                     i += 1
         else:
+            if t in _ADDRESSES and i < len(words) and _VALUE_RE.match(words[i].text):
+                # an address and its value written apart: CCA 180, LEN 5
+                w = Word(t + words[i].text, w.col)
+                i += 1
             _valued(a, w, q, file)
     return a
 
