@@ -208,3 +208,11 @@ def test_read_program_from_file(tmp_path):
     prog.write_text("0 BEGIN PGM Q MM\n1 L X+1 Y+2 R0 FMAX\n2 END PGM Q MM\n")
     p = read_program(prog)
     assert p.dialect == "heidenhain" and close(p.blocks[-1].end, (1, 2, 0))
+
+
+def test_cam_parameter_forms():
+    # as CAM posts write them: FN 0 with '=+value', feeds from Q parameters
+    prog = read("1 FN 0: Q50 =+202 ; Cutting\n2 Q1=5\n3 QL3 = Q1 * 2 + SIN ( 90 )\n"
+                "4 L X+QL3 Y-Q1 R0 FQ50")
+    b = moves(prog)[-1]
+    assert close(b.end, (11, -5, 0)) and b.feed == pytest.approx(202 / 60)

@@ -102,13 +102,11 @@ class Parameters:
     def assignment(self, st: Statement) -> None:
         """``Q1 = <formula>`` (the whole statement)."""
         target = st.words[0]
-        text = " ".join(w.text for w in st.words[1:])
-        name = target.text.rstrip("=")
+        name, eq, text = " ".join(w.text for w in st.words).partition("=")
+        name = name.strip()
         if not Q_RE.fullmatch(name):
             raise ProgramError(f"cannot assign to {name!r}", self.file, st.line, target.col)
-        if text.startswith("="):
-            text = text[1:]
-        elif "=" not in target.text:
+        if not eq:
             raise ProgramError(f"expected '=' after {name}", self.file, st.line, target.col)
         self.set(name, self.formula(text, st.line, target.col), st.line, target.col)
 
@@ -129,14 +127,18 @@ class Parameters:
         if not (0 <= n <= 8 or n == 13):
             raise ProgramError(f"FN {n} is not read by ccopt (FN 0-13 are)", self.file, st.line,
                                words[0].col)
-        if len(rest) < 3 or rest[1].text != "=":
+        text = " ".join(w.text for w in rest)
+        name, eq, rhs = text.partition("=")
+        name = name.strip()
+        if not eq or not Q_RE.fullmatch(name):
             raise ProgramError(f"FN {n}: expected 'Q<n> = ...'", self.file, st.line,
                                words[0].col)
-        args = [w for w in rest[2:] if w.text not in ("DIV", "+", "-", "*", "/", "ANGLE", "ROOT",
-                                                       "SQRT", "SIN", "COS", "LEN")]
-        vals = [self.number(w.text, st.line, w.col, f"FN {n}") for w in args]
+        col = rest[0].col
+        args = [t for t in rhs.split() if t not in ("DIV", "+", "-", "*", "/", "ANGLE", "ROOT",
+                                                   "SQRT", "SIN", "COS", "LEN")]
+        vals = [self.number(t, st.line, col, f"FN {n}") for t in args]
         value = self._arith(n, vals, st, words[0])
-        self.set(rest[0].text, value, st.line, rest[0].col)
+        self.set(name, value, st.line, col)
         return None
 
     def _arith(self, n: int, v: list[float], st: Statement, w: Word) -> float:
