@@ -216,3 +216,14 @@ def test_cam_parameter_forms():
                 "4 L X+QL3 Y-Q1 R0 FQ50")
     b = moves(prog)[-1]
     assert close(b.end, (11, -5, 0)) and b.feed == pytest.approx(202 / 60)
+
+
+def test_rigid_tapping_and_fauto():
+    prog = read("1 TOOL CALL 8 Z S2000 F300\n2 L X+0 Y+0 Z+20 R0 FMAX\n"
+                "3 CYCL DEF 207 RIGID TAPPING ~\n Q200=+5 ~\n Q201=-10 ~\n Q239=+1.25 ~\n"
+                " Q203=+0 ~\n Q204=+10\n4 L X+5 FMAX M99\n5 L X+9 FAUTO")
+    cyc = [b for b in prog.blocks if b.cycle == "CYCL 207"]
+    # 1.25 mm per turn at 2000 rev/min: 2500 mm/min down and back up
+    assert [round(b.end[2], 9) for b in cyc] == [5, -10, 5, 10]
+    assert cyc[1].feed == pytest.approx(2500 / 60) and cyc[2].feed == pytest.approx(2500 / 60)
+    assert moves(prog)[-1].feed == pytest.approx(300 / 60)

@@ -10,11 +10,12 @@ does not model.
 The drilling moves (TNC 640 User's Manual, Cycles Programming, "Fixed
 cycles: drilling"): rapid along the tool axis to the set-up clearance
 ``Q200`` above the surface ``Q203``; feed ``Q206`` to the depth ``Q201``
-(below the surface, so negative), in infeeds of ``Q202`` (200, 203, 205)
+(below the surface, so negative; rigid tapping 207: the pitch ``Q239`` times
+the spindle speed), in infeeds of ``Q202`` (200, 203, 205)
 each followed by a rapid retract to the set-up clearance and a rapid return
 to the set-up clearance above the depth reached; dwell ``Q211`` seconds at
 the depth; retract (at rapid, or at the feed ``Q208`` for reaming and
-boring, ``Q206`` for tapping) to the set-up clearance, then to the second
+boring, ``Q206`` for tapping, the pitch feed for 207) to the set-up clearance, then to the second
 set-up clearance ``Q204`` when it is higher.
 """
 from __future__ import annotations
@@ -28,9 +29,9 @@ from ccopt.program.model import PLANE_AXES, Motion, Source
 #: (``None``: the machine's default tolerance restored).
 TOLERANCES = "cycle32_tolerance"
 DRILLING = {200: "DRILLING", 201: "REAMING", 202: "BORING", 203: "UNIVERSAL DRILLING",
-            205: "UNIVERSAL PECKING", 206: "TAPPING", 240: "CENTERING"}
+            205: "UNIVERSAL PECKING", 206: "TAPPING", 207: "RIGID TAPPING", 240: "CENTERING"}
 _PECKING = {200, 203, 205}
-_FEED_RETRACT = {201: "Q208", 202: "Q208", 206: "Q206"}
+_FEED_RETRACT = {201: "Q208", 202: "Q208", 206: "Q206", 207: "Q206"}
 _SL = {14, 20, 21, 22, 23, 24, 25, 27, 28, 29, 39, 270, 271, 272, 273, 274, 275, 276}
 _POCKETS = {4, 5, 251, 252, 253, 254, 256, 257, 258}
 
@@ -139,6 +140,12 @@ class Cycles:
         if number == 240 and q.get("Q343", 0.0) != 0.0:
             raise ProgramError("CYCL DEF 240 with Q343=1 (depth from a diameter) is not read by "
                                "ccopt: give the depth (Q343=0)", src.file, src.line, src.col)
+        if number == 207:
+            # rigid tapping feeds one thread pitch Q239 per spindle turn
+            if "Q239" not in q or not m.speed:
+                raise ProgramError("CYCL DEF 207: the feed is the pitch Q239 times the spindle "
+                                   "speed S of TOOL CALL: give both", src.file, src.line, src.col)
+            q = {**q, "Q206": abs(q["Q239"]) * m.speed}
         depth = q["Q201"]
         if depth > 0:
             raise ProgramError(f"CYCL DEF {number}: Q201={depth:g} must be negative (a depth "

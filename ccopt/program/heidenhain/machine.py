@@ -46,6 +46,7 @@ class Machine:
         self.tool: int | None = None
         self.feed: float | None = None      # units per second
         self.tool_feed: float | None = None
+        self.speed: float | None = None     # spindle speed S of TOOL CALL, rev/min
         self.last_rapid = True
         self.datum = [0.0, 0.0, 0.0]
         self.last_piece = None              # the contour element last made, and its block
@@ -72,8 +73,14 @@ class Machine:
         p[i], p[j], p[k] = uv[0], uv[1], w
         return (p[0], p[1], p[2])
 
-    def feed_from(self, value: float | None, st_line: int, col: int) -> None:
-        """``F`` as written (per minute; INCH programs: 0.1 inch per minute)."""
+    def feed_from(self, value: float | None, st_line: int, col: int,
+                  fauto: bool = False) -> None:
+        """``F`` as written (per minute; INCH programs: 0.1 inch per minute);
+        ``fauto``: ``FAUTO``, the ``F`` of ``TOOL CALL``."""
+        if fauto:
+            if self.tool_feed is None:
+                raise ProgramError("FAUTO without an F in TOOL CALL", self.file, st_line, col)
+            value = self.tool_feed
         if value is None:
             return
         if value <= 0:

@@ -63,7 +63,7 @@ class Moves:
         m = self.m
         if a.side is not None:
             m.side = a.side
-        m.feed_from(a.feed, a.st.line, a.col("F"))
+        m.feed_from(a.feed, a.st.line, a.col("F"), a.fauto)
         pend, self.pending = self.pending, None
         if pend is not None and pend.kind in ("RND", "CHF"):
             piece = self._corner(pend, piece, plane)
@@ -260,7 +260,7 @@ class Moves:
         ps = tuple(m.pos)
         rapid_before = m.last_rapid
         end = m.target(a.coords)
-        m.feed_from(a.feed, a.st.line, a.col("F"))
+        m.feed_from(a.feed, a.st.line, a.col("F"), a.fauto)
         m.side = a.side
         self.pending = Pending("APPR", src, lead={"kind": kind, "length": a.length,
                                                   "radius": a.radius, "cca": a.cca},
@@ -281,7 +281,7 @@ class Moves:
                            "in force", src)
         plane = m.blocks[-1].modal.plane
         end = m.target(a.coords)
-        m.feed_from(a.feed, a.st.line, a.col("F"))
+        m.feed_from(a.feed, a.st.line, a.col("F"), a.fauto)
         pn = m.uv(end, plane) if kind == "LCT" else None
         try:
             pieces = contour.departure(kind, m.uv(m.pos, plane),

@@ -249,6 +249,8 @@ class _Run:
         a.allow({"S", "F", "DL", "DR", "M"}, "TOOL CALL", self.file)
         if a.feed is not None:
             self.m.tool_feed = a.feed
+        if a.speed is not None:
+            self.m.speed = a.speed
         self.m.set_tool_radius(tool, a.dr_value or 0.0, src)
 
     def _cycle(self, src: Source, st: Statement) -> None:
