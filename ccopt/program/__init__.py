@@ -14,6 +14,7 @@ from ccopt.errors import ProgramError
 from ccopt.program.gcode import read_gcode
 from ccopt.program.gcode.coordinates import read_var_file
 from ccopt.program.heidenhain import read_heidenhain
+from ccopt.program.heidenhain.tooltable import is_tnc_table, read_tnc_tool_table
 from ccopt.program.model import INPUT_FILES, Block, Modal, Motion, PLANE_AXES, Program, Source
 from ccopt.program.pmac import read_pmac
 from ccopt.program.tooltable import read_tool_table
@@ -38,6 +39,16 @@ def dialect_of(path: str | os.PathLike) -> str:
         f"use {sorted(PMAC_SUFFIXES)} for PMAC, {sorted(GCODE_SUFFIXES)} for G-code, "
         f"{sorted(HEIDENHAIN_SUFFIXES)} for HEIDENHAIN Klartext, "
         "or give the dialect (--dialect gcode|pmac|heidenhain; dialect= in Python)", str(path))
+
+
+def _is_tnc_table(path) -> bool:
+    """``path`` names a HEIDENHAIN ``TOOL.T`` table (``BEGIN TOOL.T`` first)."""
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(64).decode("utf-8", errors="replace")
+    except OSError:
+        return False            # read_tool_table says what is wrong with it
+    return is_tnc_table(head)
 
 
 def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
@@ -71,7 +82,8 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     ----------
     path: program file.
     dialect: ``"gcode"``, ``"pmac"`` or ``"heidenhain"``; default from the suffix.
-    tool_table: LinuxCNC tool table (path or ``{tool: diameter}``) for G-code
+    tool_table: LinuxCNC tool table or HEIDENHAIN ``TOOL.T`` (path, told apart
+        by its ``BEGIN TOOL.T`` line) or ``{tool: diameter}``, for G-code
         ``G41 D<tool>`` and HEIDENHAIN ``TOOL CALL <tool>``.
     var_file: LinuxCNC parameter file (``linuxcnc.var``) whose values are in
         force at the start of a G-code program (coordinate system origins).
@@ -94,7 +106,8 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
         raise ProgramError("not UTF-8/ASCII text (a binary file?)", file, line) from None
     table = tool_table
     if tool_table is not None and not isinstance(tool_table, dict):
-        table = read_tool_table(tool_table)
+        table = (read_tnc_tool_table(tool_table) if _is_tnc_table(tool_table)
+                 else read_tool_table(tool_table))
     parameters = read_var_file(var_file) if var_file is not None else None
     if dialect != "gcode":
         for given, what in ((parameters, "a LinuxCNC parameter file (--var-file)"),

@@ -227,3 +227,20 @@ def test_rigid_tapping_and_fauto():
     assert [round(b.end[2], 9) for b in cyc] == [5, -10, 5, 10]
     assert cyc[1].feed == pytest.approx(2500 / 60) and cyc[2].feed == pytest.approx(2500 / 60)
     assert moves(prog)[-1].feed == pytest.approx(300 / 60)
+
+
+def test_tnc_tool_table(tmp_path):
+    table = tmp_path / "TOOL.T"
+    table.write_text("BEGIN TOOL.T MM\nT    NAME      L      R      R2     DL     DR\n"
+                     "0    NULLTOOL  +0     +0     +0     +0     +0\n"
+                     "1    MILL_D10  +50    +5     +0     +0     -0.02\n[END]\n")
+    prog = tmp_path / "p.h"
+    prog.write_text("0 BEGIN PGM P MM\n1 TOOL CALL 1 Z S100 DR+0.5\n2 L X+0 Y+0 RL F100\n"
+                    "3 END PGM P MM\n")
+    # compensation value = R + DR(table) + DR(TOOL CALL) = 5 - 0.02 + 0.5
+    b = read_program(prog, tool_table=table).blocks[0]
+    assert b.modal.radius == pytest.approx(5.48)
+    table.write_text("BEGIN TOOL.T MM\nT NAME L R\n1 X +50 +5a\n[END]\n")
+    with pytest.raises(ProgramError) as info:
+        read_program(prog, tool_table=table)
+    assert info.value.line == 3 and "R of tool 1" in info.value.message
