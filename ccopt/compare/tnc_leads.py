@@ -23,8 +23,8 @@ import math
 
 from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.leads import Lead, LeadGeometry, find_leads, splice, straight_line
+from ccopt.compare.timing import plan_whole
 from ccopt.errors import CcoptError
-from ccopt.feed import certified_planner, plan_feed
 from ccopt.geometry import Arc, Line
 from ccopt.program.heidenhain import contour
 from ccopt.toolpath import ToolPath
@@ -71,8 +71,7 @@ def _lead_time(new: ToolPath, made: list[int], problem: BlendProblem) -> float:
         return float(sum(s.length for s in segs))
     part = ToolPath(segs, plane=new.plane, style=new.style, radius=new.radius,
                     units=new.units)
-    prof = plan_feed(part, problem.limits, planner=certified_planner(problem.limits),
-                     ts=problem.ts)
+    prof, _ = plan_whole(part, problem.limits, problem.ts)
     return float(prof.duration)
 
 

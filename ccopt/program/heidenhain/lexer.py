@@ -17,6 +17,7 @@ from ccopt.errors import ProgramError
 
 #: A leading block number: ``12 L X+1`` -> content ``L X+1``.
 _NUMBER_RE = re.compile(r"\s*(\d+)\s+")
+_WORD_RE = re.compile(r"\S+")
 
 
 @dataclass(frozen=True)
@@ -45,6 +46,8 @@ class Statement:
 
 def _strip_comment(line: str) -> str:
     """The line without its ``;`` comment (a ``;`` inside a "quoted" name stays)."""
+    if '"' not in line:
+        return line.split(";", 1)[0]
     quoted = False
     for i, ch in enumerate(line):
         if ch == '"':
@@ -57,6 +60,8 @@ def _strip_comment(line: str) -> str:
 def _words(text: str, offset: int) -> list[Word]:
     """The white-space separated words of ``text``; ``offset`` is the column
     of ``text[0]`` minus one. A "quoted" name is one word."""
+    if '"' not in text:
+        return [Word(m.group().upper(), m.start() + offset + 1) for m in _WORD_RE.finditer(text)]
     out: list[Word] = []
     i, n = 0, len(text)
     while i < n:
@@ -104,7 +109,8 @@ def split_statements(text: str, file: str) -> list[Statement]:
             raw = lines[i]
             words.extend(_words(_strip_comment(raw), 0))
         i += 1
-        words = [Word(w.text.rstrip("~"), w.col) for w in words if w.text.rstrip("~")]
+        if "~" in raw or i - first > 1:
+            words = [Word(w.text.rstrip("~"), w.col) for w in words if w.text.rstrip("~")]
         if words:
             out.append(Statement(first + 1, tuple(words), raw.strip()))
     return out

@@ -52,6 +52,7 @@ class Machine:
         self.last_piece = None              # the contour element last made, and its block
         self.last_block_index = -1
         self.meta: dict = {LEADS: {}}
+        self._modals: dict = {}
 
     # -- coordinates ------------------------------------------------------------------
     def target(self, coords: dict) -> list[float]:
@@ -90,9 +91,14 @@ class Machine:
 
     # -- blocks ------------------------------------------------------------------------
     def modal(self, plane: str | None = None, side: int | None = None) -> Modal:
-        return Modal(plane=plane or self.plane, units=self.units,
-                     side=self.side if side is None else side, radius=self.radius,
-                     tool=self.tool)
+        key = (plane or self.plane, self.units, self.side if side is None else side,
+               self.radius, self.tool)
+        got = self._modals.get(key)
+        if got is None:
+            # one object per modal state, shared by its blocks (as the other readers)
+            got = self._modals[key] = Modal(plane=key[0], units=key[1], side=key[2],
+                                            radius=key[3], tool=key[4])
+        return got
 
     def emit(self, src: Source, motion: Motion, end, *, center=None, turns: int = 0,
              plane: str | None = None, side: int | None = None, rapid: bool = False,
@@ -135,16 +141,6 @@ class Machine:
         end = self.xyz(uv, blk.end[k], blk.modal.plane)
         self.blocks[index] = replace(blk, end=end)
         self.pos = list(end)
-
-    def piece_of(self, blk: Block):
-        """The plane piece a line or arc block makes."""
-        s, e = blk.start_uv, blk.end_uv
-        if not blk.motion.is_arc:
-            return ("line", s, e)
-        c = blk.center_uv
-        sweep = contour.arc_sweep(s, e, c, blk.motion is Motion.ARC_CCW)
-        sweep += math.copysign(2 * math.pi * blk.turns, sweep)
-        return ("arc", s, e, c, sweep)
 
     def set_tool_radius(self, tool: int | None, dr: float, src: Source) -> None:
         """The compensation value after ``TOOL CALL``: the tool's radius (tool
