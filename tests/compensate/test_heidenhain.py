@@ -305,3 +305,20 @@ def test_manual_examples_dep(dep, check):
         T = np.asarray(arc.end)
         assert near(arc.start, pe_t) and near(arc.center, c) and arc.sweep < 0
         assert near(line.end, (10, 12)) and abs(np.dot(np.array([10.0, 12.0]) - T, T - c)) < 1e-7
+
+
+def test_manual_example_m98():
+    """TNC7 "Machining open contour corners with M98": ``11 L X+0 Y+50 RL
+    F1000``, ``12 L X+30``, ``13 L Y+0 M98``, ``14 L X+100``, ``15 L Y+50``.
+    With r = 5: block 13 runs down x = 35 (after the arc about (30, 50)) past
+    the intersection (35, 5) to the
+    end of its offset (35, 0); block 14 runs from there to the inside corner
+    at (100, 0), the intersection (95, 5) (HEIDENHAIN_M98_OPEN_CORNER)."""
+    _, tp = path("10 L X-10 Y+60 R0 F1000\n11 L X+0 Y+50 RL F1000\n12 L X+30\n13 L Y+0 M98\n"
+                 "14 L X+100\n15 L Y+50\n16 L X+110 Y+60 R0", 5.0)
+    by_line = {}
+    for s in segs(tp, Role.COMPENSATED):
+        by_line.setdefault(s.block.source.line, s.geom)
+    assert near(by_line[7].start, (35, 50)) and near(by_line[7].end, (35, 0))
+    assert near(by_line[8].start, (35, 0)) and near(by_line[8].end, (95, 5))
+    assert near(by_line[9].start, (95, 5)) and near(by_line[9].end, (95, 50))
