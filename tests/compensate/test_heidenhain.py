@@ -311,9 +311,9 @@ def test_manual_example_m98():
     """TNC7 "Machining open contour corners with M98": ``11 L X+0 Y+50 RL
     F1000``, ``12 L X+30``, ``13 L Y+0 M98``, ``14 L X+100``, ``15 L Y+50``.
     With r = 5: block 13 runs down x = 35 (after the arc about (30, 50)) past
-    the intersection (35, 5) to the
-    end of its offset (35, 0); block 14 runs from there to the inside corner
-    at (100, 0), the intersection (95, 5) (HEIDENHAIN_M98_OPEN_CORNER)."""
+    the intersection (35, 5) to the end of its offset (35, 0); block 14 runs
+    from there to the inside corner at (100, 0), the intersection (95, 5)
+    (HEIDENHAIN_M98_OPEN_CORNER)."""
     _, tp = path("10 L X-10 Y+60 R0 F1000\n11 L X+0 Y+50 RL F1000\n12 L X+30\n13 L Y+0 M98\n"
                  "14 L X+100\n15 L Y+50\n16 L X+110 Y+60 R0", 5.0)
     by_line = {}
