@@ -61,6 +61,9 @@ class Moves:
         """Write the contour element ``piece`` (from the current position),
         after any pending rounding, chamfer or approach."""
         m = self.m
+        if a.side is not None and a.side != m.side and piece[0] == "arc":
+            raise self.err("radius compensation is switched on or off in a straight line "
+                           "block (L, LP, APPR, DEP), not on an arc", src)
         if a.side is not None:
             m.side = a.side
         m.feed_from(a.feed, a.st.line, a.col("F"), a.fauto)
