@@ -245,3 +245,17 @@ def test_tnc_tool_table(tmp_path):
     with pytest.raises(ProgramError) as info:
         read_program(prog, tool_table=table)
     assert info.value.line == 3 and "R of tool 1" in info.value.message
+
+
+def test_polar_approach_and_departure_and_cycl_call_pos():
+    prog = read("1 L X-20 Y+20 R0 F100\n2 CC X+0 Y+0\n3 APPR PLT PR+10 PA+0 LEN5 RL\n"
+                "4 L X+30 Y+0\n5 DEP PLCT PR+40 PA+90 R5\n"
+                "6 CYCL DEF 200 DRILLING ~\n Q200=+2 ~\n Q201=-3 ~\n Q206=+60 ~\n Q203=+0 ~\n"
+                " Q204=+10\n7 L Z+20 R0 FMAX\n8 CYCL CALL POS X+50 Y+50 Z-4")
+    air = [b for b in prog.blocks if b.surface == "air"]
+    # PA polar (10, 0); PH 5 before it along +X; PN polar (0, 40)
+    assert close(air[0].end, (5, 0, 0)) and close(air[1].end, (10, 0, 0))
+    assert close(air[-1].end, (0, 40, 0))
+    cyc = [b for b in prog.blocks if b.cycle == "CYCL 200"]
+    # at (50, 50): the surface is Z-4 instead of Q203: clearance -2, depth -7
+    assert close(cyc[0].start, (50, 50, 20)) and [b.end[2] for b in cyc] == [-2, -7, -2, 6]

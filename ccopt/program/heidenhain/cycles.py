@@ -126,13 +126,16 @@ class Cycles:
                         self.m.pos, dwell=t)
 
     # -- calls ---------------------------------------------------------------------------
-    def call(self, src: Source) -> None:
-        """Run the defined drilling cycle where the tool stands."""
+    def call(self, src: Source, surface: float | None = None) -> None:
+        """Run the defined drilling cycle where the tool stands; ``surface``
+        (``CYCL CALL POS``) replaces its ``Q203``."""
         if self.defined is None:
             raise ProgramError("cycle call without a drilling cycle defined (CYCL DEF 200 ...)",
                                src.file, src.line, src.col)
         number, q, _ = self.defined
         m = self.m
+        if surface is not None:
+            q = {**q, "Q203": surface}
         for name in ("Q200", "Q201", "Q203"):
             if name not in q:
                 raise ProgramError(f"CYCL DEF {number}: {name} is missing", src.file, src.line,

@@ -250,19 +250,37 @@ class Moves:
         self.pending = Pending(head, src, value, feed=None if a.feed is None else
                                a.feed / 60.0 / (10.0 if self.m.units == "inch" else 1.0))
 
+    def _lead_point(self, src: Source, head: str, kind: str, a: Args, coords: bool):
+        """``(kind, end)``: the lead's kind without its polar ``P`` and the
+        point its coordinates give (``APPR PLT PR.. PA..``: polar about ``CC``
+        in the working plane), after checking the words it takes."""
+        m = self.m
+        polar = kind.startswith("P") and kind[1:] in _LEAD_WORDS
+        base = kind[1:] if polar else kind
+        if base not in _LEAD_WORDS:
+            raise self.err(f"{head} {kind}: not read by ccopt ({head} LT, LN, CT, LCT and "
+                           "their polar forms are)", src)
+        w = "XYZ"[PLANE_AXES[m.plane][2]]
+        where = ({"PR", "PA", "IPR", "IPA", w} if polar else set("XYZ")) if coords else {w}
+        a.allow(_LEAD_WORDS[base] | where | _COMMON, f"{head} {kind}", m.file)
+        end = m.target({k: v for k, v in a.coords.items() if k == w or not polar})
+        if polar:
+            if m.pole_plane != m.plane:
+                raise self.err(f"{head} {kind}: the pole CC is not in the working plane", src)
+            uv = self._polar_end(src, a, m.plane)
+            end = list(m.xyz(uv, end[PLANE_AXES[m.plane][2]], m.plane))
+        elif coords and len(set(a.coords) - {w}) < 2:
+            raise self.err(f"{head} {kind}: give both coordinates of the "
+                           f"{'first contour' if head == 'APPR' else 'end'} point", src)
+        return base, end
+
     def appr(self, src: Source, kind: str, a: Args) -> None:
         m = self.m
-        if kind not in _LEAD_WORDS:
-            raise self.err(f"APPR {kind}: not read by ccopt (APPR LT, LN, CT, LCT are)", src)
-        a.allow(_LEAD_WORDS[kind] | set("XYZ") | _COMMON, f"APPR {kind}", m.file)
+        kind, end = self._lead_point(src, "APPR", kind, a, True)
         if a.side not in (1, -1):
             raise self.err(f"APPR {kind}: give the radius compensation RL or RR", src)
-        if len(set(a.coords) - {"XYZ"[PLANE_AXES[m.plane][2]]}) < 2:
-            raise self.err(f"APPR {kind}: give both coordinates of the first contour point",
-                           src)
         ps = tuple(m.pos)
         rapid_before = m.last_rapid
-        end = m.target(a.coords)
         m.feed_from(a.feed, a.st.line, a.col("F"), a.fauto)
         m.side = a.side
         self.pending = Pending("APPR", src, lead={"kind": kind, "length": a.length,
@@ -275,15 +293,11 @@ class Moves:
 
     def dep(self, src: Source, kind: str, a: Args) -> None:
         m = self.m
-        if kind not in _LEAD_WORDS:
-            raise self.err(f"DEP {kind}: not read by ccopt (DEP LT, LN, CT, LCT are)", src)
-        extra = set("XYZ") if kind == "LCT" else {"Z"}
-        a.allow(_LEAD_WORDS[kind] | extra | _COMMON, f"DEP {kind}", m.file)
+        kind, end = self._lead_point(src, "DEP", kind, a, kind in ("LCT", "PLCT"))
         if m.side == 0 or m.last_piece is None or m.last_block_index != len(m.blocks) - 1:
             raise self.err(f"DEP {kind} must follow the last contour element, with RL or RR "
                            "in force", src)
         plane = m.blocks[-1].modal.plane
-        end = m.target(a.coords)
         m.feed_from(a.feed, a.st.line, a.col("F"), a.fauto)
         pn = m.uv(end, plane) if kind == "LCT" else None
         try:
@@ -300,7 +314,7 @@ class Moves:
             m.emit_piece(src, p, w0, plane, surface="air", mcodes=a.mcodes)
         m.side = 0
         m.last_piece = None
-        if "Z" in a.coords and abs(end[iw] - w0) > POINT_EPS:
+        if "XYZ"[iw] in a.coords and abs(end[iw] - w0) > POINT_EPS:
             m.emit(src, Motion.LINE, m.xyz(m.uv(m.pos, plane), end[iw], plane), plane=plane,
                    rapid=a.rapid)
 

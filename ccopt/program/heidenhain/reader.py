@@ -256,15 +256,32 @@ class _Run:
     def _cycle(self, src: Source, st: Statement) -> None:
         if len(st.words) > 1 and st.words[1].text == "CALL":
             rest = list(st.words[2:])
-            if rest and rest[0].text in ("POS", "PAT"):
-                raise self.err(f"CYCL CALL {rest[0].text} is not read by ccopt: position with "
-                               "L, then CYCL CALL or M99", st, rest[0].col)
-            a = read_args(st, rest, self.q, self.file)
-            a.allow({"M", "F"}, "CYCL CALL", self.file)
-            self.cycles.call(src)
+            if rest and rest[0].text == "PAT":
+                raise self.err("CYCL CALL PAT is not read by ccopt: position with L, then "
+                               "CYCL CALL or M99", st, rest[0].col)
+            pos = bool(rest) and rest[0].text == "POS"
+            a = read_args(st, rest[1:] if pos else rest, self.q, self.file)
+            a.allow({"M", "F"} | (set("XYZ") if pos else set()), "CYCL CALL", self.file)
+            surface = self._call_position(src, a) if pos else None
+            self.cycles.call(src, surface)
             self._after_move(src, tuple(c for c in a.mcodes if c != 99), moved=False)
             return
         self.cycles.define(st)
+
+    def _call_position(self, src: Source, a) -> float | None:
+        """``CYCL CALL POS X Y Z``: move in the working plane to ``X Y`` (at
+        ``F``, else rapid), and the tool-axis coordinate is the surface the
+        cycle starts from (it replaces ``Q203``); ``None`` when not given."""
+        m = self.m
+        iw = PLANE_AXES[m.plane][2]
+        axis = "XYZ"[iw]
+        target = m.target({k: v for k, v in a.coords.items() if k != axis})
+        m.feed_from(a.feed, a.st.line, a.col("F"), a.fauto)
+        if target != m.pos:
+            m.emit(src, Motion.LINE, target, rapid=a.feed is None, side=0)
+        if axis not in a.coords:
+            return None
+        return m.target({axis: a.coords[axis]})[iw] - m.datum[iw]
 
     # -- labels and calls ------------------------------------------------------------------
     def _label(self, name: str, st: Statement) -> int:
