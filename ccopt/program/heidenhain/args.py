@@ -76,6 +76,11 @@ def read_args(st: Statement, words: list[Word], q: Parameters, file: str) -> Arg
             a.rapid, a.cols["F"] = True, w.col
         elif t == "FAUTO":
             a.fauto, a.cols["F"] = True, w.col
+        elif t == "M120":
+            raise ProgramError("M120 (radius-compensated path calculated in advance, LOOK "
+                               "AHEAD) is not read by ccopt: the heidenhain style has no "
+                               "look-ahead; remove it to compensate block by block", file,
+                               st.line, w.col)
         elif _M_RE.match(t):
             a.mcodes += (int(t[1:]),)
             a.cols["M"] = w.col
