@@ -181,7 +181,7 @@ def test_approach_paths_at_radius_zero():
     ("1 L X+0 Y+0 R0 F100\n2 CALL LBL 7", (3, 3), "not defined"),
     ("1 L X+0 Y+0 R0 F100 QQ", (2, 21), "QQ"),
     ("1 L X+1 Y+0 R0", (2, 3), "feed"),
-    ("1 L X+1 Y+0 R0 F100 M120 LA2", (2, 22), "LOOK AHEAD"),
+    ("1 L X+1 Y+0 R0 F100 M120 LA2", (2, 21), "LOOK AHEAD"),
     ("1 L X+0 Y+1 R0 F100\n2 CC X+0 Y+0\n3 C X+1 Y+0 DR- RL", (4, 3), "straight line"),
 ])
 def test_refusals_are_located(body, where, words):
