@@ -51,6 +51,8 @@ EXPECTS = ("ok", "gouge", "error")
 DEFAULT_STYLE = "pmac"
 GCODE_STYLE = "linuxcnc"
 FAGOR_STYLE = "fagor"
+#: The style of a HEIDENHAIN Klartext program (``.h``).
+HEIDENHAIN_STYLE = "heidenhain"
 
 #: Axis limits of an input whose case has no ``[limits]`` and that gets no
 #: ``--vmax``/``--amax``: 100 units/s and 1000 units/s^2 on every axis (a small
@@ -267,10 +269,13 @@ def find_case(name_or_path: str) -> Case | None:
 
 def default_style(prog: Program) -> tuple[str, str]:
     """The style of ``prog`` when neither a case nor the command line names
-    one, and why: ``pmac`` for a PMAC program, ``fagor`` for G-code where
+    one, and why: ``pmac`` for a PMAC program, ``heidenhain`` for a Klartext
+    program, ``fagor`` for G-code where
     Fagor's G136-G139 appear (outside comments), else ``linuxcnc``."""
     if prog.dialect == "pmac":
         return DEFAULT_STYLE, "default for a PMAC program"
+    if prog.dialect == "heidenhain":
+        return HEIDENHAIN_STYLE, "default for a HEIDENHAIN Klartext program"
     for name in dict.fromkeys(b.source.file for b in prog.blocks):
         try:
             text = Path(name).read_text(encoding="utf-8", errors="replace")

@@ -139,11 +139,12 @@ def add_json_option(p: argparse.ArgumentParser) -> None:
 
 def add_reading_options(p: argparse.ArgumentParser) -> None:
     """How to read the program, and ``--json``."""
-    p.add_argument("--dialect", choices=["gcode", "pmac"],
+    p.add_argument("--dialect", choices=["gcode", "pmac", "heidenhain"],
                    help="program dialect (default: from the file suffix)")
     # a Path, so the reader takes it as a file name, never as table text
     p.add_argument("--tool-table", metavar="FILE", type=Path,
-                   help="LinuxCNC tool table for G41/G42 D<tool number>")
+                   help="LinuxCNC tool table for G41/G42 D<tool number> (and HEIDENHAIN "
+                        "TOOL CALL <tool number>)")
     p.add_argument("--var-file", metavar="FILE", type=Path,
                    help="LinuxCNC parameter file (linuxcnc.var): coordinate system origins "
                         "and offsets in force at the start of a G-code program")
@@ -209,7 +210,8 @@ def add_style_options(p: argparse.ArgumentParser) -> None:
     """The controller style, the radius and side, and the style's own options."""
     p.add_argument("--style", choices=sorted(STYLES),
                    help="controller style (default: the case's, else by dialect: pmac for "
-                        "PMAC, linuxcnc for G-code, fagor where G136-G139 appear)")
+                        "PMAC, heidenhain for Klartext, linuxcnc for G-code, fagor where "
+                        "G136-G139 appear)")
     add_radius_side(p)
     p.add_argument("--break-cos", type=cosine, metavar="C",
                    help="PMAC Isx99 outside-corner break (cos of the turn) (default: the "

@@ -176,10 +176,11 @@ ENTRY_POINT_GROUP = "ccopt.blends"
 #: The variants built into ccopt (:mod:`ccopt.compare.registry`); an entry point
 #: of one of these names is ignored.
 BUILTIN_NAMES = ("pmac", "linuxcnc", "fagor-g138", "fagor-g139-g136", "fagor-g139-g137",
-                 "tangent-arc", "line-arc")
+                 "heidenhain", "tangent-arc", "line-arc", "heidenhain-lt", "heidenhain-ln",
+                 "heidenhain-ct", "heidenhain-lct")
 #: The built-in variants that are a controller's own path (the others are
 #: geometric leads): the baselines an optimised blend must beat.
-CONTROLLER_NAMES = BUILTIN_NAMES[:5]
+CONTROLLER_NAMES = BUILTIN_NAMES[:6]
 
 
 def blend_entry_points() -> dict[str, EntryPoint]:
