@@ -121,9 +121,8 @@ def _draw_tool_circles(ax, path: ToolPath, radius: float) -> None:
     """The cutter outline every ``max(length / 60, radius)`` along the cutting
     moves, as one collection (one artist, not one patch per circle: a patch
     each was a tenth of a report's drawing time)."""
-    # deferred: matplotlib is heavy and optional
-    from matplotlib.collections import PatchCollection
-    from matplotlib.patches import Circle
+    from matplotlib.collections import PatchCollection  # deferred: heavy and optional
+    from matplotlib.patches import Circle  # deferred: heavy and optional
     cut = [s for s in path.segments if s.role is not Role.RAPID and s.length > 0]
     total = sum(s.length for s in cut)
     spacing = max(total / 60, radius)
