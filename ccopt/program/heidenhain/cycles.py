@@ -16,7 +16,9 @@ each followed by a rapid retract to the set-up clearance and a rapid return
 to the set-up clearance above the depth reached; dwell ``Q211`` seconds at
 the depth; retract (at rapid, or at the feed ``Q208`` for reaming and
 boring, ``Q206`` for tapping, the pitch feed for 207) to the set-up clearance, then to the second
-set-up clearance ``Q204`` when it is higher.
+set-up clearance ``Q204`` when it is higher. Tapping with chip breaking
+(209) taps in infeeds of ``Q257`` with a retract of ``Q256`` pitches after
+each (:meth:`Cycles._chip_breaking_tap`).
 """
 from __future__ import annotations
 
@@ -29,7 +31,9 @@ from ccopt.program.model import PLANE_AXES, Motion, Source
 #: (``None``: the machine's default tolerance restored).
 TOLERANCES = "cycle32_tolerance"
 DRILLING = {200: "DRILLING", 201: "REAMING", 202: "BORING", 203: "UNIVERSAL DRILLING",
-            205: "UNIVERSAL PECKING", 206: "TAPPING", 207: "RIGID TAPPING", 240: "CENTERING"}
+            205: "UNIVERSAL PECKING", 206: "TAPPING", 207: "RIGID TAPPING",
+            209: "TAPPING W/ CHIP BRKG", 240: "CENTERING"}
+_PITCH_FEED = {207, 209}
 _PECKING = {200, 203, 205}
 _FEED_RETRACT = {201: "Q208", 202: "Q208", 206: "Q206", 207: "Q206"}
 _SL = {14, 20, 21, 22, 23, 24, 25, 27, 28, 29, 39, 270, 271, 272, 273, 274, 275, 276}
@@ -143,17 +147,21 @@ class Cycles:
         if number == 240 and q.get("Q343", 0.0) != 0.0:
             raise ProgramError("CYCL DEF 240 with Q343=1 (depth from a diameter) is not read by "
                                "ccopt: give the depth (Q343=0)", src.file, src.line, src.col)
-        if number == 207:
+        if number in _PITCH_FEED:
             # rigid tapping feeds one thread pitch Q239 per spindle turn
             if "Q239" not in q or not m.speed:
-                raise ProgramError("CYCL DEF 207: the feed is the pitch Q239 times the spindle "
-                                   "speed S of TOOL CALL: give both", src.file, src.line, src.col)
+                raise ProgramError(f"CYCL DEF {number}: the feed is the pitch Q239 times the "
+                                   "spindle speed S of TOOL CALL: give both", src.file, src.line,
+                                   src.col)
             q = {**q, "Q206": abs(q["Q239"]) * m.speed}
         depth = q["Q201"]
         if depth > 0:
             raise ProgramError(f"CYCL DEF {number}: Q201={depth:g} must be negative (a depth "
                                "below the surface)", src.file, src.line, src.col)
         if depth == 0:
+            return
+        if number == 209:
+            self._chip_breaking_tap(src, q)
             return
         self._moves(src, number, q)
 
@@ -169,14 +177,8 @@ class Cycles:
         if feed <= 0:
             raise ProgramError(f"CYCL DEF {number}: the feed Q206 must be positive", src.file,
                                src.line, src.col)
-        fps = feed / 60.0 / (10.0 if m.units == "inch" else 1.0)
-        tag = f"CYCL {number}"
-
-        def go(w: float, rapid: bool, f: float | None = None) -> None:
-            p = list(m.pos)
-            if abs(p[iw] - w) > 0.0:
-                p[iw] = w
-                m.emit(src, Motion.LINE, p, rapid=rapid, feed=f, side=0, cycle=tag)
+        fps = self._per_second(feed)
+        go = self._axis_move(src, f"CYCL {number}")
 
         go(clear, True)
         step = q.get("Q202", 0.0)
@@ -188,12 +190,71 @@ class Cycles:
             go(level + abs(q["Q200"]), True)
         go(bottom, False, fps)
         if q.get("Q211", 0.0) > 0:
-            m.emit(src, Motion.DWELL, m.pos, dwell=q["Q211"], cycle=tag)
+            m.emit(src, Motion.DWELL, m.pos, dwell=q["Q211"], cycle=f"CYCL {number}")
         back = _FEED_RETRACT.get(number)
         back_feed = q.get(back, 0.0) if back else 0.0
         if back and back_feed <= 0:
             back_feed = feed
-        go(clear, back is None, back_feed / 60.0 / (10.0 if m.units == "inch" else 1.0)
-           if back else None)
+        go(clear, back is None, self._per_second(back_feed) if back else None)
+        if second > clear:
+            go(second, True)
+
+    def _per_second(self, feed: float) -> float:
+        """A cycle feed (per minute, as programmed) in program units per second."""
+        return feed / 60.0 / (10.0 if self.m.units == "inch" else 1.0)
+
+    def _axis_move(self, src: Source, tag: str):
+        """``go(w, rapid, feed)``: a move along the tool axis to ``w``."""
+        m = self.m
+        iw = PLANE_AXES[m.plane][2]
+
+        def go(w: float, rapid: bool, f: float | None = None) -> None:
+            p = list(m.pos)
+            if abs(p[iw] - w) > 0.0:
+                p[iw] = w
+                m.emit(src, Motion.LINE, p, rapid=rapid, feed=f, side=0, cycle=tag)
+        return go
+
+    def _chip_breaking_tap(self, src: Source, q: dict) -> None:
+        """Cycle 209, tapping with chip breaking (TNC 640 Cycle Programming
+        34059x-01, 4.4, cycle parameters): tap at the pitch feed ``Q206`` (set
+        from ``Q239`` and S) in infeeds of ``Q257`` below the surface; after
+        each, retract by ``Q256`` times the pitch at the pitch feed and tap on,
+        or with ``Q256=0`` retract to the set-up clearance and tap back down to
+        the depth reached; at the depth ``Q201`` retract to the set-up
+        clearance at the pitch feed times the RPM factor ``Q403`` (the faster
+        retraction from the hole; default 1), which also applies to the full
+        ``Q256=0`` retractions; then to the second set-up clearance at
+        rapid when it is higher. ``Q257=0``: no chip breaking."""
+        m = self.m
+        iw = PLANE_AXES[m.plane][2]
+        surf = q["Q203"] + m.datum[iw]
+        clear = surf + abs(q["Q200"])
+        bottom = surf + q["Q201"]
+        second = surf + abs(q.get("Q204", 0.0))
+        tap = self._per_second(q["Q206"])
+        if tap <= 0:
+            raise ProgramError("CYCL DEF 209: the pitch Q239 must not be 0", src.file, src.line,
+                               src.col)
+        factor = q.get("Q403", 1.0)
+        if factor <= 0:
+            raise ProgramError(f"CYCL DEF 209: Q403={factor:g} must be positive (the RPM "
+                               "factor for retraction)", src.file, src.line, src.col)
+        out = tap * factor
+        back = abs(q.get("Q256", 0.0) * q["Q239"])
+        step = q.get("Q257", 0.0)
+        go = self._axis_move(src, "CYCL 209")
+        go(clear, True)
+        level = surf
+        while 0 < step < level - bottom:
+            level -= step
+            go(level, False, tap)
+            if back > 0:
+                go(min(level + back, clear), False, tap)
+            else:
+                go(clear, False, out)
+                go(level, False, tap)
+        go(bottom, False, tap)
+        go(clear, False, out)
         if second > clear:
             go(second, True)
