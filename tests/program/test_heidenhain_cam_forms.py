@@ -103,3 +103,52 @@ def test_touch_probe_block_over_continuation_lines_is_located():
              "3 TCH PROBE 412 DATUM INSIDE CIRCLE ~\n    Q321=+0    ;CENTER IN 1ST AXIS ~\n"
              "    Q365=+1    ;TYPE OF TRAVERSE\n4 L Z+55 FMAX")
     assert (info.value.line, info.value.col) == (4, 3) and "touch probe" in info.value.message
+
+
+def test_a_wrapped_comment_takes_its_continuation_lines():
+    # a post wraps a long ';' comment with '~'; the next line is comment too
+    prog = read("1 ;  description: This machine has YX axis on the Table and Z axis on the~\n"
+                " Head\n2 * - a long operation name ~\n more of it\n3 L X+1 Y+2 R0 FMAX")
+    b = moves(prog)
+    assert len(b) == 1 and close(b[0].end, (1, 2, 0))
+
+
+REAM = ("1 TOOL CALL 3 Z S1000 F150\n2 L X+0 Y+0 Z+20 R0 FMAX\n"
+        "3 CYCL DEF 201 REAMING ~\n Q200=+2 ~\n Q201=-8 ~\n Q206=+120 ~\n Q211=+0 ~\n"
+        " Q208= {q208} ;RETRACTION FEED RATE ~\n Q203=+0 ~\n Q204=+10\n4 L X+5 FMAX M99")
+
+
+def test_retraction_feed_written_apart_max_and_auto():
+    # 'Q208= MAX' (a post's spelling): the reamer leaves the hole at rapid;
+    # 'Q208= AUTO': at the F150 of TOOL CALL; a number as before
+    assert zs_and_feeds(read(REAM.format(q208="MAX")), "CYCL 201") == (
+        [2, -8, 2, 10], [None, 120, None, None])
+    assert zs_and_feeds(read(REAM.format(q208="AUTO")), "CYCL 201") == (
+        [2, -8, 2, 10], [None, 120, 150, None])
+    assert zs_and_feeds(read(REAM.format(q208="+600")), "CYCL 201") == (
+        [2, -8, 2, 10], [None, 120, 600, None])
+
+
+def test_rapid_is_refused_for_a_plunging_feed():
+    body = REAM.format(q208="+600").replace("Q206=+120", "Q206= MAX")
+    with pytest.raises(ProgramError) as info:
+        read(body)
+    assert (info.value.line, info.value.col) == (4, 2) and "Q208 only" in info.value.message
+
+
+PRESET = ("1 LBL 1\n2 CYCL DEF 247 DATUM SETTING ~\n    Q339=+1    ;DATUM NUMBER\n"
+          "3 LBL 0\n4 L X+5 Y+0 Z+20 R0 FMAX\n5 CALL LBL 1\n6 L X+6 R0 FMAX")
+
+
+def test_cycle_247_one_preset_is_the_frame():
+    # the post's pattern: the preset in a label run in line and called again
+    prog = read(PRESET)
+    assert prog.meta["cycle247_preset"] == [{"line": 3, "preset": 1}] * 2
+    assert close(moves(prog)[-1].end, (6, 0, 20))
+
+
+def test_cycle_247_another_preset_is_refused():
+    with pytest.raises(ProgramError) as info:
+        read(PRESET + "\n7 CYCL DEF 247 DATUM SETTING ~\n    Q339=+2    ;DATUM NUMBER")
+    assert (info.value.line, info.value.col) == (9, 3)
+    assert "preset 2 after preset 1 (line 3)" in info.value.message

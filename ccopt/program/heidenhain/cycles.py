@@ -1,4 +1,5 @@
-"""``CYCL DEF``: tolerance (32), datum shift (7), dwell (9) and the drilling
+"""``CYCL DEF``: tolerance (32), datum shift (7), dwell (9), datum setting
+(247: one preset per program) and the drilling
 cycles of the 200 series, run as moves at ``CYCL CALL`` / ``M99`` / ``M89``.
 
 Every other cycle is refused where it is defined, as a located
@@ -30,11 +31,15 @@ from ccopt.program.model import PLANE_AXES, Motion, Source
 #: ``Program.meta`` key: each ``CYCL DEF 32`` as ``{"line", "tolerance"}``
 #: (``None``: the machine's default tolerance restored).
 TOLERANCES = "cycle32_tolerance"
+#: ``Program.meta`` key: each ``CYCL DEF 247`` as ``{"line", "preset"}``.
+PRESETS = "cycle247_preset"
 DRILLING = {200: "DRILLING", 201: "REAMING", 202: "BORING", 203: "UNIVERSAL DRILLING",
             205: "UNIVERSAL PECKING", 206: "TAPPING", 207: "RIGID TAPPING",
             209: "TAPPING W/ CHIP BRKG", 240: "CENTERING"}
 _PITCH_FEED = {207, 209}
 _PECKING = {200, 203, 205}
+#: ``Q208= MAX``: the retraction at rapid traverse.
+RAPID = float("inf")
 _FEED_RETRACT = {201: "Q208", 202: "Q208", 206: "Q206", 207: "Q206"}
 _SL = {14, 20, 21, 22, 23, 24, 25, 27, 28, 29, 39, 270, 271, 272, 273, 274, 275, 276}
 _POCKETS = {4, 5, 251, 252, 253, 254, 256, 257, 258}
@@ -71,6 +76,8 @@ class Cycles:
             self._datum(st, sub, rest)
         elif major == 9:
             self._dwell(st, sub, rest)
+        elif major == 247:
+            self._preset(st, rest)
         elif major in DRILLING:
             self.modal_call = False
             self.defined = (major, self._qvalues(st, rest), Source(self.m.file, st.line,
@@ -82,18 +89,39 @@ class Cycles:
             raise self.err(f"CYCL DEF {num_text}: pocket and stud milling cycles are not read "
                            "by ccopt (the TNC computes their paths itself)", st, words[2].col)
         else:
-            raise self.err(f"CYCL DEF {num_text}: this cycle is not read by ccopt (7, 9, 32 "
-                           f"and the drilling cycles {sorted(DRILLING)} are)", st,
+            raise self.err(f"CYCL DEF {num_text}: this cycle is not read by ccopt (7, 9, 32, "
+                           f"247 and the drilling cycles {sorted(DRILLING)} are)", st,
                            words[2].col)
 
     def _qvalues(self, st: Statement, rest) -> dict:
+        """The ``Qn=value`` words of a cycle definition. A value may stand
+        apart (``Q208= MAX``, as a post writes it); ``MAX``/``FMAX`` (rapid)
+        is read for the retraction feed ``Q208`` only, ``AUTO``/``FAUTO`` as
+        the feed of TOOL CALL."""
         out = {}
-        for w in rest:
+        words = list(rest)
+        for k, w in enumerate(words):
             if "=" not in w.text:
                 continue                      # the cycle's name: DRILLING, ...
             name, _, value = w.text.partition("=")
-            out[name] = self.m.q.number(value, st.line, w.col, name + "=")
+            if not value and k + 1 < len(words) and "=" not in words[k + 1].text:
+                value = words[k + 1].text
+            out[name] = self._qvalue(st, w, name, value)
         return out
+
+    def _qvalue(self, st: Statement, w, name: str, value: str) -> float:
+        word = value.removeprefix("F")
+        if word == "MAX":
+            if name != "Q208":
+                raise self.err(f"{name}={value}: a rapid feed is read for the retraction "
+                               "feed Q208 only", st, w.col)
+            return RAPID
+        if word == "AUTO":
+            if self.m.tool_feed is None:
+                raise self.err(f"{name}={value}: the feed of TOOL CALL is not given", st,
+                               w.col)
+            return self.m.tool_feed           # as written, per minute
+        return self.m.q.number(value, st.line, w.col, name + "=")
 
     def _tolerance(self, st: Statement, sub: int, rest) -> None:
         if sub != 1:
@@ -117,6 +145,24 @@ class Cycles:
             i = "XYZ".index(axis)
             v = self.m.q.number(t[2 if inc else 1:], st.line, w.col, axis)
             self.m.datum[i] = self.m.datum[i] + v if inc else v
+
+    def _preset(self, st: Statement, rest) -> None:
+        """``CYCL DEF 247 DATUM SETTING Q339=n``: activate row ``n`` of the
+        preset table, the origin of the workpiece coordinate system. ccopt
+        does not know the table: the program is read in the frame of the
+        first preset it selects (as the G-code reader takes unknown origins
+        at 0); selecting another row is refused, located."""
+        q = self._qvalues(st, rest)
+        if "Q339" not in q:
+            raise self.err("CYCL DEF 247: give the preset number Q339", st)
+        preset = int(round(q["Q339"]))
+        seen = self.m.meta.setdefault(PRESETS, [])
+        if seen and seen[0]["preset"] != preset:
+            raise self.err(f"CYCL DEF 247: preset {preset} after preset {seen[0]['preset']} "
+                           f"(line {seen[0]['line']}) is not read by ccopt: the offset "
+                           "between two presets is in the preset table, not in the program",
+                           st)
+        seen.append({"line": st.line, "preset": preset})
 
     def _dwell(self, st: Statement, sub: int, rest) -> None:
         if sub != 1:
@@ -195,7 +241,8 @@ class Cycles:
         back_feed = q.get(back, 0.0) if back else 0.0
         if back and back_feed <= 0:
             back_feed = feed
-        go(clear, back is None, self._per_second(back_feed) if back else None)
+        rapid_back = back is None or back_feed == RAPID
+        go(clear, rapid_back, None if rapid_back else self._per_second(back_feed))
         if second > clear:
             go(second, True)
 
