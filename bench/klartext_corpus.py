@@ -30,6 +30,7 @@ import datetime
 import re
 import signal
 import sys
+import textwrap
 import time
 import traceback
 from collections import Counter
@@ -134,10 +135,11 @@ def figures_markdown(results: list[dict], folder: str, radius: float, note: str 
     today = today or datetime.datetime.now(datetime.timezone.utc).date().isoformat()
     rows = [(k, status[k]) for k in ("read", "refused", "refused-unlocated", "traceback",
                                      "timeout")] + [("compensated", comp), ("verified", ver)]
-    out = [BEGIN, "## Corpus figures", "",
-           f"Measured {today} with `bench/klartext_corpus.py` on {len(results)} programs "
-           f"(`{folder}`, `--radius {radius:g}` where a program gives none)."
-           + (f" {note}" if note else ""), "",
+    intro = (f"Measured {today} with `bench/klartext_corpus.py` on {len(results)} programs "
+             f"(`{folder}`, `--radius {radius:g}` where a program gives none)."
+             + (f" {note}" if note else ""))
+    out = [BEGIN, "## Corpus figures", "", textwrap.fill(intro, 78, break_on_hyphens=False,
+                                                          break_long_words=False), "",
            "| programs | count | share |", "| --- | ---: | ---: |"]
     out += [f"| {k} | {c} | {100.0 * c / n:.1f} % |" for k, c in rows]
     reasons = Counter(r["reason"] for r in results if r["status"] == "refused")
