@@ -16,13 +16,21 @@ read, ``compensated`` (the ``heidenhain`` style made a path, with
 ``--radius`` where the program gives none) and ``verified`` (the certificate
 passed). Prints the shares and the most frequent refusal reasons; exits 1
 when any program gave a traceback or a timeout.
+
+``--docs docs/heidenhain.md`` also writes the figures (date, number of
+programs, shares, refusal reasons) into that file, between the markers
+``<!-- klartext-corpus:begin -->`` and ``<!-- klartext-corpus:end -->``
+(appended as a new section when the file has none); ``--note`` adds a
+sentence on where the programs came from.
 """
 from __future__ import annotations
 
 import argparse
+import datetime
 import re
 import signal
 import sys
+import textwrap
 import time
 import traceback
 from collections import Counter
@@ -113,6 +121,53 @@ def report(results: list[dict]) -> str:
     return "\n".join(lines)
 
 
+BEGIN = "<!-- klartext-corpus:begin -->"
+END = "<!-- klartext-corpus:end -->"
+
+
+def figures_markdown(results: list[dict], folder: str, radius: float, note: str = "",
+                     today: str | None = None) -> str:
+    """The figures of one run as a Markdown section (between the markers)."""
+    n = len(results) or 1
+    status = Counter(r["status"] for r in results)
+    comp = sum(r["compensated"] for r in results)
+    ver = sum(r["verified"] for r in results)
+    today = today or datetime.datetime.now(datetime.timezone.utc).date().isoformat()
+    rows = [(k, status[k]) for k in ("read", "refused", "refused-unlocated", "traceback",
+                                     "timeout")] + [("compensated", comp), ("verified", ver)]
+    intro = (f"Measured {today} with `bench/klartext_corpus.py` on {len(results)} programs "
+             f"(`{folder}`, `--radius {radius:g}` where a program gives none)."
+             + (f" {note}" if note else ""))
+    out = [BEGIN, "## Corpus figures", "", textwrap.fill(intro, 78, break_on_hyphens=False,
+                                                          break_long_words=False), "",
+           "| programs | count | share |", "| --- | ---: | ---: |"]
+    out += [f"| {k} | {c} | {100.0 * c / n:.1f} % |" for k, c in rows]
+    reasons = Counter(r["reason"] for r in results if r["status"] == "refused")
+    comp_reasons = Counter(r["reason"] for r in results
+                           if r["status"] == "read" and r["reason"])
+    if reasons or comp_reasons:
+        out += ["", "| refusal reason | programs |", "| --- | ---: |"]
+        out += [f"| {why} | {c} |" for why, c in (reasons + comp_reasons).most_common(12)]
+    slowest = max(results, key=lambda r: r["seconds"], default=None)
+    if slowest:
+        out += ["", f"Slowest program: {slowest['seconds']:.2f} s."]
+    out.append(END)
+    return "\n".join(out)
+
+
+def write_docs(path: Path, section: str) -> None:
+    """Replace the marked section of ``path`` by ``section`` (append it when
+    the file has no markers)."""
+    text = path.read_text() if path.exists() else ""
+    if BEGIN in text and END in text:
+        head, _, rest = text.partition(BEGIN)
+        _, _, tail = rest.partition(END)
+        text = head + section + tail
+    else:
+        text = text.rstrip("\n") + "\n\n" + section + "\n"
+    path.write_text(text)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("folder", type=Path)
@@ -120,9 +175,14 @@ def main(argv=None) -> int:
                     help="cutter radius where a program gives none (default 3)")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--timeout", type=float, default=20.0, help="seconds per program")
+    ap.add_argument("--docs", type=Path, help="write the figures into this Markdown file")
+    ap.add_argument("--note", default="", help="a sentence on where the programs came from")
     args = ap.parse_args(argv)
     results = run(args.folder, args.radius, args.jobs, args.timeout)
     print(report(results))
+    if args.docs:
+        write_docs(args.docs, figures_markdown(results, args.folder.name, args.radius,
+                                               args.note))
     bad = any(r["status"] in ("traceback", "timeout", "refused-unlocated") for r in results)
     return 1 if bad else 0
 

@@ -103,3 +103,15 @@ def test_corpus_bench_classifies_a_folder(tmp_path):
     assert status == {"ok.h": "read", "pocket.h": "refused", "fk.h": "refused"}
     assert [r["verified"] for r in results if r["status"] == "read"] == [True]
     assert "2 programs" not in bench.report(results) and "traceback" in bench.report(results)
+    # the figures go into a marked docs section, replaced on the next run
+    doc = tmp_path / "doc.md"
+    doc.write_text("# Title\n\ntext\n")
+    bench.write_docs(doc, bench.figures_markdown(results, "corpus", 3.0, today="2026-01-02"))
+    first = doc.read_text()
+    assert first.startswith("# Title\n\ntext\n\n" + bench.BEGIN)
+    assert "Measured 2026-01-02" in first and "on 3 programs" in first
+    assert "| read | 1 | 33.3 % |" in first and "| refused | 2 | 66.7 % |" in first
+    bench.write_docs(doc, bench.figures_markdown(results[:1], "corpus", 3.0, today="2026-01-03"))
+    second = doc.read_text()
+    assert second.count(bench.BEGIN) == 1 and "2026-01-02" not in second
+    assert "on 1 programs" in second

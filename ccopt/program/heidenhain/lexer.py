@@ -4,7 +4,9 @@ A Klartext file has one NC block per line, ``<block number> <content>``
 (``12 L X+10 Y+5 RL F200 M3``). A block may run over several lines when a
 line ends with ``~`` (the cycle definitions CAM systems write). ``;`` starts
 a comment up to the end of the physical line; a block whose content starts
-with ``*`` is a comment block (``* - Contour1``). Words are separated by
+with ``*`` is a comment block (``* - Contour1``), and so is a block of only a
+``;`` comment; a comment block that ends with ``~`` takes the lines it runs
+over with it. Words are separated by
 white space; a word is a keyword (``L``, ``CC``, ``RL``, ``FMAX``) or an
 address with its value (``X+10``, ``IX-5``, ``PA+30``, ``R+5``, ``Q1=+3``).
 """
@@ -97,10 +99,15 @@ def split_statements(text: str, file: str) -> list[Statement]:
         m = _NUMBER_RE.match(body)
         offset = m.end() if m else len(body) - len(body.lstrip())
         content = body[offset:]
-        if content.lstrip().startswith("*"):
+        words = _words(content, offset)
+        if not words or content.lstrip().startswith("*"):
+            # a comment block; one that ends with '~' goes on over the next
+            # lines (posts wrap long comments so), all of them comment
+            while raw.rstrip().endswith("~") and i + 1 < len(lines):
+                i += 1
+                raw = lines[i]
             i += 1
             continue
-        words = _words(content, offset)
         while raw.rstrip().endswith("~"):
             i += 1
             if i >= len(lines):

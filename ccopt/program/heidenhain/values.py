@@ -116,12 +116,14 @@ class Parameters:
         words = st.words
         if len(words) < 2:
             raise ProgramError("FN without a number", self.file, st.line, words[0].col)
-        number = words[1].text.rstrip(":")
+        number, colon, tail = words[1].text.partition(":")
         if not number.isdigit():
             raise ProgramError(f"FN {words[1].text}: expected a function number",
                                self.file, st.line, words[1].col)
         n = int(number)
-        rest = words[2:]
+        rest = list(words[2:])
+        if tail:        # FN 0:Q1=5 as some posts write it, without the blanks
+            rest.insert(0, Word(tail, words[1].col + len(number) + len(colon)))
         if 9 <= n <= 12:
             return self._jump(n, rest, st)
         if not (0 <= n <= 8 or n == 13):
