@@ -1,9 +1,9 @@
 """Part-program readers: text -> immutable :class:`Program`.
 
 ``read_program(path)`` picks the dialect from the file suffix (``.pmc``,
-``.pmac``, ``.prg`` -> PMAC motion program; ``.nc``, ``.ngc``, ``.gcode``,
-``.tap``, ``.cnc``, ``.mpf``, ``.iso`` -> ISO/RS274 G-code) unless
-``dialect=`` says otherwise.
+``.pmac``, ``.prg`` -> PMAC motion program; ``.mpf``, ``.spf`` -> SINUMERIK
+840D; ``.nc``, ``.ngc``, ``.gcode``, ``.tap``, ``.cnc``, ``.iso`` -> ISO/RS274
+G-code) unless ``dialect=`` says otherwise.
 """
 from __future__ import annotations
 
@@ -15,11 +15,13 @@ from ccopt.program.gcode import read_gcode
 from ccopt.program.gcode.coordinates import read_var_file
 from ccopt.program.model import INPUT_FILES, Block, Modal, Motion, PLANE_AXES, Program, Source
 from ccopt.program.pmac import read_pmac
+from ccopt.program.sinumerik import read_sinumerik
 from ccopt.program.tooltable import read_tool_table
 
 PMAC_SUFFIXES = {".pmc", ".pmac", ".prg"}
-GCODE_SUFFIXES = {".nc", ".ngc", ".gcode", ".tap", ".cnc", ".mpf", ".iso", ".g"}
-DIALECTS = ("gcode", "pmac")
+GCODE_SUFFIXES = {".nc", ".ngc", ".gcode", ".tap", ".cnc", ".iso", ".g"}
+SINUMERIK_SUFFIXES = {".mpf", ".spf"}
+DIALECTS = ("gcode", "pmac", "sinumerik")
 
 
 def dialect_of(path: str | os.PathLike) -> str:
@@ -29,10 +31,13 @@ def dialect_of(path: str | os.PathLike) -> str:
         return "pmac"
     if suffix in GCODE_SUFFIXES:
         return "gcode"
+    if suffix in SINUMERIK_SUFFIXES:
+        return "sinumerik"
     raise ProgramError(
         f"cannot tell the dialect from the suffix {suffix or '(none)'!r}; "
         f"use {sorted(PMAC_SUFFIXES)} for PMAC, {sorted(GCODE_SUFFIXES)} for G-code, "
-        "or give the dialect (--dialect gcode|pmac; dialect= in Python)", str(path))
+        f"{sorted(SINUMERIK_SUFFIXES)} for SINUMERIK, "
+        "or give the dialect (--dialect gcode|pmac|sinumerik; dialect= in Python)", str(path))
 
 
 def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
@@ -42,14 +47,18 @@ def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
               max_loop_iterations: int | None = None) -> Program:
     """Read program text of the given dialect (``parameters``, ``units``,
     ``table_units``, ``sub_path`` and ``max_loop_iterations``: G-code only,
-    see :func:`read_gcode`; PMAC programs have no loops ccopt runs, ``WHILE``
-    is refused)."""
+    see :func:`read_gcode`, except that SINUMERIK programs take ``units``
+    and ``max_loop_iterations`` too (:func:`read_sinumerik`); PMAC programs
+    have no loops ccopt runs, ``WHILE`` is refused)."""
     if dialect == "gcode":
         return read_gcode(text, file, tool_table=tool_table, parameters=parameters,
                           units=units, table_units=table_units, sub_path=sub_path,
                           max_loop_iterations=max_loop_iterations)
     if dialect == "pmac":
         return read_pmac(text, file)
+    if dialect == "sinumerik":
+        return read_sinumerik(text, file, tool_table=tool_table, units=units,
+                              max_loop_iterations=max_loop_iterations)
     raise ProgramError(f"unknown dialect {dialect!r}; choose one of {', '.join(DIALECTS)}", file)
 
 
@@ -63,7 +72,7 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     Parameters
     ----------
     path: program file.
-    dialect: ``"gcode"`` or ``"pmac"``; default from the suffix.
+    dialect: ``"gcode"``, ``"pmac"`` or ``"sinumerik"``; default from the suffix.
     tool_table: LinuxCNC tool table (path or ``{tool: diameter}``) for G-code
         ``G41 D<tool>``.
     var_file: LinuxCNC parameter file (``linuxcnc.var``) whose values are in
@@ -91,7 +100,8 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     parameters = read_var_file(var_file) if var_file is not None else None
     if dialect != "gcode":
         for given, what in ((parameters, "a LinuxCNC parameter file (--var-file)"),
-                            (units, "--units"), (table_units, "--table-units"),
+                            (units if dialect != "sinumerik" else None, "--units"),
+                            (table_units, "--table-units"),
                             (sub_path or None, "--sub-path")):
             if given is not None:
                 raise ProgramError(f"{what} applies to G-code programs only", file)
