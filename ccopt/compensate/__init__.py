@@ -13,6 +13,7 @@ from typing import Callable
 from ccopt.compensate.fagor import FagorStyle
 from ccopt.compensate.linuxcnc import LinuxcncStyle
 from ccopt.compensate.pmac import PmacStyle
+from ccopt.compensate.siemens import SiemensStyle
 from ccopt.errors import ProgramError
 from ccopt.program.model import Program
 from ccopt.sides import side_sign
@@ -24,6 +25,7 @@ STYLES: dict[str, Callable[..., object]] = {
     "pmac": PmacStyle,
     "linuxcnc": LinuxcncStyle,
     "fagor": FagorStyle,
+    "siemens": SiemensStyle,
 }
 
 

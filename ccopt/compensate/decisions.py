@@ -161,3 +161,38 @@ FAGOR_PROGRAM_END_WHILE_ON = "cancel-in-place"
 #: moves run after the corner transition (as PMAC, GAP_MOVES_AFTER_CORNER_ARC).
 #: ``False``: before it, where the incoming move ends.
 FAGOR_GAP_MOVES_AFTER_TRANSITION = True
+
+
+# -- SINUMERIK 840D style (ccopt/compensate/siemens.py) ------------------------------
+
+#: [spec decision] G451 falls back to the G450 transition circle when the path
+#: turns by this many degrees or more at an outside corner (machine data
+#: MD20210 ``$MC_CUTCOM_CORNER_LIMIT``; the 808D Programming and Operating
+#: Manual gives the set angle 100 degrees). The manuals call it the "contour
+#: angle" and plot the intersection's overshoot, which grows with the turn,
+#: against it: read here as the turning angle.
+SIEMENS_CORNER_LIMIT_DEG = 100.0
+
+#: [ccopt decision] G450/G451 and DISC in force at a corner are the outgoing
+#: block's ("the transition circle belongs to the next block", Programming
+#: Manual 2.10.3); the G40 block's at a retraction, the activation block's at
+#: an approach (where the outgoing block is the first contour move, whose
+#: modes are the same unless it changes them). Alternative ``"incoming-block"``.
+SIEMENS_MODAL_OF_CORNER = "outgoing-block"
+
+#: [ccopt decision] Open points of the SINUMERIK style, decided the Fagor way
+#: (the joint machinery it runs on) where the manuals are silent: an inside
+#: corner whose offsets do not meet introduces the change over the next move
+#: (as PMAC); a reversal is an outside corner of 180 degrees (a half-turn
+#: G450 circle; G451 falls back as the turn exceeds the limit); G41 <-> G42
+#: without G40 follows the PMAC side-change rule; a G40 block that does not
+#: move in the plane cancels in place (Fagor rule 4); program end while on
+#: cancels in place. Bottleneck detection (CDON) is not applied: every style
+#: intersects adjacent offsets only and the verifier reports what gouges.
+#: Listed for the record; the code that applies each names this entry.
+SIEMENS_OPEN_POINTS = ("inside-without-intersection: over the next move",
+                       "reversal: outside 180 degrees",
+                       "side change: PMAC rule",
+                       "G40 without plane motion: cancel in place",
+                       "program end while on: cancel in place",
+                       "CDON: not applied, gouges reported by verify")
