@@ -51,6 +51,7 @@ EXPECTS = ("ok", "gouge", "error")
 DEFAULT_STYLE = "pmac"
 GCODE_STYLE = "linuxcnc"
 FAGOR_STYLE = "fagor"
+SIEMENS_STYLE = "siemens"
 
 #: Axis limits of an input whose case has no ``[limits]`` and that gets no
 #: ``--vmax``/``--amax``: 100 units/s and 1000 units/s^2 on every axis (a small
@@ -267,10 +268,13 @@ def find_case(name_or_path: str) -> Case | None:
 
 def default_style(prog: Program) -> tuple[str, str]:
     """The style of ``prog`` when neither a case nor the command line names
-    one, and why: ``pmac`` for a PMAC program, ``fagor`` for G-code where
-    Fagor's G136-G139 appear (outside comments), else ``linuxcnc``."""
+    one, and why: ``pmac`` for a PMAC program, ``siemens`` for a SINUMERIK
+    one, ``fagor`` for G-code where Fagor's G136-G139 appear (outside
+    comments), else ``linuxcnc``."""
     if prog.dialect == "pmac":
         return DEFAULT_STYLE, "default for a PMAC program"
+    if prog.dialect == "sinumerik":
+        return SIEMENS_STYLE, "default for a SINUMERIK program"
     for name in dict.fromkeys(b.source.file for b in prog.blocks):
         try:
             text = Path(name).read_text(encoding="utf-8", errors="replace")

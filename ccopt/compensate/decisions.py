@@ -180,19 +180,24 @@ SIEMENS_CORNER_LIMIT_DEG = 100.0
 #: modes are the same unless it changes them). Alternative ``"incoming-block"``.
 SIEMENS_MODAL_OF_CORNER = "outgoing-block"
 
-#: [ccopt decision] Open points of the SINUMERIK style, decided the Fagor way
-#: (the joint machinery it runs on) where the manuals are silent: an inside
-#: corner whose offsets do not meet introduces the change over the next move
-#: (as PMAC); a reversal is an outside corner of 180 degrees (a half-turn
-#: G450 circle; G451 falls back as the turn exceeds the limit); G41 <-> G42
-#: without G40 follows the PMAC side-change rule; a G40 block that does not
-#: move in the plane cancels in place (Fagor rule 4); program end while on
-#: cancels in place. Bottleneck detection (CDON) is not applied: every style
-#: intersects adjacent offsets only and the verifier reports what gouges.
-#: Listed for the record; the code that applies each names this entry.
-SIEMENS_OPEN_POINTS = ("inside-without-intersection: over the next move",
-                       "reversal: outside 180 degrees",
-                       "side change: PMAC rule",
-                       "G40 without plane motion: cancel in place",
-                       "program end while on: cancel in place",
-                       "CDON: not applied, gouges reported by verify")
+#: [ccopt decision] A reversal (the path turns back on itself) while SINUMERIK
+#: compensation is on is an outside corner of 180 degrees: a half-turn G450
+#: circle (G451 falls back to it, the turn being past the corner limit).
+#: ``False``: as an inside corner (the offsets' intersection, or the change
+#: over the next move).
+SIEMENS_REVERSAL_IS_OUTSIDE = True
+
+#: [ccopt decision] A G451 (or DISC=100) outside corner whose offsets do not
+#: meet (a line and an arc that miss each other) gets the G450 transition
+#: circle. Alternative ``"next-move"``: the change is introduced over the
+#: next move, as an inside corner without intersection.
+SIEMENS_INTERSECTION_MISSING = "G450"
+
+#: Open points the SINUMERIK style settles as the Fagor engine it runs on
+#: (documented in docs/compensation.md, switched by the FAGOR_ entries
+#: above): an inside corner whose offsets do not meet introduces the change
+#: over the next move; G41 <-> G42 without G40 follows the PMAC side-change
+#: rule; a G40 block that does not move in the plane cancels in place;
+#: program end while on cancels in place. Bottleneck detection (CDON) is not
+#: applied by any style: adjacent offsets are intersected and the verifier
+#: reports what gouges.

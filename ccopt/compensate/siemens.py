@@ -148,6 +148,8 @@ class SiemensStyle(FagorStyle):
             x = decisions.nearest_root(hits, A, B)
             if x is not None:
                 return Joint(x, x)
+            if decisions.SIEMENS_INTERSECTION_MISSING == "next-move":
+                return Joint(A, A)
         if mode == "G451" and DISC_CIRCLE < disc < DISC_INTERSECTION:
             raise _err(blk, f"DISC={disc:g} with G451's fallback to G450: ccopt reproduces "
                             "DISC=0 and DISC=100 only")
@@ -160,6 +162,8 @@ class SiemensStyle(FagorStyle):
         A = a.offset_point(True, k, r)
         B = b.offset_point(False, k, r)
         kind = classify(k, turn(ti, tj))
+        if kind is Corner.REVERSAL and not decisions.SIEMENS_REVERSAL_IS_OUTSIDE:
+            kind = Corner.INSIDE
         if kind is Corner.TANGENT:
             return Joint(A, A)
         if kind is Corner.INSIDE:
