@@ -138,7 +138,7 @@ def _set_radius(run: SinumerikRun) -> None:
     state = run.state
     radius = None
     if run.edge == 0:
-        radius = 0.0
+        radius = 0.0        # D0: no compensation (OFFN is not added)
     else:
         edge = 1 if run.edge is None else run.edge
         key = (run.tool if run.tool is not None else 0, edge)
@@ -147,7 +147,7 @@ def _set_radius(run: SinumerikRun) -> None:
         elif run.tool is not None and state.tool_table is not None \
                 and run.tool in state.tool_table:
             radius = abs(state.tool_table[run.tool]) / 2.0
-    if radius is not None:
+    if radius is not None and run.edge != 0:
         radius += run.offn
         if radius < 0:
             raise ExprError(f"the compensation radius (tool radius plus OFFN) is {radius:g}: "
@@ -294,7 +294,7 @@ def _smooth_approach(run: SinumerikRun, bw: BlockWords, letters: dict, g: list) 
         raise ExprError(f"G{kind}: write the {'contour start' if approach else 'end point'} "
                         "in this block (ccopt does not take it from a later block)", col)
     mode = [t for t, _ in g if t in (0, 10, 20, 30)]
-    if (mode and mode[-1] not in (0, 10)) or (not mode and state.motion_mode not in (0, 10)):
+    if (mode[-1] if mode else state.motion_mode) in (20, 30) or run.motion is not None:
         raise ExprError(f"G{kind} moves with G0 or G1 (not a circle)", col)
     disr = run.disr if run.disr is not None else 0.0
     if kind in (247, 248, 347, 348) and disr <= 0:

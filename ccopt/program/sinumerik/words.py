@@ -256,7 +256,7 @@ def _define(run: SinumerikRun, code: str, p: int) -> int:
         name, p = next_name(code, q)
         if not name:
             raise ExprError("DEF needs a variable name", q)
-        if name in ("R", "X", "Y", "Z") or name in VALUE_WORDS:
+        if len(name) == 1 or name in VALUE_WORDS:
             raise ExprError(f"{name} is an address, not a variable name", q)
         value = 0.0
         p = skip_blanks(code, p)
