@@ -22,9 +22,11 @@ the unit tangent ``t``, the tool-centre end point is ``Q = P4 + r*o(t)``:
 
 A retraction (``G148``/``G248``/``G348``) is the same construction run
 backwards, leaving the contour's end along its last tangent toward the
-G40 block's end point P0. The moves P0 -> P3 run at the block's own motion
-(rapid under G0, its feed under G1), the infeed P2 -> P3 at ``FAD`` (else
-the feed), the curve at the block's feed.
+G40 block's end point P0. The moves P0 -> P3 run at the motion in force
+before the block (rapid after G0), the infeed P2 -> P3 at ``FAD`` (else the
+feed), the curve at the feed in force (W1 18.5.4: "the movement from P0 to
+P3 takes place at the velocity valid before the SAR block"). A SAR the
+style's ``sar`` option adds runs P0 -> P3 at the block's own motion.
 """
 from __future__ import annotations
 
@@ -117,17 +119,23 @@ def sar_pieces(el: Element, approach: bool, sar: SmoothApproach, contour: dict,
     P3 = np.asarray(curve.start, float)
     top = sar.discl_abs if sar.discl_abs is not None else (
         None if sar.discl is None else w4 + sar.discl)
-    fast = None if blk.motion is Motion.RAPID else blk.feed
-    slow = sar.fad if sar.fad is not None else blk.feed
+    if sar.feed is not None or sar.infeed_feed is not None:
+        # the reader's: P0 -> P3 at the motion in force before the block, the
+        # curve at the feed in force (G1 even when the block says G0)
+        fast, feed = sar.infeed_feed, sar.feed
+    else:
+        fast = None if blk.motion is Motion.RAPID else blk.feed
+        feed = blk.feed
+    slow = sar.fad if sar.fad is not None else feed
     p0, p3 = _point(P0), _point(P3)
     if sar.infeed == "G340":
         w3 = top if top is not None else w0
         pieces = [(Line(p0, p3), w0, w0, fast), (Line(p3, p3), w0, w3, fast),
-                  (curve, w3, w4, blk.feed)]
+                  (curve, w3, w4, feed)]
     else:
         w2 = top if top is not None else w0
         pieces = [(Line(p0, p3), w0, w0, fast), (Line(p3, p3), w0, w2, fast),
-                  (Line(p3, p3), w2, w4, slow), (curve, w4, w4, blk.feed)]
+                  (Line(p3, p3), w2, w4, slow), (curve, w4, w4, feed)]
     if not approach:
         pieces = [(_reversed(g), b, a, f) for g, a, b, f in reversed(pieces)]
     lead = Role.LEAD_IN if approach else Role.LEAD_OUT

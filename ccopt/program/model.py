@@ -138,6 +138,11 @@ class SmoothApproach:
     discl_abs: ``DISCL=AC(..)`` as the machine coordinate along the plane
         normal, or ``None``.
     fad: ``FAD`` as a feed in program units per second, or ``None``.
+    feed: the feed of the approach curve (the ``F`` in force, units per
+        second: the curve runs at the feed even when the block is ``G0``), or
+        ``None`` (the block's).
+    infeed_feed: the feed of the moves P0 -> P3, the one in force before the
+        block (``None``: rapid, when ``G0`` was in force).
     """
 
     kind: str
@@ -147,6 +152,8 @@ class SmoothApproach:
     discl: float | None = None
     discl_abs: float | None = None
     fad: float | None = None
+    feed: float | None = None
+    infeed_feed: float | None = None
 
     @property
     def approach(self) -> bool:

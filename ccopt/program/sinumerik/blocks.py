@@ -299,7 +299,21 @@ def _smooth_approach(run: SinumerikRun, bw: BlockWords, letters: dict, g: list) 
     disr = run.disr if run.disr is not None else 0.0
     if kind in (247, 248, 347, 348) and disr <= 0:
         raise ExprError(f"G{kind} needs DISR > 0, the radius of the tool-centre arc", col)
+    before = state.motion_mode
+    _, feed = _feeds(run, bw)
+    infeed = None if before in (None, 0) else (state.feed / 60.0 if state.feed else feed)
     sar = SmoothApproach(kind=f"G{kind}", direction=run.sar_direction, infeed=run.sar_infeed,
-                         disr=disr, discl=run.discl, discl_abs=run.discl_abs, fad=run.fad)
+                         disr=disr, discl=run.discl, discl_abs=run.discl_abs, fad=run.fad,
+                         feed=feed, infeed_feed=infeed)
     _set_modes(run, replace(run.modes, sar=sar))
     return True
+
+
+def _feeds(run: SinumerikRun, bw: BlockWords) -> tuple[float | None, float | None]:
+    """The feed in force before the block and the block's own (its ``F`` or
+    the modal one), in program units per second (``None``: no feed set)."""
+    state = run.state
+    before = state.feed / 60.0 if state.feed else None
+    if "F" in bw.letters and state.feed_mode == "per_minute":
+        return before, bw.letters["F"][0] * feed_factor(state) / 60.0
+    return before, before
