@@ -5,7 +5,9 @@ Built in (the core works without :mod:`formulations`): the controller styles
 the program's G136/G137), ``fagor-g139-g136`` and ``fagor-g139-g137``
 (contouring start and end with circular or linear transitions, forced with
 the Fagor style's ``start_end``/``corner`` options), and the geometric leads
-``tangent-arc`` and ``line-arc`` (:mod:`.geometric`).
+``tangent-arc`` and ``line-arc`` (:mod:`.geometric`), and the SINUMERIK
+approach families ``siemens-norm``, ``siemens-kont``, ``siemens-g147``,
+``siemens-g247``, ``siemens-g347`` (:mod:`.siemens_leads`).
 
 Every other variant is a plug-in blend registered as an entry point of group
 ``ccopt.blends``; what it implements and how it registers is
@@ -18,6 +20,7 @@ from ccopt.compare.contract import (
 )
 from ccopt.compare.geometric import ConstructionError, line_arc, tangent_arc
 from ccopt.compare.leads import find_leads, splice
+from ccopt.compare.siemens_leads import siemens_variants
 from ccopt.compensate import compensate
 from ccopt.errors import ProgramError
 from ccopt.toolpath import ToolPath
@@ -59,6 +62,7 @@ def _builtins() -> dict[str, Blend]:
         "fagor-g139-g137": _style("fagor", start_end="contour", corner="linear"),
         "tangent-arc": _geometric(tangent_arc, "tangent-arc"),
         "line-arc": _geometric(line_arc, "line-arc"),
+        **siemens_variants(),
     }
 
 

@@ -68,11 +68,12 @@ class SiemensStyle(FagorStyle):
     (``Modal.siemens``); the options override them everywhere:
 
     ``corner``: ``"G450"`` or ``"G451"``; ``approach``: ``"NORM"`` or
-    ``"KONT"``; ``corner_limit``: the G451 fallback angle in degrees
+    ``"KONT"`` (the program's smooth approaches and retractions are then
+    not made); ``corner_limit``: the G451 fallback angle in degrees
     (default :data:`decisions.SIEMENS_CORNER_LIMIT_DEG`); ``sar``:
-    ``"G147"``, ``"G247"`` or ``"G347"`` puts that smooth approach (and its
-    retraction) on every activation and G40 move that has none, with
-    ``disr`` (program units) and ``discl`` (``None``: none).
+    ``"G147"``, ``"G247"`` or ``"G347"`` makes that smooth approach (and its
+    retraction) on every activation and G40 move, the program's own
+    replaced, with ``disr`` (program units) and ``discl`` (``None``: none).
     """
 
     name = "siemens"
@@ -118,14 +119,16 @@ class SiemensStyle(FagorStyle):
         return mode
 
     def smooth(self, blk: Block, approach: bool) -> SmoothApproach | None:
-        """The block's SAR, or the one the ``sar`` option puts there."""
+        """The SAR of an activation (``approach``) or G40 block: the one the
+        ``sar`` option forces, none when the ``approach`` option forces NORM or
+        KONT, else the block's own."""
+        if self.sar is not None:
+            kind = self.sar if approach else retraction_kind(self.sar)
+            return SmoothApproach(kind=kind, disr=float(self.disr), discl=self.discl)
         own = modes_of(blk).sar
-        if own is not None:
-            return own if own.approach == approach else None
-        if self.sar is None:
+        if own is None or self.approach is not None:
             return None
-        kind = self.sar if approach else retraction_kind(self.sar)
-        return SmoothApproach(kind=kind, disr=float(self.disr), discl=self.discl)
+        return own if own.approach == approach else None
 
     # -- joints ----------------------------------------------------------------
     def outside(self, a: Element, b: Element, P, A, B, t_in, t_out, k: int, r: float,
