@@ -58,7 +58,7 @@ def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
         return read_pmac(text, file)
     if dialect == "sinumerik":
         return read_sinumerik(text, file, tool_table=tool_table, units=units,
-                              max_loop_iterations=max_loop_iterations)
+                              max_loop_iterations=max_loop_iterations, sub_path=sub_path)
     raise ProgramError(f"unknown dialect {dialect!r}; choose one of {', '.join(DIALECTS)}", file)
 
 
@@ -102,9 +102,12 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
         for given, what in ((parameters, "a LinuxCNC parameter file (--var-file)"),
                             (units if dialect != "sinumerik" else None, "--units"),
                             (table_units, "--table-units"),
-                            (sub_path or None, "--sub-path")):
+                            ((sub_path or None) if dialect != "sinumerik" else None, "--sub-path")):
             if given is not None:
                 raise ProgramError(f"{what} applies to G-code programs only", file)
+    if dialect == "sinumerik":
+        # SINUMERIK subprograms (NAME.SPF) are looked for beside the program first
+        sub_path = (str(Path(path).resolve().parent), *sub_path)
     prog = read_text(text, file, dialect, tool_table=table, parameters=parameters, units=units,
                      table_units=table_units, sub_path=sub_path,
                      max_loop_iterations=max_loop_iterations)

@@ -145,7 +145,7 @@ def test_continuous_path_modes_are_read_and_noted():
 
 
 REFUSALS = {
-    "subprogram call": ("G1 X1 F100\nL123\n", 2, 1, "subprogram calls"),
+    "subprogram without its file": ("G1 X1 F100\nL123\n", 2, 1, "no subprogram file L123"),
     "frame": ("G1 X1 F100\nTRANS X10\n", 2, 1, "programmable frames"),
     "rounding": ("G1 X1 F100 RND=2\n", 1, 12, "roundings"),
     "unknown G": ("G1 X1 F100\nG333 X2\n", 2, 1, "G333"),
@@ -187,3 +187,34 @@ def test_circle_geometry_is_consistent_with_its_centre():
     r0 = math.dist(c[:2], b.start[:2])
     assert math.dist(c[:2], b.end[:2]) == pytest.approx(r0)
     assert math.dist(c[:2], (2.0, 6.0)) == pytest.approx(r0)
+
+
+def test_subprogram_calls_by_name_and_number_with_passes(tmp_path):
+    (tmp_path / "main.mpf").write_text("G90 G1 F600 X0 Y0\nR1=0\nSTEP P2\nL12\nX100\nM30\n")
+    # each pass: X += 10 at Y0, then Y10 while R1 <= 100
+    (tmp_path / "STEP.SPF").write_text("PROC STEP\nR1=R1+10\nG1 X=R1 Y0\n"
+                                       "IF R1>100 GOTOF OUT\nY10\nOUT: M17\n")
+    (tmp_path / "L12.spf").write_text("G1 Y=R1*2\nRET\n")
+    prog = read_program(tmp_path / "main.mpf")
+    assert ends(prog) == [(0, 0, 0), (10, 0, 0), (10, 10, 0), (20, 0, 0), (20, 10, 0),
+                          (20, 40, 0), (100, 40, 0)]
+    assert prog.blocks[1].source.file == str(tmp_path / "STEP.SPF")
+    assert prog.blocks[1].source.line == 3
+
+
+def test_subprogram_errors_name_the_subprogram_file(tmp_path):
+    (tmp_path / "main.mpf").write_text("G1 X1 F100\nSUBX\n")
+    (tmp_path / "SUBX.SPF").write_text("PROC SUBX\nG1 X=NOPE\n")
+    with pytest.raises(ProgramError) as info:
+        read_program(tmp_path / "main.mpf")
+    assert (info.value.file, info.value.line, info.value.col) == (
+        str(tmp_path / "SUBX.SPF"), 2, 6)
+    (tmp_path / "other.mpf").write_text("G1 X1 F100\nSUBX X5\n")
+    with pytest.raises(ProgramError) as info:
+        read_program(tmp_path / "other.mpf")
+    assert info.value.line == 2 and "takes its block" in str(info.value)
+    (tmp_path / "PARAMS.SPF").write_text("PROC PARAMS(REAL A)\nG1 X1\n")
+    (tmp_path / "third.mpf").write_text("G1 X1 F100\nPARAMS\n")
+    with pytest.raises(ProgramError) as info:
+        read_program(tmp_path / "third.mpf")
+    assert "with parameters" in str(info.value)

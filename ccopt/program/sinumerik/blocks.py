@@ -22,6 +22,7 @@ from ccopt.program.gcode.state import ProgramEnd
 from ccopt.program.gcode.units import feed_factor, input_factor
 from ccopt.program.model import PLANE_AXES, SmoothApproach
 from ccopt.program.sinumerik import arcs
+from ccopt.program.sinumerik.calls import passes_of
 from ccopt.program.sinumerik.lexer import Line
 from ccopt.program.sinumerik.state import SinumerikRun
 from ccopt.program.sinumerik.values import whole
@@ -32,14 +33,17 @@ _PLANE_CODES = {170: "XY", 180: "ZX", 190: "YZ"}
 DISC_RANGE = (0.0, 100.0)
 
 
-def exec_block(run: SinumerikRun, line: Line) -> None:
-    """Read and execute one ordinary block."""
+def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
+    """Read and execute one ordinary block; a subprogram call is not
+    executed here but returned: ``(name, passes, col)``."""
     state = run.state
     bw = read_block(run, line)
     for code, col in bw.ignored:
         run.ignored.setdefault(code, state.where(state.line_no)[1])
+    if bw.call is not None or bw.passes is not None:
+        return _call(bw)
     if bw.empty:
-        return
+        return None
     _modes(run, bw)
     _tool(run, bw)
     _compensation(run, bw)
@@ -53,6 +57,20 @@ def exec_block(run: SinumerikRun, line: Line) -> None:
         _set_modes(run, replace(run.modes, sar=None))
     if bw.end:
         raise ProgramEnd()
+    return None
+
+
+def _call(bw: BlockWords) -> tuple[str, int, int]:
+    """A call block: the subprogram and its passes ``P``, nothing else."""
+    if bw.call is None:
+        raise ExprError("P (the number of passes) needs a subprogram call in its block",
+                        bw.passes[1])
+    name, col = bw.call
+    others = replace(bw, call=None, passes=None, first=bw.first)
+    if not others.empty:
+        raise ExprError(f"a subprogram call ({name}) takes its block with P only: put the "
+                        "other words on a block of their own", col)
+    return name, passes_of(None if bw.passes is None else bw.passes[0], col), col
 
 
 def _set_modes(run: SinumerikRun, modes) -> None:

@@ -28,7 +28,7 @@ _NUMBER = re.compile(r"[+-]?[ \t]*(?:\d+\.?\d*|\.\d+)")
 _BLANKS = re.compile(r"[ \t]*")
 _SYSTEM_NAME = re.compile(r"[A-Z0-9_$]*")
 #: Single-letter addresses that take a number directly (``X10``, ``G1``).
-NUMBER_ADDRESSES = set("ABCDEFGHIJKLMSTXYZ")  # and L, a call the reader refuses
+NUMBER_ADDRESSES = set("ABCDEFGHIJKLMPSTXYZ")  # and L<n>, a subprogram call
 #: Letters that, with digits, name an extended address set with ``=``
 #: (``R1=``, ``I1=`` of CIP, ``L123`` calls are refused elsewhere).
 EXTENDED_ADDRESSES = set("RIJKXYZ")

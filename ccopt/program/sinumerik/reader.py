@@ -12,8 +12,10 @@ from ccopt.program.gcode import state as gcode_state
 from ccopt.program.gcode.coordinates import init_coordinates
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import output_units
-from ccopt.program.model import PLANE_CHANGES_CHECKED, SiemensModes, TRAILING_WORDS, Program
+from ccopt.program.model import (INPUT_FILES, PLANE_CHANGES_CHECKED, TRAILING_WORDS,
+                                 Program, SiemensModes)
 from ccopt.program.sinumerik.blocks import exec_block
+from ccopt.program.sinumerik.calls import CallFrame, load_sub
 from ccopt.program.sinumerik.flow import jump_target, match_structures
 from ccopt.program.sinumerik.lexer import next_name, skip_blanks
 from ccopt.program.sinumerik.state import SinumerikRun
@@ -26,7 +28,8 @@ IGNORED_CODES = "sinumerik_ignored"
 
 def read_sinumerik(text: str, file: str = "<string>", *,
                    tool_table: dict[int, float] | None = None, start=(0.0, 0.0, 0.0),
-                   units: str | None = None, max_loop_iterations: int | None = None) -> Program:
+                   units: str | None = None, max_loop_iterations: int | None = None,
+                   sub_path=()) -> Program:
     """Read a SINUMERIK 840D program into a :class:`Program` (dialect ``"sinumerik"``).
 
     ``tool_table`` maps tool numbers ``T`` to diameters (the radius of
@@ -45,6 +48,7 @@ def read_sinumerik(text: str, file: str = "<string>", *,
     state = GCodeState(text, file, table, s, max_executed_lines=gcode_state.MAX_EXECUTED_LINES,
                        max_call_depth=gcode_state.MAX_CALL_DEPTH, max_loop_iterations=loops)
     state.out_units = units
+    state.sub_path = tuple(str(p) for p in sub_path)
     state.siemens = SiemensModes()
     init_coordinates(state)
     paused = gc.isenabled()
@@ -70,30 +74,71 @@ def read_sinumerik(text: str, file: str = "<string>", *,
     state.meta[PLANE_CHANGES_CHECKED] = True
     state.meta[TRAILING_WORDS] = tuple(state.pending_words)
     state.meta[IGNORED_CODES] = dict(run.ignored)
+    state.meta[INPUT_FILES] = tuple(f for _, _, f in state.sub_files)
     return Program(tuple(state.blocks), file=file, dialect="sinumerik",
                    units=output_units(state), start=state.start, meta=state.meta)
 
 
 def _run_lines(run: SinumerikRun) -> None:
+    """The blocks in order, into subprograms and back (:mod:`.calls`)."""
     state = run.state
-    st = run.structure
+    frames = [CallFrame(run.structure, 0)]
     pc = 0
-    n = len(st.lines)
-    while pc < n:
-        state.line_no = pc
+    while True:
+        st = run.structure
+        if pc >= len(st.lines):
+            if len(frames) == 1:
+                return
+            pc = _return(run, frames)
+            continue
+        state.line_no = run.offset + pc
         state.executed += 1
         if state.executed > state.max_executed_lines:
             raise state.error(f"more than {state.max_executed_lines} blocks executed: endless "
                               "loop? check the loop conditions and jumps")
         try:
             kind = st.kinds[pc]
-            if kind is None:
-                exec_block(run, st.lines[pc])
-                pc += 1
-            else:
+            if kind is not None:
                 pc = _flow(run, pc, kind)
+                continue
+            try:
+                call = exec_block(run, st.lines[pc])
+            except ProgramEnd:
+                if len(frames) == 1:
+                    raise
+                pc = _return(run, frames)     # M17, RET, M2, M30 end a subprogram
+                continue
+            pc = pc + 1 if call is None else _enter(run, frames, call, pc)
         except ExprError as exc:
             raise state.error(exc.message, exc.col) from None
+
+
+def _enter(run: SinumerikRun, frames: list, call: tuple, pc: int) -> int:
+    """Run subprogram ``call = (name, passes, col)`` called from line ``pc``."""
+    name, passes, col = call
+    if len(frames) > run.state.max_call_depth:
+        raise ExprError(f"subprogram calls nested deeper than {run.state.max_call_depth}: "
+                        "runaway recursion?", col)
+    frame = load_sub(run.state, run.loaded, name, col)
+    frames[-1].return_pc = pc + 1
+    frame.passes = passes - 1
+    frames.append(frame)
+    _count_pass(run, col)
+    run.structure, run.offset = frame.structure, frame.offset
+    return 0
+
+
+def _return(run: SinumerikRun, frames: list) -> int:
+    """The end of a subprogram pass: the next pass, or back to the caller."""
+    frame = frames[-1]
+    if frame.passes > 0:
+        frame.passes -= 1
+        _count_pass(run, 0)
+        return 0
+    frames.pop()
+    caller = frames[-1]
+    run.structure, run.offset = caller.structure, caller.offset
+    return caller.return_pc
 
 
 def _count_pass(run: SinumerikRun, col: int) -> None:

@@ -38,3 +38,5 @@ class SinumerikRun:
     # FOR loops: FOR line -> (variable kind, key, end value)
     for_loops: dict = field(default_factory=dict)
     ignored: dict = field(default_factory=dict)   # code -> first line it was read and ignored
+    offset: int = 0        # where the running text's lines start in state.lines
+    loaded: dict = field(default_factory=dict)    # subprogram name -> (structure, offset)

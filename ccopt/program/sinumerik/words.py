@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ccopt.program.expr import ExprError
+from ccopt.program.sinumerik.calls import find_sub
 from ccopt.program.sinumerik.lexer import Line, Word, next_name, read_word, skip_blanks, \
     string_argument
 from ccopt.program.sinumerik.state import SinumerikRun
@@ -64,6 +65,8 @@ class BlockWords:
     edge: tuple | None = None                    # D: (value, col)
     dwell: bool = False
     end: bool = False                            # M17 or RET: end of the program
+    call: tuple | None = None                    # (subprogram name, col)
+    passes: tuple | None = None                  # P: (value, col)
     ignored: list = field(default_factory=list)  # (code, col) read and ignored
 
     @property
@@ -71,7 +74,8 @@ class BlockWords:
         return not (self.g or self.m or self.letters or self.axes or self.centre or self.middle
                     or self.values or self.comp or self.corner or self.sar
                     or self.sar_direction or self.sar_infeed or self.approach
-                    or self.bottleneck or self.motion or self.edge or self.end)
+                    or self.bottleneck or self.motion or self.edge or self.end
+                    or self.call or self.passes)
 
 
 def read_block(run: SinumerikRun, line: Line) -> BlockWords:
@@ -110,6 +114,9 @@ def _word(run: SinumerikRun, bw: BlockWords, w: Word, code: str, p: int) -> int:
         value, _, p = _value(run, w, code, p, ())
         _once(bw.letters, name, w.col)
         bw.letters[name] = (value, w.col)
+    elif name == "P":
+        value, _, p = _value(run, w, code, p, ())
+        bw.passes = (value, w.col)
     elif name == "D":
         value, _, p = _value(run, w, code, p, ())
         bw.edge = (value, w.col)
@@ -149,15 +156,34 @@ def _other(run: SinumerikRun, bw: BlockWords, w: Word, code: str, p: int) -> int
         return string_argument(code, p)
     elif name == "RET":
         bw.end = True
-    elif name in ("STOPRE", "PROC"):
+    elif name == "STOPRE":
         bw.ignored.append((name, w.col))
-        return len(code) if name == "PROC" else p
-    elif name == "L":
-        raise ExprError("subprogram calls (L<number>) are not read by ccopt: write the "
-                        "subprogram's moves into the program", w.col)
+    elif name == "PROC":
+        return _proc(code, p)
+    elif name == "L" and w.literal is not None:
+        _call(bw, f"L{int(w.literal)}" if w.literal == int(w.literal) else "L?", w.col)
+    elif w.expr is None and w.index is None and find_sub(run.state, name) is not None:
+        _call(bw, name, w.col)
     else:
         raise ExprError(_unknown(name), w.col)
     return p
+
+
+def _call(bw: BlockWords, name: str, col: int) -> None:
+    if name == "L?" or bw.call is not None:
+        raise ExprError("one subprogram call a block, L<whole number> or its name", col)
+    bw.call = (name, col)
+
+
+def _proc(code: str, p: int) -> int:
+    """``PROC NAME``: a subprogram's head (read, nothing to do); parameters
+    are refused."""
+    name, q = next_name(code, skip_blanks(code, p))
+    q = skip_blanks(code, q)
+    if q < len(code) and code[q] == "(":
+        raise ExprError(f"PROC {name}(...): subprograms with parameters are not read by "
+                        "ccopt", q)
+    return len(code)
 
 
 def _unknown(name: str) -> str:
@@ -171,8 +197,9 @@ def _unknown(name: str) -> str:
         return f"{name}: polar coordinates are not read by ccopt: program X Y Z"
     return (f"{name} is not read by ccopt's SINUMERIK reader (G0-G3, CIP, CT, AR=, CR=, "
             "TURN=, G17-G19, G40-G42, G450/G451, NORM/KONT, SAR G140-G348, R parameters and "
-            "DEF variables, IF/WHILE/REPEAT/LOOP/FOR and GOTOF/GOTOB are): a subprogram "
-            "call or a command it does not know")
+            "DEF variables, IF/WHILE/REPEAT/LOOP/FOR, GOTOF/GOTOB and subprogram calls "
+            f"are): a command it does not know, or a call of a subprogram with no file "
+            f"{name}.SPF beside the program")
 
 
 def _once(target: dict, name: str, col: int) -> None:
