@@ -237,6 +237,25 @@ def test_manual_example_g147_discl():
     ]
 
 
+def test_manual_example_end_point_in_the_next_block():
+    # the manual's first form: N30 G41 G147 DISCL=3 DISR=13 Z=0 F1000, N40 G1 X40 Y-10
+    # (and its third: the Z in N40 too): the same sub-moves as the one-block form
+    one = ("$TC_DP6[1,1]=7\nN10 G90 G0 X0 Y0 Z30 D1 T1\nN20 X10\n"
+           "N30 G41 G147 DISCL=3 DISR=13 X40 Y-10 Z0 F1000\nN50 G1 X50\nN60 G40 X60 Y-30\n")
+    two = ("$TC_DP6[1,1]=7\nN10 G90 G0 X0 Y0 Z30 D1 T1\nN20 X10\n"
+           "N30 G41 G147 DISCL=3 DISR=13 Z=0 F1000\nN40 G1 X40 Y-10\nN50 G1 X50\n"
+           "N60 G40 X60 Y-30\n")
+    three = two.replace("Z=0 F1000\nN40 G1 X40 Y-10", "F1000\nN40 G1 X40 Y-10 Z0")
+
+    def moves(text):
+        return [(s.kind, s.role.value, s.start, s.end, round(s.w0, 9), round(s.w1, 9), s.feed)
+                for s in compensate(prog(text), style="siemens").segments]
+    assert moves(two) == moves(one) and moves(three) == moves(one)
+    with pytest.raises(Exception) as info:
+        prog("G41 G147 DISR=2 F100 Z0\nG1 Z5\nX5\n")
+    assert "nothing may move" in str(info.value)
+
+
 def test_g341_infeed_at_fad_then_the_curve_in_the_plane():
     # P0 at Z10: P1 above P3 at Z10, P2 at DISCL=3, P3 at Z0 at FAD (300/min =
     # 5/s), then the quadrant in the plane

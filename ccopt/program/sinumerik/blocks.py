@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from ccopt.program.expr import ExprError
-from ccopt.program.gcode.codes import Words
+from ccopt.program.gcode.codes import G_GROUPS, Words
 from ccopt.program.gcode.coordinates import to_work, work_offset
 from ccopt.program.gcode.execute import execute_words
 from ccopt.program.gcode.state import ProgramEnd
@@ -43,6 +43,9 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
     if bw.call is not None or bw.passes is not None:
         return _call(bw)
     if bw.empty:
+        return None
+    bw = _pending_approach(run, bw)
+    if bw is None:
         return None
     _modes(run, bw)
     _tool(run, bw)
@@ -335,3 +338,44 @@ def _feeds(run: SinumerikRun, bw: BlockWords) -> tuple[float | None, float | Non
     if "F" in bw.letters and state.feed_mode == "per_minute":
         return before, bw.letters["F"][0] * feed_factor(state) / 60.0
     return before, before
+
+
+def _in_plane_words(state, bw: BlockWords) -> bool:
+    plane = state.plane
+    for tenths, _ in bw.g:
+        plane = _PLANE_CODES.get(tenths, plane)
+    iu, iv, _ = PLANE_AXES[plane]
+    return any("XYZ"[k] in bw.axes for k in (iu, iv))
+
+
+def _pending_approach(run: SinumerikRun, bw: BlockWords) -> BlockWords | None:
+    """A smooth approach whose block writes no end point in the plane takes it
+    from the next block that does (PM 2.10.4.1, "Programming of end point P4
+    for approach"); the blocks between may not move. The two blocks are
+    executed as one, located at the second. ``None``: nothing to execute now."""
+    state = run.state
+    pending = run.pending_sar
+    if pending is None:
+        if bw.sar is not None and bw.sar[0] in (147, 247, 347) \
+                and not _in_plane_words(state, bw):
+            run.pending_sar, run.pending_line = bw, state.line_no
+            return None
+        return bw
+    if not _in_plane_words(state, bw):
+        if bw.axes or bw.sar is not None or bw.comp is not None:
+            col = next(iter(bw.axes.values()))[2] if bw.axes else bw.first
+            raise ExprError("between a smooth approach block and the block that gives its end "
+                            "point nothing may move or switch compensation", col)
+        return bw
+    run.pending_sar = None
+    groups = {G_GROUPS.get(t) for t, _ in bw.g}
+    merged = replace(pending, g=[(t, c) for t, c in pending.g if G_GROUPS.get(t) not in groups]
+                     + bw.g, m=pending.m + bw.m, first=bw.first,
+                     letters={**pending.letters, **bw.letters},
+                     axes={**pending.axes, **bw.axes}, values={**pending.values, **bw.values})
+    for f in ("corner", "approach", "bottleneck", "motion", "edge", "sar_direction",
+              "sar_infeed"):
+        if getattr(bw, f) is not None:
+            setattr(merged, f, getattr(bw, f))
+    merged.end = bw.end
+    return merged

@@ -71,6 +71,10 @@ def read_sinumerik(text: str, file: str = "<string>", *,
     finally:
         if paused:
             gc.enable()
+    if run.pending_sar is not None:
+        raise state.error("a smooth approach (G147/G247/G347) whose end point no later block "
+                          "gives: write the contour's start in this block or a later one",
+                          run.pending_sar.sar[1], run.pending_line)
     state.meta[PLANE_CHANGES_CHECKED] = True
     state.meta[TRAILING_WORDS] = tuple(state.pending_words)
     state.meta[IGNORED_CODES] = dict(run.ignored)

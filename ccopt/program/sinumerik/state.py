@@ -38,5 +38,7 @@ class SinumerikRun:
     # FOR loops: FOR line -> (variable kind, key, end value)
     for_loops: dict = field(default_factory=dict)
     ignored: dict = field(default_factory=dict)   # code -> first line it was read and ignored
+    pending_sar: object = None    # a SAR block waiting for its end point (blocks.py)
+    pending_line: int = 0         # its 0-based line
     offset: int = 0        # where the running text's lines start in state.lines
     loaded: dict = field(default_factory=dict)    # subprogram name -> (structure, offset)
