@@ -295,3 +295,31 @@ def test_options_are_checked():
                 {"sar": "G247", "disr": 0.0}, {"corner_limit": 0.0}):
         with pytest.raises(Exception):
             compensate(prog(BOX + "G40 X30 Y0\n"), style="siemens", radius=1.0, **bad)
+
+
+def test_manual_example_kont_g450_outside_corners():
+    # Programming Manual 2.10.3, example: N10 G17 T1 G0 X35 Y0 Z0 F500, N20 G1 Z-5,
+    # N30 G41 KONT G450 X10 Y10, N40 Y60, N50 X50 Y30, N60 X10 Y10 (no G40: the
+    # program ends while on). Radius 5 given (the manual names no radius).
+    text = ("N10 G17 T1 G0 X35 Y0 Z0 F500\nN20 G1 Z-5\nN30 G41 KONT G450 X10 Y10\nN40 Y60\n"
+            "N50 X50 Y30\nN60 X10 Y10\n")
+    r = 5.0
+    n = math.sqrt(725.0)
+    t_lead = (-25 / n, 10 / n)                 # (35,0) -> (10,10)
+    A0 = (10 + r * -t_lead[1], 10 + r * t_lead[0])   # P + r*o(t_lead), o(t) = (-t_y, t_x)
+    # behind the contour: the lead turns right into +Y (outside for G41)
+    s5 = math.sqrt(5.0)
+    expected = [
+        L("lead-in", (35, 0), A0),
+        A("corner", (10, 10), A0, (5, 10), math.atan2(-25, 10)),
+        L("compensated", (5, 10), (5, 60)),
+        # +Y then (0.8,-0.6): right turn, the circle about (10,60) to (10,60) + 5*(0.6,0.8)
+        A("corner", (10, 60), (5, 60), (13, 64), math.atan2(-0.8, -0.6)),
+        L("compensated", (13, 64), (53, 34)),
+        # (0.8,-0.6) then (-2,-1)/sqrt5: right turn, about (50,30) to (50,30) + 5*(1,-2)/sqrt5
+        A("corner", (50, 30), (53, 34), (50 + s5, 30 - 2 * s5), math.atan2(-2, -1)),
+        L("compensated", (50 + s5, 30 - 2 * s5), (10 + s5, 10 - 2 * s5)),
+        # the program ends while on: cancelled in place, back to the programmed end
+        L("lead-out", (10 + s5, 10 - 2 * s5), (10, 10)),
+    ]
+    check(compensate(prog(text), style="siemens", radius=r), expected)
