@@ -297,6 +297,12 @@ class FagorStyle:
         if geom.length > POINT_EPS or el.w0 != el.w1:
             out.add(geom, role, el.block, el.w0, el.w1)
 
+    @staticmethod
+    def _corner_block(els: list[Element], i: int) -> Block:
+        """The block the transition after move ``i`` belongs to (its feed):
+        the incoming move's on the Fagor (a style may say otherwise)."""
+        return els[i].block
+
     def _emit_moves(self, out: _FagorSegments, gaps, els, classes, cancel_at, starts, ends,
                     corners) -> None:
         """Each move, its transition and the gaps between moves. A gap runs
@@ -319,8 +325,9 @@ class FagorStyle:
             self._emit_move(out, el, classes[i], starts[i], ends[i])
             if not gaps_after and i + 1 < n and not cancels(i + 1):
                 out.gap(gaps[i + 1], ends[i], classes[i + 1] in (COMP, LEAD_OUT))
+            owner = self._corner_block(els, i)
             for cg in corners[i]:
-                out.add(cg, Role.CORNER, el.block, el.w1, el.w1)
+                out.add(cg, Role.CORNER, owner, el.w1, el.w1)
 
     @staticmethod
     def _emit_tail(out: _FagorSegments, trailing: list[Block], last: Element, end,

@@ -208,6 +208,13 @@ class SiemensStyle(FagorStyle):
         return joint
 
     # -- moves -------------------------------------------------------------------
+    @staticmethod
+    def _corner_block(els: list[Element], i: int) -> Block:
+        """"The transition circle belongs to the next travel command" (PM
+        2.10.3; the 808D manual: as far as the feedrate is concerned): the
+        outgoing move's block, the G40 move's at a retraction."""
+        return els[i + 1].block if i + 1 < len(els) else els[i].block
+
     def _emit_move(self, out: _FagorSegments, el: Element, cl: str, start, end) -> None:
         """The activation or G40 move of a SAR block as its sub-moves; every
         other move as the Fagor engine makes it."""

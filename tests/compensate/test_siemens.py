@@ -323,3 +323,11 @@ def test_manual_example_kont_g450_outside_corners():
         L("lead-out", (10 + s5, 10 - 2 * s5), (10, 10)),
     ]
     check(compensate(prog(text), style="siemens", radius=r), expected)
+
+
+def test_transition_circle_belongs_to_the_next_block():
+    # +X at F600 (10/s), then -Y at F1200 (20/s): the circle runs at 20/s, carried
+    # by the -Y block (line 4)
+    path = comp(BOX + "G450 Y-10 F1200\nG40 X30 Y-10\n")
+    arc = [s for s in path.segments if s.role.value == "corner"][0]
+    assert arc.feed == pytest.approx(20.0) and arc.block.source.line == 4
