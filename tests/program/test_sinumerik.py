@@ -146,7 +146,9 @@ def test_continuous_path_modes_are_read_and_noted():
 
 REFUSALS = {
     "subprogram without its file": ("G1 X1 F100\nL123\n", 2, 1, "no subprogram file L123"),
-    "frame": ("G1 X1 F100\nTRANS X10\n", 2, 1, "programmable frames"),
+    "frame": ("G1 X1 F100\nROT RPL=30\n", 2, 1, "rotating, scaling"),
+    "TRANS with a move": ("TRANS X10 G1 F100\n", 1, 1, "X Y Z only"),
+    "TRANS while on": ("G1 F100 G41 X1\nTRANS X10\n", 2, 1, "compensation on"),
     "rounding": ("G1 X1 F100 RND=2\n", 1, 12, "roundings"),
     "unknown G": ("G1 X1 F100\nG333 X2\n", 2, 1, "G333"),
     "unmatched ENDIF": ("G1 X1 F100\nENDIF\n", 2, 1, "ENDIF without its IF"),
@@ -175,7 +177,7 @@ def test_refusals_are_located(name):
 
 def test_cli_refusal_exit_2_one_line(tmp_path, capsys):
     f = tmp_path / "bad.mpf"
-    f.write_text("G1 X1 F100\nTRANS X10\n")
+    f.write_text("G1 X1 F100\nROT RPL=30\n")
     rc = cli.main(["compensate", str(f), "--radius", "1"])
     err = capsys.readouterr().err
     assert rc == 2 and err.count("\n") == 1 and err.startswith(f"{f}:2:1:"), err
@@ -219,3 +221,15 @@ def test_subprogram_errors_name_the_subprogram_file(tmp_path):
     with pytest.raises(ProgramError) as info:
         read_program(tmp_path / "third.mpf")
     assert "with parameters" in str(info.value)
+
+
+def test_trans_atrans_named_tools_and_noted_settings():
+    prog = read('T="MILL10" D1 M6\nSOFT COMPCAD G642 ADIS=0.05\nCYCLE832(0.01,_FINISH,1)\n'
+                'WORKPIECE(,"",,"BOX",112,0,-50,-80,0,0,100,100)\nTRANS X10 Y5\n'
+                'G1 F100 X0 Y0\nATRANS X1\nG1 X1\nTRANS\nX2\nG41 X3\n')
+    # TRANS X10 Y5: work (0,0) is machine (10,5); ATRANS X1 adds: work X1 -> 12;
+    # TRANS alone: no translation, Y stays where it is
+    assert ends(prog) == [(10, 5, 0), (12, 5, 0), (2, 5, 0), (3, 5, 0)]
+    assert prog.blocks[-1].modal.radius is None      # a named tool: --radius gives it
+    assert set(prog.meta["sinumerik_ignored"]) >= {"SOFT", "COMPCAD", "ADIS", "CYCLE832",
+                                                  "WORKPIECE"}

@@ -42,6 +42,9 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
         run.ignored.setdefault(code, state.where(state.line_no)[1])
     if bw.call is not None or bw.passes is not None:
         return _call(bw)
+    if bw.frame is not None:
+        _translate(run, bw)
+        return None
     if bw.empty:
         return None
     bw = _pending_approach(run, bw)
@@ -137,10 +140,35 @@ def _sar_values(run: SinumerikRun, bw: BlockWords) -> None:
         run.offn = value * factor
 
 
+def _translate(run: SinumerikRun, bw: BlockWords) -> None:
+    """``TRANS X Y Z``: the programmable frame is this translation (axes not
+    written: 0; ``TRANS`` alone: none); ``ATRANS``: added to the one in force.
+    Kept as the core's axis offset (``machine = work + offset + origin``)."""
+    state = run.state
+    name, col = bw.frame
+    if not replace(bw, frame=None, axes={}, ignored=[]).empty:
+        raise ExprError(f"{name} takes its block with X Y Z only", col)
+    if state.side != 0:
+        raise ExprError(f"cannot change frames ({name}) with tool radius compensation on: "
+                        "program G40 first", col)
+    offset = [0.0, 0.0, 0.0] if name == "TRANS" else list(state.axis_offset)
+    for a, (value, mode, acol) in bw.axes.items():
+        k = "XYZ".find(a)
+        if k < 0 or mode is not None:
+            raise ExprError(f"{name} translates X Y Z by values (not {a}, AC or IC)", acol)
+        offset[k] += value * input_factor(state)
+    state.axis_offset = (offset[0], offset[1], offset[2])
+
+
 def _tool(run: SinumerikRun, bw: BlockWords) -> None:
     """``T`` selects the tool, ``D`` its cutting edge; the radius in force is
-    recomputed (the core records ``T`` among the machine words)."""
+    recomputed (the core records ``T`` among the machine words). A tool
+    named ``T="name"`` has no number: its radius comes from ``--radius``."""
+    if bw.tool_name is not None:
+        run.tool = None
+        run.tool_named = True
     if "T" in bw.letters:
+        run.tool_named = False
         value, col = bw.letters["T"]
         run.tool = whole(value, col)
     if bw.edge is not None:
@@ -148,7 +176,7 @@ def _tool(run: SinumerikRun, bw: BlockWords) -> None:
         run.edge = whole(value, col)
         if run.edge < 0:
             raise ExprError(f"D{run.edge}: the cutting edge number must be >= 0", col)
-    if "T" in bw.letters or bw.edge is not None or "OFFN" in bw.values:
+    if "T" in bw.letters or bw.tool_name or bw.edge is not None or "OFFN" in bw.values:
         _set_radius(run)
 
 
@@ -160,6 +188,8 @@ def _set_radius(run: SinumerikRun) -> None:
     radius = None
     if run.edge == 0:
         radius = 0.0        # D0: no compensation (OFFN is not added)
+    elif run.tool_named:
+        radius = None       # T="name": no tool data ccopt knows
     else:
         edge = 1 if run.edge is None else run.edge
         key = (run.tool if run.tool is not None else 0, edge)

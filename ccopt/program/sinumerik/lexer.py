@@ -113,8 +113,10 @@ def read_word(code: str, p: int) -> tuple[Word, int]:
     of a ``=`` word is left for the caller to evaluate (it knows the
     variables): ``expr`` is where it starts, and the returned position too."""
     letters, q = next_name(code, p)
-    if letters.startswith("$"):
-        # system variables carry digits in their names ($TC_DP6)
+    if letters.startswith("$") or len(letters) > 1:
+        # names of two letters or more, system variables among them, may carry
+        # digits ($TC_DP6, CYCLE832, a variable LEN2); one letter and digits is
+        # an address and its value (X10)
         q = _SYSTEM_NAME.match(code, q).end()
         letters = code[p:q]
     if not letters:

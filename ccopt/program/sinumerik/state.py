@@ -27,6 +27,7 @@ class SinumerikRun:
     modes: SiemensModes = field(default_factory=SiemensModes)
     tool: int | None = None
     edge: int | None = None
+    tool_named: bool = False   # the tool was selected by name (T="...")
     offn: float = 0.0
     motion: str | None = None
     sar_direction: str = "G140"

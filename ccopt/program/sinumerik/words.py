@@ -38,6 +38,17 @@ APPROACH_WORDS = {"NORM", "KONT", "KONTT", "KONTC"}
 BOTTLENECK_WORDS = {"CDON", "CDOF", "CDOF2"}
 VALUE_WORDS = {"CR", "AR", "TURN", "DISR", "DISCL", "FAD", "DISC", "OFFN"}
 AXES = "XYZABC"
+#: Keywords that set the control's dynamics, look-ahead or feed reference and
+#: leave the programmed path as it is in ccopt (read and noted, like G64):
+#: acceleration profiles, compressors, feed forward, path feed modes.
+NOTED_WORDS = {"SOFT", "BRISK", "FFWON", "FFWOF", "COMPCAD", "COMPCURV", "COMPOF", "UPATH",
+               "SPATH", "FNORM", "DYNNORM", "DYNPOS", "DYNROUGH", "DYNSEMIFIN", "DYNFINISH",
+               "CFC", "CFTCP", "CFIN", "STOPRE"}
+#: Valued settings of the same kind (smoothing distances and tolerances).
+NOTED_VALUES = {"ADIS", "ADISPOS", "CTOL", "OTOL", "ATOL"}
+#: Calls with arguments that do not move: the high-speed settings cycle and
+#: the simulation blank (read and noted).
+NOTED_CALLS = {"CYCLE832", "WORKPIECE"}
 DEF_TYPES = {"REAL", "INT", "BOOL"}
 
 
@@ -66,6 +77,8 @@ class BlockWords:
     dwell: bool = False
     end: bool = False                            # M17 or RET: end of the program
     call: tuple | None = None                    # (subprogram name, col)
+    frame: tuple | None = None                   # ("TRANS"|"ATRANS", col)
+    tool_name: tuple | None = None               # T="name": (name, col)
     passes: tuple | None = None                  # P: (value, col)
     ignored: list = field(default_factory=list)  # (code, col) read and ignored
 
@@ -75,7 +88,7 @@ class BlockWords:
                     or self.values or self.comp or self.corner or self.sar
                     or self.sar_direction or self.sar_infeed or self.approach
                     or self.bottleneck or self.motion or self.edge or self.end
-                    or self.call or self.passes)
+                    or self.call or self.passes or self.frame or self.tool_name)
 
 
 def read_block(run: SinumerikRun, line: Line) -> BlockWords:
@@ -110,6 +123,13 @@ def _word(run: SinumerikRun, bw: BlockWords, w: Word, code: str, p: int) -> int:
     elif name in ("I1", "J1", "K1"):
         value, mode, p = _value(run, w, code, p, ("AC", "IC"))
         bw.middle[name[0]] = (value, mode, w.col)
+    elif name == "T" and w.expr is not None and code.startswith('"', skip_blanks(code, w.expr)):
+        q = skip_blanks(code, w.expr)
+        end = code.find('"', q + 1)
+        if end < 0:
+            raise ExprError('T="name": the name has no closing quote', q)
+        bw.tool_name = (code[q + 1:end], w.col)
+        p = end + 1
     elif name in ("F", "S", "T"):
         value, _, p = _value(run, w, code, p, ())
         _once(bw.letters, name, w.col)
@@ -156,8 +176,18 @@ def _other(run: SinumerikRun, bw: BlockWords, w: Word, code: str, p: int) -> int
         return string_argument(code, p)
     elif name == "RET":
         bw.end = True
-    elif name == "STOPRE":
+    elif name in NOTED_WORDS and w.expr is None:
         bw.ignored.append((name, w.col))
+    elif name in NOTED_VALUES and w.expr is not None:
+        _, p = run.variables.evaluate(code, w.expr)
+        bw.ignored.append((name, w.col))
+    elif name in NOTED_CALLS and w.expr is None:
+        bw.ignored.append((name, w.col))
+        return string_argument(code, p)
+    elif name in ("TRANS", "ATRANS") and w.expr is None:
+        if bw.frame is not None:
+            raise ExprError("one TRANS or ATRANS a block", w.col)
+        bw.frame = (name, w.col)
     elif name == "PROC":
         return _proc(code, p)
     elif name == "L" and w.literal is not None:
@@ -187,9 +217,10 @@ def _proc(code: str, p: int) -> int:
 
 
 def _unknown(name: str) -> str:
-    if name in ("TRANS", "ATRANS", "ROT", "AROT", "SCALE", "ASCALE", "MIRROR", "AMIRROR"):
-        return (f"{name}: programmable frames are not read by ccopt: program the contour "
-                "in the coordinates the frame gives")
+    if name in ("ROT", "AROT", "SCALE", "ASCALE", "MIRROR", "AMIRROR", "TRAORI", "CYCLE800"):
+        return (f"{name}: rotating, scaling and mirroring frames and transformations are not "
+                "read by ccopt (TRANS and ATRANS are): program the contour in the "
+                "coordinates they give")
     if name in ("CHF", "CHR", "RND", "RNDM", "ANG"):
         return (f"{name}: chamfers, roundings and contour definitions are not read by ccopt: "
                 "program the chamfer or rounding as its own line or arc")
