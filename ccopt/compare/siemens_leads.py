@@ -11,9 +11,10 @@ of a small set:
   and retraction on a line, a quadrant, a semicircle (SINUMERIK rule 5),
   ``DISR`` chosen from :data:`DISR_FACTORS` times the cutter radius.
 
-"Fastest" is the cycle time under the comparison's limits (the whole path
-planned, :func:`~ccopt.compare.timing.duration_figures`); without limits, the
-shortest path. A member the verifier does not certify (a gouge, a gap, a
+"Fastest" is the cycle time under the comparison's limits (planned stretch
+by stretch, the stretches the members share once:
+:class:`~ccopt.compare.timing.StretchTimes`); without limits, the shortest
+path. A member the verifier does not certify (a gouge, a gap, a
 side fault) is not chosen; with none certified the variant is rejected
 with the reasons. The row's ``info`` names the member chosen and every
 member's figure.
@@ -24,7 +25,7 @@ import math
 
 from ccopt.compare.contract import (SIEMENS_NAMES, Blend, BlendOutcome, BlendProblem,
                                     BlendRejected)
-from ccopt.compare.timing import duration_figures
+from ccopt.compare.timing import StretchTimes, duration_figures
 from ccopt.compensate import compensate
 from ccopt.errors import CcoptError
 from ccopt.toolpath import ToolPath
@@ -37,12 +38,14 @@ CORNERS = ("G450", "G451")
 _FAULTS = ("gouge", "gap", "side")
 
 
-def _figure(path: ToolPath, problem: BlendProblem) -> float | None:
+def _figure(path: ToolPath, problem: BlendProblem, times: StretchTimes | None) -> float | None:
     """The member's figure to minimise: cycle time, else length (``None``:
-    the planner refused it)."""
-    if problem.limits is None:
+    the planner refused it). ``times`` holds the stretches planned for the
+    members so far: the members differ only at their leads or corners, so
+    the stretches between are planned once (:mod:`.timing`)."""
+    if times is None:
         return float(sum(s.geom.length for s in path.segments))
-    duration = duration_figures(path, problem.limits)[0]
+    duration = duration_figures(path, problem.limits, times)[0]
     return None if duration is None else float(duration)
 
 
@@ -58,6 +61,7 @@ def _cutter_radius(problem: BlendProblem) -> float:
 def _fastest(problem: BlendProblem, members: dict[str, dict], label: str) -> BlendOutcome:
     """Compensate with each member's options, certify, and keep the fastest."""
     best, tried = None, {}
+    times = None if problem.limits is None else StretchTimes(problem.limits, ts=problem.ts)
     for key, options in members.items():
         try:
             path = compensate(problem.program, "siemens", radius=problem.radius,
@@ -70,7 +74,7 @@ def _fastest(problem: BlendProblem, members: dict[str, dict], label: str) -> Ble
         if faults:
             tried[key] = f"not certified: {faults[0].kind} of depth {faults[0].depth:.3g}"
             continue
-        figure = _figure(path, problem)
+        figure = _figure(path, problem, times)
         if figure is None:
             tried[key] = "the feed planner refused it"
             continue

@@ -175,9 +175,8 @@ SIEMENS_CORNER_LIMIT_DEG = 100.0
 
 #: [ccopt decision] G450/G451 and DISC in force at a corner are the outgoing
 #: block's ("the transition circle belongs to the next block", Programming
-#: Manual 2.10.3); the G40 block's at a retraction, the activation block's at
-#: an approach (where the outgoing block is the first contour move, whose
-#: modes are the same unless it changes them). Alternative ``"incoming-block"``.
+#: Manual 2.10.3): at an approach (KONT) the first contour move's, at a
+#: retraction the G40 block's. Alternative ``"incoming-block"``.
 SIEMENS_MODAL_OF_CORNER = "outgoing-block"
 
 #: [ccopt decision] A reversal (the path turns back on itself) while SINUMERIK
