@@ -10,7 +10,8 @@ import math
 
 import pytest
 
-from ccopt import cli, verify
+from ccopt import AxisLimits, cli, export, plan_feed, read_program, verify
+from ccopt.cases import find_case
 from ccopt.compensate import STYLES, compensate
 from ccopt.errors import CompensationError
 from ccopt.program.gcode import read_gcode
@@ -331,3 +332,15 @@ def test_transition_circle_belongs_to_the_next_block():
     path = comp(BOX + "G450 Y-10 F1200\nG40 X30 Y-10\n")
     arc = [s for s in path.segments if s.role.value == "corner"][0]
     assert arc.feed == pytest.approx(20.0) and arc.block.source.line == 4
+
+
+def test_sar_plate_compensates_verifies_times_and_exports(tmp_path):
+    case = find_case("sinumerik-sar-plate")
+    p = read_program(case.program)
+    path = compensate(p, style="siemens")
+    assert verify(path, p).ok
+    prof = plan_feed(path, AxisLimits(case.vmax, case.amax))
+    assert prof.duration > 0
+    for suffix in (".nc", ".pmc"):
+        res = export(path, tmp_path / f"plate{suffix}", program=p)
+        assert res.verified and res.roundtrip_error < 1e-6, (suffix, res.to_json())

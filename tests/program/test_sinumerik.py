@@ -233,3 +233,13 @@ def test_trans_atrans_named_tools_and_noted_settings():
     assert prog.blocks[-1].modal.radius is None      # a named tool: --radius gives it
     assert set(prog.meta["sinumerik_ignored"]) >= {"SOFT", "COMPCAD", "ADIS", "CYCLE832",
                                                   "WORKPIECE"}
+
+
+def test_cli_dialect_option_and_units(tmp_path, capsys):
+    f = tmp_path / "part.txt"
+    f.write_text("G70 G1 F10 X1 Y2\n")
+    assert cli.main(["show", str(f), "--dialect", "sinumerik", "--units", "mm"]) == 0
+    out = capsys.readouterr().out
+    assert "sinumerik" in out and "units mm" in out
+    prog = read_program(f, "sinumerik", units="mm")
+    assert prog.blocks[0].end[:2] == pytest.approx((25.4, 50.8))
