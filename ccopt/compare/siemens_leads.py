@@ -60,7 +60,7 @@ def _cutter_radius(problem: BlendProblem) -> float:
 
 def _fastest(problem: BlendProblem, members: dict[str, dict], label: str) -> BlendOutcome:
     """Compensate with each member's options, certify, and keep the fastest."""
-    best, tried = None, {}
+    best, tried, refusals = None, {}, []
     times = None if problem.limits is None else StretchTimes(problem.limits, ts=problem.ts)
     for key, options in members.items():
         try:
@@ -68,6 +68,7 @@ def _fastest(problem: BlendProblem, members: dict[str, dict], label: str) -> Ble
                               side=problem.side, **options)
         except CcoptError as exc:
             tried[key] = f"refused: {exc}"
+            refusals.append(exc)
             continue
         cert = problem.certify(path)
         faults = [v for v in cert.violations if v.kind in _FAULTS]
@@ -81,6 +82,8 @@ def _fastest(problem: BlendProblem, members: dict[str, dict], label: str) -> Ble
         tried[key] = figure
         if best is None or figure < best[0]:
             best = (figure, key, path, cert)
+    if best is None and len(refusals) == len(members):
+        raise refusals[0]          # the controller refuses the program: the row says why
     if best is None:
         raise BlendRejected(f"{label}: no member certified ("
                             + "; ".join(f"{k}: {v}" for k, v in tried.items()) + ")")

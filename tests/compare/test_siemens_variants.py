@@ -53,10 +53,10 @@ def test_quadrant_family_leads_on_an_arc_of_the_chosen_disr(leadin):
             math.pi / 2)
 
 
-def test_an_arc_activation_is_rejected_with_the_reason():
+def test_an_arc_activation_is_refused_with_the_reason():
     # a SINUMERIK control activates compensation with G0/G1 only
     prog = read_sinumerik("G1 F600 X0 Y-20\nG41 G3 X0 Y0 CR=10\nG1 X20\nG40 X20 Y-20\n",
                           "arc.mpf")
     rows = {r.name: r for r in compare(prog, ["siemens-g147"], radius=1.0)}
     row = rows["siemens-g147"]
-    assert row.status == "rejected" and "must be linear" in row.message
+    assert row.status == "refused" and "must be linear" in row.message
