@@ -175,8 +175,10 @@ ENTRY_POINT_GROUP = "ccopt.blends"
 
 #: The variants built into ccopt (:mod:`ccopt.compare.registry`); an entry point
 #: of one of these names is ignored.
-#: The SINUMERIK approach families (:mod:`ccopt.compare.siemens_leads`).
-SIEMENS_NAMES = ("siemens-norm", "siemens-kont", "siemens-g147", "siemens-g247", "siemens-g347")
+#: The SINUMERIK 840D style as the program asks (``siemens``) and its approach
+#: families (:mod:`ccopt.compare.siemens_leads`).
+SIEMENS_NAMES = ("siemens", "siemens-norm", "siemens-kont", "siemens-g147", "siemens-g247",
+                 "siemens-g347")
 BUILTIN_NAMES = ("pmac", "linuxcnc", "fagor-g138", "fagor-g139-g136", "fagor-g139-g137",
                  "tangent-arc", "line-arc") + SIEMENS_NAMES
 #: The built-in variants that are a controller's own program-following path

@@ -6,8 +6,9 @@ the program's G136/G137), ``fagor-g139-g136`` and ``fagor-g139-g137``
 (contouring start and end with circular or linear transitions, forced with
 the Fagor style's ``start_end``/``corner`` options), and the geometric leads
 ``tangent-arc`` and ``line-arc`` (:mod:`.geometric`), and the SINUMERIK
-approach families ``siemens-norm``, ``siemens-kont``, ``siemens-g147``,
-``siemens-g247``, ``siemens-g347`` (:mod:`.siemens_leads`).
+840D style as programmed, ``siemens``, with its approach families
+``siemens-norm``, ``siemens-kont``, ``siemens-g147``, ``siemens-g247``,
+``siemens-g347`` (:mod:`.siemens_leads`).
 
 Every other variant is a plug-in blend registered as an entry point of group
 ``ccopt.blends``; what it implements and how it registers is

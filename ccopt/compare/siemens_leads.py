@@ -1,6 +1,8 @@
 """SINUMERIK 840D approach families as comparison variants.
 
-Each variant is the ``siemens`` style (docs/compensation.md, section 10)
+``siemens`` is the ``siemens`` style (docs/compensation.md, section 10) as
+the program asks (its G450/G451, NORM/KONT and smooth approaches; the
+defaults for programs of other dialects). Each other variant is the style
 with one approach and retraction family forced on every lead-in and
 lead-out, and the family's parameter chosen as the fastest certified member
 of a small set:
@@ -118,9 +120,18 @@ def _smooth(kind: str) -> Blend:
     return run
 
 
+def _as_programmed() -> Blend:
+    def run(problem: BlendProblem) -> ToolPath:
+        return compensate(problem.program, "siemens", radius=problem.radius, side=problem.side)
+    run.__doc__ = "the SINUMERIK 840D style with the program's own modes"
+    run.compensates = True
+    return run
+
+
 def siemens_variants() -> dict[str, Blend]:
     """The SINUMERIK variants by name."""
-    made = {"siemens-norm": _approach("NORM"), "siemens-kont": _approach("KONT"),
+    made = {"siemens": _as_programmed(),
+            "siemens-norm": _approach("NORM"), "siemens-kont": _approach("KONT"),
             "siemens-g147": _smooth("G147"), "siemens-g247": _smooth("G247"),
             "siemens-g347": _smooth("G347")}
     return {name: made[name] for name in SIEMENS_NAMES}
