@@ -51,6 +51,9 @@ EXPECTS = ("ok", "gouge", "error")
 DEFAULT_STYLE = "pmac"
 GCODE_STYLE = "linuxcnc"
 FAGOR_STYLE = "fagor"
+#: The style of a HEIDENHAIN Klartext program (``.h``).
+HEIDENHAIN_STYLE = "heidenhain"
+#: The style of a SINUMERIK program (``.mpf``, ``.spf``).
 SIEMENS_STYLE = "siemens"
 
 #: Axis limits of an input whose case has no ``[limits]`` and that gets no
@@ -268,11 +271,13 @@ def find_case(name_or_path: str) -> Case | None:
 
 def default_style(prog: Program) -> tuple[str, str]:
     """The style of ``prog`` when neither a case nor the command line names
-    one, and why: ``pmac`` for a PMAC program, ``siemens`` for a SINUMERIK
-    one, ``fagor`` for G-code where Fagor's G136-G139 appear (outside
-    comments), else ``linuxcnc``."""
+    one, and why: ``pmac`` for a PMAC program, ``heidenhain`` for a Klartext
+    program, ``siemens`` for a SINUMERIK one, ``fagor`` for G-code where
+    Fagor's G136-G139 appear (outside comments), else ``linuxcnc``."""
     if prog.dialect == "pmac":
         return DEFAULT_STYLE, "default for a PMAC program"
+    if prog.dialect == "heidenhain":
+        return HEIDENHAIN_STYLE, "default for a HEIDENHAIN Klartext program"
     if prog.dialect == "sinumerik":
         return SIEMENS_STYLE, "default for a SINUMERIK program"
     for name in dict.fromkeys(b.source.file for b in prog.blocks):

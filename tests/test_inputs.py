@@ -66,7 +66,7 @@ PROGRAM = 'title = "t"\nprogram = "part.pmc"\n'
     (PROGRAM + "limits = {v = [1, 1], a = [1]}\n", 3, "limits.a = [1]: must be a list"),
     (PROGRAM + "[limits]\nv = [1, 1]\n", 3, "limits: [limits] needs a = [X, Y[, Z]]"),
     (PROGRAM + "limits = 5\n", 3, "limits = 5: must be a table"),
-    (PROGRAM + 'style = "fanuc"\n', 3, 'style = "fanuc": must be one of fagor, linuxcnc, pmac'),
+    (PROGRAM + 'style = "fanuc"\n', 3, 'style = "fanuc": must be one of fagor, heidenhain, linuxcnc, pmac'),
     (PROGRAM + 'expect = "maybe"\n', 3, 'expect = "maybe": must be one of ok, gouge, error'),
 ])
 def test_bad_case_values_are_exit_2_at_their_key(capsys, tmp_path, toml, line, start):

@@ -40,8 +40,8 @@ SMOOTH_FIGURES = ("min_clearance", "certified", "max_deviation", "max_deviation_
 
 COMPARE_DESCRIPTION = """\
 Every lead-in, lead-out and corner variant of PROGRAM side by side: the
-controller styles, the geometric leads (tangent-arc, line-arc) and the
-optimised G2 blends registered as ccopt.blends entry points (opt-casadi,
+controller styles, the geometric leads (tangent-arc, line-arc), HEIDENHAIN's
+APPR/DEP leads (heidenhain-lt, -ln, -ct, -lct) and the optimised G2 blends registered as ccopt.blends entry points (opt-casadi,
 opt-cvxpy, smooth). Each is certified by the verifier (an optimised blend is
 only accepted certified) and timed under the axis limits (--vmax/--amax/--jmax,
 else the case's [limits], else 100 units/s and 1000 units/s^2 per axis; the

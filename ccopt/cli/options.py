@@ -144,7 +144,8 @@ def add_reading_options(p: argparse.ArgumentParser) -> None:
                    help="program dialect (default: from the file suffix)")
     # a Path, so the reader takes it as a file name, never as table text
     p.add_argument("--tool-table", metavar="FILE", type=Path,
-                   help="LinuxCNC tool table for G41/G42 D<tool number>")
+                   help="LinuxCNC tool table for G41/G42 D<tool number> (and HEIDENHAIN "
+                        "TOOL CALL <tool number>)")
     p.add_argument("--var-file", metavar="FILE", type=Path,
                    help="LinuxCNC parameter file (linuxcnc.var): coordinate system origins "
                         "and offsets in force at the start of a G-code program")
@@ -210,7 +211,8 @@ def add_style_options(p: argparse.ArgumentParser) -> None:
     """The controller style, the radius and side, and the style's own options."""
     p.add_argument("--style", choices=sorted(STYLES),
                    help="controller style (default: the case's, else by dialect: pmac for "
-                        "PMAC, siemens for SINUMERIK, linuxcnc for G-code, fagor where "
+                        "PMAC, heidenhain for Klartext, siemens for SINUMERIK, linuxcnc for "
+                        "G-code, fagor where "
                         "G136-G139 appear)")
     add_radius_side(p)
     p.add_argument("--break-cos", type=cosine, metavar="C",

@@ -7,7 +7,24 @@ from ccopt.cli.inputs import job
 from ccopt.cli.options import add_program, add_reading_options, add_style_options, describe
 from ccopt.cli.output import EXIT_OK, emit_json, path_table
 from ccopt.pipeline import pipeline
+from ccopt.program.heidenhain.cycles import TOLERANCES
 from ccopt.toolpath import programmed_path
+
+
+def _tolerance_notes(prog) -> list[str]:
+    """The HEIDENHAIN ``CYCL DEF 32`` tolerances of ``prog``, one line each:
+    recorded and reported, never applied (ccopt runs the exact path)."""
+    return [f"  CYCL DEF 32 tolerance {t['tolerance']:g} {prog.units} (line {t['line']}): "
+            "recorded, not applied (ccopt runs the exact path)" if t["tolerance"] is not None
+            else f"  CYCL DEF 32 (line {t['line']}): the machine's default tolerance"
+            for t in prog.meta.get(TOLERANCES, ())]
+
+
+def _json(path, prog) -> dict:
+    doc = path.to_json()
+    if prog.meta.get(TOLERANCES):
+        doc["cycle32_tolerance"] = list(prog.meta[TOLERANCES])
+    return doc
 
 
 def cmd_show(args: argparse.Namespace) -> int:
@@ -15,10 +32,12 @@ def cmd_show(args: argparse.Namespace) -> int:
     prog = job(args.program, args).read()
     path = programmed_path(prog)
     if args.json:
-        emit_json(path.to_json())
+        emit_json(_json(path, prog))
     else:
         print(f"{prog.file}: {len(prog.blocks)} blocks, {prog.dialect}, units {prog.units}, "
               f"programmed path {path.length:.4f} {prog.units}")
+        for line in _tolerance_notes(prog):
+            print(line)
         print(path_table(path))
     return EXIT_OK
 
@@ -28,18 +47,21 @@ def cmd_compensate(args: argparse.Namespace) -> int:
     done = pipeline(job(args.program, args), feed=False, verify=False).result()
     prog, path = done.program, done.path
     if args.json:
-        emit_json(path.to_json())
+        emit_json(_json(path, prog))
     else:
         print(f"{prog.file}: style {path.style} ({done.style_from}), cutter radius "
               f"{path.radius:g} {path.units}, {len(path.segments)} segments, tool path "
               f"{path.length:.4f} {path.units}")
+        for line in _tolerance_notes(prog):
+            print(line)
         print(path_table(path))
     return EXIT_OK
 
 
 SHOW_DESCRIPTION = """\
 The programmed path of PROGRAM (a .pmc PMAC program, a .nc/.ngc G-code
-program, a case folder or a bundled case's name) before any compensation, as
+program, a .h HEIDENHAIN Klartext program, a case folder or a bundled case's
+name) before any compensation, as
 exact lines, arcs and spirals, each with its role and the program line it
 comes from; --json prints the same schema as ccopt compensate --json."""
 
@@ -48,8 +70,9 @@ The tool-centre path a controller makes from PROGRAM with cutter radius
 compensation (G41/G42/G40, CC1/CC2/CC0): exact lines, arcs and spirals with
 their roles (lead-in, compensated, corner, lead-out) and source lines. The
 style is --style, else the case's, else by dialect: pmac for PMAC programs,
-siemens for SINUMERIK, linuxcnc for G-code, fagor where G136-G139 appear (the
-output says which);
+heidenhain for Klartext, siemens for SINUMERIK, linuxcnc for G-code, fagor where
+G136-G139 appear (the output says which); CYCL DEF 32 tolerances are reported,
+not applied;
 --radius and --side override the program."""
 
 

@@ -23,7 +23,6 @@ from __future__ import annotations
 from dataclasses import replace
 
 from ccopt.compare.contract import BUILTIN_NAMES, CONTROLLER_NAMES
-from ccopt.compare.figures import max_deviation
 
 #: Two cycle times within this relative difference are the same time (the
 #: planners' own rounding is far below it).
@@ -48,13 +47,10 @@ def base_row(rows, reference_name: str):
     return best if best is not None and best.name != reference_name else None
 
 
-def from_base(row, base: str, reference):
-    """A plug-in ``row`` solved from controller ``base``'s path: its deviation
-    measured from the ``reference`` path as every row's, and saying where it
-    started (``info["base"]``)."""
-    if row.toolpath is not None:
-        dev, bound = max_deviation(row.toolpath, reference)
-        row.figures.update(max_deviation=dev, max_deviation_bound=bound)
+def from_base(row, base: str):
+    """A plug-in ``row`` solved from controller ``base``'s path, saying where it
+    started (``info["base"]``; its deviation is measured from the reference
+    path as every row's, :attr:`~ccopt.compare.contract.BlendProblem.deviation_from`)."""
     row.info["base"] = base
     note = f"started from {base}'s path (the fastest certified controller variant)"
     row.message = note if row.message is None else f"{note}; {row.message}"

@@ -71,6 +71,9 @@ class BlendProblem:
         default), as the job that asked for the comparison has it.
     ts: the jerk planner's interpolation period (s; ``None``: its default), as
         the comparison times the variants with it.
+    deviation_from: the path every row's deviation is measured from when the
+        blend starts from another controller's path (``reference`` is then
+        that path); ``None``: ``reference`` itself.
     """
 
     program: Program
@@ -83,6 +86,7 @@ class BlendProblem:
     progress: Callable[[str], None] | None = None
     tolerance: float | None = None
     ts: float | None = None
+    deviation_from: ToolPath | None = None
 
     def report(self, line: str) -> None:
         """Pass ``line`` (e.g. "blend 2/6") to :attr:`progress`, if any."""
@@ -92,6 +96,11 @@ class BlendProblem:
     @property
     def cutter_radius(self) -> float:
         return float(self.reference.radius)
+
+    @property
+    def measured_from(self) -> ToolPath:
+        """The path the deviation figures are measured from (:attr:`deviation_from`)."""
+        return self.deviation_from if self.deviation_from is not None else self.reference
 
     @property
     def band(self) -> float:
@@ -180,11 +189,12 @@ ENTRY_POINT_GROUP = "ccopt.blends"
 SIEMENS_NAMES = ("siemens", "siemens-norm", "siemens-kont", "siemens-g147", "siemens-g247",
                  "siemens-g347")
 BUILTIN_NAMES = ("pmac", "linuxcnc", "fagor-g138", "fagor-g139-g136", "fagor-g139-g137",
-                 "tangent-arc", "line-arc") + SIEMENS_NAMES
+                 "heidenhain", "tangent-arc", "line-arc", "heidenhain-lt", "heidenhain-ln",
+                 "heidenhain-ct", "heidenhain-lct") + SIEMENS_NAMES
 #: The built-in variants that are a controller's own program-following path
-#: (the others are geometric leads or the SINUMERIK lead families with a
-#: chosen parameter): the baselines an optimised blend must beat.
-CONTROLLER_NAMES = ("pmac", "linuxcnc", "fagor-g138", "fagor-g139-g136", "fagor-g139-g137")
+#: (the others are geometric leads, or lead families with a chosen
+#: parameter): the baselines an optimised blend must beat.
+CONTROLLER_NAMES = BUILTIN_NAMES[:6]
 
 
 def blend_entry_points() -> dict[str, EntryPoint]:

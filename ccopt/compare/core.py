@@ -144,12 +144,14 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     later = [job for job in jobs if job[1] not in BUILTIN_NAMES]
     base = base_row(rows, REFERENCE) if limits is not None and problem is not None else None
     if base is not None:
-        later = [(i, name, replace(problem, reference=base.toolpath)) for i, name, _ in later]
+        later = [(i, name, replace(problem, reference=base.toolpath,
+                                   deviation_from=problem.reference))
+                 for i, name, _ in later]
     # the plug-ins' cycle times take the base path's stretch times as the
     # reference's: each of its stretches is planned once, not once per plug-in
     later_ref = ref if base is None else ref.with_stretches(base.stretch_times)
     for i, row in run_jobs(later, later_ref, lambda _: [], len(names), workers, progress):
-        rows[i] = row if base is None else from_base(row, base.name, problem.reference)
+        rows[i] = row if base is None else from_base(row, base.name)
     ref_duration = rows[ref_index].figures.get("duration") if ref_index is not None else None
     if ref_duration is None and problem is not None and limits is not None:
         ref_duration = duration_figures(ref.path, limits, ref.times())[0]

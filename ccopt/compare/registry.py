@@ -4,9 +4,11 @@ Built in (the core works without :mod:`formulations`): the controller styles
 ``pmac`` (the reference), ``linuxcnc``, ``fagor-g138`` (direct start and end,
 the program's G136/G137), ``fagor-g139-g136`` and ``fagor-g139-g137``
 (contouring start and end with circular or linear transitions, forced with
-the Fagor style's ``start_end``/``corner`` options), and the geometric leads
-``tangent-arc`` and ``line-arc`` (:mod:`.geometric`), and the SINUMERIK
-840D style as programmed, ``siemens``, with its approach families
+the Fagor style's ``start_end``/``corner`` options), ``heidenhain`` (the TNC
+style), the geometric leads ``tangent-arc`` and ``line-arc``
+(:mod:`.geometric`), HEIDENHAIN's approach/departure leads
+``heidenhain-lt``, ``-ln``, ``-ct``, ``-lct`` (:mod:`.tnc_leads`), and the
+SINUMERIK 840D style as programmed, ``siemens``, with its approach families
 ``siemens-norm``, ``siemens-kont``, ``siemens-g147``, ``siemens-g247``,
 ``siemens-g347`` (:mod:`.siemens_leads`).
 
@@ -22,6 +24,7 @@ from ccopt.compare.contract import (
 from ccopt.compare.geometric import ConstructionError, line_arc, tangent_arc
 from ccopt.compare.leads import find_leads, splice
 from ccopt.compare.siemens_leads import siemens_variants
+from ccopt.compare.tnc_leads import KINDS as TNC_LEADS, tnc_lead
 from ccopt.compensate import compensate
 from ccopt.errors import ProgramError
 from ccopt.toolpath import ToolPath
@@ -61,8 +64,10 @@ def _builtins() -> dict[str, Blend]:
         "fagor-g138": _style("fagor", start_end="direct"),
         "fagor-g139-g136": _style("fagor", start_end="contour", corner="circular"),
         "fagor-g139-g137": _style("fagor", start_end="contour", corner="linear"),
+        "heidenhain": _style("heidenhain"),
         "tangent-arc": _geometric(tangent_arc, "tangent-arc"),
         "line-arc": _geometric(line_arc, "line-arc"),
+        **{name: tnc_lead(name) for name in TNC_LEADS},
         **siemens_variants(),
     }
 

@@ -1,6 +1,6 @@
 """SINUMERIK 840D approach families as comparison variants.
 
-``siemens`` is the ``siemens`` style (docs/compensation.md, section 10) as
+``siemens`` is the ``siemens`` style (docs/compensation.md, section 11) as
 the program asks (its G450/G451, NORM/KONT and smooth approaches; the
 defaults for programs of other dialects). Each other variant is the style
 with one approach and retraction family forced on every lead-in and

@@ -74,7 +74,7 @@ def measure_shape(name: str, path: ToolPath, problem: BlendProblem, solve_time: 
     cert = certificate if certificate is not None else problem.certify(path)
     fig = path_figures(path, lead_joins(path))
     if problem.reference is not None:
-        dev, dev_bound = max_deviation(path, problem.reference)
+        dev, dev_bound = max_deviation(path, problem.measured_from)
     else:  # no reference to measure against (PMAC refused the program)
         dev = dev_bound = None
     gouge = cert.check("gouge")

@@ -11,6 +11,7 @@ from __future__ import annotations
 from typing import Callable
 
 from ccopt.compensate.fagor import FagorStyle
+from ccopt.compensate.heidenhain import HeidenhainStyle
 from ccopt.compensate.linuxcnc import LinuxcncStyle
 from ccopt.compensate.pmac import PmacStyle
 from ccopt.compensate.siemens import SiemensStyle
@@ -25,6 +26,7 @@ STYLES: dict[str, Callable[..., object]] = {
     "pmac": PmacStyle,
     "linuxcnc": LinuxcncStyle,
     "fagor": FagorStyle,
+    "heidenhain": HeidenhainStyle,
     "siemens": SiemensStyle,
 }
 

@@ -163,6 +163,32 @@ FAGOR_PROGRAM_END_WHILE_ON = "cancel-in-place"
 FAGOR_GAP_MOVES_AFTER_TRANSITION = True
 
 
+# -- HEIDENHAIN TNC style (ccopt/compensate/heidenhain.py) ---------------------------
+
+#: [ccopt decision] M97 at an outside corner whose offsets do not intersect
+#: (an arc offset that misses the next element's): the transition arc, as
+#: without M97. Alternative ``"gradual"``: as an inside corner without
+#: intersection, the change over the next move.
+HEIDENHAIN_M97_WITHOUT_INTERSECTION = "arc"
+
+#: [ccopt decision] M98 at an inside corner ("open contour corner"): the
+#: manuals say the TNC suspends radius compensation so that both corners are
+#: machined completely, and (TNC7) that it extends the tool path by the tool
+#: radius and holds the position in the next block. ``"extend-then-next-block"``:
+#: the block ends at the end of its offset, ``P + r*o(t_in)``, and the next
+#: block runs from there to its own offset end (its offset introduced over
+#: it). Alternative ``"straight-to-next-offset"``: a straight move from there
+#: to the next block's offset start ``P + r*o(t_out)``.
+HEIDENHAIN_M98_OPEN_CORNER = "extend-then-next-block"
+
+#: [ccopt decision] A program (or a run of blocks in one plane) that ends with
+#: RL/RR in force, not by DEP or an R0 block: the last element ends at its
+#: offset end and a straight move returns to its programmed end
+#: (``"return-to-contour"``, PMAC's automatic lead-out). Alternative
+#: ``"stay-at-offset"``.
+HEIDENHAIN_PROGRAM_END_WHILE_ON = "return-to-contour"
+
+
 # -- SINUMERIK 840D style (ccopt/compensate/siemens.py) ------------------------------
 
 #: [spec decision] G451 falls back to the G450 transition circle when the path

@@ -281,9 +281,9 @@ def _curve_zones(path: ExactPath, k, s, v_axis, a_axis, ramps) -> np.ndarray:
     side = c[ks] * feed * feed
     a_min = float(np.min(a_axis))
     ok = (np.isfinite(feed) & (feed <= GRADE_FEED_SHARE * float(np.min(v_axis)))
-          & (side <= GRADE_CENTRIPETAL_SHARE * a_min))
+          & (side < a_min))
     if centripetal_acc is not None:
-        ok &= side <= GRADE_CENTRIPETAL_SHARE * float(centripetal_acc)
+        ok &= side <= float(centripetal_acc)
     a_t = np.inf if tangential_acc is None else float(tangential_acc)
     with np.errstate(invalid="ignore"):
         zone[ks] = np.where(ok, feed * feed / np.minimum(a_min - side, a_t), np.inf)
@@ -331,11 +331,6 @@ def _segment_grids(path: ExactPath, v_axis, a_axis, options: GridOptions, ramps=
 #: factor per interval away from the end zones, where the speed is at its cap.
 GRADE_RATIO = 2.0
 
-#: Graded grids: an arc is graded only where its centripetal acceleration at the
-#: feed takes at most this fraction of the smallest axis (or centripetal)
-#: limit, so at least the rest is left for speeding up along it.
-GRADE_CENTRIPETAL_SHARE = 0.5
-
 #: Graded grids: an arc is graded only when its feed is at most this fraction of
 #: the smallest axis velocity limit (an interval's velocity bound uses the
 #: largest ``|q_j'|`` on it plus a small allowance, which must not bind).
@@ -352,9 +347,12 @@ def _ramp_lengths(path: ExactPath, ks: np.ndarray, v_axis, a_axis, tangential_ac
     everywhere on it, so from any speed the profile reaches the cap (or falls
     from it to any end speed) within ``v_c^2 / (2 a_p)``. On an arc with
     ``|q''| = c``, feed ``f <= min_j V_j`` (the feed is the cap all along it)
-    and ``c f^2`` at most :data:`GRADE_CENTRIPETAL_SHARE` of ``min_j A_j``
-    (and of the centripetal limit), the tangential acceleration left is at
-    least ``a_p = min(min_j A_j - c f^2, a_t)``; elsewhere ``inf``.
+    and ``c f^2`` below ``min_j A_j`` (and at most the centripetal limit), the
+    tangential acceleration left is at least ``a_p = min(min_j A_j - c f^2, a_t)``
+    (``|q_j'' s'^2| <= c f^2`` leaves that much of every axis's limit);
+    elsewhere ``inf``. No margin is kept below ``min_j A_j``: the ramp grows
+    as the centripetal part takes more of the limit, and a ramp longer than
+    half the segment leaves it evenly gridded (:func:`_graded`).
     """
     mid = path.offsets[ks] + 0.5 * path.lengths[ks]
     q1 = np.abs(path.eval_segments(ks, mid, 1))
@@ -367,9 +365,9 @@ def _ramp_lengths(path: ExactPath, ks: np.ndarray, v_axis, a_axis, tangential_ac
         a_min = float(np.min(a_axis))
         side = c * feed * feed
         arc_ok = (np.isfinite(feed) & (feed <= GRADE_FEED_SHARE * float(np.min(v_axis)))
-                  & (side <= GRADE_CENTRIPETAL_SHARE * a_min))
+                  & (side < a_min))
         if centripetal_acc is not None:
-            arc_ok &= side <= GRADE_CENTRIPETAL_SHARE * float(centripetal_acc)
+            arc_ok &= side <= float(centripetal_acc)
         a_arc = np.minimum(a_min - side, a_t)
         ramp = np.where(c == 0.0, v_line * v_line / a_line,
                         np.where(arc_ok, feed * feed / a_arc, np.inf))

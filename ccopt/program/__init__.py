@@ -3,7 +3,7 @@
 ``read_program(path)`` picks the dialect from the file suffix (``.pmc``,
 ``.pmac``, ``.prg`` -> PMAC motion program; ``.mpf``, ``.spf`` -> SINUMERIK
 840D; ``.nc``, ``.ngc``, ``.gcode``, ``.tap``, ``.cnc``, ``.iso`` -> ISO/RS274
-G-code) unless ``dialect=`` says otherwise.
+G-code; ``.h`` -> HEIDENHAIN Klartext) unless ``dialect=`` says otherwise.
 """
 from __future__ import annotations
 
@@ -13,6 +13,8 @@ from pathlib import Path
 from ccopt.errors import ProgramError
 from ccopt.program.gcode import read_gcode
 from ccopt.program.gcode.coordinates import read_var_file
+from ccopt.program.heidenhain import read_heidenhain
+from ccopt.program.heidenhain.tooltable import is_tnc_table, read_tnc_tool_table
 from ccopt.program.model import INPUT_FILES, Block, Modal, Motion, PLANE_AXES, Program, Source
 from ccopt.program.pmac import read_pmac
 from ccopt.program.sinumerik import read_sinumerik
@@ -20,8 +22,9 @@ from ccopt.program.tooltable import read_tool_table
 
 PMAC_SUFFIXES = {".pmc", ".pmac", ".prg"}
 GCODE_SUFFIXES = {".nc", ".ngc", ".gcode", ".tap", ".cnc", ".iso", ".g"}
+HEIDENHAIN_SUFFIXES = {".h"}
 SINUMERIK_SUFFIXES = {".mpf", ".spf"}
-DIALECTS = ("gcode", "pmac", "sinumerik")
+DIALECTS = ("gcode", "pmac", "heidenhain", "sinumerik")
 
 
 def dialect_of(path: str | os.PathLike) -> str:
@@ -31,13 +34,27 @@ def dialect_of(path: str | os.PathLike) -> str:
         return "pmac"
     if suffix in GCODE_SUFFIXES:
         return "gcode"
+    if suffix in HEIDENHAIN_SUFFIXES:
+        return "heidenhain"
     if suffix in SINUMERIK_SUFFIXES:
         return "sinumerik"
     raise ProgramError(
         f"cannot tell the dialect from the suffix {suffix or '(none)'!r}; "
         f"use {sorted(PMAC_SUFFIXES)} for PMAC, {sorted(GCODE_SUFFIXES)} for G-code, "
+        f"{sorted(HEIDENHAIN_SUFFIXES)} for HEIDENHAIN Klartext, "
         f"{sorted(SINUMERIK_SUFFIXES)} for SINUMERIK, "
-        "or give the dialect (--dialect gcode|pmac|sinumerik; dialect= in Python)", str(path))
+        "or give the dialect (--dialect gcode|pmac|heidenhain|sinumerik; dialect= in Python)",
+        str(path))
+
+
+def _is_tnc_table(path) -> bool:
+    """``path`` names a HEIDENHAIN ``TOOL.T`` table (``BEGIN TOOL.T`` first)."""
+    try:
+        with open(path, "rb") as fh:
+            head = fh.read(64).decode("utf-8", errors="replace")
+    except OSError:
+        return False            # read_tool_table says what is wrong with it
+    return is_tnc_table(head)
 
 
 def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
@@ -49,13 +66,16 @@ def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
     ``table_units``, ``sub_path`` and ``max_loop_iterations``: G-code only,
     see :func:`read_gcode`, except that SINUMERIK programs take ``units``
     and ``max_loop_iterations`` too (:func:`read_sinumerik`); PMAC programs
-    have no loops ccopt runs, ``WHILE`` is refused)."""
+    have no loops ccopt runs, ``WHILE`` is refused; ``tool_table`` also gives
+    HEIDENHAIN ``TOOL CALL`` radii)."""
     if dialect == "gcode":
         return read_gcode(text, file, tool_table=tool_table, parameters=parameters,
                           units=units, table_units=table_units, sub_path=sub_path,
                           max_loop_iterations=max_loop_iterations)
     if dialect == "pmac":
         return read_pmac(text, file)
+    if dialect == "heidenhain":
+        return read_heidenhain(text, file, tool_table=tool_table)
     if dialect == "sinumerik":
         return read_sinumerik(text, file, tool_table=tool_table, units=units,
                               max_loop_iterations=max_loop_iterations, sub_path=sub_path)
@@ -72,9 +92,11 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     Parameters
     ----------
     path: program file.
-    dialect: ``"gcode"``, ``"pmac"`` or ``"sinumerik"``; default from the suffix.
-    tool_table: LinuxCNC tool table (path or ``{tool: diameter}``) for G-code
-        ``G41 D<tool>``.
+    dialect: ``"gcode"``, ``"pmac"``, ``"heidenhain"`` or ``"sinumerik"``; default
+        from the suffix.
+    tool_table: LinuxCNC tool table or HEIDENHAIN ``TOOL.T`` (path, told apart
+        by its ``BEGIN TOOL.T`` line) or ``{tool: diameter}``, for G-code
+        ``G41 D<tool>``, HEIDENHAIN ``TOOL CALL <tool>`` and SINUMERIK ``T``.
     var_file: LinuxCNC parameter file (``linuxcnc.var``) whose values are in
         force at the start of a G-code program (coordinate system origins).
     units, table_units, sub_path: G-code only: the unit every length is
@@ -96,7 +118,8 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
         raise ProgramError("not UTF-8/ASCII text (a binary file?)", file, line) from None
     table = tool_table
     if tool_table is not None and not isinstance(tool_table, dict):
-        table = read_tool_table(tool_table)
+        table = (read_tnc_tool_table(tool_table) if _is_tnc_table(tool_table)
+                 else read_tool_table(tool_table))
     parameters = read_var_file(var_file) if var_file is not None else None
     if dialect != "gcode":
         for given, what in ((parameters, "a LinuxCNC parameter file (--var-file)"),

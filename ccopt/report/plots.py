@@ -95,28 +95,24 @@ def _step(path: ToolPath) -> float:
 
 
 def _draw_path(ax, path: ToolPath, contour: ToolPath | None, radius: float,
-               violations: list | None, step: float, legend: bool = True) -> None:
-    """The contour, the tool path by role, tool circles and violations, on ``ax``."""
+               violations: list | None, step: float, legend: bool = True,
+               box: tuple | None = None) -> None:
+    """The contour, the tool path by role, tool circles and violations, on ``ax``;
+    with ``box`` (x0, x1, y0, y1), a zoomed view, only what reaches into it."""
+    def shown(segments):
+        return [s for s in segments if box is None or _meets(s.geom.bbox(), box, radius)]
+
     if contour is not None:
-        p = _polyline([s for s in contour.segments if s.role is not Role.RAPID], step)
+        p = _polyline(shown([s for s in contour.segments if s.role is not Role.RAPID]), step)
         if p is not None:
             ax.plot(p[:, 0], p[:, 1], color="black", lw=1.0)
     # one line per role, in the order the roles first appear (the legend's order)
     for role in dict.fromkeys(seg.role for seg in path.segments if seg.length > 0):
-        p = _polyline([s for s in path.segments if s.role is role], step)
-        ax.plot(p[:, 0], p[:, 1], label=role.value, **ROLE_STYLE[role])
+        p = _polyline(shown([s for s in path.segments if s.role is role]), step)
+        if p is not None:
+            ax.plot(p[:, 0], p[:, 1], label=role.value, **ROLE_STYLE[role])
     if radius > 0:
-        from matplotlib.patches import Circle  # deferred: matplotlib is heavy and optional
-        cut = [s for s in path.segments if s.role is not Role.RAPID and s.length > 0]
-        total = sum(s.length for s in cut)
-        spacing = max(total / 60, radius)
-        acc = 0.0
-        for seg in cut:
-            for s in np.arange((-acc) % spacing, seg.length, spacing):
-                c = seg.geom.point(s)
-                ax.add_patch(Circle(c[:2], radius, fill=False, lw=0.4, color="#888888",
-                                    alpha=0.6))
-            acc = (acc + seg.length) % spacing
+        _draw_tool_circles(ax, path, radius, box)
     for v in violations or []:
         w = v.get("witness_tool") or v.get("witness")
         if w:
@@ -125,6 +121,36 @@ def _draw_path(ax, path: ToolPath, contour: ToolPath | None, radius: float,
     if legend:
         _legend_outside(ax)
     ax.grid(alpha=0.3)
+
+
+def _meets(bbox, box, margin: float) -> bool:
+    """Whether a segment's ``bbox`` (x0, y0, x1, y1) comes within ``margin`` of
+    the view ``box`` (x0, x1, y0, y1)."""
+    return (bbox[0] <= box[1] + margin and bbox[2] >= box[0] - margin
+            and bbox[1] <= box[3] + margin and bbox[3] >= box[2] - margin)
+
+
+def _draw_tool_circles(ax, path: ToolPath, radius: float, box: tuple | None = None) -> None:
+    """The cutter outline every ``max(length / 60, radius)`` along the cutting
+    moves, as one collection (one artist, not one patch per circle: a patch
+    each was a tenth of a report's drawing time); with ``box``, those that
+    reach into it."""
+    from matplotlib.collections import PatchCollection  # deferred: heavy and optional
+    from matplotlib.patches import Circle  # deferred: heavy and optional
+    cut = [s for s in path.segments if s.role is not Role.RAPID and s.length > 0]
+    total = sum(s.length for s in cut)
+    spacing = max(total / 60, radius)
+    acc = 0.0
+    circles = []
+    for seg in cut:
+        for s in np.arange((-acc) % spacing, seg.length, spacing):
+            c = seg.geom.point(s)
+            if box is None or _meets((c[0], c[1], c[0], c[1]), box, radius):
+                circles.append(Circle(c[:2], radius))
+        acc = (acc + seg.length) % spacing
+    if circles:
+        ax.add_collection(PatchCollection(circles, facecolor="none", edgecolor="#888888",
+                                          lw=0.4, alpha=0.6), autolim=True)
 
 
 def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
@@ -146,7 +172,7 @@ def path_plot(path: ToolPath, contour: ToolPath | None, radius: float,
     ax.set_title(plot_text(title))
     for (name, box), zax in zip(windows, zooms):
         # finer samples: the window is a small part of the path
-        _draw_path(zax, path, contour, radius, violations, step / 10, legend=False)
+        _draw_path(zax, path, contour, radius, violations, step / 10, legend=False, box=box)
         _zoom_to(zax, name, box)
     return _png(fig)
 
@@ -235,7 +261,12 @@ def feed_plot(profile, title: str = "") -> bytes:
     ax.set_aspect("equal")
     ax.grid(alpha=0.3)
     for (name, zbox), zax in zip(windows, zooms):
-        _speed_lines(zax, xy, samples.feed, top)
+        # only the pieces that reach into the window (a tenth of the samples, or fewer)
+        margin = 0.5 * (zbox[1] - zbox[0])
+        near = ((xy[:, 0] >= zbox[0] - margin) & (xy[:, 0] <= zbox[1] + margin)
+                & (xy[:, 1] >= zbox[2] - margin) & (xy[:, 1] <= zbox[3] + margin))
+        piece = near[:-1] | near[1:]
+        _speed_lines(zax, xy, samples.feed, top, piece)
         _zoom_to(zax, name, zbox)
         zax.grid(alpha=0.3)
     fig.colorbar(lc, ax=[ax, *zooms], label="feed (units/s)",
@@ -244,11 +275,15 @@ def feed_plot(profile, title: str = "") -> bytes:
     return _png(fig)
 
 
-def _speed_lines(ax, xy: np.ndarray, feed: np.ndarray, top: float | None):
-    """The path ``xy`` on ``ax`` as line pieces coloured by ``feed`` (0 .. ``top``)."""
+def _speed_lines(ax, xy: np.ndarray, feed: np.ndarray, top: float | None,
+                 piece: np.ndarray | None = None):
+    """The path ``xy`` on ``ax`` as line pieces coloured by ``feed`` (0 .. ``top``);
+    ``piece``: which of the pieces (``len(xy) - 1`` booleans) to draw, default all."""
     from matplotlib.collections import LineCollection  # deferred: heavy and optional
-    lc = LineCollection(np.stack([xy[:-1], xy[1:]], axis=1), array=feed[:-1], cmap="viridis",
-                        lw=2.0)
+    lines, colour = np.stack([xy[:-1], xy[1:]], axis=1), feed[:-1]
+    if piece is not None:
+        lines, colour = lines[piece], colour[piece]
+    lc = LineCollection(lines, array=colour, cmap="viridis", lw=2.0)
     if top is not None:
         lc.set_clim(0.0, top)
     ax.add_collection(lc)

@@ -28,6 +28,7 @@ import numpy as np
 import pytest
 
 import ccopt.feed.jerk.lp as jerk_lp
+from ccopt.feed.jerk.windows import DURATION_TOL
 from ccopt.feed import AxisLimits, FeedError, plan_feed
 from ccopt.geometry import Arc, Line
 from ccopt.toolpath import PathSegment, Role, ToolPath
@@ -163,13 +164,15 @@ def test_needs_jerk_limits():
 
 def test_runaway_simplex_is_bounded_and_the_plan_stays_within_the_limits(monkeypatch):
     """A round whose simplex runs past RUNAWAY_ITERATIONS per gridpoint is
-    solved once more from scratch under the same bound, then given up: the
-    window then takes the S-curve per block (rest to rest), still a feasible
-    profile. With the bound at a hundredth of an iteration per gridpoint no
-    LP can finish, so every window degrades that way, and the profile is the
-    S-curve's: 100 mm at v = 100, a = 1000, j = 20000 in two blocks that stop
-    between them, each block ``L / v + v / a + a / j`` (both reach v)."""
+    solved once more from scratch by the interior-point method, then given
+    up when that too runs past IPM_ITERATIONS: the window then takes the
+    S-curve per block (rest to rest), still a feasible profile. With both
+    bounds below one iteration no LP can finish, so every window degrades
+    that way, and the profile is the S-curve's: 100 mm at v = 100, a = 1000,
+    j = 20000 in two blocks that stop between them, each block
+    ``L / v + v / a + a / j`` (both reach v)."""
     monkeypatch.setattr(jerk_lp, "RUNAWAY_ITERATIONS", 0.01)
+    monkeypatch.setattr(jerk_lp, "IPM_ITERATIONS", 0)
     tp = ToolPath((seg(Line((0, 0), (40, 0)), 1000.0), seg(Line((40, 0), (100, 0)), 1000.0)))
     lim = AxisLimits((100, 100), (1000, 1000), j=(20000, 20000))
     prof = plan_feed(tp, lim, planner="jerk")
@@ -177,4 +180,21 @@ def test_runaway_simplex_is_bounded_and_the_plan_stays_within_the_limits(monkeyp
     blocks = sum(length / 100 + 100 / 1000 + 1000 / 20000 for length in (40, 60))
     assert prof.duration == pytest.approx(blocks, rel=1e-6)
     v, a, j, _ = sampled_ratios(prof)
+    assert max(v, a, j) <= OVER
+
+
+def test_runaway_simplex_is_finished_by_the_interior_point_method(monkeypatch):
+    """With the simplex cut off before any LP can finish, the interior-point
+    re-solve still reaches each round's optimum: no window degrades to the
+    S-curve per block, and the plan's time is the one the unhindered simplex
+    finds (the LP optimum is unique in value), within the limits."""
+    tp = ToolPath((seg(Line((0, 0), (40, 0)), 1000.0), seg(Arc((40, 20), 20.0, -math.pi / 2, math.pi / 2), 1000.0),
+                   seg(Line((60, 20), (60, 80)), 1000.0)))
+    lim = AxisLimits((100, 100), (1000, 1000), j=(20000, 20000))
+    free = plan_feed(tp, lim, planner="jerk")
+    monkeypatch.setattr(jerk_lp, "RUNAWAY_ITERATIONS", 0.01)
+    cut = plan_feed(tp, lim, planner="jerk")
+    assert cut.info["windows"] >= 1 and cut.info["lp_failed_windows"] == 0
+    assert cut.duration == pytest.approx(free.duration, rel=DURATION_TOL)
+    v, a, j, _ = sampled_ratios(cut)
     assert max(v, a, j) <= OVER

@@ -27,12 +27,18 @@ SLINEAR, FROM_REST, TO_REST = 0, 1, 2
 #: 1e3 and none falls under HiGHS's optimality tolerance (1e-7 relative).
 WEIGHT_FLOOR = 1e-2
 #: Simplex iterations per gridpoint after which a round's solve counts as run
-#: away (then solved once more from scratch, see :meth:`WindowLP.solve`). No
-#: plan of the bundled cases' smoothed paths or the 1,000-block pocket of
-#: bench/feed.py changes with it (the most counted there: 4.5 per gridpoint,
-#: a cold start on freeform-hsm's); with bolder bound updates than the rounds
-#: make, one warm start cycled for minutes on that path.
-RUNAWAY_ITERATIONS = 25
+#: away (then solved once more from scratch by the interior-point method, see
+#: :meth:`WindowLP.solve`): about twice the most a solve that converges takes
+#: (4.5 per gridpoint, a cold start on freeform-hsm's smoothed path; 3 to 4 on
+#: the smoothed CAM plates), since every iteration past it is lost when the
+#: run is given up. A warm start that runs away keeps going for minutes: on a
+#: smoothed plate of 1,876 gridpoints a cold simplex was still short of the
+#: optimum after 139,000 iterations where IPM took 16.
+RUNAWAY_ITERATIONS = 8
+#: Interior-point iterations allowed to the solve that follows a run-away
+#: simplex (their number grows with the logarithm of the accuracy asked, not
+#: with the LP's size: 16 on that plate; HiGHS's own cap is effectively none).
+IPM_ITERATIONS = 200
 
 
 @dataclass
@@ -317,7 +323,9 @@ class WindowLP:
         or when HiGHS's simplex would take more than ``max_iterations``
         (then the next call starts from where it stopped). Without
         ``max_iterations`` a run past :data:`RUNAWAY_ITERATIONS` per gridpoint
-        is solved once more from scratch under the same bound, then None."""
+        (or one in numerical trouble) is solved once more from scratch under
+        the same bound by the interior-point method (at most
+        :data:`IPM_ITERATIONS`), then None."""
         h, nb = self.highs, self.nb
         b_at = np.maximum(bhat[self.jerk_at0], bhat[self.jerk_at1])
         v_at = np.maximum(self.vref[self.jerk_at0], self.vref[self.jerk_at1])
@@ -341,15 +349,18 @@ class WindowLP:
         if max_iterations is not None and limited:
             return None
         if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
-            # rare numerical trouble without presolve, or a simplex that ran
-            # away from the last basis: once more, from scratch, with presolve
-            h.setOptionValue("presolve", "on")
+            # rare numerical trouble, or a simplex that ran away from the last
+            # basis: once more, from scratch, by the interior-point method, whose
+            # iteration count does not depend on a basis (a cold simplex on such
+            # an LP, 1,876 gridpoints of a smoothed plate, ran past 139,000
+            # iterations where IPM took 16); its crossover leaves the basis the
+            # next round warm-starts from
+            h.setOptionValue("solver", "ipm")
+            h.setOptionValue("run_crossover", "on")
+            h.setOptionValue("ipm_iteration_limit", int(IPM_ITERATIONS))
             h.clearSolver()
-            if limited:
-                h.setOptionValue("simplex_iteration_limit", runaway)
             h.run()
-            h.setOptionValue("simplex_iteration_limit", highspy.kHighsIInf)
-            h.setOptionValue("presolve", "off")
+            h.setOptionValue("solver", "simplex")
         if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
             return None
         x = np.asarray(h.getSolution().col_value, dtype=float)
