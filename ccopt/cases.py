@@ -53,6 +53,8 @@ GCODE_STYLE = "linuxcnc"
 FAGOR_STYLE = "fagor"
 #: The style of a HEIDENHAIN Klartext program (``.h``).
 HEIDENHAIN_STYLE = "heidenhain"
+#: The style of a SINUMERIK program (``.mpf``, ``.spf``).
+SIEMENS_STYLE = "siemens"
 
 #: Axis limits of an input whose case has no ``[limits]`` and that gets no
 #: ``--vmax``/``--amax``: 100 units/s and 1000 units/s^2 on every axis (a small
@@ -270,12 +272,14 @@ def find_case(name_or_path: str) -> Case | None:
 def default_style(prog: Program) -> tuple[str, str]:
     """The style of ``prog`` when neither a case nor the command line names
     one, and why: ``pmac`` for a PMAC program, ``heidenhain`` for a Klartext
-    program, ``fagor`` for G-code where
+    program, ``siemens`` for a SINUMERIK one, ``fagor`` for G-code where
     Fagor's G136-G139 appear (outside comments), else ``linuxcnc``."""
     if prog.dialect == "pmac":
         return DEFAULT_STYLE, "default for a PMAC program"
     if prog.dialect == "heidenhain":
         return HEIDENHAIN_STYLE, "default for a HEIDENHAIN Klartext program"
+    if prog.dialect == "sinumerik":
+        return SIEMENS_STYLE, "default for a SINUMERIK program"
     for name in dict.fromkeys(b.source.file for b in prog.blocks):
         try:
             text = Path(name).read_text(encoding="utf-8", errors="replace")

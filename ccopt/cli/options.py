@@ -13,6 +13,7 @@ from pathlib import Path
 from ccopt.cases import DEFAULT_LIMITS
 from ccopt.cli.output import EXIT_BAD_INPUT
 from ccopt.compensate import STYLES
+from ccopt.program import DIALECTS
 from ccopt.program.gcode import MAX_LOOP_ITERATIONS
 from ccopt.program.model import MAX_COORDINATE
 from ccopt.sides import SIDE_NAMES
@@ -139,7 +140,7 @@ def add_json_option(p: argparse.ArgumentParser) -> None:
 
 def add_reading_options(p: argparse.ArgumentParser) -> None:
     """How to read the program, and ``--json``."""
-    p.add_argument("--dialect", choices=["gcode", "pmac", "heidenhain"],
+    p.add_argument("--dialect", choices=list(DIALECTS),
                    help="program dialect (default: from the file suffix)")
     # a Path, so the reader takes it as a file name, never as table text
     p.add_argument("--tool-table", metavar="FILE", type=Path,
@@ -210,7 +211,8 @@ def add_style_options(p: argparse.ArgumentParser) -> None:
     """The controller style, the radius and side, and the style's own options."""
     p.add_argument("--style", choices=sorted(STYLES),
                    help="controller style (default: the case's, else by dialect: pmac for "
-                        "PMAC, heidenhain for Klartext, linuxcnc for G-code, fagor where "
+                        "PMAC, heidenhain for Klartext, siemens for SINUMERIK, linuxcnc for "
+                        "G-code, fagor where "
                         "G136-G139 appear)")
     add_radius_side(p)
     p.add_argument("--break-cos", type=cosine, metavar="C",

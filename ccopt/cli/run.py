@@ -27,7 +27,8 @@ Independent cases run in parallel worker processes (--workers, default one per
 core); a Ctrl-C stops them all at once (exit 130) and leaves no partial file.
 Limits: --vmax/--amax, else a case's [limits], else 100 units/s and 1000
 units/s^2 per axis; style: --style, else a case's, else by dialect (pmac for
-PMAC programs, linuxcnc for G-code, fagor where G136-G139 appear). Exit 0 when
+PMAC programs, siemens for SINUMERIK, linuxcnc for G-code, fagor where G136-G139
+appear). Exit 0 when
 every case gets its expected verdict, 1 when a verification fails
 unexpectedly, 2 when an input cannot be read or compensated."""
 

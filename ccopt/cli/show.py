@@ -70,8 +70,9 @@ The tool-centre path a controller makes from PROGRAM with cutter radius
 compensation (G41/G42/G40, CC1/CC2/CC0): exact lines, arcs and spirals with
 their roles (lead-in, compensated, corner, lead-out) and source lines. The
 style is --style, else the case's, else by dialect: pmac for PMAC programs,
-heidenhain for Klartext, linuxcnc for G-code, fagor where G136-G139 appear
-(the output says which); CYCL DEF 32 tolerances are reported, not applied;
+heidenhain for Klartext, siemens for SINUMERIK, linuxcnc for G-code, fagor where
+G136-G139 appear (the output says which); CYCL DEF 32 tolerances are reported,
+not applied;
 --radius and --side override the program."""
 
 

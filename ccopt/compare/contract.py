@@ -184,11 +184,16 @@ ENTRY_POINT_GROUP = "ccopt.blends"
 
 #: The variants built into ccopt (:mod:`ccopt.compare.registry`); an entry point
 #: of one of these names is ignored.
+#: The SINUMERIK 840D style as the program asks (``siemens``) and its approach
+#: families (:mod:`ccopt.compare.siemens_leads`).
+SIEMENS_NAMES = ("siemens", "siemens-norm", "siemens-kont", "siemens-g147", "siemens-g247",
+                 "siemens-g347")
 BUILTIN_NAMES = ("pmac", "linuxcnc", "fagor-g138", "fagor-g139-g136", "fagor-g139-g137",
                  "heidenhain", "tangent-arc", "line-arc", "heidenhain-lt", "heidenhain-ln",
-                 "heidenhain-ct", "heidenhain-lct")
-#: The built-in variants that are a controller's own path (the others are
-#: geometric leads): the baselines an optimised blend must beat.
+                 "heidenhain-ct", "heidenhain-lct") + SIEMENS_NAMES
+#: The built-in variants that are a controller's own program-following path
+#: (the others are geometric leads, or lead families with a chosen
+#: parameter): the baselines an optimised blend must beat.
 CONTROLLER_NAMES = BUILTIN_NAMES[:6]
 
 

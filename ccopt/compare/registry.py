@@ -6,8 +6,11 @@ the program's G136/G137), ``fagor-g139-g136`` and ``fagor-g139-g137``
 (contouring start and end with circular or linear transitions, forced with
 the Fagor style's ``start_end``/``corner`` options), ``heidenhain`` (the TNC
 style), the geometric leads ``tangent-arc`` and ``line-arc``
-(:mod:`.geometric`), and HEIDENHAIN's approach/departure leads
-``heidenhain-lt``, ``-ln``, ``-ct``, ``-lct`` (:mod:`.tnc_leads`).
+(:mod:`.geometric`), HEIDENHAIN's approach/departure leads
+``heidenhain-lt``, ``-ln``, ``-ct``, ``-lct`` (:mod:`.tnc_leads`), and the
+SINUMERIK 840D style as programmed, ``siemens``, with its approach families
+``siemens-norm``, ``siemens-kont``, ``siemens-g147``, ``siemens-g247``,
+``siemens-g347`` (:mod:`.siemens_leads`).
 
 Every other variant is a plug-in blend registered as an entry point of group
 ``ccopt.blends``; what it implements and how it registers is
@@ -20,6 +23,7 @@ from ccopt.compare.contract import (
 )
 from ccopt.compare.geometric import ConstructionError, line_arc, tangent_arc
 from ccopt.compare.leads import find_leads, splice
+from ccopt.compare.siemens_leads import siemens_variants
 from ccopt.compare.tnc_leads import KINDS as TNC_LEADS, tnc_lead
 from ccopt.compensate import compensate
 from ccopt.errors import ProgramError
@@ -64,6 +68,7 @@ def _builtins() -> dict[str, Blend]:
         "tangent-arc": _geometric(tangent_arc, "tangent-arc"),
         "line-arc": _geometric(line_arc, "line-arc"),
         **{name: tnc_lead(name) for name in TNC_LEADS},
+        **siemens_variants(),
     }
 
 

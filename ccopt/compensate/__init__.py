@@ -14,6 +14,7 @@ from ccopt.compensate.fagor import FagorStyle
 from ccopt.compensate.heidenhain import HeidenhainStyle
 from ccopt.compensate.linuxcnc import LinuxcncStyle
 from ccopt.compensate.pmac import PmacStyle
+from ccopt.compensate.siemens import SiemensStyle
 from ccopt.errors import ProgramError
 from ccopt.program.model import Program
 from ccopt.sides import side_sign
@@ -26,6 +27,7 @@ STYLES: dict[str, Callable[..., object]] = {
     "linuxcnc": LinuxcncStyle,
     "fagor": FagorStyle,
     "heidenhain": HeidenhainStyle,
+    "siemens": SiemensStyle,
 }
 
 

@@ -187,3 +187,42 @@ HEIDENHAIN_M98_OPEN_CORNER = "extend-then-next-block"
 #: (``"return-to-contour"``, PMAC's automatic lead-out). Alternative
 #: ``"stay-at-offset"``.
 HEIDENHAIN_PROGRAM_END_WHILE_ON = "return-to-contour"
+
+
+# -- SINUMERIK 840D style (ccopt/compensate/siemens.py) ------------------------------
+
+#: [spec decision] G451 falls back to the G450 transition circle when the path
+#: turns by this many degrees or more at an outside corner (machine data
+#: MD20210 ``$MC_CUTCOM_CORNER_LIMIT``; the 808D Programming and Operating
+#: Manual gives the set angle 100 degrees). The manuals call it the "contour
+#: angle" and plot the intersection's overshoot, which grows with the turn,
+#: against it: read here as the turning angle.
+SIEMENS_CORNER_LIMIT_DEG = 100.0
+
+#: [ccopt decision] G450/G451 and DISC in force at a corner are the outgoing
+#: block's ("the transition circle belongs to the next block", Programming
+#: Manual 2.10.3): at an approach (KONT) the first contour move's, at a
+#: retraction the G40 block's. Alternative ``"incoming-block"``.
+SIEMENS_MODAL_OF_CORNER = "outgoing-block"
+
+#: [ccopt decision] A reversal (the path turns back on itself) while SINUMERIK
+#: compensation is on is an outside corner of 180 degrees: a half-turn G450
+#: circle (G451 falls back to it, the turn being past the corner limit).
+#: ``False``: as an inside corner (the offsets' intersection, or the change
+#: over the next move).
+SIEMENS_REVERSAL_IS_OUTSIDE = True
+
+#: [ccopt decision] A G451 (or DISC=100) outside corner whose offsets do not
+#: meet (a line and an arc that miss each other) gets the G450 transition
+#: circle. Alternative ``"next-move"``: the change is introduced over the
+#: next move, as an inside corner without intersection.
+SIEMENS_INTERSECTION_MISSING = "G450"
+
+#: Open points the SINUMERIK style settles as the Fagor engine it runs on
+#: (documented in docs/compensation.md, switched by the FAGOR_ entries
+#: above): an inside corner whose offsets do not meet introduces the change
+#: over the next move; G41 <-> G42 without G40 follows the PMAC side-change
+#: rule; a G40 block that does not move in the plane cancels in place;
+#: program end while on cancels in place. Bottleneck detection (CDON) is not
+#: applied by any style: adjacent offsets are intersected and the verifier
+#: reports what gouges.

@@ -287,8 +287,23 @@ class FagorStyle:
         ends[-1] = last.offset_point(True, last.k, last.r) if last.k != 0 else last.end
         return starts, ends, corners
 
+    def _emit_move(self, out: _FagorSegments, el: Element, cl: str, start, end) -> None:
+        """One move's tool segment from ``start`` to ``end`` (a style with
+        approach and retraction moves of its own overrides it: siemens.py)."""
+        geom = tool_geometry(el, start, end)
+        role = ROLE_OF[cl]
+        if cl == UNCOMP and el.block.motion is Motion.RAPID:
+            role = Role.RAPID
+        if geom.length > POINT_EPS or el.w0 != el.w1:
+            out.add(geom, role, el.block, el.w0, el.w1)
+
     @staticmethod
-    def _emit_moves(out: _FagorSegments, gaps, els, classes, cancel_at, starts, ends,
+    def _corner_block(els: list[Element], i: int) -> Block:
+        """The block the transition after move ``i`` belongs to (its feed):
+        the incoming move's on the Fagor (a style may say otherwise)."""
+        return els[i].block
+
+    def _emit_moves(self, out: _FagorSegments, gaps, els, classes, cancel_at, starts, ends,
                     corners) -> None:
         """Each move, its transition and the gaps between moves. A gap runs
         after the transition, where the next move starts
@@ -307,16 +322,12 @@ class FagorStyle:
                 out.gap(gaps[i], ends[i - 1], True, (cancel_at[i], ends[i - 1], els[i - 1].end))
             elif gaps_after or i == 0:
                 out.gap(gaps[i], starts[i], classes[i] in (COMP, LEAD_OUT))
-            geom = tool_geometry(el, starts[i], ends[i])
-            role = ROLE_OF[classes[i]]
-            if classes[i] == UNCOMP and el.block.motion is Motion.RAPID:
-                role = Role.RAPID
-            if geom.length > POINT_EPS or el.w0 != el.w1:
-                out.add(geom, role, el.block, el.w0, el.w1)
+            self._emit_move(out, el, classes[i], starts[i], ends[i])
             if not gaps_after and i + 1 < n and not cancels(i + 1):
                 out.gap(gaps[i + 1], ends[i], classes[i + 1] in (COMP, LEAD_OUT))
+            owner = self._corner_block(els, i)
             for cg in corners[i]:
-                out.add(cg, Role.CORNER, el.block, el.w1, el.w1)
+                out.add(cg, Role.CORNER, owner, el.w1, el.w1)
 
     @staticmethod
     def _emit_tail(out: _FagorSegments, trailing: list[Block], last: Element, end,

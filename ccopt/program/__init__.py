@@ -1,9 +1,9 @@
 """Part-program readers: text -> immutable :class:`Program`.
 
 ``read_program(path)`` picks the dialect from the file suffix (``.pmc``,
-``.pmac``, ``.prg`` -> PMAC motion program; ``.nc``, ``.ngc``, ``.gcode``,
-``.tap``, ``.cnc``, ``.mpf``, ``.iso`` -> ISO/RS274 G-code; ``.h`` ->
-HEIDENHAIN Klartext) unless ``dialect=`` says otherwise.
+``.pmac``, ``.prg`` -> PMAC motion program; ``.mpf``, ``.spf`` -> SINUMERIK
+840D; ``.nc``, ``.ngc``, ``.gcode``, ``.tap``, ``.cnc``, ``.iso`` -> ISO/RS274
+G-code; ``.h`` -> HEIDENHAIN Klartext) unless ``dialect=`` says otherwise.
 """
 from __future__ import annotations
 
@@ -17,12 +17,14 @@ from ccopt.program.heidenhain import read_heidenhain
 from ccopt.program.heidenhain.tooltable import is_tnc_table, read_tnc_tool_table
 from ccopt.program.model import INPUT_FILES, Block, Modal, Motion, PLANE_AXES, Program, Source
 from ccopt.program.pmac import read_pmac
+from ccopt.program.sinumerik import read_sinumerik
 from ccopt.program.tooltable import read_tool_table
 
 PMAC_SUFFIXES = {".pmc", ".pmac", ".prg"}
-GCODE_SUFFIXES = {".nc", ".ngc", ".gcode", ".tap", ".cnc", ".mpf", ".iso", ".g"}
+GCODE_SUFFIXES = {".nc", ".ngc", ".gcode", ".tap", ".cnc", ".iso", ".g"}
 HEIDENHAIN_SUFFIXES = {".h"}
-DIALECTS = ("gcode", "pmac", "heidenhain")
+SINUMERIK_SUFFIXES = {".mpf", ".spf"}
+DIALECTS = ("gcode", "pmac", "heidenhain", "sinumerik")
 
 
 def dialect_of(path: str | os.PathLike) -> str:
@@ -34,11 +36,15 @@ def dialect_of(path: str | os.PathLike) -> str:
         return "gcode"
     if suffix in HEIDENHAIN_SUFFIXES:
         return "heidenhain"
+    if suffix in SINUMERIK_SUFFIXES:
+        return "sinumerik"
     raise ProgramError(
         f"cannot tell the dialect from the suffix {suffix or '(none)'!r}; "
         f"use {sorted(PMAC_SUFFIXES)} for PMAC, {sorted(GCODE_SUFFIXES)} for G-code, "
         f"{sorted(HEIDENHAIN_SUFFIXES)} for HEIDENHAIN Klartext, "
-        "or give the dialect (--dialect gcode|pmac|heidenhain; dialect= in Python)", str(path))
+        f"{sorted(SINUMERIK_SUFFIXES)} for SINUMERIK, "
+        "or give the dialect (--dialect gcode|pmac|heidenhain|sinumerik; dialect= in Python)",
+        str(path))
 
 
 def _is_tnc_table(path) -> bool:
@@ -58,8 +64,10 @@ def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
               max_loop_iterations: int | None = None) -> Program:
     """Read program text of the given dialect (``parameters``, ``units``,
     ``table_units``, ``sub_path`` and ``max_loop_iterations``: G-code only,
-    see :func:`read_gcode`; PMAC programs have no loops ccopt runs, ``WHILE``
-    is refused; ``tool_table`` also gives HEIDENHAIN ``TOOL CALL`` radii)."""
+    see :func:`read_gcode`, except that SINUMERIK programs take ``units``
+    and ``max_loop_iterations`` too (:func:`read_sinumerik`); PMAC programs
+    have no loops ccopt runs, ``WHILE`` is refused; ``tool_table`` also gives
+    HEIDENHAIN ``TOOL CALL`` radii)."""
     if dialect == "gcode":
         return read_gcode(text, file, tool_table=tool_table, parameters=parameters,
                           units=units, table_units=table_units, sub_path=sub_path,
@@ -68,6 +76,9 @@ def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
         return read_pmac(text, file)
     if dialect == "heidenhain":
         return read_heidenhain(text, file, tool_table=tool_table)
+    if dialect == "sinumerik":
+        return read_sinumerik(text, file, tool_table=tool_table, units=units,
+                              max_loop_iterations=max_loop_iterations, sub_path=sub_path)
     raise ProgramError(f"unknown dialect {dialect!r}; choose one of {', '.join(DIALECTS)}", file)
 
 
@@ -81,10 +92,11 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     Parameters
     ----------
     path: program file.
-    dialect: ``"gcode"``, ``"pmac"`` or ``"heidenhain"``; default from the suffix.
+    dialect: ``"gcode"``, ``"pmac"``, ``"heidenhain"`` or ``"sinumerik"``; default
+        from the suffix.
     tool_table: LinuxCNC tool table or HEIDENHAIN ``TOOL.T`` (path, told apart
         by its ``BEGIN TOOL.T`` line) or ``{tool: diameter}``, for G-code
-        ``G41 D<tool>`` and HEIDENHAIN ``TOOL CALL <tool>``.
+        ``G41 D<tool>``, HEIDENHAIN ``TOOL CALL <tool>`` and SINUMERIK ``T``.
     var_file: LinuxCNC parameter file (``linuxcnc.var``) whose values are in
         force at the start of a G-code program (coordinate system origins).
     units, table_units, sub_path: G-code only: the unit every length is
@@ -111,10 +123,14 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     parameters = read_var_file(var_file) if var_file is not None else None
     if dialect != "gcode":
         for given, what in ((parameters, "a LinuxCNC parameter file (--var-file)"),
-                            (units, "--units"), (table_units, "--table-units"),
-                            (sub_path or None, "--sub-path")):
+                            (units if dialect != "sinumerik" else None, "--units"),
+                            (table_units, "--table-units"),
+                            ((sub_path or None) if dialect != "sinumerik" else None, "--sub-path")):
             if given is not None:
                 raise ProgramError(f"{what} applies to G-code programs only", file)
+    if dialect == "sinumerik":
+        # SINUMERIK subprograms (NAME.SPF) are looked for beside the program first
+        sub_path = (str(Path(path).resolve().parent), *sub_path)
     prog = read_text(text, file, dialect, tool_table=table, parameters=parameters, units=units,
                      table_units=table_units, sub_path=sub_path,
                      max_loop_iterations=max_loop_iterations)

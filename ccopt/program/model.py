@@ -119,6 +119,70 @@ class Source:
 
 
 @dataclass(frozen=True, slots=True)
+class SmoothApproach:
+    """A SINUMERIK smooth approach or retraction (SAR) asked for on its block.
+
+    Attributes
+    ----------
+    kind: ``"G147"``/``"G148"`` straight line, ``"G247"``/``"G248"`` quadrant,
+        ``"G347"``/``"G348"`` semicircle (approach / retraction).
+    direction: ``"G140"`` (the compensation side), ``"G141"`` (from/to the
+        left), ``"G142"`` (right), ``"G143"`` (by the start or end point's
+        side of the contour's tangent).
+    infeed: ``"G340"`` (in space: the approach curve may be a helix) or
+        ``"G341"`` (the infeed perpendicular to the plane first).
+    disr: ``DISR``, program units (line: cutter edge to contour start; arc:
+        radius of the tool-centre path).
+    discl: ``DISCL`` as a distance above the machining plane (program units),
+        or ``None`` when not programmed.
+    discl_abs: ``DISCL=AC(..)`` as the machine coordinate along the plane
+        normal, or ``None``.
+    fad: ``FAD`` as a feed in program units per second, or ``None``.
+    feed: the feed of the approach curve (the ``F`` in force, units per
+        second: the curve runs at the feed even when the block is ``G0``), or
+        ``None`` (the block's).
+    infeed_feed: the feed of the moves P0 -> P3, the one in force before the
+        block (``None``: rapid, when ``G0`` was in force).
+    """
+
+    kind: str
+    direction: str = "G140"
+    infeed: str = "G340"
+    disr: float = 0.0
+    discl: float | None = None
+    discl_abs: float | None = None
+    fad: float | None = None
+    feed: float | None = None
+    infeed_feed: float | None = None
+
+    @property
+    def approach(self) -> bool:
+        return self.kind in ("G147", "G247", "G347")
+
+
+@dataclass(frozen=True, slots=True)
+class SiemensModes:
+    """SINUMERIK 840D compensation modes in force for a block (the
+    ``sinumerik`` reader sets them; other readers leave ``Modal.siemens``
+    ``None``, which the ``siemens`` style reads as the defaults).
+
+    Attributes
+    ----------
+    corner: ``"G450"`` transition circle (default) or ``"G451"`` intersection.
+    disc: ``DISC`` 0..100 (deforms the G450 circle toward the intersection).
+    approach: ``"NORM"`` (default), ``"KONT"``, ``"KONTT"`` or ``"KONTC"``.
+    bottleneck: ``"CDON"`` or ``"CDOF"`` (default) as programmed.
+    sar: the smooth approach or retraction of this block, else ``None``.
+    """
+
+    corner: str = "G450"
+    disc: float = 0.0
+    approach: str = "NORM"
+    bottleneck: str = "CDOF"
+    sar: SmoothApproach | None = None
+
+
+@dataclass(frozen=True, slots=True)
 class Modal:
     """Modal state in force for a block, as far as ccopt cares.
 
@@ -140,6 +204,8 @@ class Modal:
     accel_time, scurve_time: PMAC ``TA``/``TS`` in seconds (``None`` unset).
     orientation: lathe tool orientation ``Q`` 1..9 (LinuxCNC, in ``G18``) of the
         tool compensating, 0 for a mill tool; kept after ``G40`` as ``radius``.
+    siemens: SINUMERIK corner, approach and SAR modes (:class:`SiemensModes`),
+        ``None`` for programs of other dialects.
     """
 
     plane: str = "XY"
@@ -152,6 +218,7 @@ class Modal:
     accel_time: float | None = None
     scurve_time: float | None = None
     orientation: int = 0
+    siemens: SiemensModes | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -351,7 +418,7 @@ class Program:
     ----------
     blocks: tuple of :class:`Block`.
     file: source file name.
-    dialect: ``"gcode"`` or ``"pmac"``.
+    dialect: ``"gcode"``, ``"pmac"`` or ``"sinumerik"``.
     units: ``"mm"`` or ``"inch"`` (of the last unit word; mixed units are an
         error in the readers).
     start: machine position before the first block, ``(x, y, z)``.

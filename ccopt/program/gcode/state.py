@@ -154,6 +154,7 @@ class GCodeState:
         self.frame = None
         self.frame_key: tuple | None = None
         self.start_end = "contour"
+        self.siemens = None   # SINUMERIK modes (ccopt.program.sinumerik), else None
         self._modal: Modal | None = None
         self.meta: dict = {"tool_length": []}
         self.fanuc_subs: dict[str, int] = {}  # Fanuc subprogram label -> its O line
@@ -201,7 +202,8 @@ class GCodeState:
             self._modal = Modal(plane=self.plane, units=self.out_units or self.units or "mm",
                                 side=self.side,
                                 radius=self.radius, tool=self.tool, corner=self.corner,
-                                start_end=self.start_end, orientation=self.orientation)
+                                start_end=self.start_end, orientation=self.orientation,
+                                siemens=self.siemens)
         return self._modal
 
     def modal_changed(self) -> None:

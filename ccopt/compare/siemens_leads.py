@@ -1,0 +1,138 @@
+"""SINUMERIK 840D approach families as comparison variants.
+
+``siemens`` is the ``siemens`` style (docs/compensation.md, section 11) as
+the program asks (its G450/G451, NORM/KONT and smooth approaches; the
+defaults for programs of other dialects). Each other variant is the style
+with one approach and retraction family forced on every lead-in and
+lead-out, and the family's parameter chosen as the fastest certified member
+of a small set:
+
+* ``siemens-norm``, ``siemens-kont``: ``NORM`` / ``KONT`` (SINUMERIK rule 4),
+  the outside-corner mode chosen from ``G450`` and ``G451``;
+* ``siemens-g147``, ``siemens-g247``, ``siemens-g347``: the smooth approach
+  and retraction on a line, a quadrant, a semicircle (SINUMERIK rule 5),
+  ``DISR`` chosen from :data:`DISR_FACTORS` times the cutter radius.
+
+"Fastest" is the cycle time under the comparison's limits (planned stretch
+by stretch, the stretches the members share once:
+:class:`~ccopt.compare.timing.StretchTimes`); without limits, the shortest
+path. A member the verifier does not certify (a gouge, a gap, a
+side fault) is not chosen; with none certified the variant is rejected
+with the reasons. The row's ``info`` names the member chosen and every
+member's figure.
+"""
+from __future__ import annotations
+
+import math
+
+from ccopt.compare.contract import (SIEMENS_NAMES, Blend, BlendOutcome, BlendProblem,
+                                    BlendRejected)
+from ccopt.compare.timing import StretchTimes, duration_figures
+from ccopt.compensate import compensate
+from ccopt.errors import CcoptError
+from ccopt.toolpath import ToolPath
+
+#: DISR of each smooth approach family, in cutter radii (G147: the cutter
+#: edge's distance from the contour; G247/G347: the tool-centre arc's radius).
+DISR_FACTORS = {"G147": (0.0, 0.5, 1.0), "G247": (0.5, 1.0, 2.0), "G347": (0.5, 1.0, 2.0)}
+CORNERS = ("G450", "G451")
+#: The verifier's findings that keep a member from being chosen.
+_FAULTS = ("gouge", "gap", "side")
+
+
+def _figure(path: ToolPath, problem: BlendProblem, times: StretchTimes | None) -> float | None:
+    """The member's figure to minimise: cycle time, else length (``None``:
+    the planner refused it). ``times`` holds the stretches planned for the
+    members so far: the members differ only at their leads or corners, so
+    the stretches between are planned once (:mod:`.timing`)."""
+    if times is None:
+        return float(sum(s.geom.length for s in path.segments))
+    duration = duration_figures(path, problem.limits, times)[0]
+    return None if duration is None else float(duration)
+
+
+def _cutter_radius(problem: BlendProblem) -> float:
+    """The cutter radius: the reference's, else (PMAC refused the program) the
+    one the siemens style compensates with."""
+    if problem.reference is not None:
+        return problem.cutter_radius
+    return float(compensate(problem.program, "siemens", radius=problem.radius,
+                            side=problem.side).radius)
+
+
+def _fastest(problem: BlendProblem, members: dict[str, dict], label: str) -> BlendOutcome:
+    """Compensate with each member's options, certify, and keep the fastest."""
+    best, tried, refusals = None, {}, []
+    times = None if problem.limits is None else StretchTimes(problem.limits, ts=problem.ts)
+    for key, options in members.items():
+        try:
+            path = compensate(problem.program, "siemens", radius=problem.radius,
+                              side=problem.side, **options)
+        except CcoptError as exc:
+            tried[key] = f"refused: {exc}"
+            refusals.append(exc)
+            continue
+        cert = problem.certify(path)
+        faults = [v for v in cert.violations if v.kind in _FAULTS]
+        if faults:
+            tried[key] = f"not certified: {faults[0].kind} of depth {faults[0].depth:.3g}"
+            continue
+        figure = _figure(path, problem, times)
+        if figure is None:
+            tried[key] = "the feed planner refused it"
+            continue
+        tried[key] = figure
+        if best is None or figure < best[0]:
+            best = (figure, key, path, cert)
+    if best is None and len(refusals) == len(members):
+        raise refusals[0]          # the controller refuses the program: the row says why
+    if best is None:
+        raise BlendRejected(f"{label}: no member certified ("
+                            + "; ".join(f"{k}: {v}" for k, v in tried.items()) + ")")
+    _, key, path, cert = best
+    return BlendOutcome(path, {"chosen": key, "members": tried, "certificate": cert})
+
+
+def _approach(mode: str) -> Blend:
+    def run(problem: BlendProblem) -> BlendOutcome:
+        members = {c: {"approach": mode, "corner": c} for c in CORNERS}
+        return _fastest(problem, members, f"siemens {mode}")
+    run.__doc__ = f"SINUMERIK {mode} approach and retraction, G450 or G451 (the faster)"
+    run.compensates = True  # a controller style: refusals are the controller's
+    return run
+
+
+def _smooth(kind: str) -> Blend:
+    def run(problem: BlendProblem) -> BlendOutcome:
+        r = _cutter_radius(problem)
+        members = {}
+        for f in DISR_FACTORS[kind]:
+            disr = f * r
+            if disr <= 0 and kind != "G147" or not math.isfinite(disr):
+                continue
+            members[f"DISR={disr:g}"] = {"sar": kind, "disr": disr}
+        if not members:
+            raise BlendRejected(f"{kind}: no DISR to try with cutter radius {r:g}")
+        return _fastest(problem, members, f"siemens {kind}")
+    run.__doc__ = (f"SINUMERIK smooth approach/retraction {kind}/{kind[:3]}8, DISR the "
+                   "fastest certified of " + ", ".join(f"{f:g}r" for f in DISR_FACTORS[kind]))
+    run.compensates = True
+    return run
+
+
+def _as_programmed() -> Blend:
+    def run(problem: BlendProblem) -> ToolPath:
+        return compensate(problem.program, "siemens", radius=problem.radius, side=problem.side)
+    run.__doc__ = "the SINUMERIK 840D style with the program's own modes"
+    run.compensates = True
+    return run
+
+
+def siemens_variants() -> dict[str, Blend]:
+    """The SINUMERIK variants by name."""
+    made = {"siemens": _as_programmed(),
+            "siemens-norm": _approach("NORM"), "siemens-kont": _approach("KONT"),
+            "siemens-g147": _smooth("G147"), "siemens-g247": _smooth("G247"),
+            "siemens-g347": _smooth("G347")}
+    return {name: made[name] for name in SIEMENS_NAMES}
+
