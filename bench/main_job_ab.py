@@ -42,11 +42,21 @@ def package_root(tree: Path, into: Path) -> Path:
     return into
 
 
+def which_tree(pythonpath: Path) -> str:
+    """Where ``ccopt`` imports from with ``pythonpath`` (a check that the run is that tree's)."""
+    code = "import ccopt, os; print(os.path.realpath(ccopt.__file__))"
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                          env=dict(os.environ, PYTHONPATH=str(pythonpath)), check=True,
+                          cwd=pythonpath).stdout.strip()
+
+
 def variants_of(pythonpath: Path) -> list[str]:
     """The variant names ``ccopt compare`` runs by default in that tree."""
     code = "from ccopt.compare.registry import available; print(','.join(available()))"
+    # run from that folder: the current one would come first on sys.path
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         env=dict(os.environ, PYTHONPATH=str(pythonpath)), check=True)
+                         env=dict(os.environ, PYTHONPATH=str(pythonpath)), check=True,
+                         cwd=pythonpath)
     return out.stdout.strip().split(",")
 
 
@@ -54,8 +64,9 @@ def start(pythonpath: Path, out: Path, extra: list[str]) -> subprocess.Popen:
     cmd = [sys.executable, "-m", "ccopt.cli", "run", "-q", "-o", str(out), *extra]
     # stderr into a file beside the output: a pipe nobody reads could fill and block
     err = open(f"{out}.stderr", "w+")
+    # from that folder too (bundled cases are found beside the package, not here)
     return subprocess.Popen(cmd, env=dict(os.environ, PYTHONPATH=str(pythonpath)),
-                            stdout=subprocess.DEVNULL, stderr=err, text=True)
+                            stdout=subprocess.DEVNULL, stderr=err, text=True, cwd=pythonpath)
 
 
 def finish(procs: dict) -> dict[str, tuple[float, float]]:
@@ -96,6 +107,8 @@ def main(argv=None) -> int:
         try:
             paths = {"earlier": package_root(old_tree, tmp / "earlier"),
                      "this": package_root(ROOT, tmp / "this")}
+            for name, path in paths.items():
+                print(f"{name}: ccopt from {which_tree(path)}")
             extra = {"earlier": [], "this": []}
             variants = args.variants
             if args.same_variants:
