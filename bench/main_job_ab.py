@@ -13,11 +13,12 @@ the medians, and this tree's medians over the earlier commit's.
 
 ``--variants`` restricts this tree's comparison to the variants the earlier
 commit had (the same work: a variant added since is new work, not a slower
-job); ``--same-variants`` takes them from the earlier commit's registry.
+job); ``--same-variants`` takes them from the earlier commit's registry, and
+``--same-cases`` runs both on the earlier commit's bundled cases.
 
 ::
 
-    .venv/bin/python bench/main_job_ab.py 62b6fe7 --same-variants --rounds 3
+    .venv/bin/python bench/main_job_ab.py 62b6fe7 --same-variants --same-cases --rounds 3
     .venv/bin/python bench/main_job_ab.py HEAD~5 --mode together
 """
 from __future__ import annotations
@@ -48,6 +49,16 @@ def which_tree(pythonpath: Path) -> str:
     return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           env=dict(os.environ, PYTHONPATH=str(pythonpath)), check=True,
                           cwd=pythonpath).stdout.strip()
+
+
+def cases_of(pythonpath: Path) -> list[str]:
+    """The bundled case names of that tree (``ccopt run`` with no argument runs them all)."""
+    code = ("from ccopt.cases import bundled_cases_dir; "
+            "print(','.join(sorted(p.parent.name for p in bundled_cases_dir().glob('*/case.toml'))))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         env=dict(os.environ, PYTHONPATH=str(pythonpath)), check=True,
+                         cwd=pythonpath)
+    return out.stdout.strip().split(",")
 
 
 def variants_of(pythonpath: Path) -> list[str]:
@@ -98,6 +109,9 @@ def main(argv=None) -> int:
     ap.add_argument("--variants", help="this tree's variants (comma-separated)")
     ap.add_argument("--same-variants", action="store_true",
                     help="this tree runs the earlier commit's default variants")
+    ap.add_argument("--same-cases", action="store_true",
+                    help="both run the earlier commit's bundled cases (a case added since "
+                         "is new work)")
     args = ap.parse_args(argv)
     with tempfile.TemporaryDirectory(prefix="ccopt-ab-") as tmp:
         tmp = Path(tmp)
@@ -115,6 +129,10 @@ def main(argv=None) -> int:
                 variants = ",".join(variants_of(paths["earlier"]))
             if variants:
                 extra["this"] = ["--variants", variants]
+            if args.same_cases:
+                names = cases_of(paths["earlier"])
+                for n in extra:
+                    extra[n] = [*names, *extra[n]]
             runs: dict[str, list[tuple[float, float]]] = {"earlier": [], "this": []}
             for k in range(args.rounds):
                 order = ["earlier", "this"] if k % 2 == 0 else ["this", "earlier"]
