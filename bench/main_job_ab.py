@@ -43,41 +43,40 @@ def package_root(tree: Path, into: Path) -> Path:
     return into
 
 
-def which_tree(pythonpath: Path) -> str:
-    """Where ``ccopt`` imports from with ``pythonpath`` (a check that the run is that tree's)."""
-    code = "import ccopt, os; print(os.path.realpath(ccopt.__file__))"
+def ask(pythonpath: Path, code: str) -> str:
+    """What ``code`` prints, run by this interpreter with ``pythonpath``'s packages
+    (from that folder: the current one would come first on ``sys.path``)."""
     return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                           env=dict(os.environ, PYTHONPATH=str(pythonpath)), check=True,
                           cwd=pythonpath).stdout.strip()
 
 
+def which_tree(pythonpath: Path) -> str:
+    """Where ``ccopt`` imports from with ``pythonpath`` (a check that the run is that tree's)."""
+    return ask(pythonpath, "import ccopt, os; print(os.path.realpath(ccopt.__file__))")
+
+
 def cases_of(pythonpath: Path) -> list[str]:
     """The bundled case names of that tree (``ccopt run`` with no argument runs them all)."""
-    code = ("from ccopt.cases import bundled_cases_dir; "
-            "print(','.join(sorted(p.parent.name for p in bundled_cases_dir().glob('*/case.toml'))))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         env=dict(os.environ, PYTHONPATH=str(pythonpath)), check=True,
-                         cwd=pythonpath)
-    return out.stdout.strip().split(",")
+    return ask(pythonpath, "from ccopt.cases import bundled_cases_dir; print(','.join(sorted("
+                           "p.parent.name for p in bundled_cases_dir().glob('*/case.toml'))))"
+               ).split(",")
 
 
 def variants_of(pythonpath: Path) -> list[str]:
     """The variant names ``ccopt compare`` runs by default in that tree."""
-    code = "from ccopt.compare.registry import available; print(','.join(available()))"
-    # run from that folder: the current one would come first on sys.path
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
-                         env=dict(os.environ, PYTHONPATH=str(pythonpath)), check=True,
-                         cwd=pythonpath)
-    return out.stdout.strip().split(",")
+    return ask(pythonpath, "from ccopt.compare.registry import available; "
+                           "print(','.join(available()))").split(",")
 
 
 def start(pythonpath: Path, out: Path, extra: list[str]) -> subprocess.Popen:
     cmd = [sys.executable, "-m", "ccopt.cli", "run", "-q", "-o", str(out), *extra]
     # stderr into a file beside the output: a pipe nobody reads could fill and block
-    err = open(f"{out}.stderr", "w+")
-    # from that folder too (bundled cases are found beside the package, not here)
-    return subprocess.Popen(cmd, env=dict(os.environ, PYTHONPATH=str(pythonpath)),
-                            stdout=subprocess.DEVNULL, stderr=err, text=True, cwd=pythonpath)
+    # (the child keeps its own copy of the descriptor); from that folder too
+    with open(f"{out}.stderr", "w") as err:
+        return subprocess.Popen(cmd, env=dict(os.environ, PYTHONPATH=str(pythonpath)),
+                                stdout=subprocess.DEVNULL, stderr=err, text=True,
+                                cwd=pythonpath)
 
 
 def finish(procs: dict) -> dict[str, tuple[float, float]]:
