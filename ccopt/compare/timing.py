@@ -133,17 +133,18 @@ def stretches(exact: ExactPath) -> list[Stretch]:
             for i, j in zip(cuts[:-1], cuts[1:]) if j > i]
 
 
-def _ratio_samples(prof):
-    """``prof`` sampled every :data:`RATIO_DT` (or the coarser step a long
-    profile affords, :meth:`~ccopt.feed.FeedProfile.affordable_dt`)."""
-    return prof.sample(prof.affordable_dt(RATIO_DT))
+def _ratio_samples(prof) -> tuple[np.ndarray, np.ndarray]:
+    """``(times, axis acceleration over its limit)`` of ``prof`` sampled every
+    :data:`RATIO_DT` (or the coarser step a long profile affords,
+    :meth:`~ccopt.feed.FeedProfile.affordable_dt`)."""
+    return prof.acceleration_ratio_samples(prof.affordable_dt(RATIO_DT))
 
 
 def _ratio(prof, smp=None) -> float:
     """The largest axis acceleration over its limit in ``prof`` at
     :func:`_ratio_samples` (``smp``: those samples, when the caller has them)."""
     smp = _ratio_samples(prof) if smp is None else smp
-    return float(smp.axis_acceleration_ratio.max(initial=0.0))
+    return float(smp[1].max(initial=0.0))
 
 
 def _cut(exact: ExactPath, prof, smp=None) -> list[tuple[float, float] | None]:
@@ -152,7 +153,7 @@ def _cut(exact: ExactPath, prof, smp=None) -> list[tuple[float, float] | None]:
     where the profile has no stop there); ``smp``: its :func:`_ratio_samples`,
     when the caller has them."""
     smp = _ratio_samples(prof) if smp is None else smp
-    acc = smp.axis_acceleration_ratio
+    times, acc = smp
     at_rest = np.flatnonzero(prof.sd == 0.0)
     rest_s = prof.s[at_rest]                     # non-decreasing, as the knots are
     tol = STOP_MATCH_REL * max(exact.length, 1.0)
@@ -165,8 +166,8 @@ def _cut(exact: ExactPath, prof, smp=None) -> list[tuple[float, float] | None]:
             out.append(None)
             continue
         t0, t1 = float(prof.t[at_rest[k0]]), float(prof.t[at_rest[k1]])
-        i0 = int(np.searchsorted(smp.t, t0, side="left"))     # samples with t0 <= t <= t1
-        i1 = int(np.searchsorted(smp.t, t1, side="right"))
+        i0 = int(np.searchsorted(times, t0, side="left"))     # samples with t0 <= t <= t1
+        i1 = int(np.searchsorted(times, t1, side="right"))
         out.append((t1 - t0, float(acc[i0:i1].max(initial=0.0))))
     return out
 

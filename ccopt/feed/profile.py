@@ -294,6 +294,25 @@ class FeedProfile:
         times[-1] = min(times[-1], self.duration)
         return self.at(times)
 
+    def acceleration_ratio_samples(self, dt: float) -> tuple[np.ndarray, np.ndarray]:
+        """``(times, ratio)``: :meth:`sample` ``(dt)``'s times and its
+        ``axis_acceleration_ratio`` (``|a_i| / amax_i``, shape ``(n, dof)``),
+        the same figures, with only the derivatives acceleration needs
+        evaluated (comparisons read this ratio for every variant)."""
+        n = self.sample_count(dt)
+        times = np.arange(n) * dt
+        times[-1] = min(times[-1], self.duration)
+        times = np.clip(times, 0.0, self.duration)
+        path = self.path
+        _, alim = self.limits.in_plane(path.frame, path.dof)
+        if self.sdd.size == 0 or not path.segments:
+            return times, np.zeros((n, path.dof))
+        s, v, u, _, seg = self.motion(times)
+        seg_eval = np.where(seg >= 0, seg, path.locate(s))
+        q1 = path.eval_segments(seg_eval, s, 1)
+        q2 = path.eval_segments(seg_eval, s, 2)
+        return times, np.abs(q2 * (v * v)[:, None] + q1 * u[:, None]) / alim
+
     def longest_block(self) -> tuple[int | None, int | None, str]:
         """Where the profile spends most of its time, to locate a size limit
         (issue 29): ``(line, col, text)`` of the program block whose moves (or

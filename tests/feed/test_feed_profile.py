@@ -273,3 +273,31 @@ def test_a_long_program_is_sampled_within_the_cap(monkeypatch):
     smp = prof.sample(dt)
     assert len(smp) <= cap
     assert smp.feed.max() <= 1.0 * (1 + 1e-9)
+
+
+@pytest.mark.parametrize("case_name, planner", [("profile", "toppra"), ("z-plunges", "toppra"),
+                                                ("freeform-hsm", "toppra"), ("pocket", "jerk")])
+def test_acceleration_ratio_samples_are_the_full_samples(case_name, planner):
+    """The lean acceleration samples a comparison reads are bit for bit the
+    ``axis_acceleration_ratio`` of the full samples at the same times (constant
+    acceleration and jerk-limited pieces, 3-D moves, Bezier segments)."""
+    case = find_case(case_name)
+    path = ExactPath(compensate(ccopt.read_program(case.program), "pmac"))
+    amax = case.amax
+    lim = AxisLimits(case.vmax, amax, j=tuple(10.0 * a for a in amax)
+                     if planner == "jerk" else None)
+    prof = plan_feed(path, lim, planner=planner)
+    dt = prof.affordable_dt(2e-4)
+    times, ratio = prof.acceleration_ratio_samples(dt)
+    smp = prof.sample(dt)
+    assert np.array_equal(times, smp.t)
+    assert np.array_equal(ratio, smp.axis_acceleration_ratio)
+
+
+def test_acceleration_ratio_samples_without_motion():
+    dwell = Block(Source("p.pmc", 2, 1), Motion.DWELL, (0, 0, 0), (0, 0, 0), Modal(), dwell=0.3)
+    tp = ToolPath((seg(Line((1, 1), (1, 1)), feed=10.0),), dwells=((0, 0.3, dwell),))
+    prof = plan_feed(tp, AxisLimits((1, 1), (1, 1)))
+    times, ratio = prof.acceleration_ratio_samples(0.1)
+    assert np.array_equal(times, prof.sample(0.1).t)
+    assert not ratio.any()

@@ -117,3 +117,33 @@ def test_a_long_thin_part_is_drawn_with_zoomed_leads():
     pocket = resolve_input("pocket", Overrides(), {})
     ppath = pocket.compensate(pocket.read())
     assert zoom_windows(ppath, ppath.radius, (0.0, 57.0, 0.0, 37.0)) == []
+
+
+@pytest.mark.parametrize("case", ["fagor-g136-g138", "pocket", "leadin-inside-line"])
+def test_figures_are_the_images_savefig_tight_draws(case, monkeypatch):
+    """Each figure's PNG is byte for byte what ``savefig(bbox_inches="tight")``
+    writes (one draw instead of two): plain and thin plan views with zooms,
+    the colour bar, the legend outside the axes, speed against time."""
+    import io
+
+    import ccopt.report.plots as plots
+    from ccopt.feed import AxisLimits, ExactPath, plan_feed
+
+    drawn = []
+
+    def both(fig):
+        ours = real(fig)
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", bbox_inches="tight")
+        drawn.append(ours == buf.getvalue())
+        return ours
+
+    real = plots._png
+    monkeypatch.setattr(plots, "_png", both)
+    job = resolve_input(case, Overrides(), {})
+    path = job.compensate(job.read())
+    prof = plan_feed(ExactPath(path), AxisLimits(job.vmax, job.amax))
+    plots.path_plot(path, None, path.radius, [], case)
+    plots.feed_plot(prof, case)
+    plots.speed_time_plot({"toppra": prof}, case)
+    assert drawn == [True, True, True]
