@@ -57,3 +57,21 @@ def test_straight_interval_speed_peak_within_the_certificates_tolerance():
     path = ExactPath(job.compensate(job.read()))
     prof = plan_feed(path, AxisLimits(job.vmax, job.amax, j=job.jmax), planner="jerk")
     assert prof.sample(1e-4).axis_jerk_ratio.max() <= 1.0 + 1e-4
+
+
+@pytest.mark.slow
+def test_speed_peak_inside_a_line_interval_stays_under_the_feed():
+    # sinumerik-sar-plate at F600 (10 mm/s) under j = 10 a: on its 60 mm line the
+    # path acceleration fell through 0 between two gridpoints both at the cap
+    # (s = 261.2753 and 261.3053), and the speed peaked between them at 1.00112 of
+    # the programmed feed, over the certificate's 0.1 %. The peak's closed form
+    # b_k + alpha_k^2 h / (alpha_k - alpha_k+1) is below b_k + h alpha_k, which the
+    # LP now bounds by the cap on straight intervals.
+    from ccopt.cases import find_case
+    job = resolve_input(find_case("sinumerik-sar-plate"))
+    prog = job.read()
+    assert {b.feed for b in prog.blocks if b.feed is not None} >= {10.0}
+    path = ExactPath(job.compensate(prog))
+    lim = AxisLimits(job.vmax, job.amax, j=tuple(10.0 * a for a in job.amax))
+    prof = plan_feed(path, lim, planner="jerk")
+    assert prof.sample(1e-4).feed_ratio.max() <= 1.0 + 2e-4
