@@ -42,23 +42,9 @@ class BlendRejected(RuntimeError):
     """A blend could not be made or was not certified (the message says why)."""
 
 
-#: The ``info`` key under which a blend hands over its path's cycle time when it
-#: planned it under the comparison's limits (``problem.limits``, ``problem.ts``)
-#: to choose the path: :func:`ccopt.compare.timing.duration_figures`'s
-#: ``(duration, max_acc_ratio, message)`` and, fourth, the stretch times planned
-#: for it. The comparison then does not plan that path again, and the row's
-#: figure is the one the blend chose by.
-CYCLE_TIME_KEY = "cycle_time"
-
-
 @dataclass(frozen=True)
 class BlendOutcome:
-    """A blend's tool path and what it wants reported (solver, iterations, ...).
-
-    Two ``info`` keys are facts the comparison takes over instead of working
-    them out again, and are not reported as such: ``"certificate"`` (the
-    path's certificate under ``problem.certify``) and :data:`CYCLE_TIME_KEY`.
-    """
+    """A blend's tool path and what it wants reported (solver, iterations, ...)."""
 
     toolpath: ToolPath
     info: dict = field(default_factory=dict)

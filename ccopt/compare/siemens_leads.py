@@ -25,9 +25,9 @@ from __future__ import annotations
 
 import math
 
-from ccopt.compare.contract import (CYCLE_TIME_KEY, SIEMENS_NAMES, Blend, BlendOutcome,
-                                    BlendProblem, BlendRejected)
-from ccopt.compare.timing import StretchTimes, duration_figures, stretch_keys
+from ccopt.compare.contract import (SIEMENS_NAMES, Blend, BlendOutcome, BlendProblem,
+                                    BlendRejected)
+from ccopt.compare.timing import StretchTimes, duration_figures
 from ccopt.compensate import compensate
 from ccopt.errors import CcoptError
 from ccopt.toolpath import ToolPath
@@ -40,21 +40,15 @@ CORNERS = ("G450", "G451")
 _FAULTS = ("gouge", "gap", "side")
 
 
-def _figure(path: ToolPath, problem: BlendProblem, times: StretchTimes | None):
-    """``(figure, cycle time)``: the member's figure to minimise, its cycle time
-    (``None``: the planner refused it), else its length (without limits);
-    and the cycle time's :func:`~ccopt.compare.timing.duration_figures` with
-    the stretch times planned for the path (None without limits). ``times``
-    holds the stretches planned for the members so far: the members differ
-    only at their leads or corners, so the stretches between are planned
-    once (:mod:`.timing`)."""
+def _figure(path: ToolPath, problem: BlendProblem, times: StretchTimes | None) -> float | None:
+    """The member's figure to minimise: cycle time, else length (``None``:
+    the planner refused it). ``times`` holds the stretches planned for the
+    members so far: the members differ only at their leads or corners, so
+    the stretches between are planned once (:mod:`.timing`)."""
     if times is None:
-        return float(sum(s.geom.length for s in path.segments)), None
-    keys = set(stretch_keys(path))
-    figures = duration_figures(path, problem.limits, times)
-    planned = {k: v for k, v in times.known.items() if k in keys}
-    duration = figures[0]
-    return (None if duration is None else float(duration)), (*figures, planned)
+        return float(sum(s.geom.length for s in path.segments))
+    duration = duration_figures(path, problem.limits, times)[0]
+    return None if duration is None else float(duration)
 
 
 def _cutter_radius(problem: BlendProblem) -> float:
@@ -83,24 +77,20 @@ def _fastest(problem: BlendProblem, members: dict[str, dict], label: str) -> Ble
         if faults:
             tried[key] = f"not certified: {faults[0].kind} of depth {faults[0].depth:.3g}"
             continue
-        figure, cycle_time = _figure(path, problem, times)
+        figure = _figure(path, problem, times)
         if figure is None:
             tried[key] = "the feed planner refused it"
             continue
         tried[key] = figure
         if best is None or figure < best[0]:
-            best = (figure, key, path, cert, cycle_time)
+            best = (figure, key, path, cert)
     if best is None and len(refusals) == len(members):
         raise refusals[0]          # the controller refuses the program: the row says why
     if best is None:
         raise BlendRejected(f"{label}: no member certified ("
                             + "; ".join(f"{k}: {v}" for k, v in tried.items()) + ")")
-    _, key, path, cert, cycle_time = best
-    # the certificate and cycle time go with the row: measured here, not again
-    info = {"chosen": key, "members": tried, "certificate": cert}
-    if cycle_time is not None:
-        info[CYCLE_TIME_KEY] = cycle_time
-    return BlendOutcome(path, info)
+    _, key, path, cert = best
+    return BlendOutcome(path, {"chosen": key, "members": tried, "certificate": cert})
 
 
 def _approach(mode: str) -> Blend:

@@ -13,7 +13,7 @@ from __future__ import annotations
 import time
 from dataclasses import dataclass, field
 
-from ccopt.compare.contract import CYCLE_TIME_KEY, BlendOutcome, BlendProblem, BlendRejected
+from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.figures import max_deviation, path_figures
 from ccopt.compare.leads import lead_joins
 from ccopt.compare.registry import load
@@ -113,11 +113,8 @@ def uncertified_reason(cert) -> str:
 
 def gets_cycle_time(row: VariantResult) -> bool:
     """Whether ``row`` gets a cycle time: it has a tool path (``ok`` or
-    ``uncertified``; the time of an uncertified path is still a figure) and
-    no cycle time yet (a blend that timed its path under the comparison's
-    limits hands it over, :data:`CYCLE_TIME_KEY`)."""
-    return (row.status in ("ok", "uncertified") and row.toolpath is not None
-            and "duration" not in row.figures)
+    ``uncertified``; the time of an uncertified path is still a figure)."""
+    return row.status in ("ok", "uncertified") and row.toolpath is not None
 
 
 def with_duration(row: VariantResult, duration) -> VariantResult:
@@ -153,16 +150,12 @@ def solve(name: str, problem: BlendProblem) -> VariantResult:
                              figures={"solve_time": time.perf_counter() - t0})
     seconds = time.perf_counter() - t0
     info: dict = {}
-    cert = cycle_time = None
+    cert = None
     if isinstance(out, BlendOutcome):
         info = dict(out.info)
         cert = info.pop("certificate", None)
-        cycle_time = info.pop(CYCLE_TIME_KEY, None)
         out = out.toolpath
     if not isinstance(out, ToolPath):
         return VariantResult(name, "failed", f"blend returned {type(out).__name__}, "
                              "not a ToolPath or BlendOutcome", figures={"solve_time": seconds})
-    row = measure_shape(name, out, problem, seconds, info, cert)
-    if cycle_time is not None and row.status in ("ok", "uncertified"):
-        row = with_duration(row, cycle_time)
-    return row
+    return measure_shape(name, out, problem, seconds, info, cert)

@@ -73,24 +73,3 @@ def test_the_programmed_row_keeps_the_program_s_smooth_approach():
     assert len(arcs) == 1 and arcs[0].geom.radius == pytest.approx(5.0)   # G247 DISR=5
     assert not [s for s in rows["siemens-norm"].toolpath.segments
                 if s.role.value == "lead-in" and s.kind == "arc"]
-
-
-def test_a_family_row_keeps_the_cycle_time_it_chose_by():
-    """The family plans each member to choose the fastest; the row's cycle time is
-    the chosen member's (not planned once more), the same in worker processes,
-    and that of the path planned whole on its own (the stretches between stops
-    are planned apart: rounding-size differences)."""
-    from ccopt.compare.timing import plan_whole
-    c = find_case("sinumerik-sar-plate")
-    prog = ccopt.read_program(c.program)
-    lim = ccopt.AxisLimits(c.vmax, c.amax)
-    names = ["pmac", "siemens-g247", "siemens-kont"]
-    serial = {r.name: r for r in compare(prog, names, limits=lim)}
-    parallel = {r.name: r for r in compare(prog, names, limits=lim, workers=2)}
-    for name in names[1:]:
-        row = serial[name]
-        assert row.status == "ok"
-        assert row.figures["duration"] == row.info["members"][row.info["chosen"]]
-        assert parallel[name].figures["duration"] == row.figures["duration"]
-        whole, _ = plan_whole(row.toolpath, lim)
-        assert row.figures["duration"] == pytest.approx(whole.duration, rel=1e-6)
