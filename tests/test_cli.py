@@ -299,3 +299,29 @@ def test_show_on_mutated_programs(tmp_path, capsys, case):
         line_no = int(head[1:].split(":")[0])
         assert 1 <= line_no <= text.count("\n") + 1, err
         assert "Traceback" not in err and "internal error" not in err
+
+
+#: The lead families (issue 33: on demand in the main job), named here as the
+#: compare variants that search a parameter set each.
+LEAD_FAMILIES = {"heidenhain-lt", "heidenhain-ln", "heidenhain-ct", "heidenhain-lct",
+                 "siemens-norm", "siemens-kont", "siemens-g147", "siemens-g247",
+                 "siemens-g347"}
+
+
+def test_run_compares_all_but_the_lead_families_unless_asked(capsys, tmp_path):
+    import json
+
+    from ccopt.compare.registry import available
+    code, _, _ = run_cli(capsys, "run", "leadin-inside-line", "--out", str(tmp_path / "a"),
+                         "-q")
+    assert code == 0
+    row = json.loads((tmp_path / "a" / "summary.json").read_text())["cases"][0]
+    names = [v["name"] for v in row["compare"]]
+    assert names == [n for n in available() if n not in LEAD_FAMILIES]
+    assert {"pmac", "linuxcnc", "heidenhain", "siemens", "tangent-arc"} <= set(names)
+    # `all` stands for every variant, wherever it is given
+    from ccopt.cli.options import chosen_variants
+    from argparse import Namespace
+    assert chosen_variants(Namespace(variants=[["all"]])) == available()
+    assert chosen_variants(Namespace(variants=[["pmac"], ["all"]])) == available()
+    assert chosen_variants(Namespace(variants=None)) is None

@@ -12,6 +12,7 @@ from pathlib import Path
 
 from ccopt.cases import DEFAULT_LIMITS
 from ccopt.cli.output import EXIT_BAD_INPUT
+from ccopt.compare.registry import expand
 from ccopt.compensate import STYLES
 from ccopt.program import DIALECTS
 from ccopt.program.gcode import MAX_LOOP_ITERATIONS
@@ -123,8 +124,10 @@ def variant_names(text: str) -> list[str]:
 
 
 def chosen_variants(args: argparse.Namespace) -> list[str] | None:
-    """Every ``--variants`` name given, in order; ``None`` when none was."""
-    return [n for group in (args.variants or []) for n in group] or None
+    """Every ``--variants`` name given, in order, ``all`` standing for every
+    available variant; ``None`` when none was."""
+    names = [n for group in (args.variants or []) for n in group]
+    return expand(names) or None
 
 
 # -- option groups -----------------------------------------------------------------

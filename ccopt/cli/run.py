@@ -13,7 +13,8 @@ from ccopt.cli.options import (add_limit_options, add_output_option, add_quiet_o
                                chosen_variants, describe)
 from ccopt.cli.output import emit_json
 from ccopt.cli.progress import cases_progress
-from ccopt.compare.registry import require_known
+from ccopt.compare.contract import LEAD_FAMILY_NAMES
+from ccopt.compare.registry import main_job_variants, require_known
 from ccopt.errors import ProgramError
 from ccopt.run import PLANNERS, RunOptions, default_out, exit_code, run_all
 from ccopt.workers import resolve_workers
@@ -28,7 +29,9 @@ core); a Ctrl-C stops them all at once (exit 130) and leaves no partial file.
 Limits: --vmax/--amax, else a case's [limits], else 100 units/s and 1000
 units/s^2 per axis; style: --style, else a case's, else by dialect (pmac for
 PMAC programs, siemens for SINUMERIK, linuxcnc for G-code, fagor where G136-G139
-appear). Exit 0 when
+appear). The comparison leaves out the lead families (HEIDENHAIN APPR/DEP and
+SINUMERIK approach parameter searches) unless --variants names them or says
+all; ccopt compare runs them by default. Exit 0 when
 every case gets its expected verdict, 1 when a verification fails
 unexpectedly, 2 when an input cannot be read or compensated."""
 
@@ -44,14 +47,17 @@ def cmd_run(args: argparse.Namespace) -> int:
     Exit 0 when every input did what its case expects, 1 when a verification
     failed, 2 when an input could not be read or compensated.
     """
-    jobs = [job(a, args, planners=PLANNERS) for a in args.inputs or bundled_cases()]
+    variants = chosen_variants(args)
+    if variants:
+        require_known(variants, "--variants")
+    # the lead families on demand: the main job's comparison without them by default
+    compared = tuple(variants or main_job_variants())
+    jobs = [job(a, args, planners=PLANNERS, variants=compared)
+            for a in args.inputs or bundled_cases()]
     if not jobs:
         raise ProgramError("no bundled cases found (is the cases/ folder next to ccopt/?)",
                            "cases")
     out = Path(args.output) if args.output else default_out()
-    variants = chosen_variants(args)
-    if variants:
-        require_known(variants, "--variants")
     workers = resolve_workers(args.workers)
     # cases share the workers; a single case's comparison gets them instead
     opts = RunOptions(compare=not args.no_compare,
@@ -113,8 +119,9 @@ def add_commands(sub, commands: dict) -> None:
     add_limit_options(p)
     add_ts_option(p)
     p.add_argument("--no-compare", action="store_true", help="skip the blend comparison")
-    add_variants_option(p, "blend variants to compare (default: every available one; see "
-                           "ccopt compare --list)")
+    add_variants_option(p, "blend variants to compare, or all (default: every available one "
+                           "but the lead families " + ", ".join(LEAD_FAMILY_NAMES)
+                           + ", which search a parameter set each; see ccopt compare --list)")
     add_reading_options(p)
     add_quiet_option(p)
     add_style_options(p)

@@ -191,6 +191,13 @@ SIEMENS_NAMES = ("siemens", "siemens-norm", "siemens-kont", "siemens-g147", "sie
 BUILTIN_NAMES = ("pmac", "linuxcnc", "fagor-g138", "fagor-g139-g136", "fagor-g139-g137",
                  "heidenhain", "tangent-arc", "line-arc", "heidenhain-lt", "heidenhain-ln",
                  "heidenhain-ct", "heidenhain-lct") + SIEMENS_NAMES
+#: The lead families: each searches a parameter set (every member compensated,
+#: certified and timed) for the fastest certified member. ``ccopt compare``
+#: runs them by default, the main job (``ccopt run``) on demand
+#: (:func:`ccopt.compare.registry.main_job_variants`).
+LEAD_FAMILY_NAMES = ("heidenhain-lt", "heidenhain-ln", "heidenhain-ct", "heidenhain-lct",
+                     "siemens-norm", "siemens-kont", "siemens-g147", "siemens-g247",
+                     "siemens-g347")
 #: The built-in variants that are a controller's own program-following path
 #: (the others are geometric leads, or lead families with a chosen
 #: parameter): the baselines an optimised blend must beat.

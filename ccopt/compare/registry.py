@@ -19,7 +19,7 @@ Every other variant is a plug-in blend registered as an entry point of group
 from __future__ import annotations
 
 from ccopt.compare.contract import (
-    BUILTIN_NAMES, Blend, BlendOutcome, BlendProblem, BlendRejected, blend_entry_points,
+    BUILTIN_NAMES, LEAD_FAMILY_NAMES, Blend, BlendOutcome, BlendProblem, BlendRejected, blend_entry_points,
 )
 from ccopt.compare.geometric import ConstructionError, line_arc, tangent_arc
 from ccopt.compare.leads import find_leads, splice
@@ -82,6 +82,29 @@ def available() -> list[str]:
     pref = [n for n in PREFERRED_ORDER if n in eps]
     rest = sorted(n for n in eps if n not in PREFERRED_ORDER)
     return list(BUILTIN_NAMES) + pref + rest
+
+
+#: The name that stands for every available variant in ``--variants``.
+ALL = "all"
+
+
+def main_job_variants() -> list[str]:
+    """The variants the main job (``ccopt run``) compares by default: every
+    available one but the lead families (:data:`~.contract.LEAD_FAMILY_NAMES`),
+    which search a parameter set each and took about a fifth of the main
+    job's CPU time; ``--variants all`` (or their names) brings them in."""
+    return [n for n in available() if n not in LEAD_FAMILY_NAMES]
+
+
+def expand(names) -> list[str]:
+    """``names`` with :data:`ALL` replaced by every available variant (once each,
+    in order)."""
+    out: list[str] = []
+    for n in names:
+        for m in (available() if n == ALL else [n]):
+            if m not in out:
+                out.append(m)
+    return out
 
 
 def require_known(names, source: str) -> None:
