@@ -42,6 +42,9 @@ from ccopt.program.gcode import read_gcode  # noqa: E402
 from ccopt.program.tooltable import read_tool_table  # noqa: E402
 from linuxcnc_data import TOL, canonical_moves, parse_canon  # noqa: E402
 
+#: The units of the tool table of an ``rs274`` run without an INI file.
+RS274_TABLE_UNITS = "inch"
+
 _PLAIN = re.compile(r"^\s*rs274\s+(?P<args>[^|&;]*?)\s*(\|\s*awk[^|]*)?(\|\s*sed[^|]*)?$")
 
 
@@ -101,8 +104,11 @@ def run_test(folder: Path) -> tuple[str, str]:
     want = parse_canon((folder / "expected").read_text())
     try:
         tools = read_tool_table(folder / table) if table else None
+        # rs274 without an INI takes its tool table in inches, whatever G20/G21
+        # say (src/emc/sai/driver.cc: external length units 1/25.4 per mm unless
+        # the INI's [TRAJ] LINEAR_UNITS is mm)
         prog = read_gcode((folder / program).read_text(), str(folder / program),
-                          tool_table=tools)
+                          tool_table=tools, table_units=RS274_TABLE_UNITS if tools else None)
         got = canonical_moves(compensate(prog, style="linuxcnc"))
     except ProgramError as exc:
         return "refused", str(exc)

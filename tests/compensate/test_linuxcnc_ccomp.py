@@ -125,3 +125,20 @@ def test_linuxcnc_tests_verify(folder):
     d = CONFORMANCE / folder
     assert main(["verify", str(d / "test.ngc"), "--style", "linuxcnc",
                  "--tool-table", str(d / "test.tbl")]) == 0
+
+
+def test_a_metric_program_takes_its_tool_table_in_inches_as_rs274_does():
+    """cam-nisley (tests/interp/cam-nisley): a G21 program compensated with
+    `G42 D1` from `test.tbl`'s T1 D0.0625, which rs274 without an INI reads in
+    inches (1.5875 mm, r 0.79375): its entry arc of radius 1.6 about
+    (0, -10.475) becomes one of 1.6 - 0.79375 = 0.80625 (ends at x -0.8063,
+    then (0, -9.6687)). Every one of its 317 moves matches LinuxCNC's."""
+    d = CONFORMANCE / "cam-nisley"
+    prog = read_gcode((d / "cam.ngc").read_text(), str(d / "cam.ngc"),
+                      tool_table=read_tool_table(d / "test.tbl"), table_units="inch")
+    got, want = canonical_moves(compensate(prog, style="linuxcnc")), expected_moves("cam-nisley")
+    assert len(got) == len(want) == 317
+    assert got[2][0] == "STRAIGHT_FEED"   # after the traverses to Z10 and to the start
+    assert got[2][1][0] == pytest.approx(-(1.6 - 0.0625 * 25.4 / 2), abs=1e-12)
+    problems = _differences(got, want)
+    assert not problems, "\n".join(problems)
