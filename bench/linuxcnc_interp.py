@@ -2,18 +2,25 @@
 
 Every folder of LinuxCNC's ``tests/interp`` and ``tests/ccomp`` that has an
 ``expected`` canon file is run as its ``test.sh`` runs ``rs274``: when the
-script is one plain ``rs274 [-t TABLE] -g PROGRAM`` (no INI, no plug-in, no
-shell around it), the program is read with that tool table, compensated in
-the ``linuxcnc`` style and its tool path compared with the STRAIGHT_TRAVERSE,
-STRAIGHT_FEED (X Y Z A B C) and ARC_FEED calls of ``expected``, every coordinate within
-5e-5 (``expected`` prints 4 decimals), in program (work) coordinates as the
-canon prints them. Each test is then one of
+script is one ``rs274`` run (``-t TABLE``, ``-i INI``, ``-v VARS``, ``-g``,
+``-n 0``; ``exec``, ``!`` and ``2>&1`` allowed; no plug-in, no loop or
+several runs), the program is read with those files (the tool table in
+inches without an INI, as ``rs274`` takes it; ``--ini`` otherwise),
+compensated in the ``linuxcnc`` style and its tool path compared with the
+STRAIGHT_TRAVERSE, STRAIGHT_FEED (X Y Z A B C) and ARC_FEED calls of
+``expected``, every coordinate within half a printed unit (``expected``
+prints 4 decimals) plus a point's rounding, in program (work) coordinates as
+the canon prints them. Each test is then one of
 
 * ``match``: the same moves, in the same order;
 * ``differs``: read and compensated, but not the same moves (the first
-  difference is printed);
-* ``refused``: ccopt stops with a located error (printed);
-* ``needs INI, plug-in or script``: ``test.sh`` runs more than a plain rs274;
+  difference is printed), or read where the script wants rs274 to fail;
+* ``refuses where LinuxCNC stops``: ccopt stops with a located error where
+  the script wants rs274 to fail (``! rs274``), or where ``expected`` (with
+  rs274's messages, ``2>&1``) holds an error message;
+* ``refused``: ccopt stops with a located error (printed), LinuxCNC not;
+* ``needs a plug-in or script``: ``test.sh`` runs more than one rs274 run,
+  or a Python plug-in (``-p``, an INI with ``[PYTHON]``);
 * ``messages only``: ``test.sh`` keeps only the MESSAGE lines of the canon
   (``awk '/MESSAGE/ ...'``), which hold ``(debug, ...)`` parameter values,
   not moves: nothing to compare move for move.
@@ -28,6 +35,7 @@ from __future__ import annotations
 import argparse
 import re
 import shlex
+from dataclasses import dataclass
 import sys
 from collections import Counter
 from pathlib import Path
@@ -38,38 +46,59 @@ sys.path.insert(0, str(ROOT / "tests"))
 
 from ccopt.compensate import compensate  # noqa: E402
 from ccopt.errors import ProgramError  # noqa: E402
-from ccopt.program.gcode import read_gcode  # noqa: E402
-from ccopt.program.tooltable import read_tool_table  # noqa: E402
+from ccopt.program import read_program  # noqa: E402
 from linuxcnc_data import TOL, canonical_moves, parse_canon  # noqa: E402
 
 #: The units of the tool table of an ``rs274`` run without an INI file.
 RS274_TABLE_UNITS = "inch"
 
-_PLAIN = re.compile(r"^\s*rs274\s+(?P<args>[^|&;]*?)\s*(\|\s*awk[^|]*)?(\|\s*sed[^|]*)?$")
+_PLAIN = re.compile(r"^\s*(?P<neg>!\s*)?(exec\s+)?rs274\s+(?P<args>[^|&;>]*?)\s*(?P<err>2>&1)?"
+                    r"\s*(\|\s*awk[^|]*)?(\|\s*sed[^|]*)?$")
 
 
-def plain_run(script: str) -> tuple[str, str | None] | None:
-    """``(program, table)`` of a ``test.sh`` that is one plain rs274 run, else None."""
+@dataclass
+class Run:
+    """One plain ``rs274`` run of a ``test.sh``: its program, tool table, INI
+    and parameter files; whether the script wants it to fail (``! rs274``), and
+    whether its error messages go into ``expected`` (``2>&1``)."""
+
+    program: str
+    table: str | None = None
+    ini: str | None = None
+    var: str | None = None
+    fails: bool = False
+    errors_shown: bool = False
+
+
+def plain_run(script: str) -> Run | None:
+    """The :class:`Run` of a ``test.sh`` that is one ``rs274`` run (``-t``, ``-i``,
+    ``-v``, ``-g`` and ``-n 0`` taken; ``exec``, ``export`` lines and ``2>&1``
+    allowed), else None."""
     lines = [ln for ln in script.splitlines()
-             if ln.strip() and not ln.lstrip().startswith("#") and not ln.startswith("exit")]
+             if ln.strip() and not ln.lstrip().startswith("#") and not ln.startswith("exit")
+             and not ln.startswith("export ")]
     if len(lines) != 1:
         return None
     m = _PLAIN.match(lines[0])
     if not m:
         return None
     args = shlex.split(m.group("args"))
-    program = table = None
+    run = Run("", fails=bool(m.group("neg")), errors_shown=bool(m.group("err")))
     it = iter(args)
     for a in it:
-        if a == "-t":
-            table = next(it, None)
+        if a in ("-t", "-i", "-v"):
+            setattr(run, {"-t": "table", "-i": "ini", "-v": "var"}[a], next(it, None))
         elif a == "-g":
             continue
+        elif a == "-n":
+            # -n 0 goes on after an error, where ccopt stops: the comparison says so
+            if next(it, None) != "0":
+                return None
         elif a.startswith("-"):
-            return None          # -i INI, -p plug-in, -n, -v: not a plain run
+            return None          # -p plug-in: not a plain run
         else:
-            program = a
-    return (program, table) if program else None
+            run.program = a
+    return run if run.program else None
 
 
 def differences(got, want) -> list[str]:
@@ -95,25 +124,41 @@ def differences(got, want) -> list[str]:
 
 def run_test(folder: Path) -> tuple[str, str]:
     """``(outcome, detail)`` of one test folder."""
-    plain = plain_run((folder / "test.sh").read_text())
-    if plain is None:
-        return "needs INI, plug-in or script", ""
-    program, table = plain
+    run = plain_run((folder / "test.sh").read_text())
+    if run is None:
+        return "needs a plug-in or script", ""
+    if run.ini and re.search(r"^\s*\[PYTHON\]", (folder / run.ini).read_text(), re.M):
+        return "needs a plug-in or script", "its INI loads Python ([PYTHON])"
     if re.search(r"awk\s+'/MESSAGE/", (folder / "test.sh").read_text()):
         return "messages only", ""
-    want = parse_canon((folder / "expected").read_text())
+    expected = (folder / "expected").read_text()
+    want = parse_canon(expected)
     try:
-        tools = read_tool_table(folder / table) if table else None
         # rs274 without an INI takes its tool table in inches, whatever G20/G21
         # say (src/emc/sai/driver.cc: external length units 1/25.4 per mm unless
-        # the INI's [TRAJ] LINEAR_UNITS is mm)
-        prog = read_gcode((folder / program).read_text(), str(folder / program),
-                          tool_table=tools, table_units=RS274_TABLE_UNITS if tools else None)
+        # the INI's [TRAJ] LINEAR_UNITS is mm); with one, read_program takes the
+        # INI's units
+        prog = read_program(folder / run.program, "gcode",
+                            tool_table=folder / run.table if run.table else None,
+                            var_file=folder / run.var if run.var else None,
+                            table_units=RS274_TABLE_UNITS if run.table and not run.ini
+                            else None, ini=folder / run.ini if run.ini else None)
         got = canonical_moves(compensate(prog, style="linuxcnc"))
     except ProgramError as exc:
+        if run.fails or (run.errors_shown and _stops_with_an_error(expected)):
+            return "refuses where LinuxCNC stops", str(exc)
         return "refused", str(exc)
+    if run.fails:
+        return "differs", "ccopt reads it; LinuxCNC stops with an error"
     problems = differences(got, want)
     return ("differs", problems[0]) if problems else ("match", "")
+
+
+def _stops_with_an_error(expected: str) -> bool:
+    """Whether rs274's output (with its error messages, ``2>&1``) has a line that
+    is neither a canon call nor ``executing``: its error message."""
+    return any(ln.strip() and not re.match(r"^\s*(\d+\s+)?N\.\.\.\.\.", ln)
+               and ln.strip() != "executing" for ln in expected.splitlines())
 
 
 def main(argv=None) -> int:

@@ -296,7 +296,9 @@ class ReadOptions:
     dialect (``None``: from the suffix) and a tool table, and for G-code a
     LinuxCNC parameter file, the unit every length is converted to, the tool
     table's units, the folders of subroutine files (LinuxCNC's
-    SUBROUTINE_PATH) and the O-word loop limit (``None``: the defaults)."""
+    SUBROUTINE_PATH), the O-word loop limit and the machine's LinuxCNC INI
+    file, which gives those it names that are not given (``None``: the
+    defaults)."""
 
     dialect: str | None = None
     tool_table: str | os.PathLike | None = None
@@ -305,6 +307,7 @@ class ReadOptions:
     table_units: str | None = None
     sub_path: tuple[str, ...] = ()
     max_loop_iterations: int | None = None
+    ini: str | os.PathLike | None = None
 
     def read(self, program: str | os.PathLike) -> Program:
         """``program`` read with these options; the files it was read from
@@ -312,7 +315,7 @@ class ReadOptions:
         prog = read_program(program, self.dialect, tool_table=self.tool_table,
                             var_file=self.var_file, units=self.units,
                             table_units=self.table_units, sub_path=self.sub_path,
-                            max_loop_iterations=self.max_loop_iterations)
+                            max_loop_iterations=self.max_loop_iterations, ini=self.ini)
         for f in prog.meta.get(INPUT_FILES, ()):
             protect_input(f)
         if ENDLESS_MAIN in prog.meta:

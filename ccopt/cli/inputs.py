@@ -54,7 +54,8 @@ def overrides(args: argparse.Namespace, **command) -> Overrides:
             var_file=getattr(args, "var_file", None), units=getattr(args, "units", None),
             table_units=getattr(args, "table_units", None),
             sub_path=tuple(getattr(args, "sub_path", None) or ()),
-            max_loop_iterations=getattr(args, "max_loop_iterations", None)),
+            max_loop_iterations=getattr(args, "max_loop_iterations", None),
+            ini=getattr(args, "ini", None)),
         style_options={k: v for k, v in given.items() if v is not None})
     settings.update(command)
     return Overrides(**settings)

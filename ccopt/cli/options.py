@@ -161,6 +161,11 @@ def add_reading_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--sub-path", metavar="DIR[:DIR...]", type=folder_list,
                    help="G-code: folders where o<name> call finds name.ngc when the program "
                         "does not define it (LinuxCNC's SUBROUTINE_PATH), and nowhere else")
+    p.add_argument("--ini", metavar="FILE", type=Path,
+                   help="G-code: the machine's LinuxCNC INI file: its [EMCIO] TOOL_TABLE, "
+                        "[TRAJ] LINEAR_UNITS (the table's units; inch without it, as "
+                        "rs274), [RS274NGC] SUBROUTINE_PATH and PARAMETER_FILE where the "
+                        "options above do not say, and #<_ini[SECTION]NAME> values")
     p.add_argument("--max-loop-iterations", type=nonneg_int, metavar="N",
                    help="G-code: most O-word loop iterations, all loops together, before "
                         f"a runaway loop is stopped (default {MAX_LOOP_ITERATIONS})")

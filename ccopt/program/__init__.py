@@ -12,6 +12,7 @@ from pathlib import Path
 
 from ccopt.errors import ProgramError
 from ccopt.program.gcode import read_gcode
+from ccopt.program.gcode.ini import LinuxCncIni, read_ini
 from ccopt.program.gcode.coordinates import read_var_file
 from ccopt.program.heidenhain import read_heidenhain
 from ccopt.program.heidenhain.tooltable import is_tnc_table, read_tnc_tool_table
@@ -61,9 +62,9 @@ def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
               tool_table: dict[int, float] | None = None,
               parameters: dict[int, float] | None = None, units: str | None = None,
               table_units: str | None = None, sub_path=(),
-              max_loop_iterations: int | None = None) -> Program:
+              max_loop_iterations: int | None = None, ini: LinuxCncIni | None = None) -> Program:
     """Read program text of the given dialect (``parameters``, ``units``,
-    ``table_units``, ``sub_path`` and ``max_loop_iterations``: G-code only,
+    ``table_units``, ``sub_path``, ``max_loop_iterations`` and ``ini``: G-code only,
     see :func:`read_gcode`, except that SINUMERIK programs take ``units``
     and ``max_loop_iterations`` too (:func:`read_sinumerik`); PMAC programs
     have no loops ccopt runs, ``WHILE`` is refused; ``tool_table`` also gives
@@ -71,7 +72,9 @@ def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
     if dialect == "gcode":
         return read_gcode(text, file, tool_table=tool_table, parameters=parameters,
                           units=units, table_units=table_units, sub_path=sub_path,
-                          max_loop_iterations=max_loop_iterations)
+                          max_loop_iterations=max_loop_iterations, ini=ini)
+    if ini is not None:
+        raise ProgramError("a LinuxCNC INI file (--ini) applies to G-code programs only", file)
     if dialect == "pmac":
         return read_pmac(text, file)
     if dialect == "heidenhain":
@@ -86,7 +89,8 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
                  tool_table: str | os.PathLike | dict[int, float] | None = None,
                  var_file: str | os.PathLike | None = None, units: str | None = None,
                  table_units: str | None = None, sub_path=(),
-                 max_loop_iterations: int | None = None) -> Program:
+                 max_loop_iterations: int | None = None,
+                 ini: str | os.PathLike | None = None) -> Program:
     """Read a part program file.
 
     Parameters
@@ -104,6 +108,11 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
         (see :func:`~ccopt.program.gcode.read_gcode`).
     max_loop_iterations: most O-word loop iterations of a G-code program, all
         loops together (``None``: ``ccopt.program.gcode.MAX_LOOP_ITERATIONS``).
+    ini: G-code only: the machine's LinuxCNC INI file
+        (:mod:`ccopt.program.gcode.ini`), which gives the tool table, its
+        units, the parameter file and the subroutine folders where the
+        arguments above do not (a folder given comes first), and the values
+        of ``#<_ini[SECTION]NAME>``.
     """
     file = str(path)
     dialect = dialect or dialect_of(path)
@@ -116,6 +125,16 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
     except UnicodeDecodeError as exc:
         line = raw[: exc.start].count(b"\n") + 1
         raise ProgramError("not UTF-8/ASCII text (a binary file?)", file, line) from None
+    cfg = None
+    if ini is not None:
+        if dialect != "gcode":
+            raise ProgramError("a LinuxCNC INI file (--ini) applies to G-code programs only",
+                               file)
+        cfg = read_ini(ini)
+        tool_table = tool_table if tool_table is not None else cfg.tool_table
+        var_file = var_file if var_file is not None else cfg.var_file
+        table_units = table_units or cfg.table_units
+        sub_path = (*sub_path, *cfg.sub_path)
     table = tool_table
     if tool_table is not None and not isinstance(tool_table, dict):
         table = (read_tnc_tool_table(tool_table) if _is_tnc_table(tool_table)
@@ -133,10 +152,10 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
         sub_path = (str(Path(path).resolve().parent), *sub_path)
     prog = read_text(text, file, dialect, tool_table=table, parameters=parameters, units=units,
                      table_units=table_units, sub_path=sub_path,
-                     max_loop_iterations=max_loop_iterations)
+                     max_loop_iterations=max_loop_iterations, ini=cfg)
     # every file it was read from: what no output may replace (ccopt.export)
     read_from = [file, *prog.meta.get(INPUT_FILES, ()), *(b.source.file for b in prog.blocks),
-                 *(str(f) for f in (tool_table, var_file)
+                 *(str(f) for f in (tool_table, var_file, ini)
                    if isinstance(f, (str, os.PathLike)) and os.path.isfile(f))]
     prog.meta[INPUT_FILES] = tuple(dict.fromkeys(read_from))
     return prog

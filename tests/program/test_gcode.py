@@ -451,3 +451,15 @@ def test_modal_arc_with_no_plane_motion_is_a_zero_length_move():
     # with in-plane motion the missing centre is still an error
     with pytest.raises(ProgramError, match="no centre"):
         read_gcode("G21 G90 F600\nG3 X1 Y1\n")
+
+
+def test_spindle_orientation_and_g64_take_their_words():
+    """LinuxCNC's m19 and g64-r-planner tests: `M19 R45 Q2`, `M19 R90 P1`
+    (orientation angle, timeout, direction) and `G64 P1 R0.5` (tolerance and
+    the planner's peak scale) move nothing and are read; R, P and Q with
+    neither are still errors."""
+    prog = read_gcode("G21\nM19\nM19 R45 Q2\nM19 P1\nM19 R90 P0\nG64\nG64 P1 R0.5\nG64 P1 Q0.01"
+                      "\nG0 X1\nM2\n")
+    assert [b.end[0] for b in prog.blocks] == [1.0]
+    with pytest.raises(ProgramError, match="R word with no G2, G3, G10, G64, M19"):
+        read_gcode("G21\nM3 R45\nM2\n")

@@ -156,7 +156,7 @@ def test_cycle_moves_carry_the_cycle_and_the_line():
     ("G0 Y5\nM3 G18 G84 X1 Y-1 R1\n", 3, 8, "G84 in the XZ plane is not supported"),
     ("G0 Z5\nG93 G81 X1 Z-1 R1\n", 3, 5, "Cannot use inverse time feed with canned cycles"),
     ("G0 Z5\nF0 G81 X1 Z-1 R1\n", 3, 4, "Cannot feed with zero feed rate"),
-    ("G0 Z5\nG81 X1 Z-1 R1 Q1\n", 3, 15, "Q word with no G10, G64, G73 or G83"),
+    ("G0 Z5\nG81 X1 Z-1 R1 Q1\n", 3, 15, "Q word with no G10, G64, G73, G83 or M19"),
 ])
 def test_refusals_are_linuxcncs_and_located(text, line, col, message):
     with pytest.raises(ProgramError) as err:

@@ -70,3 +70,23 @@ def test_sub_path_on_the_command_line(folders, tmp_path, capsys):
     with pytest.raises(SystemExit) as exit_:
         main(["show", str(program), "--sub-path", str(tmp_path / "missing")])
     assert exit_.value.code == 2
+
+
+def test_a_sub_file_is_read_no_further_than_its_subs_endsub(tmp_path):
+    """LinuxCNC's nested-sub-in-file-error: sequential.ngc defines o<sequential>,
+    which calls o200, written after o<sequential> endsub in the same file.
+    LinuxCNC reads the file no further than that endsub, so o200 is not
+    defined and the call is an error (its expected output stops there)."""
+    subs = tmp_path / "subs"
+    subs.mkdir()
+    (subs / "sequential.ngc").write_text(
+        "o<sequential> sub\n(DEBUG, main: #1)\no200 call [4]\no<sequential> endsub\n\n"
+        "o200 sub\n(DEBUG, helper: #1)\no200 endsub\nM2\n")
+    with pytest.raises(ProgramError, match="o200") as err:
+        read_gcode("o<sequential> call [7]\nM2\n", "main.ngc", sub_path=[subs])
+    assert err.value.file.endswith("sequential.ngc") and err.value.line == 3
+    # o200 defined in the program the file's sub is called from is found
+    (subs / "sequential.ngc").write_text(
+        "o<sequential> sub\no200 call [4]\no<sequential> endsub\nM2\n")
+    inline = ("o200 sub\nG0 X#1\no200 endsub\no<sequential> call [7]\nM2\n")
+    assert read_gcode(inline, "main.ngc", sub_path=[subs]).blocks[-1].end[0] == 4.0

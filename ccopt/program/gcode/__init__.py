@@ -20,6 +20,7 @@ from __future__ import annotations
 from ccopt.errors import ProgramError
 # The limits the single-module reader exposed stay importable from here.
 from ccopt.program.gcode.arcs import MAX_ARC_TURNS  # noqa: F401
+from ccopt.program.gcode.ini import LinuxCncIni, read_ini  # noqa: F401 - read_ini exported
 from ccopt.program.gcode.parameters import MAX_PARAMETER, SUB_PARAMS  # noqa: F401
 from ccopt.program.gcode.reader import check_inputs, open_program, run
 # read_gcode reads the three MAX_ limits at each call, so setting them here
@@ -40,21 +41,18 @@ __all__ = ["read_gcode", "MAX_EXECUTED_LINES", "MAX_CALL_DEPTH", "MAX_LOOP_ITERA
 def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float] | None = None,
                start=(0.0, 0.0, 0.0), parameters: dict[int, float] | None = None,
                units: str | None = None, table_units: str | None = None,
-               sub_path=(), max_loop_iterations: int | None = None) -> Program:
+               sub_path=(), max_loop_iterations: int | None = None,
+               ini: LinuxCncIni | None = None) -> Program:
     """Read RS274NGC/LinuxCNC G-code into a :class:`Program` (dialect ``"gcode"``).
 
     Parameters
     ----------
-    text:
-        The program text.
-    file:
-        Name used in :class:`~ccopt.program.model.Source` and in errors.
+    text, file:
+        The program text; the name used in :class:`~ccopt.program.model.Source` and errors.
     tool_table:
-        Tool number -> DIAMETER (program units), e.g. from
-        :func:`ccopt.program.tooltable.read_tool_table`; used by ``G41``/``G42``
-        with ``D<tool>`` or a loaded tool (``T<n> M6``).
-    start:
-        Machine position ``(x, y, z)`` before the first block, program units.
+        Tool number -> DIAMETER (program units, e.g. :func:`~ccopt.program.tooltable.
+        read_tool_table`), for ``G41``/``G42 D<tool>`` or a loaded tool (``T<n> M6``).
+    start: machine position ``(x, y, z)`` before the first block, program units.
     parameters:
         Numbered parameters in force at the start (e.g. from a LinuxCNC
         parameter file, :func:`~ccopt.program.gcode.coordinates.read_var_file`):
@@ -81,6 +79,9 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
         nested loops and the subroutines they call, all together), so a
         long body stops as soon as a short one.
 
+    ini:
+        The machine's INI file (:func:`~.ini.read_ini`) for ``#<_ini[SECTION]NAME>``.
+
     The runaway guards are this module's :data:`MAX_EXECUTED_LINES`,
     :data:`MAX_CALL_DEPTH` and :data:`MAX_LOOP_ITERATIONS`, read at each call.
 
@@ -106,6 +107,7 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
                              parameters=parameters)
         state.out_units, state.table_units = units, table_units
         state.sub_path = tuple(str(p) for p in sub_path)
+        state.ini = ini
         return run(state)
     except ProgramError:
         raise

@@ -50,8 +50,8 @@ def execute_words(state: GCodeState, words: Words) -> None:
     L = words.letters
     motion = _motion_of(state, gc, L)
     is_arc = motion in (20, 30)
-    _check_word_usage(state, gc, L, motion)
     mcodes = tuple(words.mcodes)
+    _check_word_usage(state, gc, L, motion, mcodes)
     record_line(state, gc, L, mcodes)
     first_col = words.first if words.first is not None else 0
     units = gc.get("units")
@@ -129,9 +129,19 @@ def _motion_of(state: GCodeState, gc: dict, L: dict) -> int | None:
     return None
 
 
-def _check_word_usage(state: GCodeState, gc: dict, L: dict, motion: int | None) -> None:
-    """Every word needs a code on its line that uses it (LinuxCNC ``check_other_codes``)."""
+#: ``M19``, spindle orientation: it takes ``R`` (angle), ``Q`` (timeout) and
+#: ``P`` (direction), which move nothing (LinuxCNC ``check_other_codes``).
+ORIENT_SPINDLE = 19
+
+
+def _check_word_usage(state: GCodeState, gc: dict, L: dict, motion: int | None,
+                      mcodes: tuple = ()) -> None:
+    """Every word needs a code on its line that uses it (LinuxCNC ``check_other_codes``);
+    ``G64 P Q R`` and ``M19 R Q P`` take theirs (path blending and spindle
+    orientation, which set no motion ccopt carries)."""
     is_arc = motion in (20, 30)
+    orient = ORIENT_SPINDLE in mcodes
+    blend = gc.get("path") is not None and gc["path"][0] == 640
     cycle = motion in CYCLE_CODES
     comp = gc.get("comp")
     if "D" in L and (comp is None or comp[0] == 400) and motion not in PECK_CYCLES:
@@ -143,20 +153,20 @@ def _check_word_usage(state: GCodeState, gc: dict, L: dict, motion: int | None) 
     for w in "IJK":
         if w in L and not (is_arc or motion == 870 or (g10 and w != "K")):
             raise state.error(f"{w} word with no G2, G3 or G87 to use it", L[w][1])
-    if "R" in L and not (is_arc or cycle or gc.get("axis_setting", (None,))[0] == 100):
-        raise state.error("R word with no G2, G3, G10 or canned cycle to use it", L["R"][1])
+    if "R" in L and not (is_arc or cycle or gc.get("axis_setting", (None,))[0] == 100
+                         or blend or orient):
+        raise state.error("R word with no G2, G3, G10, G64, M19 or canned cycle to use it",
+                          L["R"][1])
     dwell = gc.get("dwell")
-    path = gc.get("path")
-    if "P" in L and not (is_arc or dwell or g10 or (path and path[0] == 640)
-                         or motion in P_CYCLES):
-        raise state.error("P word with no G2, G3, G4, G10, G64, G74, G82, G84, G86 or G89 "
-                          "to use it", L["P"][1])
+    if "P" in L and not (is_arc or dwell or g10 or blend or orient or motion in P_CYCLES):
+        raise state.error("P word with no G2, G3, G4, G10, G64, G74, G82, G84, G86, G89 or "
+                          "M19 to use it", L["P"][1])
     lathe = comp is not None and comp[0] in (411, 421)
     if "L" in L and not (g10 or lathe or cycle):
         raise state.error("L word with no G10, G41.1, G42.1 or canned cycle to use it",
                           L["L"][1])
-    if "Q" in L and not (path and path[0] == 640 or motion in PECK_CYCLES or g10):
-        raise state.error("Q word with no G10, G64, G73 or G83 to use it", L["Q"][1])
+    if "Q" in L and not (blend or orient or motion in PECK_CYCLES or g10):
+        raise state.error("Q word with no G10, G64, G73, G83 or M19 to use it", L["Q"][1])
     if dwell and is_arc:
         raise state.error("G4 and G2/G3 on one line would share the P word: put the dwell on "
                           "its own line", dwell[1])

@@ -280,6 +280,9 @@ def load_sub_file(state: GCodeState, label: str, col: int) -> tuple[int, int]:
     if found is None:
         raise state.error(f"{path} does not define {olabel(label)} sub ... {olabel(label)} "
                           "endsub", col)
+    # LinuxCNC reads such a file no further than the sub's endsub: a sub written
+    # after it is not defined (tests/interp/nested-sub-in-file-error)
+    state.sub_files[-1] = (first, found[1] + 1, str(path))
     return found
 
 

@@ -12,6 +12,7 @@ G-code grammar, whose variables are the parameters read here.
 from __future__ import annotations
 
 import math
+import re
 
 from ccopt.program.expr import (
     GCODE_BINARY,
@@ -128,7 +129,14 @@ def parameter_target(state: GCodeState, code: str, pos: int) -> tuple[str, objec
     return "index", index, end
 
 
+#: ``#<_ini[SECTION]NAME>`` (the name as the reader keeps it, lower case).
+_INI_NAME = re.compile(r"_ini\[([^\]]*)\](.+)")
+
+
 def _get_named(state: GCodeState, name: str, col: int) -> float:
+    m = _INI_NAME.fullmatch(name)
+    if m is not None:
+        return _ini_value(state, m.group(1), m.group(2), name, col)
     if not name.startswith("_"):
         local = state.frames[-1].named
         if name in local:
@@ -137,6 +145,23 @@ def _get_named(state: GCodeState, name: str, col: int) -> float:
         return state.globals[name]
     raise ExprError(f"named parameter #<{name}> is not set: assign it first "
                     f"(#<{name}> = ...)", col)
+
+
+def _ini_value(state: GCodeState, section: str, key: str, name: str, col: int) -> float:
+    """``#<_ini[section]key>``: the machine INI file's entry (``--ini``)."""
+    ini = state.ini
+    if ini is None:
+        raise ExprError(f"named parameter #<{name}> not defined: it reads the machine's INI "
+                        "file, and none was given (--ini FILE)", col)
+    try:
+        value = ini.number(section, key)
+    except ValueError as exc:
+        raise ExprError(f"#<{name}>: {exc}", col) from None
+    if value is None:
+        why = (f"no [{section.upper()}] {key.upper()} in {ini.file}" if ini.ini_vars
+               else f"{ini.file} says [RS274NGC] INI_VARS = 0")
+        raise ExprError(f"named parameter #<{name}> not defined: {why}", col)
+    return value
 
 
 def set_parameter(state: GCodeState, kind: str, key, value: float) -> None:

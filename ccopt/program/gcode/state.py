@@ -172,6 +172,9 @@ class GCodeState:
         # subroutine files read into ``lines`` after the program: (first, end, file)
         self.sub_files: list[tuple[int, int, str]] = []
         self.sub_path: tuple[str, ...] = ()
+        #: the machine's INI file (:mod:`ccopt.program.gcode.ini`) for
+        #: ``#<_ini[SECTION]NAME>``, or None
+        self.ini = None
 
     def where(self, ln: int) -> tuple[str, int]:
         """``(file, 1-based line)`` of 0-based line ``ln`` of ``lines``."""

@@ -1,0 +1,139 @@
+"""``--ini``: a LinuxCNC machine's INI file gives the G-code reader its tool
+table and the table's units, the subroutine folders, the parameter file and
+``#<_ini[SECTION]NAME>`` values (ccopt.program.gcode.ini).
+
+LinuxCNC's own ``tests/interp/iniparam`` is kept in
+tests/conformance/linuxcnc/ini (licence: that folder's README)."""
+from __future__ import annotations
+
+import pytest
+
+from ccopt.cli import main
+from ccopt.compensate import compensate
+from ccopt.errors import ProgramError
+from ccopt.program import read_program
+from ccopt.toolpath import Role
+from linuxcnc_data import CONFORMANCE, TOL, canonical_moves, expected_moves
+
+#: A G21 profile: a 20 mm square cut right of the path with tool 1's radius.
+SQUARE = """G21 G17 G90 G94
+G0 X-10 Y0
+G42 D1 G1 X0 Y0 F600
+G1 X0 Y20
+G1 X20 Y20
+G1 X20 Y0
+G1 X0 Y0
+G40 G1 X-10 Y0
+M2
+"""
+
+
+def _machine(tmp_path, ini: str, table: str = "T1 P1 D0.25\n"):
+    (tmp_path / "cfg").mkdir()
+    (tmp_path / "cfg" / "tools.tbl").write_text(table)
+    (tmp_path / "cfg" / "machine.ini").write_text(ini)
+    (tmp_path / "part.ngc").write_text(SQUARE)
+    return tmp_path / "part.ngc", tmp_path / "cfg" / "machine.ini"
+
+
+def test_iniparam_reads_the_values_and_stops_where_linuxcnc_stops():
+    """LinuxCNC's iniparam: `G53 G0 X#<_ini[vars]toolchange_x> ...` goes to
+    [VARS] TOOLCHANGE_X/Y/Z = 10, 20, 30 (any case in the name), and line 7
+    reads an entry the file does not have: LinuxCNC stops there ("Named
+    parameter #<_ini[nosuchsection]nosuchname> not defined")."""
+    d = CONFORMANCE / "ini" / "iniparam"
+    want = expected_moves("ini/iniparam")
+    assert want == [("STRAIGHT_TRAVERSE", [10.0, 20.0, 30.0, 0.0, 0.0, 0.0])]
+    with pytest.raises(ProgramError) as err:
+        read_program(d / "test.ngc", ini=d / "test.ini")
+    assert (err.value.line, err.value.col) == (7, 10)
+    assert "#<_ini[nosuchsection]nosuchname> not defined" in str(err.value)
+    # the program up to there: LinuxCNC's one move
+    text = (d / "test.ngc").read_text().split("; now fail")[0]
+    cut = d.parent / "iniparam-head.ngc"
+    try:
+        cut.write_text(text)
+        got = canonical_moves(compensate(read_program(cut, ini=d / "test.ini"), style="linuxcnc"))
+    finally:
+        cut.unlink()
+    assert [k for k, _ in got] == ["STRAIGHT_TRAVERSE"]
+    assert got[0][1][:3] == pytest.approx(want[0][1][:3], abs=TOL)
+
+
+def test_without_the_ini_file_the_value_is_an_error_that_says_so():
+    d = CONFORMANCE / "ini" / "iniparam"
+    with pytest.raises(ProgramError, match=r"none was given \(--ini FILE\)") as err:
+        read_program(d / "test.ngc")
+    assert (err.value.line, err.value.col) == (1, 9)
+
+
+@pytest.mark.parametrize("units, radius", [("", 0.25 * 25.4 / 2),           # rs274: inches
+                                           ("[TRAJ]\nLINEAR_UNITS = mm\n", 0.25 / 2),
+                                           ("[TRAJ]\nLINEAR_UNITS = inch\n", 0.25 * 25.4 / 2)])
+def test_the_tool_table_and_its_units_come_from_the_ini_file(tmp_path, units, radius):
+    """[EMCIO] TOOL_TABLE, relative to the INI file's folder, in the units of
+    [TRAJ] LINEAR_UNITS (inches without it, as LinuxCNC's rs274): T1 D0.25 is
+    a 6.35 mm cutter in a G21 program unless the machine is metric."""
+    part, ini = _machine(tmp_path, "[EMCIO]\nTOOL_TABLE = tools.tbl\n" + units)
+    path = compensate(read_program(part, ini=ini), style="linuxcnc")
+    assert path.radius == pytest.approx(radius, rel=1e-12)
+    # clockwise round the square with the tool on the right: inside, `radius` from each edge
+    up, top = [s.geom.bbox() for s in path.segments if s.role is Role.COMPENSATED][:2]
+    assert up[0] == up[2] == pytest.approx(radius)                 # x = r going +Y
+    assert top[1] == top[3] == pytest.approx(20.0 - radius)        # y = 20 - r going +X
+
+
+def test_options_given_come_before_the_ini_file(tmp_path):
+    part, ini = _machine(tmp_path, "[EMCIO]\nTOOL_TABLE = tools.tbl\n[TRAJ]\nLINEAR_UNITS = mm\n")
+    other = tmp_path / "other.tbl"
+    other.write_text("T1 P1 D2\n")
+    prog = read_program(part, ini=ini, tool_table=other, table_units="mm")
+    assert compensate(prog, style="linuxcnc").radius == pytest.approx(1.0)
+
+
+def test_subroutine_path_and_parameter_file(tmp_path):
+    """SUBROUTINE_PATH's folders (``:``-separated, relative to the INI file)
+    are searched for o<name> call; PARAMETER_FILE's G54 origin is in force."""
+    cfg = tmp_path / "cfg"
+    (cfg / "subs").mkdir(parents=True)
+    (cfg / "subs" / "hop.ngc").write_text("o<hop> sub\nG0 X#1 Y0\no<hop> endsub\nM2\n")
+    (cfg / "m.var").write_text("5221\t5.000000\n5222\t7.000000\n5220\t1.000000\n")
+    (cfg / "m.ini").write_text("[RS274NGC]\nSUBROUTINE_PATH = nothing-here:subs\n"
+                               "PARAMETER_FILE = m.var\n[TRAJ]\nLINEAR_UNITS = mm\n")
+    part = tmp_path / "p.ngc"
+    part.write_text("G21 G90\no<hop> call [3]\nM2\n")
+    prog = read_program(part, ini=cfg / "m.ini")
+    assert prog.blocks[-1].end[:2] == pytest.approx((3.0 + 5.0, 7.0))
+
+
+@pytest.mark.parametrize("text, line, message", [
+    ("[RS274NGC]\nthis line has no equals sign\n", 2, "not a [SECTION]"),
+    ("NAME = 1\n", 1, "before any [SECTION]"),
+    ("[TRAJ]\nLINEAR_UNITS = furlong\n", 2, "LINEAR_UNITS = furlong"),
+])
+def test_a_bad_ini_file_is_a_located_error(tmp_path, capsys, text, line, message):
+    part, ini = _machine(tmp_path, text)
+    code = main(["show", str(part), "--ini", str(ini)])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err.startswith(f"{ini}:{line}:") and message in err and "Traceback" not in err
+
+
+def test_ini_vars_off_and_a_value_that_is_not_a_number(tmp_path):
+    part, ini = _machine(tmp_path, "[RS274NGC]\nINI_VARS = 0\n[VARS]\nX = 1\n")
+    part.write_text("G21\nG0 X#<_ini[vars]x>\nM2\n")
+    with pytest.raises(ProgramError, match="INI_VARS = 0"):
+        read_program(part, ini=ini)
+    ini.write_text("[VARS]\nX = left\n")
+    with pytest.raises(ProgramError, match=r"\[VARS\] X = left .* is not a number"):
+        read_program(part, ini=ini)
+    ini.write_text("[VARS]\nX = 4\nX = 9\n")          # the first counts, as LinuxCNC's
+    assert read_program(part, ini=ini).blocks[-1].end[0] == pytest.approx(4.0)
+
+
+def test_an_ini_file_is_for_g_code_only(tmp_path):
+    part, ini = _machine(tmp_path, "[TRAJ]\nLINEAR_UNITS = mm\n")
+    pmc = tmp_path / "p.pmc"
+    pmc.write_text("OPEN PROG 1 CLEAR\nLINEAR F10 X1\nCLOSE\n")
+    with pytest.raises(ProgramError, match="G-code programs only"):
+        read_program(pmc, ini=ini)
