@@ -2,9 +2,10 @@
 
 Every folder of LinuxCNC's ``tests/interp`` and ``tests/ccomp`` that has an
 ``expected`` canon file is run as its ``test.sh`` runs ``rs274``: when the
-script is one ``rs274`` run (``-t TABLE``, ``-i INI``, ``-v VARS``, ``-g``,
-``-n 0``; ``exec``, ``!`` and ``2>&1`` allowed; no plug-in, no loop or
-several runs), the program is read with those files (the tool table in
+script is made of ``rs274`` runs alone (``-t TABLE``, ``-i INI``, ``-v VARS``,
+``-g``, ``-n 0``/``2``; ``exec``, ``!``, ``if ! ...; then`` and ``2>&1``
+allowed; no plug-in, no loop; several runs' outputs one after the other),
+each program is read with those files (the tool table in
 inches without an INI, as ``rs274`` takes it; ``--ini`` otherwise),
 compensated in the ``linuxcnc`` style and its tool path compared with the
 STRAIGHT_TRAVERSE, STRAIGHT_FEED (X Y Z A B C) and ARC_FEED calls of
@@ -19,8 +20,8 @@ the canon prints them. Each test is then one of
   the script wants rs274 to fail (``! rs274``), or where ``expected`` (with
   rs274's messages, ``2>&1``) holds an error message;
 * ``refused``: ccopt stops with a located error (printed), LinuxCNC not;
-* ``needs a plug-in or script``: ``test.sh`` runs more than one rs274 run,
-  or a Python plug-in (``-p``, an INI with ``[PYTHON]``);
+* ``needs a plug-in or script``: ``test.sh`` does more than rs274 runs, or
+  loads a Python plug-in (``-p``, an INI with ``[PYTHON]``);
 * ``messages only``: ``test.sh`` keeps only the MESSAGE lines of the canon
   (``awk '/MESSAGE/ ...'``), which hold ``(debug, ...)`` parameter values,
   not moves: nothing to compare move for move.
@@ -52,14 +53,17 @@ from linuxcnc_data import TOL, canonical_moves, parse_canon  # noqa: E402
 #: The units of the tool table of an ``rs274`` run without an INI file.
 RS274_TABLE_UNITS = "inch"
 
-_PLAIN = re.compile(r"^\s*(?P<neg>!\s*)?(exec\s+)?rs274\s+(?P<args>[^|&;>]*?)\s*(?P<err>2>&1)?"
+_PLAIN = re.compile(r"^\s*(?P<neg>(if\s+)?!\s*)?(exec\s+)?rs274\s+(?P<args>[^|&;>]*?)\s*"
+                    r"(?P<err>2>&1)?\s*(;\s*then)?\s*(\|\|\s*exit\s+1)?"
                     r"\s*(\|\s*awk[^|]*)?(\|\s*sed[^|]*)?$")
+#: Script lines around the runs that change nothing compared here.
+_NEUTRAL = re.compile(r"^\s*(#|exit\b|export\s|fi\s*$|then\s*$)")
 
 
 @dataclass
 class Run:
-    """One plain ``rs274`` run of a ``test.sh``: its program, tool table, INI
-    and parameter files; whether the script wants it to fail (``! rs274``), and
+    """One ``rs274`` run of a ``test.sh``: its program, tool table, INI and
+    parameter files; whether the script wants it to fail (``! rs274``), and
     whether its error messages go into ``expected`` (``2>&1``)."""
 
     program: str
@@ -70,19 +74,25 @@ class Run:
     errors_shown: bool = False
 
 
-def plain_run(script: str) -> Run | None:
-    """The :class:`Run` of a ``test.sh`` that is one ``rs274`` run (``-t``, ``-i``,
-    ``-v``, ``-g`` and ``-n 0`` taken; ``exec``, ``export`` lines and ``2>&1``
-    allowed), else None."""
-    lines = [ln for ln in script.splitlines()
-             if ln.strip() and not ln.lstrip().startswith("#") and not ln.startswith("exit")
-             and not ln.startswith("export ")]
-    if len(lines) != 1:
-        return None
-    m = _PLAIN.match(lines[0])
+def plain_runs(script: str) -> list[Run] | None:
+    """The :class:`Run` of each ``rs274`` line of a ``test.sh`` made of such runs
+    alone (``-t``, ``-i``, ``-v``, ``-g`` and ``-n 0``/``-n 2`` taken; ``exec``,
+    ``export``, ``if ! ...; then ... fi`` and ``! ... || exit 1`` around them,
+    ``2>&1`` allowed), else None (a plug-in, a loop, other commands)."""
+    script = script.replace("\\\n", " ")                 # continued lines, joined
+    lines = [ln for ln in script.splitlines() if ln.strip() and not _NEUTRAL.match(ln)]
+    runs = [_run(ln) for ln in lines]
+    return runs if runs and all(runs) else None
+
+
+def _run(line: str) -> Run | None:
+    m = _PLAIN.match(line)
     if not m:
         return None
-    args = shlex.split(m.group("args"))
+    try:
+        args = shlex.split(m.group("args"))
+    except ValueError:                                    # not a plain word list
+        return None
     run = Run("", fails=bool(m.group("neg")), errors_shown=bool(m.group("err")))
     it = iter(args)
     for a in it:
@@ -91,8 +101,9 @@ def plain_run(script: str) -> Run | None:
         elif a == "-g":
             continue
         elif a == "-n":
-            # -n 0 goes on after an error, where ccopt stops: the comparison says so
-            if next(it, None) != "0":
+            # 2 stops at an error, as ccopt does; 0 goes on after it, where ccopt
+            # stops (the comparison then says so); 1 is interactive
+            if next(it, None) not in ("0", "2"):
                 return None
         elif a.startswith("-"):
             return None          # -p plug-in: not a plain run
@@ -124,34 +135,45 @@ def differences(got, want) -> list[str]:
 
 def run_test(folder: Path) -> tuple[str, str]:
     """``(outcome, detail)`` of one test folder."""
-    run = plain_run((folder / "test.sh").read_text())
-    if run is None:
+    runs = plain_runs((folder / "test.sh").read_text())
+    if runs is None:
         return "needs a plug-in or script", ""
-    if run.ini and re.search(r"^\s*\[PYTHON\]", (folder / run.ini).read_text(), re.M):
+    if any(r.ini and re.search(r"^\s*\[PYTHON\]", (folder / r.ini).read_text(), re.M)
+           for r in runs):
         return "needs a plug-in or script", "its INI loads Python ([PYTHON])"
     if re.search(r"awk\s+'/MESSAGE/", (folder / "test.sh").read_text()):
         return "messages only", ""
+    if len(runs) > 1 and any(r.fails for r in runs) and not all(r.fails for r in runs):
+        return "needs a plug-in or script", "runs that fail and runs that do not"
     expected = (folder / "expected").read_text()
     want = parse_canon(expected)
-    try:
-        # rs274 without an INI takes its tool table in inches, whatever G20/G21
-        # say (src/emc/sai/driver.cc: external length units 1/25.4 per mm unless
-        # the INI's [TRAJ] LINEAR_UNITS is mm); with one, read_program takes the
-        # INI's units
-        prog = read_program(folder / run.program, "gcode",
-                            tool_table=folder / run.table if run.table else None,
-                            var_file=folder / run.var if run.var else None,
-                            table_units=RS274_TABLE_UNITS if run.table and not run.ini
-                            else None, ini=folder / run.ini if run.ini else None)
-        got = canonical_moves(compensate(prog, style="linuxcnc"))
-    except ProgramError as exc:
-        if run.fails or (run.errors_shown and _stops_with_an_error(expected)):
-            return "refuses where LinuxCNC stops", str(exc)
-        return "refused", str(exc)
-    if run.fails:
-        return "differs", "ccopt reads it; LinuxCNC stops with an error"
+    got = []                   # several runs: their outputs one after the other
+    for run in runs:
+        try:
+            got += _moves(folder, run)
+        except ProgramError as exc:
+            if run.fails or (run.errors_shown and _stops_with_an_error(expected)):
+                if run is runs[-1]:
+                    return "refuses where LinuxCNC stops", str(exc)
+                continue
+            return "refused", str(exc)
+        if run.fails:
+            return "differs", f"ccopt reads {run.program}; LinuxCNC stops with an error"
     problems = differences(got, want)
     return ("differs", problems[0]) if problems else ("match", "")
+
+
+def _moves(folder: Path, run: Run) -> list:
+    """The canonical moves of ``run``'s program as ccopt reads and compensates it.
+    rs274 without an INI takes its tool table in inches, whatever G20/G21 say
+    (src/emc/sai/driver.cc: external length units 1/25.4 per mm unless the
+    INI's [TRAJ] LINEAR_UNITS is mm); with one, read_program takes the INI's."""
+    prog = read_program(folder / run.program, "gcode",
+                        tool_table=folder / run.table if run.table else None,
+                        var_file=folder / run.var if run.var else None,
+                        table_units=RS274_TABLE_UNITS if run.table and not run.ini else None,
+                        ini=folder / run.ini if run.ini else None)
+    return canonical_moves(compensate(prog, style="linuxcnc"))
 
 
 def _stops_with_an_error(expected: str) -> bool:

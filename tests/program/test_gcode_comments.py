@@ -76,3 +76,13 @@ def test_comments_as_character_by_character(text):
     assert got == ref
     if ref_err is not None:
         assert err[0] == ref_err[0] and err[1].startswith(ref_err[1])
+
+
+def test_abort_comment_stops_and_an_unset_parameter_prints_hashes():
+    from ccopt.errors import ProgramError
+    from ccopt.program.gcode import read_gcode
+    prog = read_gcode("G21\nG0 X1 (abort is only a word here)\nM2\n")
+    assert prog.blocks[-1].end[0] == 1.0
+    with pytest.raises(ProgramError, match=r"\(abort\) at 7\.000000, ###### is ######") as err:
+        read_gcode("G21\n#1 = 7\nG0 X1\n( ABORT , at #1, #<nope> is #<nope>)\nG0 X2\nM2\n")
+    assert (err.value.line, err.value.col) == (4, 1)

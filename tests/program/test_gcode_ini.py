@@ -137,3 +137,27 @@ def test_an_ini_file_is_for_g_code_only(tmp_path):
     pmc.write_text("OPEN PROG 1 CLEAR\nLINEAR F10 X1\nCLOSE\n")
     with pytest.raises(ProgramError, match="G-code programs only"):
         read_program(pmc, ini=ini)
+
+
+def test_an_ini_entry_is_read_only():
+    """LinuxCNC's iniparam-failassign: `#<_ini[vars]toolchange_x> = 3.1415` is an
+    error at its line ("Cannot assign to read-only parameter")."""
+    d = CONFORMANCE / "ini" / "iniparam-failassign"
+    assert "Cannot assign to read-only parameter #<_ini[vars]toolchange_x>" in \
+        (d / "expected").read_text()
+    with pytest.raises(ProgramError, match=r"read-only parameter #<_ini\[vars\]toolchange_x>") \
+            as err:
+        read_program(d / "test.ngc", ini=d / "test.ini")
+    assert (err.value.line, err.value.col) == (1, 1)
+
+
+def test_an_abort_comment_stops_the_program_with_its_message():
+    """LinuxCNC's abort-hot-comment: `(abort, ... #42 ... #<named> ...
+    #<_ini[a]value>)` inside a loop stops the program when #42 is 20, with
+    the parameters' values in the message as LinuxCNC prints them (%f)."""
+    d = CONFORMANCE / "ini" / "abort-hot-comment"
+    message = "MixedCase param42=20.000000 named=4711.000000 INI=3.140000"
+    assert message in (d / "expected").read_text()
+    with pytest.raises(ProgramError) as err:
+        read_program(d / "test.ngc", ini=d / "test.ini")
+    assert message in str(err.value) and (err.value.line, err.value.col) == (5, 6)

@@ -133,6 +133,11 @@ def parameter_target(state: GCodeState, code: str, pos: int) -> tuple[str, objec
 _INI_NAME = re.compile(r"_ini\[([^\]]*)\](.+)")
 
 
+def is_ini_name(name: str) -> bool:
+    """Whether the (lower-case) parameter name is ``_ini[SECTION]NAME``: read-only."""
+    return _INI_NAME.fullmatch(name) is not None
+
+
 def _get_named(state: GCodeState, name: str, col: int) -> float:
     m = _INI_NAME.fullmatch(name)
     if m is not None:
@@ -162,6 +167,23 @@ def _ini_value(state: GCodeState, section: str, key: str, name: str, col: int) -
                else f"{ini.file} says [RS274NGC] INI_VARS = 0")
         raise ExprError(f"named parameter #<{name}> not defined: {why}", col)
     return value
+
+
+#: A parameter in a message comment: ``#<name>`` or ``#n``.
+_MESSAGE_PARAMETER = re.compile(r"#<[^>]*>|#\d+")
+
+
+def message_text(state: GCodeState, text: str) -> str:
+    """A message comment's text (``(abort, ...)``) with each ``#<name>`` and ``#n``
+    replaced by its value as LinuxCNC prints it (``%f``), ``######`` where it
+    has none."""
+    def value(m: re.Match) -> str:
+        ref = m.group()
+        try:
+            return f"{read_parameter(state, ref, 0)[0]:f}"
+        except ExprError:
+            return "######"
+    return _MESSAGE_PARAMETER.sub(value, text)
 
 
 def set_parameter(state: GCodeState, kind: str, key, value: float) -> None:

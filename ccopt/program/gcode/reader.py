@@ -17,7 +17,8 @@ from ccopt.program.gcode.coordinates import init_coordinates
 from ccopt.program.gcode.execute import execute_words
 from ccopt.program.gcode.fanuc import exec_fanuc, runs_as_fanuc
 from ccopt.program.gcode.oword import exec_oword, innermost_loop, loop_lines_error
-from ccopt.program.gcode.parameters import MAX_PARAMETER, attach_grammar, set_parameter
+from ccopt.program.gcode.parameters import (MAX_PARAMETER, attach_grammar, message_text,
+                                             set_parameter)
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import output_units
 from ccopt.program.gcode.words import Lexed, lex, olabel, program_span
@@ -133,6 +134,10 @@ def _run_lines(state: GCodeState) -> None:
                 pc = exec_fanuc(state, pc, lx)
                 state.in_loop = innermost_loop(state) is not None
             else:
+                if lx.abort is not None:
+                    col, text = lx.abort
+                    raise state.error(f"(abort) {message_text(state, text).strip()}: the "
+                                      "program stops here, as LinuxCNC's does", col)
                 if lx.first is not None:
                     _exec_line(state, lx)
                 pc += 1

@@ -84,6 +84,7 @@ class Lexed:
     oword: OWord | None = None
     percent: bool = False
     fanuc: int | None = None  # 98 or 99: the line starts with M98/M99 (fanuc.py)
+    abort: tuple[int, str] | None = None  # an (abort, ...) comment: its column and text
 
 
 def lex(state: GCodeState, i: int) -> Lexed:
@@ -95,8 +96,20 @@ def lex(state: GCodeState, i: int) -> Lexed:
     return lx
 
 
+#: LinuxCNC's ``(abort, message)`` comment, which stops the program there.
+ABORT_COMMENT = re.compile(r"\(\s*abort\s*,([^)]*)\)", re.IGNORECASE)
+
+
 def _lex_line(state: GCodeState, i: int) -> Lexed:
-    code = blank_comments(state, state.lines[i], i)
+    text = state.lines[i]
+    lx = _lex_code(state, blank_comments(state, text, i), i)
+    abort = ABORT_COMMENT.search(text) if "(" in text else None
+    if abort is not None:
+        lx.abort = (abort.start(), abort.group(1))
+    return lx
+
+
+def _lex_code(state: GCodeState, code: str, i: int) -> Lexed:
     n = len(code)
     p = skip_blanks(code, 0)
     if p >= n:
