@@ -45,6 +45,8 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 sys.path.insert(0, str(ROOT / "tests"))
 
+from docs_section import commit, now, write_section  # noqa: E402
+
 from ccopt.compensate import compensate  # noqa: E402
 from ccopt.errors import ProgramError  # noqa: E402
 from ccopt.program import read_program  # noqa: E402
@@ -183,22 +185,56 @@ def _stops_with_an_error(expected: str) -> bool:
                and ln.strip() != "executing" for ln in expected.splitlines())
 
 
+#: The page and section ``--docs`` writes.
+DOCS = ROOT / "docs" / "gcode.md"
+SECTION = "bench/linuxcnc_interp.py"
+#: The outcomes, in the order the page lists them.
+OUTCOMES = ("match", "refuses where LinuxCNC stops", "differs", "refused", "messages only",
+            "needs a plug-in or script")
+
+
+def docs_body(results: list[tuple[str, str, str]], linuxcnc: str) -> str:
+    """The figures of one run (``(test, outcome, detail)`` each) as Markdown."""
+    counts = Counter(outcome for _, outcome, _ in results)
+    lines = [f"`python bench/linuxcnc_interp.py TREE --docs` on {now()}, ccopt commit "
+             f"{commit()}, LinuxCNC {linuxcnc}: {len(results)} tests with an `expected` "
+             "file.", "", "| outcome | tests |", "| --- | ---: |"]
+    lines += [f"| {k} | {counts[k]} |" for k in OUTCOMES if counts[k]]
+    lines += ["", "Every test that does not match:", ""]
+    for k in OUTCOMES[1:]:
+        for test, outcome, detail in results:
+            if outcome == k:
+                why = detail.split(": ", 1)[-1] if detail.startswith("/") else detail
+                why = why.split(": ccopt reads G0")[0]      # the G-code list, left out
+                lines.append(f"- `{test}`: {k}" + (f" ({why})" if why else ""))
+    return "\n".join(lines)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("tree", type=Path)
     ap.add_argument("--verbose", action="store_true")
+    ap.add_argument("--docs", action="store_true",
+                    help=f"write the figures into {DOCS.relative_to(ROOT)}")
+    ap.add_argument("--linuxcnc-commit", default="(commit not given)",
+                    help="the LinuxCNC commit of TREE, named on the page")
     args = ap.parse_args(argv)
     folders = sorted(p.parent for base in ("tests/interp", "tests/ccomp")
                      for p in (args.tree / base).rglob("expected"))
     counts = Counter()
+    results = []
     for folder in folders:
         outcome, detail = run_test(folder)
         counts[outcome] += 1
+        test = str(folder.relative_to(args.tree))
+        results.append((test, outcome, detail.replace(str(folder) + "/", "")))
         if args.verbose or outcome in ("differs", "refused"):
-            print(f"{folder.relative_to(args.tree)}: {outcome}"
-                  + (f": {detail}" if detail else ""))
+            print(f"{test}: {outcome}" + (f": {detail}" if detail else ""))
     print(f"{len(folders)} tests with an expected file: "
           + ", ".join(f"{n} {k}" for k, n in sorted(counts.items())))
+    if args.docs:
+        write_section(DOCS, SECTION, docs_body(results, args.linuxcnc_commit))
+        print(f"written: {DOCS}")
     return 0
 
 

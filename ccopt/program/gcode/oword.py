@@ -235,10 +235,10 @@ def _define_ahead(state: GCodeState, pc: int, label: str, col: int) -> tuple[int
         if o is not None and o.keyword is None and o.label == label and j != state.first_line:
             raise state.error(f"Fanuc 'O{label}' subroutine must be called with 'M98 P{label}' "
                               f"(line {j + 1} is its head), not {olabel(label)} call", col)
+    where = "" if label.isdigit() else f", or give the folder of {label}.ngc with --sub-path"
     raise state.error(f"{olabel(label)} call: no subroutine {olabel(label)} is "
                       f"defined; define it with {olabel(label)} sub ... "
-                      f"{olabel(label)} endsub, or give the folder of {label}.ngc with "
-                      "--sub-path", col)
+                      f"{olabel(label)} endsub{where}", col)
 
 
 def _find_sub(state: GCodeState, label: str, first: int, end: int) -> tuple[int, int] | None:
