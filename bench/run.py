@@ -28,15 +28,15 @@ from __future__ import annotations
 
 import argparse
 import json
-import datetime
 import os
 import platform
-import re
 import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
+
+from docs_section import commit, now, write_section
 
 ROOT = Path(__file__).resolve().parents[1]
 STAGES = ("read", "compensate", "feed", "verify", "compare", "export")
@@ -84,28 +84,19 @@ def report(serial: dict, parallel: dict) -> str:
 
 
 BENCHMARKS = ROOT / "docs" / "benchmarks.md"
-#: the markers around the section this script writes in BENCHMARKS
-BEGIN, END = "<!-- bench/run.py: begin -->", "<!-- bench/run.py: end -->"
+#: the section this script writes in BENCHMARKS (between its markers)
+SECTION = "bench/run.py"
 
 
-def _commit() -> str:
-    proc = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"],
-                          capture_output=True, text=True)
-    return proc.stdout.strip() or "unknown"
-
-
-def write_section(table: str, load_before: tuple, load_after: tuple, workers: int) -> None:
-    """The main job's section of docs/benchmarks.md, between BEGIN and END."""
-    when = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+def write_main_job(table: str, load_before: tuple, load_after: tuple, workers: int) -> None:
+    """The main job's section of docs/benchmarks.md."""
     load = "/".join(f"{x:.2f}" for x in load_before), "/".join(f"{x:.2f}" for x in load_after)
-    section = (f"{BEGIN}\n`python bench/run.py` on {when}, commit {_commit()}: "
-               f"{os.cpu_count()} cores, {platform.platform()}, Python "
-               f"{platform.python_version()}; load average (1/5/15 min) {load[0]} before, "
-               f"{load[1]} after; parallel run with --workers {workers}.\n\n"
-               f"```\n{table}\n```\n{END}")
-    text = BENCHMARKS.read_text()
-    text = re.sub(re.escape(BEGIN) + ".*?" + re.escape(END), lambda _: section, text, flags=re.S)
-    BENCHMARKS.write_text(text)
+    write_section(BENCHMARKS, SECTION,
+                  f"`python bench/run.py` on {now()}, commit {commit()}: "
+                  f"{os.cpu_count()} cores, {platform.platform()}, Python "
+                  f"{platform.python_version()}; load average (1/5/15 min) {load[0]} before, "
+                  f"{load[1]} after; parallel run with --workers {workers}.\n\n"
+                  f"```\n{table}\n```")
 
 
 def main() -> None:
@@ -133,7 +124,7 @@ def main() -> None:
     else:
         print(report(serial, parallel))
     if not (args.no_write or args.cases or extra):
-        write_section(report(serial, parallel), load_before, os.getloadavg(), args.workers)
+        write_main_job(report(serial, parallel), load_before, os.getloadavg(), args.workers)
         print(f"written: {BENCHMARKS.relative_to(ROOT)}")
 
 
