@@ -161,3 +161,18 @@ def test_an_abort_comment_stops_the_program_with_its_message():
     with pytest.raises(ProgramError) as err:
         read_program(d / "test.ngc", ini=d / "test.ini")
     assert message in str(err.value) and (err.value.line, err.value.col) == (5, 6)
+
+
+@pytest.mark.parametrize("ini", ["axis.ini", "axis_mm.ini"])
+def test_a_shipped_example_with_the_sim_config_it_is_written_for(ini):
+    """LinuxCNC's nc_files/comp.ngc (G20, `g42 d1`) with the axis simulator's
+    INI: tool 1 is sim.tbl's D0.125 on the inch machine ([TRAJ] LINEAR_UNITS
+    = inch), sim_mm.tbl's D3 (mm) on the mm one: radius 0.0625 in, or
+    3 / 25.4 / 2 in, in this inch program."""
+    d = CONFORMANCE / "nc_files"
+    inch = ini == "axis.ini"
+    table = (d / "sim" / ("sim.tbl" if inch else "sim_mm.tbl")).read_text()
+    assert ("T1 P1 Z0.511 D0.125" if inch else "T1 P1 Z0.511 D3 ") in table
+    path = compensate(read_program(d / "comp.ngc", ini=d / "sim" / ini), style="linuxcnc")
+    assert path.radius == pytest.approx(0.0625 if inch else 3.0 / 25.4 / 2, rel=1e-12)
+    assert {s.plane for s in path.segments} == {"XY", "ZX"}

@@ -9,7 +9,8 @@ settings; ``--ini FILE`` (:func:`read_ini`) takes them from its INI file:
   without it inches, as LinuxCNC's stand-alone interpreter assumes:
   ``src/emc/sai/driver.cc``);
 * ``[RS274NGC] SUBROUTINE_PATH``: the folders ``o<name> call`` searches, ``:``
-  separated; ``PARAMETER_FILE``: the parameter file in force at the start;
+  separated; ``PARAMETER_FILE``: the parameter file in force at the start
+  (none while it does not exist, as LinuxCNC starts);
 * every ``NAME = VALUE`` for ``#<_ini[SECTION]NAME>`` in the program, unless
   ``[RS274NGC] INI_VARS = 0`` (LinuxCNC's default is 1).
 
@@ -63,8 +64,11 @@ class LinuxCncIni:
 
     @property
     def var_file(self) -> Path | None:
-        """``[RS274NGC] PARAMETER_FILE``, or None."""
-        return self._path("RS274NGC", "PARAMETER_FILE")
+        """``[RS274NGC] PARAMETER_FILE``, or None, also when the file does not exist
+        yet: LinuxCNC then starts from its default parameters and writes the
+        file later (``Interp::restore_parameters``, rs274ngc_pre.cc)."""
+        path = self._path("RS274NGC", "PARAMETER_FILE")
+        return path if path is not None and path.exists() else None
 
     @property
     def sub_path(self) -> tuple[str, ...]:
