@@ -24,7 +24,7 @@ DATA = CONFORMANCE / "crazy-paths"
 #: apart, printed -7.8062).
 TOL = 5e-5 + POINT_EPS
 N_CALLS = 75
-_CANON = re.compile(r"\b(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED|COMMENT)\((.*)\)\s*$")
+_CANON = re.compile(r"\b(STRAIGHT_TRAVERSE|STRAIGHT_FEED|ARC_FEED|RIGID_TAP|COMMENT)\((.*)\)\s*$")
 
 
 def data_file(name: str) -> Path:
@@ -69,7 +69,8 @@ def canonical_moves(path):
     coordinates as LinuxCNC's canon prints them (each block's recorded frame
     offset taken off).
 
-    A line of a ``G0`` block is a STRAIGHT_TRAVERSE ``[x, y, z, a, b, c]``
+    A ``G33.1`` rigid tap (its feed down and back) is one RIGID_TAP ``[x, y,
+    z]``, the bottom. A line of a ``G0`` block is a STRAIGHT_TRAVERSE ``[x, y, z, a, b, c]``
     (``a b c`` the block's A B C, 0 when the program moves none), any other
     line a STRAIGHT_FEED; an arc (or spiral) is ARC_FEED ``[end u, end v,
     centre u, centre v, turn, w]`` with ``turn = sign(sweep) * (number of
@@ -77,11 +78,20 @@ def canonical_moves(path):
     G18 an arc's are (Z, X), and a straight move's are always (X, Y, Z)).
     """
     out = []
+    down = None                 # the G33.1 line whose feed down came last
     for seg in path.segments:
         g = seg.geom
         frame = seg.block.frame if seg.block is not None else None
         # a G53 move's frame is the system in force: canon prints work coordinates
         work = frame.to_work if frame is not None else (lambda p: p)
+        if seg.block is not None and seg.block.cycle == "G33.1":
+            # the feed down is canon's one RIGID_TAP; the way back (next) is in it
+            if down == seg.block.source:
+                down = None
+            else:
+                out.append(("RIGID_TAP", list(work(seg.end_xyz))))
+                down = seg.block.source
+            continue
         if isinstance(g, Line):
             kind = "STRAIGHT_TRAVERSE" if seg.block.motion is Motion.RAPID else "STRAIGHT_FEED"
             axes = seg.block.axes

@@ -7,10 +7,12 @@ from __future__ import annotations
 
 import pytest
 
+from ccopt.compensate import compensate
 from ccopt.errors import ProgramError
 from ccopt.program.gcode import read_gcode
 from ccopt.program.model import Motion
 from cli_run import run_cli
+from linuxcnc_data import CONFORMANCE, TOL, canonical_moves, expected_moves
 
 _KIND = {Motion.RAPID: "R", Motion.LINE: "F", Motion.DWELL: "D"}
 
@@ -173,3 +175,31 @@ def test_cli_refuses_a_cycle_under_compensation_located_with_exit_2(tmp_path, ca
     assert err.strip().startswith(f"{p}:5:3: Cannot use canned cycles with cutter "
                                   "compensation on")
     assert "Traceback" not in err
+
+
+def test_rigid_tapping_is_linuxcncs_rigid_tap_and_back():
+    """LinuxCNC's g33.1 test: from (0, 0, 1), S1000 M3, `g33.1 z-1.2 k0.1` is
+    canon's RIGID_TAP(0, 0, -1.2): a feed to Z-1.2 and back to Z1 along the
+    same line, synchronised to the spindle at 0.1 per revolution x 1000 per
+    minute = 100 per minute (100 / 60 per second)."""
+    d = CONFORMANCE / "cycles" / "g33.1"
+    prog = read_gcode((d / "g33.1.ngc").read_text(), "g33.1.ngc")
+    tap = [b for b in prog.blocks if b.cycle == "G33.1"]
+    assert [(b.start[2], b.end[2]) for b in tap] == [(1.0, -1.2), (-1.2, 1.0)]
+    assert all(b.motion is Motion.LINE and b.feed == pytest.approx(0.1 * 1000 / 60) for b in tap)
+    got = canonical_moves(compensate(prog, style="linuxcnc"))
+    want = expected_moves("cycles/g33.1")
+    assert [k for k, _ in got] == [k for k, _ in want] == ["STRAIGHT_TRAVERSE", "RIGID_TAP"]
+    assert got[1][1] == pytest.approx(want[1][1], abs=TOL)
+
+
+@pytest.mark.parametrize("text, message", [
+    ("G0 Z1\nS1000 M3\nG33.1 Z-1\n", "pitch K > 0"),
+    ("G0 Z1\nS1000\nG33.1 Z-1 K0.1\n", "spindle not turning"),
+    ("G0 Z1\nM3\nG33.1 Z-1 K0.1\n", "spindle not turning"),
+    ("G0 X0 Z1\nS1000 M3\nG41.1 D1\nG1 F100 X1\nG33.1 Z-1 K0.1\n", "compensation on"),
+])
+def test_rigid_tapping_refusals_are_located(text, message):
+    with pytest.raises(ProgramError, match=message) as err:
+        read_gcode(text + "M2\n", "tap.ngc")
+    assert err.value.line == text.count("\n")

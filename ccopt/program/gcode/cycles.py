@@ -35,6 +35,12 @@ its program stop: there is no path out of the hole to time), and
 passes the axes permuted to ``cycle_feed`` in the XZ and YZ planes
 (``interp_cycles.cc:324`` and ``:342``), so the feed goes to a point off the
 hole that no machine should run.
+
+``G33.1`` rigid tapping (``convert_straight`` and canon ``RIGID_TAP``): a feed
+to the end point and back to the start along the same line, synchronised to
+the spindle at K (program units per revolution) times S (revolutions per
+minute), both blocks marked ``"G33.1"``; refused with compensation on,
+without K > 0, and with the spindle stopped or at S0 (nothing to time).
 """
 from __future__ import annotations
 
@@ -43,6 +49,8 @@ from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, gname
 from ccopt.program.model import PLANE_AXES, Block, Motion, Source
 
+#: ``G33.1`` (rigid tapping), in tenths.
+RIGID_TAP = 331
 #: Canned-cycle motion codes, in tenths.
 CYCLE_CODES = frozenset({730, 740, 810, 820, 830, 840, 850, 860, 870, 880, 890})
 #: Cycles whose P (dwell, seconds) is required when the cycle is not in force.
@@ -341,3 +349,25 @@ def _back_bore(out: _Emitter, u: float, v: float, r: float, clear: float, bottom
     out.traverse(ou, ov, bottom)
     out.traverse(ou, ov, clear)
     out.traverse(u, v, clear)
+
+
+def rigid_tap(state: GCodeState, L: dict, mcodes: tuple, src: Source, gcol: int, end,
+              emit) -> None:
+    """``G33.1 ... K``: the feed to ``end`` (machine coordinates) and back to where
+    it started, at ``K * S`` per minute (the module docstring)."""
+    if state.side != 0:
+        raise state.error("G33.1 with cutter radius compensation on: turn it off with G40 "
+                          "first", gcol)
+    if "K" not in L or not L["K"][0] > 0:
+        raise state.error("G33.1 needs the thread pitch K > 0 (units per revolution)",
+                          L["K"][1] if "K" in L else gcol)
+    if state.spindle == "stopped" or not state.spindle_speed > 0:
+        raise state.error("G33.1 with the spindle not turning: start it with S and M3 (or "
+                          "M4) first", gcol)
+    feed = L["K"][0] * state.spindle_speed / 60.0
+    start = state.pos
+    for a, b in ((start, end), (end, start)):
+        emit(state, Block(src, Motion.LINE, a, b, state.modal(), feed=feed, mcodes=mcodes,
+                          cycle="G33.1"))
+        mcodes = ()
+    state.moved = True

@@ -16,8 +16,8 @@ from dataclasses import replace
 from ccopt.program.gcode.arcs import arc_geometry, is_modal_arc_without_plane_motion
 from ccopt.program.gcode.axes import extra_end
 from ccopt.program.gcode.codes import Words, classify
-from ccopt.program.gcode.cycles import (CYCLE_CODES, P_CYCLES, PECK_CYCLES, end_series,
-                                        run_cycle, set_retract_mode)
+from ccopt.program.gcode.cycles import (CYCLE_CODES, P_CYCLES, PECK_CYCLES, RIGID_TAP,
+                                        end_series, rigid_tap, run_cycle, set_retract_mode)
 from ccopt.program.gcode.coordinates import (check_unrotated_plane, rotation, select_origin,
                                              set_axis_offset, set_origin, to_machine, to_work,
                                              work_offset)
@@ -81,7 +81,10 @@ def execute_words(state: GCodeState, words: Words) -> None:
         run_cycle(state, motion, gcol, L, mcodes, first_col, previous_mode, _emit)
     elif motion_g is not None or (motion is not None and axis):
         end_series(state)   # a motion that is not a cycle ends a series of cycles
-    if motion is not None and motion not in CYCLE_CODES and (axis or is_arc):
+    if motion == RIGID_TAP and axis:
+        rigid_tap(state, L, mcodes, Source(*state.where(state.line_no), first_col + 1), gcol,
+                  _end_point(state, L, False), _emit)
+    elif motion is not None and motion not in CYCLE_CODES and (axis or is_arc):
         _move(state, motion, L, mcodes, first_col, gcol, machine="machine_coords" in gc)
     record_after_motion(state, mcodes)
     if any(m in END_CODES for m in mcodes):
@@ -151,8 +154,10 @@ def _check_word_usage(state: GCodeState, gc: dict, L: dict, motion: int | None,
         raise state.error("H word with no G43 to use it", L["H"][1])
     g10 = gc.get("axis_setting", (None,))[0] == 100
     for w in "IJK":
-        if w in L and not (is_arc or motion == 870 or (g10 and w != "K")):
-            raise state.error(f"{w} word with no G2, G3 or G87 to use it", L[w][1])
+        if w in L and not (is_arc or motion == 870 or (g10 and w != "K")
+                           or (motion == RIGID_TAP and w == "K")):
+            codes = "G2, G3, G33.1 or G87" if w == "K" else "G2, G3 or G87"
+            raise state.error(f"{w} word with no {codes} to use it", L[w][1])
     if "R" in L and not (is_arc or cycle or gc.get("axis_setting", (None,))[0] == 100
                          or blend or orient):
         raise state.error("R word with no G2, G3, G10, G64, M19 or canned cycle to use it",
@@ -199,6 +204,11 @@ def _set_feed_and_tool(state: GCodeState, gc: dict, L: dict, mcodes: tuple) -> N
         state.selected_tool = int(round(t))
     if 6 in mcodes:
         state.loaded_tool = state.selected_tool
+    if "S" in L:
+        speed, col = L["S"]
+        if speed < 0:
+            raise state.error(f"negative spindle speed S{fmt(speed)}: S must be >= 0", col)
+        state.spindle_speed = speed
     for m, turning in ((3, "cw"), (4, "ccw"), (5, "stopped")):
         if m in mcodes:
             state.spindle = turning

@@ -147,7 +147,8 @@ class GCodeState:
         self.selected_tool: int | None = None
         self.loaded_tool: int | None = None
         self.corner = "circular"
-        self.spindle = "stopped"   # "cw" (M3), "ccw" (M4), "stopped" (M5, at start)
+        # "cw" (M3), "ccw" (M4), "stopped" (M5, at start); S in rev/min (0 until an S word)
+        self.spindle, self.spindle_speed = "stopped", 0.0
         self.cycle = CycleState()  # sticky canned-cycle values (cycles.py)
         # machine words read since the last block, and the work frame (machine_words.py)
         self.pending_words: list[str] = []
@@ -172,9 +173,7 @@ class GCodeState:
         # subroutine files read into ``lines`` after the program: (first, end, file)
         self.sub_files: list[tuple[int, int, str]] = []
         self.sub_path: tuple[str, ...] = ()
-        #: the machine's INI file (:mod:`ccopt.program.gcode.ini`) for
-        #: ``#<_ini[SECTION]NAME>``, or None
-        self.ini = None
+        self.ini = None   # the machine's INI file (gcode/ini.py) for #<_ini[...]>, or None
 
     def where(self, ln: int) -> tuple[str, int]:
         """``(file, 1-based line)`` of 0-based line ``ln`` of ``lines``."""
