@@ -91,8 +91,8 @@ ALL = "all"
 def main_job_variants() -> list[str]:
     """The variants the main job (``ccopt run``) compares by default: every
     available one but the lead families (:data:`~.contract.LEAD_FAMILY_NAMES`),
-    which search a parameter set each and took about a fifth of the main
-    job's CPU time; ``--variants all`` (or their names) brings them in."""
+    which search a parameter set each (every member compensated, certified
+    and timed); ``--variants all`` (or their names) brings them in."""
     return [n for n in available() if n not in LEAD_FAMILY_NAMES]
 
 
