@@ -7,11 +7,13 @@ tests/conformance/linuxcnc/ini (licence: that folder's README)."""
 from __future__ import annotations
 
 import pytest
+from hypothesis import given, settings, strategies as st
 
 from ccopt.cli import main
 from ccopt.compensate import compensate
 from ccopt.errors import ProgramError
 from ccopt.program import read_program
+from ccopt.program.gcode.ini import read_ini
 from ccopt.toolpath import Role
 from linuxcnc_data import CONFORMANCE, TOL, canonical_moves, expected_moves
 
@@ -176,3 +178,62 @@ def test_a_shipped_example_with_the_sim_config_it_is_written_for(ini):
     path = compensate(read_program(d / "comp.ngc", ini=d / "sim" / ini), style="linuxcnc")
     assert path.radius == pytest.approx(0.0625 if inch else 3.0 / 25.4 / 2, rel=1e-12)
     assert {s.plane for s in path.segments} == {"XY", "ZX"}
+
+
+# -- by generation ---------------------------------------------------------------------
+
+_NAMES = st.text("ABCDEFGHIJKLMNOPQRSTUVWXYZ_0123456789abcxyz", min_size=1, max_size=8).filter(
+    lambda n: n.strip() == n and "=" not in n and not n.startswith(("#", ";", "[")))
+_VALUES = st.one_of(st.floats(-1e6, 1e6, allow_nan=False).map(repr),
+                    st.text("abc xyz/.-_", max_size=10).map(str.strip))
+
+
+@st.composite
+def _ini_files(draw):
+    """INI text with its entries in order: sections in any case, names in any
+    case, blank and comment lines, repeated names; and the model of what
+    LinuxCNC finds (upper-case keys, the first of equal names)."""
+    lines, model = [], {}
+    for _ in range(draw(st.integers(1, 4))):
+        section = draw(_NAMES)
+        lines.append(f"[{draw(st.sampled_from(['', ' ']))}{section}]")
+        for _ in range(draw(st.integers(0, 5))):
+            if draw(st.booleans()):
+                lines.append(draw(st.sampled_from(["", "# a comment", "; another", "   "])))
+            name, value = draw(_NAMES), draw(_VALUES)
+            lines.append(f"{name}{draw(st.sampled_from(['=', ' = ', '  =  ']))}{value}")
+            model.setdefault((section.upper(), name.upper()), value)
+    return "\n".join(lines) + "\n", model
+
+
+@settings(max_examples=300, deadline=None, derandomize=True)
+@given(_ini_files())
+def test_read_ini_finds_what_linuxcnc_finds_over_generated_files(tmp_path_factory, case):
+    text, model = case
+    path = tmp_path_factory.mktemp("ini") / "m.ini"
+    path.write_text(text)
+    ini = read_ini(path)
+    assert ini.values == model
+    for (section, name), value in model.items():
+        # any case reads it, as the G-code reader lowercases #<_ini[...]...> names
+        assert ini.get(section.lower(), name.lower()) == value
+        try:
+            number = float(value)
+        except ValueError:
+            with pytest.raises(ValueError, match="is not a number"):
+                ini.number(section, name)
+        else:
+            assert ini.number(section, name) == number
+
+
+@settings(max_examples=300, deadline=None, derandomize=True)
+@given(st.lists(st.text(st.characters(blacklist_categories=("Cs",)), max_size=30), max_size=8))
+def test_any_text_reads_or_is_a_located_error(tmp_path_factory, lines):
+    """Whatever the file holds: its entries, or an error at one of its lines."""
+    path = tmp_path_factory.mktemp("ini") / "x.ini"
+    path.write_text("\n".join(lines), encoding="utf-8", errors="replace")
+    try:
+        read_ini(path)
+    except ProgramError as exc:
+        assert exc.file == str(path)
+        assert 1 <= exc.line <= max(1, len(path.read_text(errors="replace").splitlines()))
