@@ -22,9 +22,9 @@ the canon prints them. Each test is then one of
 * ``refused``: ccopt stops with a located error (printed), LinuxCNC not;
 * ``needs a plug-in or script``: ``test.sh`` does more than rs274 runs, or
   loads a Python plug-in (``-p``, an INI with ``[PYTHON]``);
-* ``messages only``: ``test.sh`` keeps only the MESSAGE lines of the canon
-  (``awk '/MESSAGE/ ...'``), which hold ``(debug, ...)`` parameter values,
-  not moves: nothing to compare move for move.
+* a test whose ``test.sh`` keeps only the MESSAGE lines of the canon (``awk
+  '/MESSAGE/ ...'``: ``(debug, ...)`` parameter values, no moves) is compared
+  on its messages (``Program.meta["messages"]``): ``match`` or ``differs``.
 
     python bench/linuxcnc_interp.py LINUXCNC_SOURCE_TREE [--verbose]
 
@@ -50,6 +50,7 @@ from docs_section import commit, now, write_section  # noqa: E402
 from ccopt.compensate import compensate  # noqa: E402
 from ccopt.errors import ProgramError  # noqa: E402
 from ccopt.program import read_program  # noqa: E402
+from ccopt.program.model import MESSAGES  # noqa: E402
 from linuxcnc_data import TOL, canonical_moves, parse_canon  # noqa: E402
 
 #: The units of the tool table of an ``rs274`` run without an INI file.
@@ -144,7 +145,7 @@ def run_test(folder: Path) -> tuple[str, str]:
            for r in runs):
         return "needs a plug-in or script", "its INI loads Python ([PYTHON])"
     if re.search(r"awk\s+'/MESSAGE/", (folder / "test.sh").read_text()):
-        return "messages only", ""
+        return _messages(folder, runs)
     if len(runs) > 1 and any(r.fails for r in runs) and not all(r.fails for r in runs):
         return "needs a plug-in or script", "runs that fail and runs that do not"
     expected = (folder / "expected").read_text()
@@ -165,17 +166,41 @@ def run_test(folder: Path) -> tuple[str, str]:
     return ("differs", problems[0]) if problems else ("match", "")
 
 
-def _moves(folder: Path, run: Run) -> list:
-    """The canonical moves of ``run``'s program as ccopt reads and compensates it.
-    rs274 without an INI takes its tool table in inches, whatever G20/G21 say
-    (src/emc/sai/driver.cc: external length units 1/25.4 per mm unless the
-    INI's [TRAJ] LINEAR_UNITS is mm); with one, read_program takes the INI's."""
-    prog = read_program(folder / run.program, "gcode",
+def _messages(folder: Path, runs: list[Run]) -> tuple[str, str]:
+    """A test that keeps only the canon's MESSAGE lines (``awk '/MESSAGE/'``, and
+    the script's ``sed`` of -0.0000 to 0.0000): ccopt's ``(debug, ...)`` and
+    ``(msg, ...)`` messages against them."""
+    want = re.findall(r'MESSAGE\("(.*)"\)', (folder / "expected").read_text())
+    got = []
+    for run in runs:
+        try:
+            prog = _program(folder, run)
+        except ProgramError as exc:
+            return "refused", str(exc)
+        got += [re.sub(r"-0\.0000", "0.0000", m["text"]) for m in prog.meta.get(MESSAGES, ())]
+    if got == want:
+        return "match", "its messages"
+    bad = next((i for i, (a, b) in enumerate(zip(got, want)) if a != b), min(len(got), len(want)))
+    return "differs", (f"message {bad}: ccopt {got[bad] if bad < len(got) else None!r}, "
+                       f"LinuxCNC {want[bad] if bad < len(want) else None!r}")
+
+
+def _program(folder: Path, run: Run):
+    """``run``'s program as ccopt reads it. rs274 without an INI takes its tool
+    table in inches, whatever G20/G21 say (src/emc/sai/driver.cc: external
+    length units 1/25.4 per mm unless the INI's [TRAJ] LINEAR_UNITS is mm);
+    with one, read_program takes the INI's."""
+    return read_program(folder / run.program, "gcode",
                         tool_table=folder / run.table if run.table else None,
                         var_file=folder / run.var if run.var else None,
                         table_units=RS274_TABLE_UNITS if run.table and not run.ini else None,
                         ini=folder / run.ini if run.ini else None)
-    return canonical_moves(compensate(prog, style="linuxcnc"))
+
+
+def _moves(folder: Path, run: Run) -> list:
+    """The canonical moves of ``run``'s program as ccopt reads (:func:`_program`)
+    and compensates it."""
+    return canonical_moves(compensate(_program(folder, run), style="linuxcnc"))
 
 
 def _stops_with_an_error(expected: str) -> bool:
@@ -189,7 +214,7 @@ def _stops_with_an_error(expected: str) -> bool:
 DOCS = ROOT / "docs" / "gcode.md"
 SECTION = "bench/linuxcnc_interp.py"
 #: The outcomes, in the order the page lists them.
-OUTCOMES = ("match", "refuses where LinuxCNC stops", "differs", "refused", "messages only",
+OUTCOMES = ("match", "refuses where LinuxCNC stops", "differs", "refused",
             "needs a plug-in or script")
 
 

@@ -463,3 +463,29 @@ def test_spindle_orientation_and_g64_take_their_words():
     assert [b.end[0] for b in prog.blocks] == [1.0]
     with pytest.raises(ProgramError, match="R word with no G2, G3, G10, G64, M19"):
         read_gcode("G21\nM3 R45\nM2\n")
+
+
+def test_position_parameters_and_messages_are_linuxcncs():
+    """#5021-#5023 and #<_abs_x/y/z>: where G53 put the tool (machine
+    coordinates), whatever the origin, rotation, G92 offset or tool length
+    offset; #5420-#5422 and #<_x/y/z>: the same point in the work coordinates
+    in force; in the program's units of the moment. (debug, ...) messages are
+    kept in order with the values (LinuxCNC's rotation/abs-pts and
+    machine-coord-params tests)."""
+    import math
+    from ccopt.program.model import MESSAGES
+    text = ("G21\nG10 L2 P1 X3 Y7 Z0 R45\nG54\nG43.1 Z5\nG53 G0 X1 Y2 Z3\n"
+            "(debug,#5021 #5022 #<_abs_z>)\n(debug, work #5420 #<_y> #5422)\n"
+            "G20\n(debug,#<_abs_x>)\n(msg, no #1 here)\nM2\n")
+    prog = read_gcode(text, "p.ngc")
+    c, s = math.cos(math.radians(45)), math.sin(math.radians(45))
+    x, y = 1 - 3, 2 - 7                 # off the G54 origin, then turned back by 45 degrees
+    wx, wy = x * c + y * s, -x * s + y * c
+    texts = [m["text"] for m in prog.meta[MESSAGES]]
+    assert texts == ["1.000000 2.000000 3.000000",
+                     f" work {wx:f} {wy:f} 3.000000",
+                     f"{1 / 25.4:f}",
+                     " no #1 here"]
+    assert [m["line"] for m in prog.meta[MESSAGES]] == [6, 7, 9, 10]
+    assert prog.blocks[-1].end == pytest.approx((1.0, 2.0, 3.0))    # G43.1 moved nothing
+    assert any(w == "G43.1 Z5" for b in prog.blocks for w in b.words)

@@ -34,7 +34,7 @@ G_GROUPS: dict[int, str] = {
     170: "plane", 180: "plane", 190: "plane",
     200: "units", 210: "units",
     400: "comp", 410: "comp", 420: "comp", 411: "comp", 421: "comp",
-    430: "length", 490: "length",
+    430: "length", 431: "length", 490: "length",
     540: "coord", 550: "coord", 560: "coord", 570: "coord", 580: "coord", 590: "coord",
     591: "coord", 592: "coord", 593: "coord",
     # non-modal codes that take the line's axis words (LinuxCNC group 0)
@@ -50,7 +50,7 @@ G_GROUPS: dict[int, str] = {
     1360: "corner", 1370: "corner",
     1380: "start_end", 1390: "start_end",
 }
-_KNOWN_G = ("G0 G1 G2 G3 G4 G7 G8 G33.1 G10 G17 G18 G19 G20 G21 G40 G41 G42 G41.1 G42.1 G43 G49 "
+_KNOWN_G = ("G0 G1 G2 G3 G4 G7 G8 G33.1 G10 G17 G18 G19 G20 G21 G40 G41 G42 G41.1 G42.1 G43 G43.1 G49 "
             "G28 G28.1 G30 G30.1 G52 G53 G54-G59.3 G61 G61.1 G64 G80 G90 G91 G90.1 G91.1 G92 G92.1 G92.2 G92.3 "
             "G73 G74 G81-G87 G89 G93 G94 G98 G99 G136 G137 G138 G139")
 _G_UNSUPPORTED_HINT: dict[int, str] = {

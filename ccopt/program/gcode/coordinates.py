@@ -43,8 +43,7 @@ from pathlib import Path
 
 from ccopt.errors import ProgramError
 from ccopt.program.gcode.axes import any_extra, set_extra_axis_offset, set_extra_origin
-from ccopt.program.gcode.parameters import MAX_PARAMETER
-from ccopt.program.gcode.state import GCodeState
+from ccopt.program.gcode.state import MAX_PARAMETER, GCodeState
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt
 
 _AXES = "XYZ"

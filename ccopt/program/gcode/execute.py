@@ -107,8 +107,11 @@ def _motion_of(state: GCodeState, gc: dict, L: dict) -> int | None:
     axis = any(a in L for a in _MOVE_AXES)
     motion_g = gc.get("motion")
     setting = gc.get("axis_setting")
+    length = gc.get("length")
+    if setting is None and length is not None and length[0] == DYNAMIC_TOOL_LENGTH:
+        setting = length       # G43.1's axis words are the offsets: nothing moves
     if setting is not None:
-        # G10, G52 and G92 take the line's axis words: nothing moves
+        # G10, G52, G92 and G43.1 take the line's axis words: nothing moves
         if motion_g is not None and motion_g[0] != 800:
             raise state.error(f"{gname(setting[0])} and {gname(motion_g[0])} both use the "
                               "axis words: put them on separate lines", motion_g[1])
@@ -131,6 +134,10 @@ def _motion_of(state: GCodeState, gc: dict, L: dict) -> int | None:
         return state.motion_mode
     return None
 
+
+#: ``G43.1``: a tool length offset given by the line's axis words (LinuxCNC's
+#: dynamic tool length offset), recorded as ``G43`` is (it moves nothing).
+DYNAMIC_TOOL_LENGTH = 431
 
 #: ``M19``, spindle orientation: it takes ``R`` (angle), ``Q`` (timeout) and
 #: ``P`` (direction), which move nothing (LinuxCNC ``check_other_codes``).

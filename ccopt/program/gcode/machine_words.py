@@ -46,7 +46,10 @@ def record_line(state: GCodeState, gc: dict, L: dict, mcodes: tuple) -> None:
     parts += [f"M{m}" for m in keep]
     length = gc.get("length")
     if length is not None:
-        parts.append(gname(length[0]) + (f" H{fmt(L['H'][0])}" if "H" in L else ""))
+        # G43 H<tool>; G43.1 with its offsets (its axis words, output units)
+        given = [f"{a}{fmt(L[a][0])}" for a in "XYZABCUVW" if a in L] if length[0] == 431 else []
+        parts.append(" ".join([gname(length[0]), *given])
+                     + (f" H{fmt(L['H'][0])}" if "H" in L else ""))
     if parts:
         state.pending_words.append(" ".join(parts))
     for m in mcodes:

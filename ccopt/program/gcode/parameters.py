@@ -22,11 +22,11 @@ from ccopt.program.expr import (
     parse_bracketed,
     parse_operand,
 )
-from ccopt.program.gcode.state import Frame, GCodeState
+from ccopt.program.gcode.coordinates import to_work
+from ccopt.program.gcode.state import MAX_PARAMETER, Frame, GCodeState
+from ccopt.program.gcode.units import input_factor
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, read_number, skip_blanks
 
-#: Highest numbered parameter (LinuxCNC RS274NGC_MAX_PARAMETERS - 1).
-MAX_PARAMETER = 5601
 #: Positional parameters #1..#30 local to a call.
 SUB_PARAMS = 30
 
@@ -48,15 +48,37 @@ def attach_grammar(state: GCodeState) -> None:
                             variable=variable)
 
 
+#: LinuxCNC's read-only parameters of the current position (X Y Z): ``#5021``-
+#: ``#5023`` and ``#<_abs_x>``... in machine coordinates (where ``G53`` puts the
+#: tool), ``#5420``-``#5422`` and ``#<_x>``... in the work coordinates in force
+#: (origin, ``G92``/``G52`` offset and rotation applied), program units.
+MACHINE_POSITION = {5021: 0, 5022: 1, 5023: 2}
+WORK_POSITION = {5420: 0, 5421: 1, 5422: 2}
+_POSITION_NAMES = {"_abs_x": (True, 0), "_abs_y": (True, 1), "_abs_z": (True, 2),
+                   "_x": (False, 0), "_y": (False, 1), "_z": (False, 2)}
+
+
 def read_parameter(state: GCodeState, code: str, pos: int) -> tuple[float, int]:
     """Value of the parameter reference at ``code[pos] == '#'`` and the
     position after it."""
     kind, key, end = parameter_target(state, code, pos)
     if kind == "name":
-        value = _get_named(state, key, pos)
+        value = (_position(state, *_POSITION_NAMES[key]) if key in _POSITION_NAMES
+                 else _get_named(state, key, pos))
+    elif key in MACHINE_POSITION:
+        value = _position(state, True, MACHINE_POSITION[key])
+    elif key in WORK_POSITION:
+        value = _position(state, False, WORK_POSITION[key])
     else:
         value = state.params.get(key, 0.0)
     return value, end
+
+
+def _position(state: GCodeState, machine: bool, axis: int) -> float:
+    """The current position's ``axis`` (0, 1, 2: X Y Z), machine or work
+    coordinates, in the program's units in force (G20/G21), as LinuxCNC gives it."""
+    value = state.pos[axis] if machine else to_work(state, state.pos)[axis]
+    return float(value) / input_factor(state)
 
 
 def read_exists(state: GCodeState, code: str, pos: int) -> tuple[float, int]:

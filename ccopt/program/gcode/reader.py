@@ -22,8 +22,8 @@ from ccopt.program.gcode.parameters import (MAX_PARAMETER, attach_grammar, messa
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import output_units
 from ccopt.program.gcode.words import Lexed, lex, olabel, program_span
-from ccopt.program.model import (INPUT_FILES, PLANE_CHANGES_CHECKED, START_PARAMETERS,
-                                 TRAILING_WORDS, Program)
+from ccopt.program.model import (INPUT_FILES, MESSAGES, PLANE_CHANGES_CHECKED,
+                                 START_PARAMETERS, TRAILING_WORDS, Program)
 from ccopt.program.tooltable import ToolTable
 
 
@@ -134,6 +134,8 @@ def _run_lines(state: GCodeState) -> None:
                 pc = exec_fanuc(state, pc, lx)
                 state.in_loop = innermost_loop(state) is not None
             else:
+                if lx.message is not None:
+                    _message(state, *lx.message)
                 if lx.abort is not None:
                     col, text = lx.abort
                     raise state.error(f"(abort) {message_text(state, text).strip()}: the "
@@ -145,6 +147,15 @@ def _run_lines(state: GCodeState) -> None:
             raise state.error(exc.message, exc.col) from None
         except RecursionError:
             raise state.error("expression or parameter reference nested too deeply") from None
+
+
+def _message(state: GCodeState, kind: str, text: str) -> None:
+    """A ``(debug, ...)`` or ``(msg, ...)`` comment's message, recorded in order
+    (``Program.meta[MESSAGES]``: ``{"file", "line", "text"}``), a debug
+    message with its parameters' values (LinuxCNC prints both as MESSAGE)."""
+    file, line = state.where(state.line_no)
+    shown = message_text(state, text) if kind == "debug" else text
+    state.meta.setdefault(MESSAGES, []).append({"file": file, "line": line, "text": shown})
 
 
 def _exec_line(state: GCodeState, lx: Lexed) -> None:

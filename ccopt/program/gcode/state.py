@@ -16,6 +16,9 @@ from ccopt.errors import ProgramError
 from ccopt.program.expr import Grammar
 from ccopt.program.model import Block, Modal
 
+#: Highest numbered parameter (LinuxCNC RS274NGC_MAX_PARAMETERS - 1).
+MAX_PARAMETER = 5601
+
 #: Executed lines (loops and calls counted each time) before the reader
 #: gives up on a runaway program.
 MAX_EXECUTED_LINES = 1_000_000

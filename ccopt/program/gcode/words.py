@@ -85,6 +85,7 @@ class Lexed:
     percent: bool = False
     fanuc: int | None = None  # 98 or 99: the line starts with M98/M99 (fanuc.py)
     abort: tuple[int, str] | None = None  # an (abort, ...) comment: its column and text
+    message: tuple[str, str] | None = None  # a (debug, ...)/(msg, ...) comment: kind, text
 
 
 def lex(state: GCodeState, i: int) -> Lexed:
@@ -98,14 +99,20 @@ def lex(state: GCodeState, i: int) -> Lexed:
 
 #: LinuxCNC's ``(abort, message)`` comment, which stops the program there.
 ABORT_COMMENT = re.compile(r"\(\s*abort\s*,([^)]*)\)", re.IGNORECASE)
+#: Its message comments: ``(debug, ...)`` (parameters replaced) and ``(msg, ...)``.
+MESSAGE_COMMENT = re.compile(r"\(\s*(debug|msg)\s*,([^)]*)\)", re.IGNORECASE)
 
 
 def _lex_line(state: GCodeState, i: int) -> Lexed:
     text = state.lines[i]
     lx = _lex_code(state, blank_comments(state, text, i), i)
-    abort = ABORT_COMMENT.search(text) if "(" in text else None
-    if abort is not None:
-        lx.abort = (abort.start(), abort.group(1))
+    if "(" in text:
+        abort = ABORT_COMMENT.search(text)
+        if abort is not None:
+            lx.abort = (abort.start(), abort.group(1))
+        message = MESSAGE_COMMENT.search(text)
+        if message is not None:
+            lx.message = (message.group(1).lower(), message.group(2))
     return lx
 
 
