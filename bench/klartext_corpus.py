@@ -19,7 +19,7 @@ when any program gave a traceback or a timeout.
 
 ``--docs docs/heidenhain.md`` also writes the figures (date, number of
 programs, shares, refusal reasons) into that file, between the markers
-``<!-- klartext-corpus:begin -->`` and ``<!-- klartext-corpus:end -->``
+``<!-- klartext-corpus: begin -->`` and ``<!-- klartext-corpus: end -->``
 (appended as a new section when the file has none); ``--note`` adds a
 sentence on where the programs came from.
 """
@@ -37,10 +37,14 @@ from collections import Counter
 from multiprocessing import Pool
 from pathlib import Path
 
-from ccopt import verify
-from ccopt.compensate import compensate
-from ccopt.errors import ProgramError
-from ccopt.program import read_program
+# the bench folder's own modules, also when a test loads this file by its path
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from docs_section import markers, write_section  # noqa: E402
+
+from ccopt import verify  # noqa: E402
+from ccopt.compensate import compensate  # noqa: E402
+from ccopt.errors import ProgramError  # noqa: E402
+from ccopt.program import read_program  # noqa: E402
 
 _NUMBERS = re.compile(r"[-+]?\d+(\.\d+)?")
 
@@ -121,8 +125,9 @@ def report(results: list[dict]) -> str:
     return "\n".join(lines)
 
 
-BEGIN = "<!-- klartext-corpus:begin -->"
-END = "<!-- klartext-corpus:end -->"
+#: The docs section this script writes (:mod:`docs_section`) and its markers.
+SECTION = "klartext-corpus"
+BEGIN, END = markers(SECTION)
 
 
 def figures_markdown(results: list[dict], folder: str, radius: float, note: str = "",
@@ -156,16 +161,9 @@ def figures_markdown(results: list[dict], folder: str, radius: float, note: str 
 
 
 def write_docs(path: Path, section: str) -> None:
-    """Replace the marked section of ``path`` by ``section`` (append it when
-    the file has no markers)."""
-    text = path.read_text() if path.exists() else ""
-    if BEGIN in text and END in text:
-        head, _, rest = text.partition(BEGIN)
-        _, _, tail = rest.partition(END)
-        text = head + section + tail
-    else:
-        text = text.rstrip("\n") + "\n\n" + section + "\n"
-    path.write_text(text)
+    """Replace the marked section of ``path`` by ``section`` (:func:`figures_markdown`,
+    markers included); append it when the file has no markers."""
+    write_section(path, SECTION, section.removeprefix(BEGIN).removesuffix(END))
 
 
 def main(argv=None) -> int:
