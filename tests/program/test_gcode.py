@@ -7,7 +7,7 @@ import pytest
 
 from ccopt.errors import ProgramError
 from ccopt.program.gcode import read_gcode
-from ccopt.program.model import PLANE_AXES, Motion
+from ccopt.program.model import MESSAGES, PLANE_AXES, Motion
 
 
 def moves(text, **kw):
@@ -472,8 +472,6 @@ def test_position_parameters_and_messages_are_linuxcncs():
     in force; in the program's units of the moment. (debug, ...) messages are
     kept in order with the values (LinuxCNC's rotation/abs-pts and
     machine-coord-params tests)."""
-    import math
-    from ccopt.program.model import MESSAGES
     text = ("G21\nG10 L2 P1 X3 Y7 Z0 R45\nG54\nG43.1 Z5\nG53 G0 X1 Y2 Z3\n"
             "(debug,#5021 #5022 #<_abs_z>)\n(debug, work #5420 #<_y> #5422)\n"
             "G20\n(debug,#<_abs_x>)\n(msg, no #1 here)\nM2\n")

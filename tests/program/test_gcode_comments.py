@@ -8,8 +8,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from ccopt.errors import ProgramError
+from ccopt.program.gcode import read_gcode
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.words import blank_comments
+from ccopt.program.model import MESSAGES
 
 
 def _reference(text: str):
@@ -79,10 +81,19 @@ def test_comments_as_character_by_character(text):
 
 
 def test_abort_comment_stops_and_an_unset_parameter_prints_hashes():
-    from ccopt.errors import ProgramError
-    from ccopt.program.gcode import read_gcode
     prog = read_gcode("G21\nG0 X1 (abort is only a word here)\nM2\n")
     assert prog.blocks[-1].end[0] == 1.0
     with pytest.raises(ProgramError, match=r"\(abort\) at 7\.000000, ###### is ######") as err:
         read_gcode("G21\n#1 = 7\nG0 X1\n( ABORT , at #1, #<nope> is #<nope>)\nG0 X2\nM2\n")
     assert (err.value.line, err.value.col) == (4, 1)
+
+
+def test_active_comments_only_in_parentheses_before_a_semicolon():
+    """`; (abort, x)` is part of a `;` comment, so it does nothing; the first
+    (msg, ...) of a line is its message; a position parameter is read-only."""
+    prog = read_gcode("G21\nG0 X1 ; (abort, not this)\n(note) (msg, first) (msg, second)\n"
+                      "G0 X2\nM2\n")
+    assert prog.blocks[-1].end[0] == 2.0
+    assert [m["text"] for m in prog.meta[MESSAGES]] == [" first"]
+    with pytest.raises(ProgramError, match=r"read-only parameter #<_x>: it is the current"):
+        read_gcode("G21\n#<_x> = 3\nM2\n")

@@ -11,7 +11,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ccopt.program.expr import ExprError
-from ccopt.program.gcode.parameters import is_ini_name, parameter_target, read_value
+from ccopt.program.gcode.parameters import (is_ini_name, is_position_name, parameter_target,
+                                             read_value)
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, Lexed, fmt, gname, skip_blanks
 from ccopt.program.model import MAX_PROGRAM_COORDINATE, out_of_range
@@ -104,9 +105,11 @@ def read_words(state: GCodeState, lx: Lexed) -> tuple[Words, list[tuple[str, obj
             q = skip_blanks(code, q)
             if q >= n or code[q] != "=":
                 raise ExprError("parameter setting needs '=' and a value, e.g. #1 = 2.5", p)
-            if kind == "name" and is_ini_name(key):
-                raise ExprError(f"cannot assign to read-only parameter #<{key}>: it is the "
-                                "machine's INI file entry", p)
+            if kind == "name" and (is_ini_name(key) or is_position_name(key)):
+                what = ("the machine's INI file entry" if is_ini_name(key)
+                        else "the current position")
+                raise ExprError(f"cannot assign to read-only parameter #<{key}>: it is {what}",
+                                p)
             value, p = read_value(state, code, q + 1, "=", q)
             settings.append((kind, key, value))
         elif up in _WORD_LETTERS:

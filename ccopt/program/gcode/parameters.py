@@ -155,6 +155,11 @@ def parameter_target(state: GCodeState, code: str, pos: int) -> tuple[str, objec
 _INI_NAME = re.compile(r"_ini\[([^\]]*)\](.+)")
 
 
+def is_position_name(name: str) -> bool:
+    """Whether the (lower-case) parameter name is a position's (``_x``, ``_abs_x``, ...): read-only."""
+    return name in _POSITION_NAMES
+
+
 def is_ini_name(name: str) -> bool:
     """Whether the (lower-case) parameter name is ``_ini[SECTION]NAME``: read-only."""
     return _INI_NAME.fullmatch(name) is not None

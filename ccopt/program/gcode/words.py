@@ -97,23 +97,41 @@ def lex(state: GCodeState, i: int) -> Lexed:
     return lx
 
 
-#: LinuxCNC's ``(abort, message)`` comment, which stops the program there.
-ABORT_COMMENT = re.compile(r"\(\s*abort\s*,([^)]*)\)", re.IGNORECASE)
-#: Its message comments: ``(debug, ...)`` (parameters replaced) and ``(msg, ...)``.
-MESSAGE_COMMENT = re.compile(r"\(\s*(debug|msg)\s*,([^)]*)\)", re.IGNORECASE)
+#: LinuxCNC's comments that act: ``(abort, message)`` stops the program there;
+#: ``(debug, ...)`` (parameters replaced) and ``(msg, ...)`` are messages.
+ACTIVE_COMMENT = re.compile(r"\s*(abort|debug|msg)\s*,(.*)", re.IGNORECASE | re.DOTALL)
 
 
 def _lex_line(state: GCodeState, i: int) -> Lexed:
     text = state.lines[i]
     lx = _lex_code(state, blank_comments(state, text, i), i)
     if "(" in text:
-        abort = ABORT_COMMENT.search(text)
-        if abort is not None:
-            lx.abort = (abort.start(), abort.group(1))
-        message = MESSAGE_COMMENT.search(text)
-        if message is not None:
-            lx.message = (message.group(1).lower(), message.group(2))
+        for col, body in _paren_comments(text):
+            m = ACTIVE_COMMENT.match(body)
+            if m is None:
+                continue
+            kind = m.group(1).lower()
+            if kind == "abort":
+                lx.abort = lx.abort or (col, m.group(2))
+            elif lx.message is None:
+                lx.message = (kind, m.group(2))
     return lx
+
+
+def _paren_comments(text: str):
+    """``(column, body)`` of each ``( ... )`` comment of a line, up to a ``;``
+    comment (which runs to the end of the line, parentheses and all); the line
+    passed :func:`blank_comments`, so they are closed and not nested."""
+    i = 0
+    while True:
+        j, k = text.find("(", i), text.find(";", i)
+        if j < 0 or 0 <= k < j:
+            return
+        end = text.find(")", j)
+        if end < 0:
+            return
+        yield j, text[j + 1:end]
+        i = end + 1
 
 
 def _lex_code(state: GCodeState, code: str, i: int) -> Lexed:
