@@ -289,20 +289,22 @@ class FeedProfile:
 
         :class:`FeedError` when that is more than :data:`MAX_FEED_SAMPLES`
         samples (a larger ``dt`` is needed)."""
+        return self.at(self._sample_times(dt))
+
+    def _sample_times(self, dt: float) -> np.ndarray:
+        """The times :meth:`sample` takes: every ``dt`` from 0, plus the final instant."""
         n = self.sample_count(dt)
         times = np.arange(n) * dt
         times[-1] = min(times[-1], self.duration)
-        return self.at(times)
+        return times
 
     def acceleration_ratio_samples(self, dt: float) -> tuple[np.ndarray, np.ndarray]:
         """``(times, ratio)``: :meth:`sample` ``(dt)``'s times and its
         ``axis_acceleration_ratio`` (``|a_i| / amax_i``, shape ``(n, dof)``),
         the same figures, with only the derivatives acceleration needs
         evaluated (comparisons read this ratio for every variant)."""
-        n = self.sample_count(dt)
-        times = np.arange(n) * dt
-        times[-1] = min(times[-1], self.duration)
-        times = np.clip(times, 0.0, self.duration)
+        times = np.clip(self._sample_times(dt), 0.0, self.duration)
+        n = times.size
         path = self.path
         _, alim = self.limits.in_plane(path.frame, path.dof)
         if self.sdd.size == 0 or not path.segments:
