@@ -20,11 +20,11 @@ def err(text, **kw) -> ProgramError:
 # (program, line, column or None when not meaningful, words the message must hold)
 CASES = [
     # words and numbers
-    ("G1 X1 E5 F60", 1, 7, "unknown word E"),
+    ("G1 X1 E5 F60", 1, 7, "E word with no G70 or G76 to use it"),
     ("G1 X1 F60\nG6 X2", 2, 1, "unknown G-code G6"),  # G7 is read since issue 15 (lathe diameter mode)
     ("G59.4", 1, 1, "G59.4"),  # G55 is read since issue 15 (coordinate systems)
     ("G1 X1 F60\nG1.5 X2", 2, 1, "unknown G-code G1.5"),
-    ("G1 A10 E1 F60", 1, 8, "unknown word E"),
+    ("G1 A10 E1 F60", 1, 8, "E word with no G70 or G76 to use it"),
     ("G1 X1.2.3 F60", 1, 8, "two decimal points"),
     ("G1 X F60", 1, 4, "X word has no value"),
     ("G1 X", 1, 4, "X word has no value"),

@@ -66,9 +66,9 @@ _M_GROUPS: dict[int, str] = {0: "stop", 1: "stop", 2: "stop", 30: "stop", 60: "s
                              7: "coolant", 8: "coolant", 9: "coolant"}
 _M_LIMIT = 1000  # M-codes run from M0 to M999
 
-_WORD_LETTERS = set("GMXYZIJKRFPDHTSQLABCUVW")
+_WORD_LETTERS = set("GMXYZIJKRFPDHTSQLEABCUVW")
 # Words holding a length or a feed: bounded by MAX_PROGRAM_COORDINATE where they are written.
-_BOUNDED_LETTERS = set("XYZIJKRFABCUVW")
+_BOUNDED_LETTERS = set("XYZIJKRFEABCUVW")
 
 
 @dataclass(slots=True)
@@ -121,7 +121,7 @@ def read_words(state: GCodeState, lx: Lexed) -> tuple[Words, list[tuple[str, obj
             else:
                 if up in _BOUNDED_LETTERS and out_of_range(value):
                     raise ExprError(f"{up}{fmt(value)} is out of range: coordinates, I J K R "
-                                    f"and F must lie within +-{MAX_PROGRAM_COORDINATE:g}", p)
+                                    f"E and F must lie within +-{MAX_PROGRAM_COORDINATE:g}", p)
                 if up in words.letters:
                     raise ExprError(f"two {up} words on one line: keep one", p)
                 words.letters[up] = (value, p)
@@ -144,7 +144,7 @@ def _not_a_word(ch: str, p: int) -> ExprError:
                          "switch; remove the '/' or the line", p)
     if "A" <= up <= "Z":
         return ExprError(f"unknown word {up}: ccopt reads G M X Y Z A B C U V W I J K R F P D H "
-                         "T S L N Q words, #parameters and O-words", p)
+                         "T S L N Q E words, #parameters and O-words", p)
     return ExprError(f"unexpected character {ch!r}: expected a word such as G1 or X10", p)
 
 

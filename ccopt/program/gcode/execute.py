@@ -139,6 +139,11 @@ def _motion_of(state: GCodeState, gc: dict, L: dict) -> int | None:
 #: dynamic tool length offset), recorded as ``G43`` is (it moves nothing).
 DYNAMIC_TOOL_LENGTH = 431
 
+#: Motions taking the E word (LinuxCNC ``check_other_codes``): G70 (finishing
+#: pass) and G76 (threading), in tenths. M66-M68 take it too; ccopt has no
+#: analog I/O.
+E_CYCLES = frozenset({700, 760})
+
 #: ``M19``, spindle orientation: it takes ``R`` (angle), ``Q`` (timeout) and
 #: ``P`` (direction), which move nothing (LinuxCNC ``check_other_codes``).
 ORIENT_SPINDLE = 19
@@ -169,6 +174,8 @@ def _check_word_usage(state: GCodeState, gc: dict, L: dict, motion: int | None,
                          or blend or orient):
         raise state.error("R word with no G2, G3, G10, G64, M19 or canned cycle to use it",
                           L["R"][1])
+    if "E" in L and motion not in E_CYCLES:
+        raise state.error("E word with no G70 or G76 to use it", L["E"][1])
     dwell = gc.get("dwell")
     if "P" in L and not (is_arc or dwell or g10 or blend or orient or motion in P_CYCLES):
         raise state.error("P word with no G2, G3, G4, G10, G64, G74, G82, G84, G86, G89 or "
