@@ -39,7 +39,7 @@ from ccopt.atomic import protect_input
 from ccopt.errors import ProgramError
 from ccopt.feed import PLANNERS, AxisLimits, certified_planner
 from ccopt.program import read_program
-from ccopt.program.model import ENDLESS_MAIN, INPUT_FILES, MAX_COORDINATE, Program
+from ccopt.program.model import ENDLESS_MAIN, INPUT_FILES, MAX_COORDINATE, NOTES, Program
 from ccopt.tolerances import LIMIT_RANGE
 from ccopt.toolpath import ToolPath
 
@@ -321,6 +321,8 @@ class ReadOptions:
         if ENDLESS_MAIN in prog.meta:
             # the program is read, but a machine would not stop where ccopt did
             print(f"{prog.meta[ENDLESS_MAIN]} (note)", file=sys.stderr)
+        for note in prog.meta.get(NOTES, ()):
+            print(f"{note} (note)", file=sys.stderr)
         return prog
 
 

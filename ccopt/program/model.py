@@ -284,6 +284,10 @@ MESSAGES = "messages"
 #: ``Program.meta`` key: where the main program ended with ``M99`` (a located
 #: sentence): the machine would repeat it for ever; ccopt read one pass.
 ENDLESS_MAIN = "endless_main_program"
+#: ``Program.meta`` key: located sentences on what the controller does that the
+#: program may not mean (a LinuxCNC quirk followed, e.g. G84 in G18 feeding off
+#: the hole); the command line prints them as notes.
+NOTES = "notes"
 #: ``Program.meta`` key: the letters of the axes beyond X Y Z the program
 #: writes (``"AB"``), in A B C U V W order (:attr:`Block.axes`).
 AXES_USED = "axes_used"

@@ -10,7 +10,7 @@ import pytest
 from ccopt.compensate import compensate
 from ccopt.errors import ProgramError
 from ccopt.program.gcode import read_gcode
-from ccopt.program.model import Motion
+from ccopt.program.model import NOTES, Motion
 from cli_run import run_cli
 from linuxcnc_data import CONFORMANCE, TOL, canonical_moves, expected_moves
 
@@ -121,6 +121,24 @@ def test_g18_drills_along_y_and_g19_along_x():
         ("R", 5, 1, 2), ("R", 1, 1, 2), ("F", -1, 1, 2), ("R", 1, 1, 2)]
 
 
+def test_g84_outside_g17_feeds_where_linuxcnc_feeds_and_says_so():
+    # interp_cycles.cc:324 and :342 pass cycle_feed its (u, v, w) permuted: in
+    # G18 ((u, v, w) = (Z, X, Y)) the feed goes to (v, w, u), in G19 ((Y, Z, X))
+    # to (w, u, v). G18 hole Z1 X1, bottom Y-1, start Y2 under G98: the feed
+    # to Z1 X-1 Y1 (not X1 Y-1 Z1), back to Z1 X2 Y1 (LinuxCNC's g84/g18/g98).
+    text = "G0 X0 Y2 Z0\nM3 G18 G98 G84 X1 Z1 Y-1 R1\n"
+    assert moves(text) == [("R", 1, 2, 1), ("R", 1, 1, 1), ("F", -1, 1, 1), ("D", 0),
+                           ("F", 2, 1, 1)]
+    # G19 hole Y1 Z1, bottom X-1, start X2: feed to X1 Y-1 Z1, back to X1 Y2 Z1
+    text = "G0 X2 Y0 Z0\nM3 G19 G98 G84 Y1 Z1 X-1 R1\n"
+    assert moves(text) == [("R", 2, 1, 1), ("R", 1, 1, 1), ("F", 1, -1, 1), ("D", 0),
+                           ("F", 1, 2, 1)]
+    prog = read_gcode("G21 F60\nG0 X0 Y2 Z0\nM3 G18 G84 X1 Z1 Y-1 R1\n", "p.ngc")
+    assert prog.meta[NOTES] == [
+        "p.ngc:3:8: G84 in the XZ plane feeds off the hole, as LinuxCNC does: it passes the "
+        "axes permuted to its feed there (interp_cycles.cc:324, :342); use G17 to tap along Z"]
+
+
 def test_cycle_in_a_work_offset_is_in_work_coordinates():
     # G55 at X100 Y50 Z-10 (parameters 5241-5243): the hole at work (1, 2), bottom Z-1
     params = {5241: 100.0, 5242: 50.0, 5243: -10.0}
@@ -155,7 +173,6 @@ def test_cycle_moves_carry_the_cycle_and_the_line():
     ("G0 Z5\nM4\nG84 X1 Z-1 R1\n", 4, 1, "Spindle turning counterclockwise in G84"),
     ("G0 Z5\nG86 X1 Z-1 R1 P1\n", 3, 1, "Spindle not turning in g86"),
     ("G0 Z5\nM3 G88 X1 Z-1 R1 P1\n", 3, 4, "G88 is not supported"),
-    ("G0 Y5\nM3 G18 G84 X1 Y-1 R1\n", 3, 8, "G84 in the XZ plane is not supported"),
     ("G0 Z5\nG93 G81 X1 Z-1 R1\n", 3, 5, "Cannot use inverse time feed with canned cycles"),
     ("G0 Z5\nF0 G81 X1 Z-1 R1\n", 3, 4, "Cannot feed with zero feed rate"),
     ("G0 Z5\nG81 X1 Z-1 R1 Q1\n", 3, 15, "Q word with no G10, G64, G73, G83 or M19"),

@@ -30,11 +30,12 @@ without P, ``G73``/``G83`` without Q or with Q <= 0, ``G87`` without I, J,
 K, ``G74``/``G84``/``G86``/``G87`` with the spindle not turning (the right
 way for tapping), ``G98``/``G99`` with compensation on.
 Not supported, said so: ``G88`` (the operator retracts the tool by hand at
-its program stop: there is no path out of the hole to time), and
-``G74``/``G84`` outside G17: LinuxCNC 2.9's ``convert_cycle_g74_g84``
-passes the axes permuted to ``cycle_feed`` in the XZ and YZ planes
-(``interp_cycles.cc:324`` and ``:342``), so the feed goes to a point off the
-hole that no machine should run.
+its program stop: there is no path out of the hole to time).
+``G74``/``G84`` outside G17 run as LinuxCNC runs them: its
+``convert_cycle_g74_g84`` passes the axes permuted to ``cycle_feed`` in the
+XZ and YZ planes (``interp_cycles.cc:324`` and ``:342``), so the feed goes to
+a point off the hole (:func:`_tapping_point`); the reader notes it in
+``Program.meta[NOTES]``, which the command line prints.
 
 ``G33.1`` rigid tapping (``convert_straight`` and canon ``RIGID_TAP``): a feed
 to the end point and back to the start along the same line, synchronised to
@@ -47,7 +48,7 @@ from __future__ import annotations
 from ccopt.program.gcode.coordinates import to_machine, to_work
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, gname
-from ccopt.program.model import PLANE_AXES, Block, Motion, Source
+from ccopt.program.model import NOTES, PLANE_AXES, Block, Motion, Source
 
 #: ``G33.1`` (rigid tapping), in tenths.
 RIGID_TAP = 331
@@ -211,10 +212,12 @@ def _check_cycle(state: GCodeState, code: int, gcol: int, L: dict, in_force: boo
         raise state.error(f"R clearance plane unspecified in cycle: {gname(code)} needs R "
                           "where it is not already the motion mode", gcol)
     if code in (740, 840) and state.plane != "XY":
-        raise state.error(f"{gname(code)} in the {_PLANE_NAME[state.plane].upper()} plane is "
-                          "not supported: LinuxCNC passes the axes permuted to its feed "
-                          "there (interp_cycles.cc:324, :342), feeding off the hole; use "
-                          "G17 or write the tapping moves out", gcol)
+        src = state.where(state.line_no)
+        state.meta.setdefault(NOTES, []).append(
+            f"{src[0]}:{src[1]}:{gcol + 1}: {gname(code)} in the "
+            f"{_PLANE_NAME[state.plane].upper()} plane feeds off the hole, as LinuxCNC does: "
+            "it passes the axes permuted to its feed there (interp_cycles.cc:324, :342); "
+            "use G17 to tap along Z")
     return r_word
 
 
@@ -311,9 +314,9 @@ def _body(out: _Emitter, code: int, u: float, v: float, r: float, clear: float,
         out.feed_to(u, v, bottom)
         out.traverse(u, v, clear)
     elif code in (740, 840):
-        out.feed_to(u, v, bottom)
+        out.feed_to(*_tapping_point(out.state.plane, u, v, bottom))
         out.dwell(params["p"])
-        out.feed_to(u, v, clear)
+        out.feed_to(*_tapping_point(out.state.plane, u, v, clear))
     elif code == 850:
         out.feed_to(u, v, bottom)
         out.feed_to(u, v, r)
@@ -329,6 +332,20 @@ def _body(out: _Emitter, code: int, u: float, v: float, r: float, clear: float,
         out.feed_to(u, v, bottom)
         out.dwell(params["p"])
         out.feed_to(u, v, clear)
+
+
+def _tapping_point(plane: str, u: float, v: float, w: float) -> tuple[float, float, float]:
+    """Where LinuxCNC's ``convert_cycle_g74_g84`` feeds for the hole ``(u, v)``
+    at level ``w`` (plane coordinates ``(u, v, w)``): the point itself in G17;
+    in G19 ``(w, u, v)`` and in G18 ``(v, w, u)``, its arguments to
+    ``cycle_feed`` being permuted there (interp_cycles.cc:324, :342). So a
+    G18/G19 tap feeds off the hole; the reader notes it
+    (``Program.meta[NOTES]``)."""
+    if plane == "YZ":
+        return w, u, v
+    if plane == "ZX":
+        return v, w, u
+    return u, v, w
 
 
 def _back_bore(out: _Emitter, u: float, v: float, r: float, clear: float, bottom: float,
