@@ -98,7 +98,8 @@ class _Emitter:
         self.feed = feed
         self.axes = PLANE_AXES[state.plane]
 
-    def _machine(self, u: float, v: float, w: float) -> tuple[float, float, float]:
+    def machine(self, u: float, v: float, w: float) -> tuple[float, float, float]:
+        """Machine coordinates of the plane point ``(u, v, w)`` (work coordinates)."""
         p = [0.0, 0.0, 0.0]
         for k, value in zip(self.axes, (u, v, w)):
             p[k] = value
@@ -114,10 +115,10 @@ class _Emitter:
         self.state.moved = True
 
     def traverse(self, u: float, v: float, w: float) -> None:
-        self._block(Motion.RAPID, self._machine(u, v, w))
+        self._block(Motion.RAPID, self.machine(u, v, w))
 
     def feed_to(self, u: float, v: float, w: float) -> None:
-        self._block(Motion.LINE, self._machine(u, v, w), feed=self.feed)
+        self._block(Motion.LINE, self.machine(u, v, w), feed=self.feed)
 
     def dwell(self, seconds: float) -> None:
         self._block(Motion.DWELL, self.state.pos, dwell=seconds)
@@ -179,6 +180,11 @@ def run_cycle(state: GCodeState, code: int, gcol: int, L: dict, mcodes: tuple,
             if clear > r:
                 out.traverse(u, v, r)
         _body(out, code, u, v, r, clear, bottom, params)
+        if code in (740, 840) and state.plane != "XY":
+            # LinuxCNC's current point is the hole at the clear level; the
+            # tool is at the permuted point its feed went to
+            cs.tool_at = state.pos
+            state.pos = out.machine(u, v, clear)
     cs.r = r_word
     cs.w = w_word
     if code in P_CYCLES:

@@ -76,7 +76,11 @@ class CycleState:
 
     ``level`` is the initial level in work coordinates, ``None`` when no
     series of cycles is running; ``retract`` is ``"initial"`` (G98) or
-    ``"r"`` (G99, LinuxCNC's start-up mode).
+    ``"r"`` (G99, LinuxCNC's start-up mode). ``tool_at``: where the tool
+    really is (machine coordinates) after a ``G74``/``G84`` outside G17, whose
+    last feed goes to a permuted point while LinuxCNC takes the hole at the
+    clear level as its current point (the state's ``pos``); the next move
+    starts from ``tool_at`` (``None``: the tool is at ``pos``).
     """
 
     retract: str = "r"
@@ -86,6 +90,7 @@ class CycleState:
     q: float = 0.0
     ijk: tuple[float, float, float] = (0.0, 0.0, 0.0)
     level: float | None = None
+    tool_at: tuple[float, float, float] | None = None
 
 
 class GCodeState:

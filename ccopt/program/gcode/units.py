@@ -62,6 +62,8 @@ def scale_lengths(state: GCodeState, L: dict, gcodes: dict) -> dict:
     motion = gcodes.get("motion")
     if (motion[0] if motion else state.motion_mode) in (730, 830):
         letters += "QD"                     # G73/G83 peck depth and clearance
+    if (motion[0] if motion else state.motion_mode) == 760:
+        letters += "PE"                     # G76 pitch and taper length
     for letter in letters:
         if letter in scaled:
             value, col = scaled[letter]
