@@ -97,7 +97,7 @@ def test_parameters_at_start_select_and_place_the_origins(tmp_path):
     ("G53 G2 X1 I1\n", "G53 needs G0 or G1"),
     ("G91 G53 G0 X1\n", "G53 is absolute"),
     ("G1 X1 L2\n", "L word with no G10"),
-    ("G76 X1\n", "G76 is not supported: lathe cycles G70-G72 and G76 threading"),
+    ("G76 X1\n", "P word missing with G76"),
 ])
 def test_refusals_are_located(text, message):
     with pytest.raises(ProgramError) as err:
