@@ -31,6 +31,9 @@ G_GROUPS: dict[int, str] = {
     # canned cycles (cycles.py)
     730: "motion", 740: "motion", 810: "motion", 820: "motion", 830: "motion", 840: "motion",
     850: "motion", 860: "motion", 870: "motion", 880: "motion", 890: "motion",
+    # lathe cycles (lathe_cycles.py)
+    700: "motion", 710: "motion", 711: "motion", 712: "motion", 720: "motion", 721: "motion",
+    722: "motion",
     980: "retract", 990: "retract",
     40: "dwell",
     170: "plane", 180: "plane", 190: "plane",
@@ -54,12 +57,10 @@ G_GROUPS: dict[int, str] = {
 }
 _KNOWN_G = ("G0 G1 G2 G3 G4 G7 G8 G33.1 G10 G17 G18 G19 G20 G21 G40 G41 G42 G41.1 G42.1 G43 G43.1 G49 "
             "G28 G28.1 G30 G30.1 G52 G53 G54-G59.3 G61 G61.1 G64 G80 G90 G91 G90.1 G91.1 G92 G92.1 G92.2 G92.3 "
-            "G73 G74 G76 G81-G87 G89 G93 G94 G98 G99 G136 G137 G138 G139")
+            "G70 G71 G71.1 G71.2 G72 G72.1 G72.2 G73 G74 G76 G81-G87 G89 G93 G94 G98 G99 G136 "
+            "G137 G138 G139")
 _G_UNSUPPORTED_HINT: dict[int, str] = {
     950: "feed per revolution: use G94 (units per minute) or G93",
-    **{t: "lathe cycles G70-G72: write the moves out (G76 threading and the drilling "
-          "cycles G73, G74, G81-G87 and G89 are read)"
-       for t in (700, 710, 711, 720, 721)},
 }
 # M-code modal groups that may not appear twice on a line.
 _M_GROUPS: dict[int, str] = {0: "stop", 1: "stop", 2: "stop", 30: "stop", 60: "stop",

@@ -21,6 +21,7 @@ from ccopt.program.gcode.cycles import (CYCLE_CODES, P_CYCLES, PECK_CYCLES, RIGI
 from ccopt.program.gcode.coordinates import (check_unrotated_plane, rotation, select_origin,
                                              set_axis_offset, set_origin, to_machine, to_work,
                                              work_offset)
+from ccopt.program.gcode.lathe_cycles import LATHE_CYCLES, ROUGHING, run_lathe_cycle
 from ccopt.program.gcode.machine_words import (END_CODES, frame_of, record_after_motion,
                                                record_line, with_words)
 from ccopt.program.gcode.setup import go_home, is_tool_setup, save_home, set_tool_data
@@ -82,7 +83,10 @@ def execute_words(state: GCodeState, words: Words) -> None:
         run_cycle(state, motion, gcol, L, mcodes, first_col, previous_mode, _emit)
     elif motion_g is not None or (motion is not None and axis):
         end_series(state)   # a motion that is not a cycle ends a series of cycles
-    if motion == THREADING and (axis or motion_g is not None):
+    if motion in LATHE_CYCLES:
+        # G70-G72 (lathe_cycles.py) run with or without axis words
+        run_lathe_cycle(state, motion, gcol, L, mcodes, first_col, _emit)
+    elif motion == THREADING and (axis or motion_g is not None):
         threading_cycle(state, L, mcodes, Source(*state.where(state.line_no), first_col + 1),
                         gcol, _end_point(state, L, False), _emit)
     elif motion == RIGID_TAP and axis:
@@ -163,34 +167,35 @@ def _check_word_usage(state: GCodeState, gc: dict, L: dict, motion: int | None,
     blend = gc.get("path") is not None and gc["path"][0] == 640
     cycle = motion in CYCLE_CODES
     comp = gc.get("comp")
-    if "D" in L and (comp is None or comp[0] == 400) and motion not in PECK_CYCLES:
-        raise state.error("D word with no G41, G42, G41.1, G42.1, G73 or G83 to use it",
-                          L["D"][1])
+    g7x, roughing = motion in LATHE_CYCLES, motion in ROUGHING   # lathe_cycles.py
+    if "D" in L and (comp is None or comp[0] == 400) and motion not in PECK_CYCLES and not g7x:
+        raise state.error("D word with no G41, G42, G41.1, G42.1, G70, G71, G72, G73 or G83 "
+                          "to use it", L["D"][1])
     thread = motion == THREADING
     if "H" in L and not thread and (gc.get("length") is None or gc["length"][0] != 430):
         raise state.error("H word with no G43 to use it", L["H"][1])
     g10 = gc.get("axis_setting", (None,))[0] == 100
     for w in "IJK":
         if w in L and not (is_arc or motion == 870 or thread or (g10 and w != "K")
-                           or (motion == RIGID_TAP and w == "K")):
+                           or (motion == RIGID_TAP and w == "K") or (roughing and w == "I")):
             codes = "G2, G3, G33.1 or G87" if w == "K" else "G2, G3 or G87"
             raise state.error(f"{w} word with no {codes} to use it", L[w][1])
     if "R" in L and not (is_arc or cycle or thread or gc.get("axis_setting", (None,))[0] == 100
-                         or blend or orient):
+                         or blend or orient or roughing):
         raise state.error("R word with no G2, G3, G10, G64, M19 or canned cycle to use it",
                           L["R"][1])
     if "E" in L and motion not in E_CYCLES:
         raise state.error("E word with no G70 or G76 to use it", L["E"][1])
     dwell = gc.get("dwell")
     if "P" in L and not (is_arc or dwell or g10 or blend or orient or thread
-                         or motion in P_CYCLES):
+                         or motion in P_CYCLES or motion == 700):
         raise state.error("P word with no G2, G3, G4, G10, G64, G74, G82, G84, G86, G89 or "
                           "M19 to use it", L["P"][1])
     lathe = comp is not None and comp[0] in (411, 421)
     if "L" in L and not (g10 or lathe or cycle or thread):
         raise state.error("L word with no G10, G41.1, G42.1 or canned cycle to use it",
                           L["L"][1])
-    if "Q" in L and not (blend or orient or motion in PECK_CYCLES or g10 or thread):
+    if "Q" in L and not (blend or orient or motion in PECK_CYCLES or g10 or thread or g7x):
         raise state.error("Q word with no G10, G64, G73, G83 or M19 to use it", L["Q"][1])
     if dwell and is_arc:
         raise state.error("G4 and G2/G3 on one line would share the P word: put the dwell on "

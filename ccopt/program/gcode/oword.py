@@ -204,6 +204,13 @@ def _call(state: GCodeState, pc: int, lx: Lexed) -> int:
     if len(args) > SUB_PARAMS:
         raise state.error(f"{olabel(label)} call with {len(args)} arguments: at most "
                           f"{SUB_PARAMS} (#1 to #{SUB_PARAMS})", col)
+    return enter_sub(state, label, pc, col, args)
+
+
+def enter_sub(state: GCodeState, label: str, pc: int, col: int, args: list[float]) -> int:
+    """Call sub ``label`` from line ``pc`` (0-based; ``col`` locates errors)
+    with ``args`` as ``#1``..: its frame pushed, the first line of its body
+    returned. Also how G70-G72 run their contour's sub (lathe_cycles.py)."""
     sub = state.subs.get(label)
     if sub is None:
         sub = _define_ahead(state, pc, label, col)

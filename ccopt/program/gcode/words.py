@@ -31,6 +31,10 @@ _N_NUMBER = re.compile(r"[\d. \t]*")
 # The number of an O-word label: digits and blanks.
 _O_NUMBER = re.compile(r"[\d \t]*")
 _O_KEYWORD = re.compile(r"[A-Za-z]*")
+# A keyword written with blanks between its letters: LinuxCNC drops the blanks
+# of a line before reading it, so "o100 end sub" is "o100 endsub".
+_O_SPACED = re.compile("(?:" + "|".join("[ \t]*".join(kw) for kw in sorted(
+    O_KEYWORDS, key=len, reverse=True)) + ")(?![A-Za-z])", re.IGNORECASE)
 # Where a comment starts: '(' to the next ')', ';' to the end of the line.
 _COMMENT_START = re.compile(r"[(;]")
 # The end of a '(' comment, or a '(' nested in it (an error).
@@ -223,6 +227,10 @@ def _lex_oword(state: GCodeState, code: str, p: int, i: int) -> OWord:
         return OWord(label, None, col, q)
     k = _O_KEYWORD.match(code, q).end()
     keyword = code[q:k].lower()
+    spaced = _O_SPACED.match(code, q) if keyword not in O_KEYWORDS else None
+    if spaced is not None:
+        k = spaced.end()
+        keyword = "".join(spaced.group().split()).lower()
     if keyword not in O_KEYWORDS:
         if not keyword:
             raise state.error(f"unexpected {code[q]!r} after {olabel(label)}: a program number "
