@@ -56,11 +56,18 @@ from linuxcnc_data import TOL, canonical_moves, parse_canon  # noqa: E402
 #: The units of the tool table of an ``rs274`` run without an INI file.
 RS274_TABLE_UNITS = "inch"
 
-_PLAIN = re.compile(r"^\s*(?P<neg>(if\s+)?!\s*)?(exec\s+)?rs274\s+(?P<args>[^|&;>]*?)\s*"
-                    r"(?P<err>2>&1)?\s*(;\s*then)?\s*(\|\|\s*exit\s+1)?"
-                    r"\s*(\|\s*awk[^|]*)?(\|\s*sed[^|]*)?$")
-#: Script lines around the runs that change nothing compared here.
-_NEUTRAL = re.compile(r"^\s*(#|exit\b|export\s|fi\s*$|then\s*$)")
+#: Script lines around the runs that change nothing compared here: comments,
+#: exits, exports, ``if``/``fi``, ``echo``, ``rm -f``, a ``trim`` filter's
+#: definition, and the parts of a run-under-a-timeout idiom (``rs274 ... >
+#: result &`` then a ``while kill -0 $pid`` loop that kills it after N s).
+_NEUTRAL = re.compile(r"^\s*(#|exit\b|export\s|fi\s*$|then\s*$|echo\b|rm\s+-f\s|set\s+-"
+                      r"|\w+\(\)\s*\{\s*sed\s[^|]*\}\s*$|pid=\$!|count=(\d+|\$\(\(count - 1\)\))\s*$"
+                      r"|while\s+\[[^]]*\]\s*&&\s*kill\s+-0\s|sleep\s+\d+\s*$|done\s*$"
+                      r"|if\s+kill\s+-0\s|kill\s+-9\s)")
+#: ``cp FROM TO``: a file the runs read under another name.
+_COPY = re.compile(r"^\s*cp\s+(\S+)\s+(\S+)\s*$")
+#: The filters an rs274 run's output may pass through (none changes a move).
+_FILTERS = ("awk", "sed", "trim")
 
 
 @dataclass
@@ -75,29 +82,63 @@ class Run:
     var: str | None = None
     fails: bool = False
     errors_shown: bool = False
+    first_field_dropped: bool = False     # awk '{$1=""; print}' on its output
 
 
 def plain_runs(script: str) -> list[Run] | None:
     """The :class:`Run` of each ``rs274`` line of a ``test.sh`` made of such runs
     alone (``-t``, ``-i``, ``-v``, ``-g`` and ``-n 0``/``-n 2`` taken; ``exec``,
-    ``export``, ``if ! ...; then ... fi`` and ``! ... || exit 1`` around them,
-    ``2>&1`` allowed), else None (a plug-in, a loop, other commands)."""
+    ``export``, ``echo``, ``cp``, ``if ! ...; then ... fi``, ``{ ! ...; }`` and
+    ``... || exit 1`` around them, ``2>&1``, output filters and a timeout
+    allowed), else None (a plug-in, a loop, other commands)."""
     script = script.replace("\\\n", " ")                 # continued lines, joined
-    lines = [ln for ln in script.splitlines() if ln.strip() and not _NEUTRAL.match(ln)]
-    runs = [_run(ln) for ln in lines]
-    return runs if runs and all(runs) else None
+    copies: dict[str, str] = {}
+    runs = []
+    for ln in script.splitlines():
+        if not ln.strip() or _NEUTRAL.match(ln):
+            continue
+        m = _COPY.match(ln)
+        if m:
+            copies[m.group(2)] = m.group(1)
+            continue
+        run = _run(ln)
+        if run is None:
+            return None
+        runs.append(run)
+    for run in runs:
+        for attr in ("program", "table", "ini", "var"):
+            name = getattr(run, attr)
+            if name in copies:
+                setattr(run, attr, copies[name])
+    return runs or None
 
 
 def _run(line: str) -> Run | None:
-    m = _PLAIN.match(line)
-    if not m:
-        return None
+    """The run of one script line, or None when it is not a plain rs274 run."""
     try:
-        args = shlex.split(m.group("args"))
+        lex = shlex.shlex(line.replace("2>&1", " __ERR__ "), posix=True,
+                          punctuation_chars=";&|<>{}")
+        lex.whitespace_split = True
+        tokens = list(lex)
     except ValueError:                                    # not a plain word list
         return None
-    run = Run("", fails=bool(m.group("neg")), errors_shown=bool(m.group("err")))
-    it = iter(args)
+    neg = False
+    while tokens and tokens[0] in ("{", "if", "!", "exec"):
+        neg = neg or tokens[0] == "!"
+        tokens.pop(0)
+    if not tokens or tokens[0] != "rs274":
+        return None
+    i = 1
+    args = []
+    while i < len(tokens) and tokens[i] not in ("|", "||", ";", "&", ">", ";}"):
+        args.append(tokens[i])
+        i += 1
+    if not _plain_tail(tokens[i:]):
+        return None
+    run = Run("", fails=neg, errors_shown="__ERR__" in args,
+              first_field_dropped=any(a == "awk" and b.replace(" ", "") == '{$1="";print}'
+                                      for a, b in zip(tokens[i:], tokens[i + 1:])))
+    it = iter(a for a in args if a != "__ERR__")
     for a in it:
         if a in ("-t", "-i", "-v"):
             setattr(run, {"-t": "table", "-i": "ini", "-v": "var"}[a], next(it, None))
@@ -113,6 +154,29 @@ def _run(line: str) -> Run | None:
         else:
             run.program = a
     return run if run.program else None
+
+
+def _plain_tail(tokens: list[str]) -> bool:
+    """Whether what follows a run's arguments only filters its output (``|
+    awk ...``, ``| sed ...``, ``| trim``), ends a group (``; }``, ``; then``),
+    writes the output to a file (``> result``), runs it in the background
+    (``&``) or exits on failure (``|| exit 1``)."""
+    i = 0
+    while i < len(tokens):
+        t = tokens[i]
+        if t == "|" and i + 1 < len(tokens) and tokens[i + 1] in _FILTERS:
+            i += 3 if tokens[i + 1] in ("awk", "sed") else 2
+        elif t in (";", ";}") and i + 1 < len(tokens) and tokens[i + 1] in ("}", "then"):
+            i += 2
+        elif t == ";}" or t == "&" or t == "}":
+            i += 1
+        elif t == ">" and i + 1 < len(tokens):
+            i += 2
+        elif t == "||" and tokens[i + 1:i + 3] == ["exit", "1"]:
+            i += 3
+        else:
+            return False
+    return True
 
 
 def differences(got, want) -> list[str]:
@@ -138,32 +202,97 @@ def differences(got, want) -> list[str]:
 
 def run_test(folder: Path) -> tuple[str, str]:
     """``(outcome, detail)`` of one test folder."""
-    runs = plain_runs((folder / "test.sh").read_text())
+    script = (folder / "test.sh").read_text()
+    runs = plain_runs(script)
     if runs is None:
         return "needs a plug-in or script", ""
     if any(r.ini and re.search(r"^\s*\[PYTHON\]", (folder / r.ini).read_text(), re.M)
            for r in runs):
         return "needs a plug-in or script", "its INI loads Python ([PYTHON])"
-    if re.search(r"awk\s+'/MESSAGE/", (folder / "test.sh").read_text()):
+    if re.search(r"awk\s+'/MESSAGE/", script):
         return _messages(folder, runs)
-    if len(runs) > 1 and any(r.fails for r in runs) and not all(r.fails for r in runs):
-        return "needs a plug-in or script", "runs that fail and runs that do not"
     expected = (folder / "expected").read_text()
-    want = parse_canon(expected)
-    got = []                   # several runs: their outputs one after the other
-    for run in runs:
-        try:
-            got += _moves(folder, run)
-        except ProgramError as exc:
-            if run.fails or (run.errors_shown and _stops_with_an_error(expected)):
-                if run is runs[-1]:
-                    return "refuses where LinuxCNC stops", str(exc)
-                continue
-            return "refused", str(exc)
-        if run.fails:
-            return "differs", f"ccopt reads {run.program}; LinuxCNC stops with an error"
-    problems = differences(got, want)
-    return ("differs", problems[0]) if problems else ("match", "")
+    segments = _segments(expected, len(runs))
+    if segments is None:
+        return "needs a plug-in or script", "its runs' outputs cannot be told apart"
+    echoes = set(re.findall(r"^\s*echo\s+[\"']?(.*?)[\"']?\s*$", script, re.M))
+    results = [_compare_run(folder, run, seg, echoes) for run, seg in zip(runs, segments)]
+    bad = next(((o, d) for o, d in results
+                if o not in ("match", "refuses where LinuxCNC stops")), None)
+    if bad is not None:
+        return bad
+    stops = [d for o, d in results if o == "refuses where LinuxCNC stops"]
+    if len(stops) == len(results):
+        return "refuses where LinuxCNC stops", stops[-1]
+    if stops:
+        return "match", (f"{len(results) - len(stops)} runs match, {len(stops)} refuse where "
+                         f"LinuxCNC stops ({stops[0]})")
+    return "match", ""
+
+
+#: A canon call as rs274 prints it: its line number (``N.....`` or ``N1234``) first.
+_CANON_CALL = re.compile(r"N[.\d]+\s+[A-Z][A-Za-z0-9_.]*\(")
+
+
+def _segments(expected: str, n: int) -> list[str] | None:
+    """``expected`` cut into the outputs of ``n`` rs274 runs (each starts with
+    canon's USE_LENGTH_UNITS), or None when it does not hold ``n``."""
+    if n == 1:
+        return [expected]
+    starts = [m.start() for m in re.finditer(r"^.*USE_LENGTH_UNITS\(", expected, re.M)]
+    if len(starts) != n:
+        return None
+    return [expected[a:b] for a, b in zip(starts, starts[1:] + [len(expected)])]
+
+
+def _text_lines(segment: str, echoes: set[str]) -> list[str]:
+    """The lines of one run's output that are no canon call, ``executing`` or a
+    line the script echoes: what the program printed (``(print, ...)``) and
+    rs274's error messages (``2>&1``)."""
+    out = []
+    for ln in segment.splitlines():
+        text = re.sub(r"^\s*\d+\s+(?=N[.\d])", "", ln).strip()
+        if text and not _CANON_CALL.match(text) and text != "executing" \
+                and text not in echoes:
+            out.append(text)
+    return out
+
+
+def _compare_run(folder: Path, run: Run, segment: str, echoes: set[str]) -> tuple[str, str]:
+    """One run against its output ``segment``: its moves, what it prints, or,
+    where LinuxCNC stops with an error, ccopt's refusal at the same block."""
+    try:
+        prog = _program(folder, run)
+    except ProgramError as exc:
+        if run.fails or (run.errors_shown and _stops_with_an_error(segment)):
+            problems = _moves_before(exc, segment)
+            if problems:
+                return "differs", f"before the error ({exc}): {problems[0]}"
+            return "refuses where LinuxCNC stops", str(exc)
+        return "refused", str(exc)
+    if run.fails:
+        return "differs", f"ccopt reads {run.program}; LinuxCNC stops with an error"
+    problems = differences(canonical_moves(compensate(prog, style="linuxcnc")),
+                           parse_canon(segment))
+    if problems:
+        return "differs", problems[0]
+    prints = [m["text"] for m in prog.meta.get(MESSAGES, ()) if m.get("kind") == "print"]
+    if run.first_field_dropped:             # what the script's awk leaves of each line
+        prints = [" ".join(p.split()[1:]) for p in prints]
+    prints = [p.strip() for p in prints if p.strip()]
+    want = _text_lines(segment, echoes)
+    if prints != want and (prints or not run.errors_shown):
+        return "differs", f"it prints {prints}, LinuxCNC {want}"
+    return "match", ""
+
+
+def _moves_before(exc: ProgramError, segment: str) -> list[str]:
+    """How the moves ccopt read before its error differ from those LinuxCNC
+    made before it stopped (empty: the same; nothing read, as for a read
+    error before the program runs, compares as no moves)."""
+    before = exc.read_before
+    got = canonical_moves(compensate(before, style="linuxcnc")) if before else []
+    return differences(got, parse_canon(segment))
 
 
 def _messages(folder: Path, runs: list[Run]) -> tuple[str, str]:

@@ -25,7 +25,16 @@ class ProgramError(CcoptError):
         1-based line number, or ``None`` when the problem has no line.
     col:
         1-based column, or ``None``.
+
+    Attributes
+    ----------
+    read_before:
+        For an error met while running a G-code program, the program as read
+        up to the error (a :class:`~ccopt.program.model.Program`: the moves a
+        LinuxCNC machine makes before it stops there), else ``None``.
     """
+
+    read_before = None
 
     def __init__(self, message: str, file: str = "<string>", line: int | None = None,
                  col: int | None = None):

@@ -277,9 +277,10 @@ class Frame:
 #: ``Program.meta`` key: how the program ends, ``"M2"`` or ``"M30"`` as written
 #: (absent: it ends with its text or a ``%``).
 PROGRAM_END = "program_end"
-#: ``Program.meta`` key: the G-code program's ``(debug, ...)`` and ``(msg, ...)``
-#: messages as it ran, in order: ``{"file", "line", "text"}`` each (a debug
-#: message with its parameters' values, as LinuxCNC's MESSAGE prints them).
+#: ``Program.meta`` key: the G-code program's ``(debug, ...)``, ``(msg, ...)``
+#: and ``(print, ...)`` messages as it ran, in order: ``{"file", "line",
+#: "text", "kind"}`` each (kind ``"debug"``, ``"msg"`` or ``"print"``; debug and
+#: print with their parameters' values, as LinuxCNC prints them).
 MESSAGES = "messages"
 #: ``Program.meta`` key: where the main program ended with ``M99`` (a located
 #: sentence): the machine would repeat it for ever; ccopt read one pass.

@@ -81,10 +81,12 @@ def test_comments_as_character_by_character(text):
 
 
 def test_abort_comment_stops_and_an_unset_parameter_prints_hashes():
-    prog = read_gcode("G21\nG0 X1 (abort is only a word here)\nM2\n")
+    # LinuxCNC's convert_comment: leading blanks, the word in any case, then the
+    # comma at once ("abort ," is a plain comment)
+    prog = read_gcode("G21\nG0 X1 (abort is only a word here) (abort , nor here)\nM2\n")
     assert prog.blocks[-1].end[0] == 1.0
     with pytest.raises(ProgramError, match=r"\(abort\) at 7\.000000, ###### is ######") as err:
-        read_gcode("G21\n#1 = 7\nG0 X1\n( ABORT , at #1, #<nope> is #<nope>)\nG0 X2\nM2\n")
+        read_gcode("G21\n#1 = 7\nG0 X1\n( ABORT, at #1, #<nope> is #<nope>)\nG0 X2\nM2\n")
     assert (err.value.line, err.value.col) == (4, 1)
 
 
@@ -97,3 +99,13 @@ def test_active_comments_only_in_parentheses_before_a_semicolon():
     assert [m["text"] for m in prog.meta[MESSAGES]] == [" first"]
     with pytest.raises(ProgramError, match=r"read-only parameter #<_x>: it is the current"):
         read_gcode("G21\n#<_x> = 3\nM2\n")
+
+
+def test_print_comments_carry_parameter_values_and_5599_silences_debug():
+    """LinuxCNC's convert_comment: ``(print,...)`` goes to rs274's standard
+    output with parameters replaced (%f, six decimals); ``(debug,...)`` is a
+    MESSAGE only while #5599 > 0 (1 at start)."""
+    prog = read_gcode("G21\n#1 = 2.5\n(PRINT,one #1)\n(debug, a)\n#5599 = 0\n(debug, b)\n"
+                      "(msg, c)\n#5599 = 1\n(debug, d)\nM2\n")
+    assert [(m["kind"], m["text"]) for m in prog.meta[MESSAGES]] == [
+        ("print", "one 2.500000"), ("debug", " a"), ("msg", " c"), ("debug", " d")]

@@ -197,3 +197,13 @@ def test_bad_inputs_of_the_api():
 
 def test_text_after_program_end_is_not_read():
     assert len(read_gcode("G1 X1 F60\nM30\nG7 garbage (\n").blocks) == 1
+
+
+def test_an_error_keeps_what_was_read_before_it():
+    """LinuxCNC makes the moves before the line it stops at; the error carries
+    them (ProgramError.read_before), a subroutine's included."""
+    with pytest.raises(ProgramError) as err:
+        read_gcode("G21\nG0 X1\no1 sub\nG0 Y2\nG1 Y3\no1 endsub\no1 call\nM2\n", "p.ngc")
+    assert (err.value.line, err.value.col) == (5, 1) and "feed rate" in err.value.message
+    assert [b.end for b in err.value.read_before.blocks] == [(1.0, 0.0, 0.0), (1.0, 2.0, 0.0)]
+    assert ProgramError("x").read_before is None

@@ -108,6 +108,47 @@ def test_subroutine_path_and_parameter_file(tmp_path):
     assert prog.blocks[-1].end[:2] == pytest.approx((3.0 + 5.0, 7.0))
 
 
+@pytest.mark.parametrize("setting, x", [("", 2.0 + 1.5), ("DISABLE_G92_PERSISTENCE = 0\n", 3.5),
+                                         ("DISABLE_G92_PERSISTENCE = yes\n", 1.5)])
+def test_the_g92_offset_of_the_parameter_file_unless_persistence_is_disabled(tmp_path, setting,
+                                                                             x):
+    """LinuxCNC's init restores the G92 offset #5211.. when #5210 is non-zero
+    (2 counts, as in its g92-offset-persistence test) unless the INI says
+    DISABLE_G92_PERSISTENCE: the work X0 is then at machine X = G54's 1.5."""
+    cfg = tmp_path / "cfg"
+    cfg.mkdir()
+    (cfg / "m.var").write_text("5210\t2.0\n5211\t2.0\n5221\t1.5\n5220\t1.0\n")
+    (cfg / "m.ini").write_text(f"[RS274NGC]\nPARAMETER_FILE = m.var\n{setting}"
+                               "[TRAJ]\nLINEAR_UNITS = mm\n")
+    part = tmp_path / "p.ngc"
+    part.write_text("G21 G90\nG0 X0 Y0\n(print,#5210 #5211)\nM2\n")
+    prog = read_program(part, ini=cfg / "m.ini")
+    assert prog.blocks[-1].end[0] == pytest.approx(x)
+    on = x > 2.0
+    assert prog.meta["messages"][0]["text"] == ("2.000000 2.000000" if on
+                                                else "0.000000 0.000000")
+
+
+def test_fanuc_style_subprograms_disabled_by_the_ini_file(tmp_path):
+    """[RS274NGC] DISABLE_FANUC_STYLE_SUB: M98 (and a subprogram's M99) refused
+    where they are met, with LinuxCNC's message (interp_read.cc read_o_word);
+    the main program's M99 is read_m's and stays allowed."""
+    part, ini = _machine(tmp_path, "[RS274NGC]\nDISABLE_FANUC_STYLE_SUB = 1\n")
+    part.write_text("G21\nG0 X1\nM98 P1 L2\nM30\nO1\nG91 G0 X1\nM99\n")
+    with pytest.raises(ProgramError, match="DISABLE_FANUC_STYLE_SUB set in INI file, but "
+                                           "found m98") as err:
+        read_program(part, ini=ini)
+    assert (err.value.line, err.value.col) == (3, 1)
+    part.write_text("G21\nG0 X1\nG0 X2 M99\n")
+    assert read_program(part, ini=ini).blocks[-1].end[0] == pytest.approx(2.0)
+    ini.write_text("[RS274NGC]\nDISABLE_FANUC_STYLE_SUB = 0\n")
+    part.write_text("G21\nG0 X1\nM98 P1 L2\nM30\nO1\nG91 G0 X1\nM99\n")
+    assert read_program(part, ini=ini).blocks[-1].end[0] == pytest.approx(3.0)
+    ini.write_text("[RS274NGC]\nDISABLE_FANUC_STYLE_SUB = maybe\n")
+    with pytest.raises(ProgramError, match="DISABLE_FANUC_STYLE_SUB = maybe: a yes/no"):
+        read_program(part, ini=ini)
+
+
 @pytest.mark.parametrize("text, line, message", [
     ("[RS274NGC]\nthis line has no equals sign\n", 2, "not a [SECTION]"),
     ("NAME = 1\n", 1, "before any [SECTION]"),

@@ -91,15 +91,9 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
         For anything wrong with the text, located by file, line and column.
     """
     file, table, s = check_inputs(file, tool_table, start)
-    for name, value in (("units", units), ("table_units", table_units)):
-        if value is not None and value not in UNITS:
-            raise ProgramError(f"{name} must be one of {', '.join(UNITS)}, not {value!r}", file)
-    if not isinstance(text, str):
-        raise ProgramError(f"program text must be a string, not {type(text).__name__}", file)
-    loops = MAX_LOOP_ITERATIONS if max_loop_iterations is None else max_loop_iterations
-    if isinstance(loops, bool) or not isinstance(loops, int) or loops < 0:
-        raise ProgramError(f"max_loop_iterations must be a whole number >= 0, got {loops!r}",
-                           file)
+    loops = _check_options(file, text, units, table_units, max_loop_iterations)
+    if ini is not None:
+        parameters = ini.start_parameters(parameters)
     state = None
     try:
         state = open_program(text, file, table, s, max_executed_lines=MAX_EXECUTED_LINES,
@@ -118,3 +112,17 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
         line = state.line_no + 1 if state is not None else None
         raise ProgramError(f"internal error of the G-code reader ({type(exc).__name__}: {exc}); "
                            "please report it with this program", file, line) from exc
+
+
+def _check_options(file: str, text, units, table_units, max_loop_iterations) -> int:
+    """:func:`read_gcode`'s option checks; the loop iteration bound in force."""
+    for name, value in (("units", units), ("table_units", table_units)):
+        if value is not None and value not in UNITS:
+            raise ProgramError(f"{name} must be one of {', '.join(UNITS)}, not {value!r}", file)
+    if not isinstance(text, str):
+        raise ProgramError(f"program text must be a string, not {type(text).__name__}", file)
+    loops = MAX_LOOP_ITERATIONS if max_loop_iterations is None else max_loop_iterations
+    if isinstance(loops, bool) or not isinstance(loops, int) or loops < 0:
+        raise ProgramError(f"max_loop_iterations must be a whole number >= 0, got {loops!r}",
+                           file)
+    return loops

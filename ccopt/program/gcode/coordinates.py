@@ -52,6 +52,8 @@ ORIGIN_CODES = {540: 1, 550: 2, 560: 3, 570: 4, 580: 5, 590: 6, 591: 7, 592: 8, 
 ACTIVE_ORIGIN = 5220     # parameter holding the active origin index
 OFFSET_APPLIED = 5210    # 1 while the G92/G52 offset is in force
 OFFSET_BASE = 5211       # #5211..#5213: the G92/G52 offset, X Y Z
+#: The G92/G52 parameters, first and last: the flag #5210 and #5211-#5219.
+G92_PARAMETERS = (5210, 5219)
 
 
 def origin_base(index: int) -> int:
@@ -71,7 +73,7 @@ def init_coordinates(state: GCodeState) -> None:
         raise ProgramError(f"parameter #{ACTIVE_ORIGIN} (active coordinate system) is "
                            f"{fmt(index)}: it must be 1 to 9 (G54 to G59.3)", state.file)
     state.origin_index = int(round(index))
-    if state.params.get(OFFSET_APPLIED, 0.0) == 1.0:
+    if state.params.get(OFFSET_APPLIED, 0.0) != 0.0:     # any non-zero, as LinuxCNC
         state.axis_offset = tuple(state.params.get(OFFSET_BASE + k, 0.0) for k in range(3))
 
 

@@ -42,8 +42,17 @@ def exec_fanuc(state: GCodeState, pc: int, lx: Lexed) -> int:
     return _m98(state, pc, lx) if lx.fanuc == 98 else _m99(state, pc, lx)
 
 
+def check_fanuc_style(state: GCodeState, m: int, col: int) -> None:
+    """``M98`` and a subprogram's ``M99`` are refused when the machine's INI says
+    ``[RS274NGC] DISABLE_FANUC_STYLE_SUB`` (LinuxCNC's read_o_word message; the
+    main program's ``M99`` is read_m's, which does not check)."""
+    if state.ini is not None and state.ini.fanuc_subs_disabled:
+        raise state.error(f"DISABLE_FANUC_STYLE_SUB set in INI file, but found m{m}", col)
+
+
 def _m98(state: GCodeState, pc: int, lx: Lexed) -> int:
     col = lx.start
+    check_fanuc_style(state, 98, col)
     words, settings = read_words(state, lx)
     others = [c for _, c in words.g] + [c for v, c in words.m[1:]] + \
         [c for k, (_, c) in words.letters.items() if k not in "PL"]
@@ -97,6 +106,7 @@ def _subprogram(state: GCodeState, label: str, col: int) -> int:
 
 
 def _m99(state: GCodeState, pc: int, lx: Lexed) -> int:
+    check_fanuc_style(state, 99, lx.start)
     code = lx.code
     end = skip_blanks(code, FANUC_CALL.match(code, lx.start).end())
     if end < len(code):

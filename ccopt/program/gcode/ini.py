@@ -11,6 +11,10 @@ settings; ``--ini FILE`` (:func:`read_ini`) takes them from its INI file:
 * ``[RS274NGC] SUBROUTINE_PATH``: the folders ``o<name> call`` searches, ``:``
   separated; ``PARAMETER_FILE``: the parameter file in force at the start
   (none while it does not exist, as LinuxCNC starts);
+* ``[RS274NGC] DISABLE_FANUC_STYLE_SUB``: ``M98``/``M99`` subprograms refused
+  (LinuxCNC's message); ``DISABLE_G92_PERSISTENCE``: the parameter file's
+  ``G92`` offset (``#5210``-``#5219``) not restored at the start (both
+  booleans: 1/0, TRUE/FALSE, YES/NO, ON/OFF in any case; off by default);
 * every ``NAME = VALUE`` for ``#<_ini[SECTION]NAME>`` in the program, unless
   ``[RS274NGC] INI_VARS = 0`` (LinuxCNC's default is 1).
 
@@ -30,9 +34,13 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ccopt.errors import ProgramError
+from ccopt.program.gcode.coordinates import G92_PARAMETERS
 
 _SECTION = re.compile(r"\[\s*([^\]]*?)\s*\]\s*$")
 _ENTRY = re.compile(r"([^=]*?)\s*=\s*(.*?)\s*$")
+#: LinuxCNC's boolean INI values (``IniFile::findBoolV``), in lower case.
+_BOOLEANS = {"1": True, "true": True, "yes": True, "on": True,
+             "0": False, "false": False, "no": False, "off": False}
 #: ``[TRAJ] LINEAR_UNITS`` values and the unit each means.
 LINEAR_UNITS = {"mm": "mm", "metric": "mm", "inch": "inch", "in": "inch", "imperial": "inch"}
 
@@ -88,6 +96,38 @@ class LinuxCncIni:
                                + ", ".join(LINEAR_UNITS), self.file,
                                self.lines[("TRAJ", "LINEAR_UNITS")])
         return unit
+
+    def flag(self, section: str, name: str) -> bool:
+        """``[SECTION] NAME`` as a boolean (False when absent); a located
+        :class:`~ccopt.errors.ProgramError` when it is not one."""
+        value = self.get(section, name)
+        if value is None:
+            return False
+        flag = _BOOLEANS.get(value.strip().lower())
+        if flag is None:
+            raise ProgramError(f"[{section.upper()}] {name.upper()} = {value}: a yes/no "
+                               "setting (1 or 0, TRUE or FALSE, YES or NO, ON or OFF)",
+                               self.file, self.lines[(section.upper(), name.upper())])
+        return flag
+
+    @property
+    def fanuc_subs_disabled(self) -> bool:
+        """``[RS274NGC] DISABLE_FANUC_STYLE_SUB``: M98/M99 subprograms refused."""
+        return self.flag("RS274NGC", "DISABLE_FANUC_STYLE_SUB")
+
+    @property
+    def g92_persistence_disabled(self) -> bool:
+        """``[RS274NGC] DISABLE_G92_PERSISTENCE``: the G92 offset starts cleared."""
+        return self.flag("RS274NGC", "DISABLE_G92_PERSISTENCE")
+
+    def start_parameters(self, parameters: dict[int, float] | None) -> dict[int, float] | None:
+        """The numbered parameters a program starts with, from the parameter
+        file's ``parameters``: under ``DISABLE_G92_PERSISTENCE`` the G92 ones
+        cleared, as LinuxCNC's init clears them (rs274ngc_pre.cc)."""
+        if not parameters or not self.g92_persistence_disabled:
+            return parameters
+        first, last = G92_PARAMETERS
+        return {k: (0.0 if first <= k <= last else v) for k, v in parameters.items()}
 
     @property
     def ini_vars(self) -> bool:

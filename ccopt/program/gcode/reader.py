@@ -91,6 +91,9 @@ def run(state: GCodeState) -> Program:
             f = state.frames[-1]
             exc.message += (f" (in subroutine {olabel(f.name)} called from line "
                             f"{f.call_line + 1})")
+        exc.read_before = Program(tuple(state.blocks), file=state.file, dialect="gcode",
+                                  units=output_units(state), start=state.start,
+                                  meta=state.meta)
         raise
     finally:
         # the state is held in a reference cycle (its expression grammar reads
@@ -149,13 +152,22 @@ def _run_lines(state: GCodeState) -> None:
             raise state.error("expression or parameter reference nested too deeply") from None
 
 
+#: ``#5599``: LinuxCNC shows ``(debug, ...)`` messages while it is > 0 (1 at start).
+DEBUG_MESSAGES = 5599
+
+
 def _message(state: GCodeState, kind: str, text: str) -> None:
-    """A ``(debug, ...)`` or ``(msg, ...)`` comment's message, recorded in order
-    (``Program.meta[MESSAGES]``: ``{"file", "line", "text"}``), a debug
-    message with its parameters' values (LinuxCNC prints both as MESSAGE)."""
+    """A ``(debug, ...)``, ``(msg, ...)`` or ``(print, ...)`` comment's message,
+    recorded in order (``Program.meta[MESSAGES]``: ``{"file", "line", "text",
+    "kind"}``), debug and print with their parameters' values. LinuxCNC shows
+    msg and debug as MESSAGE (debug only while ``#5599`` > 0) and prints print
+    on its standard output."""
+    if kind == "debug" and not state.params.get(DEBUG_MESSAGES, 1.0) > 0.0:
+        return
     file, line = state.where(state.line_no)
-    shown = message_text(state, text) if kind == "debug" else text
-    state.meta.setdefault(MESSAGES, []).append({"file": file, "line": line, "text": shown})
+    shown = text if kind == "msg" else message_text(state, text)
+    state.meta.setdefault(MESSAGES, []).append({"file": file, "line": line, "text": shown,
+                                                "kind": kind})
 
 
 def _exec_line(state: GCodeState, lx: Lexed) -> None:

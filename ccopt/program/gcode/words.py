@@ -101,9 +101,11 @@ def lex(state: GCodeState, i: int) -> Lexed:
     return lx
 
 
-#: LinuxCNC's comments that act: ``(abort, message)`` stops the program there;
-#: ``(debug, ...)`` (parameters replaced) and ``(msg, ...)`` are messages.
-ACTIVE_COMMENT = re.compile(r"\s*(abort|debug|msg)\s*,(.*)", re.IGNORECASE | re.DOTALL)
+#: LinuxCNC's comments that act (``convert_comment``: the word, any case, then
+#: a comma): ``(abort, message)`` stops the program there; ``(debug, ...)``
+#: (parameters replaced) and ``(msg, ...)`` are messages; ``(print, ...)``
+#: (parameters replaced) is printed on rs274's standard output.
+ACTIVE_COMMENT = re.compile(r"\s*(abort|debug|msg|print),(.*)", re.IGNORECASE | re.DOTALL)
 
 
 def _lex_line(state: GCodeState, i: int) -> Lexed:
