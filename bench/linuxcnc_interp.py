@@ -34,6 +34,7 @@ holding ``tests/interp`` and ``tests/ccomp``. Nothing is copied from it.
 from __future__ import annotations
 
 import argparse
+import os
 import re
 import shlex
 from dataclasses import dataclass
@@ -200,15 +201,24 @@ def differences(got, want) -> list[str]:
     return out
 
 
+#: Why a test needs Python (the acceptance counts the tests without it).
+PLUG_IN = "it loads an interpreter plug-in (rs274 -p)"
+PYTHON_INI = "its INI loads Python ([PYTHON])"
+
+
 def run_test(folder: Path) -> tuple[str, str]:
     """``(outcome, detail)`` of one test folder."""
+    if (folder / "skip").exists() and not os.access(folder / "skip", os.X_OK):
+        return "skipped by LinuxCNC", "its runner skips it (a `skip` file)"
     script = (folder / "test.sh").read_text()
+    if re.search(r"\brs274\b[^\n]*\s-p\s", script):
+        return "needs a plug-in or script", PLUG_IN
     runs = plain_runs(script)
     if runs is None:
         return "needs a plug-in or script", ""
     if any(r.ini and re.search(r"^\s*\[PYTHON\]", (folder / r.ini).read_text(), re.M)
            for r in runs):
-        return "needs a plug-in or script", "its INI loads Python ([PYTHON])"
+        return "needs a plug-in or script", PYTHON_INI
     if re.search(r"awk\s+'/MESSAGE/", script):
         return _messages(folder, runs)
     expected = (folder / "expected").read_text()
@@ -344,7 +354,7 @@ DOCS = ROOT / "docs" / "gcode.md"
 SECTION = "bench/linuxcnc_interp.py"
 #: The outcomes, in the order the page lists them.
 OUTCOMES = ("match", "refuses where LinuxCNC stops", "differs", "refused",
-            "needs a plug-in or script")
+            "needs a plug-in or script", "skipped by LinuxCNC")
 
 
 def docs_body(results: list[tuple[str, str, str]], linuxcnc: str) -> str:
@@ -354,6 +364,12 @@ def docs_body(results: list[tuple[str, str, str]], linuxcnc: str) -> str:
              f"{commit()}, LinuxCNC {linuxcnc}: {len(results)} tests with an `expected` "
              "file.", "", "| outcome | tests |", "| --- | ---: |"]
     lines += [f"| {k} | {counts[k]} |" for k in OUTCOMES if counts[k]]
+    run = [(o, d) for _, o, d in results
+           if o != "skipped by LinuxCNC" and d not in (PLUG_IN, PYTHON_INI)]
+    right = sum(o in OUTCOMES[:2] for o, _ in run)
+    lines += ["", f"Of the {len(run)} tests LinuxCNC runs without Python (no plug-in, no "
+              f"`[PYTHON]` INI), {right} ({100 * right / len(run):.0f} %) match or refuse "
+              "where LinuxCNC stops."]
     lines += ["", "Every test that does not match:", ""]
     for k in OUTCOMES[1:]:
         for test, outcome, detail in results:
