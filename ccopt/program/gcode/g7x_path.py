@@ -21,10 +21,12 @@ from ccopt.program.gcode.g7x_contour import (MIN_RADIUS, TOLERANCE, G7xError, Ro
                                              Segment, Straight, div)
 
 #: Steps the passes of one cycle may take (loop iterations of ``pocket`` and
-#: ``add_distance`` together). A pass costs a handful of steps and a move or
-#: four, so this allows some 100,000 moves, which take the reader about a
-#: second: a roughing cycle of 1 um cuts over 100 mm. LinuxCNC has no bound.
-MAX_STEPS = 500_000
+#: ``add_distance`` together; the moves are bounded apart, by
+#: ``lathe_cycles.MAX_CYCLE_MOVES``). A pass costs a step per segment it
+#: looks at, an offset step one per segment; 300,000 steps take the reader
+#: about a second and allow, e.g., 6,000 passes over a contour of 50 segments.
+#: LinuxCNC has no bound.
+MAX_STEPS = 300_000
 #: A drop of more than this many depths of cut in one go is computed in one
 #: subtraction, not one by one (LinuxCNC subtracts one at a time: with
 #: ``I`` near its floor of 2e-6 that is millions of steps; the rounding of
@@ -35,13 +37,13 @@ _FAST_DROP = 1000
 class Budget:
     """Counts the steps of one cycle against :data:`MAX_STEPS`."""
 
-    def __init__(self, limit: int = MAX_STEPS):
-        self.left = limit
+    def __init__(self):
+        self.limit = self.left = MAX_STEPS
 
     def step(self, n: int = 1) -> None:
         self.left -= n
         if self.left < 0:
-            raise G7xError(f"the cycle needs more than {MAX_STEPS} steps (depth of cut I "
+            raise G7xError(f"the cycle needs more than {self.limit} steps (depth of cut I "
                            "too small for the contour?); ccopt stops it here")
 
 

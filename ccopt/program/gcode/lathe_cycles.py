@@ -60,6 +60,10 @@ from ccopt.program.model import Block, Motion, Source
 FINISHING = 700
 LATHE_CYCLES = frozenset({700, 710, 711, 712, 720, 721, 722})
 ROUGHING = LATHE_CYCLES - {FINISHING}
+#: Moves one cycle may make. LinuxCNC has no bound; a roughing pass makes
+#: four or five moves, so this is some 10,000 passes (1 um cuts through 10 mm),
+#: which the reader makes in about 0.6 s (12 us a block).
+MAX_CYCLE_MOVES = 50_000
 #: LinuxCNC's ``TOLERANCE_EQUAL``: an arc ending this close to where the tool
 #: is (in X and in Z) is left out, as ``motion_machine::circular_move`` does.
 _SAME_POINT = 1e-6
@@ -172,6 +176,7 @@ class _Emitter:
         self.gcol = gcol
         self.at: complex | None = None   # where the tool is, z + x*1j
         self.mode: int | None = 0        # the motion mode the moves leave
+        self.moves = 0
 
     def _machine(self, p: complex) -> tuple[float, float, float]:
         return to_machine(self.state, (p.imag, self.y, p.real))
@@ -182,6 +187,11 @@ class _Emitter:
         if comp_off and modal.side != 0:
             # G70's rapids to its start points: LinuxCNC makes them with compensation off
             modal = replace(modal, side=0)
+        self.moves += 1
+        if self.moves > MAX_CYCLE_MOVES:
+            raise state.error(f"{self.name} makes more than {MAX_CYCLE_MOVES} moves (depth of "
+                              "cut I too small for the contour?); ccopt stops it here",
+                              self.gcol)
         target = self._machine(end)
         self.emit(state, Block(self.src, motion, state.pos, target, modal, mcodes=self.mcodes,
                                cycle=self.name, **kw))
