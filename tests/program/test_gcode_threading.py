@@ -98,3 +98,27 @@ def test_refusals_are_located(line, col, message):
         passes(line + "\n")
     assert message in str(err.value)
     assert err.value.col == col
+
+
+def test_g33_is_a_straight_feed_synchronised_to_the_spindle():
+    # K1.5 mm per revolution at 600 rev/min: 15 mm/s along the path; the
+    # 45-degree exit with K 1.5 * sqrt 2 keeps 1.5 mm of Z per revolution
+    prog = read_gcode("G18 G21\nS600 M3\nG0 X10 Z2\nG33 Z-20 K1.5\n"
+                      f"G33 X11 Z-21 K{1.5 * math.sqrt(2)!r}\nM2\n", "t.ngc")
+    cut, exit_ = prog.blocks[1:]
+    assert cut.motion is Motion.LINE and cut.end == (10.0, 0.0, -20.0)
+    assert cut.feed == pytest.approx(15.0)
+    assert exit_.end == (11.0, 0.0, -21.0) and exit_.feed == pytest.approx(15.0 * math.sqrt(2))
+    z_per_second = exit_.feed / math.dist(exit_.start, exit_.end)
+    assert z_per_second * 60 / 600 == pytest.approx(1.5)
+
+
+@pytest.mark.parametrize("line, col, message", [
+    ("G33 Z-20", 1, "K word missing with G33"),
+    ("G33 Z-20 K1 F100", 13, "F word used with G33"),
+    ("M5\nG33 Z-20 K1", 1, "Spindle not turning in G33"),
+])
+def test_g33_refusals_are_located(line, col, message):
+    with pytest.raises(ProgramError) as err:
+        passes(line + "\n")
+    assert message in str(err.value) and err.value.col == col

@@ -26,6 +26,7 @@ _G_NUMBER_LIMIT = 1e6
 # G-codes ccopt knows, in tenths (G41.1 -> 411), with their modal group.
 G_GROUPS: dict[int, str] = {
     0: "motion", 10: "motion", 20: "motion", 30: "motion", 800: "motion",
+    330: "motion",  # spindle-synchronised motion (execute._synchronised_feed)
     331: "motion",  # rigid tapping (cycles.rigid_tap)
     760: "motion",  # threading (threading.py)
     # canned cycles (cycles.py)
@@ -55,7 +56,7 @@ G_GROUPS: dict[int, str] = {
     1360: "corner", 1370: "corner",
     1380: "start_end", 1390: "start_end",
 }
-_KNOWN_G = ("G0 G1 G2 G3 G4 G7 G8 G33.1 G10 G17 G18 G19 G20 G21 G40 G41 G42 G41.1 G42.1 G43 G43.1 G49 "
+_KNOWN_G = ("G0 G1 G2 G3 G4 G7 G8 G33 G33.1 G10 G17 G18 G19 G20 G21 G40 G41 G42 G41.1 G42.1 G43 G43.1 G49 "
             "G28 G28.1 G30 G30.1 G52 G53 G54-G59.3 G61 G61.1 G64 G80 G90 G91 G90.1 G91.1 G92 G92.1 G92.2 G92.3 "
             "G70 G71 G71.1 G71.2 G72 G72.1 G72.2 G73 G74 G76 G81-G87 G89 G93 G94 G98 G99 G136 "
             "G137 G138 G139")

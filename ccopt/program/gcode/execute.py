@@ -177,8 +177,9 @@ def _check_word_usage(state: GCodeState, gc: dict, L: dict, motion: int | None,
     g10 = gc.get("axis_setting", (None,))[0] == 100
     for w in "IJK":
         if w in L and not (is_arc or motion == 870 or thread or (g10 and w != "K")
-                           or (motion == RIGID_TAP and w == "K") or (roughing and w == "I")):
-            codes = "G2, G3, G33.1 or G87" if w == "K" else "G2, G3 or G87"
+                           or (motion in (SYNCHRONISED, RIGID_TAP) and w == "K")
+                           or (roughing and w == "I")):
+            codes = "G2, G3, G33, G33.1 or G87" if w == "K" else "G2, G3 or G87"
             raise state.error(f"{w} word with no {codes} to use it", L[w][1])
     if "R" in L and not (is_arc or cycle or thread or gc.get("axis_setting", (None,))[0] == 100
                          or blend or orient or roughing):
@@ -423,6 +424,9 @@ def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int
     surface = surface_marker(state.lines[state.line_no], "gcode", src.file, src.line)
     if motion == 0:
         block = Block(src, Motion.RAPID, cur, end_t, state.modal(), mcodes=mcodes)
+    elif motion == SYNCHRONISED:
+        block = Block(src, Motion.LINE, cur, end_t, state.modal(),
+                      feed=_synchronised_feed(state, L, gcol), mcodes=mcodes)
     elif motion == 10 or is_modal_arc_without_plane_motion(state, L, cur, end_t):
         feed = _feed(state, L, math.dist(cur, end_t), gcol)
         block = Block(src, Motion.LINE, cur, end_t, state.modal(), feed=feed, mcodes=mcodes)
@@ -500,6 +504,29 @@ def _check_machine_coords(state: GCodeState, gc: dict, motion: int | None) -> No
         raise state.error("G53 is absolute: it cannot be used under G91", col)
     if state.side != 0:
         raise state.error("G53 cannot be used with cutter radius compensation on", col)
+
+
+#: ``G33``, spindle-synchronised motion, in tenths.
+SYNCHRONISED = 330
+
+
+def _synchronised_feed(state: GCodeState, L: dict, gcol: int) -> float:
+    """``G33 ... K``: a straight move (compensated like ``G1``) at K program
+    units per spindle revolution along the path, so ``K * S / 60`` units per
+    second (LinuxCNC's ``START_SPEED_FEED_SYNCH``; threading.ngc's 45-degree
+    exit scales K by sqrt 2 so that Z keeps the pitch)."""
+    if "K" not in L:
+        raise state.error("K word missing with G33: K is the distance per spindle "
+                          "revolution", gcol)
+    if "F" in L:
+        raise state.error("F word used with G33: the feed is K per spindle revolution",
+                          L["F"][1])
+    if state.spindle == "stopped" or not state.spindle_speed > 0:
+        raise state.error("Spindle not turning in G33: start it with S and M3 (or M4) first",
+                          gcol)
+    if not L["K"][0] > 0:
+        raise state.error("G33 needs K > 0 (units per revolution)", L["K"][1])
+    return L["K"][0] * state.spindle_speed / 60.0
 
 
 def _feed(state: GCodeState, L: dict, length: float, col: int) -> float:
