@@ -133,3 +133,16 @@ def test_a_cycle_of_too_many_moves_is_refused(monkeypatch):
     with pytest.raises(ProgramError, match="G71 makes more than 50 moves") as info:
         read("G0 X20 Z5\n" + SHOULDER + "G71 Q100 X10 Z1 I0.1\n")
     assert (info.value.line, info.value.col) == (8, 1)
+
+
+def test_g91_contour_moves_are_increments():
+    contour = "o100 sub\nG1 X-6\nZ-11\nX6\no100 endsub\n"
+    text = "G0 X20 Z5\n" + contour + "G0 X10 Z1\nG91 G71 Q100 I2 R0.5\n"
+    absolute = moves("G0 X20 Z5\n" + SHOULDER + "G0 X10 Z1\nG71 Q100 I2 R0.5\n")
+    assert moves(text) == absolute
+
+
+def test_g91_x_on_the_cycles_line_is_refused():
+    with pytest.raises(ProgramError, match="under G91") as info:
+        read(SHOULDER + "G91 G71 Q100 X-2 Z0\n")
+    assert (info.value.line, info.value.col) == (7, 14)

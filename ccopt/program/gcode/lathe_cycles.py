@@ -9,7 +9,8 @@ running ``o<sub>`` without moving, then the stock between the start point and
 the contour is roughed in passes ``I`` deep (default 1) along Z (``G72``:
 along X), each retracting by ``R`` (default 0.5) along both axes, leaving
 ``D`` (default 0) off the contour, the whole shifted by ``U`` (X) and ``W``
-(Z). ``G7x.1`` cuts no pockets (a contour that dips back is followed, not
+(Z). Under ``G91`` the contour's X Z are increments (its U W refused, as
+LinuxCNC refuses them) and the cycle's line may not hold X or Z. ``G7x.1`` cuts no pockets (a contour that dips back is followed, not
 cut); ``G7x.2`` cuts only the pockets. ``G70 Q<sub> X Z [D] [E] [P]``
 (finishing): ``P`` passes (default 1) along the contour from ``D`` off it to
 ``E`` off it, each from a rapid to X Z made with cutter compensation off.
@@ -82,13 +83,8 @@ def run_lathe_cycle(state: GCodeState, code: int, gcol: int, L: dict, mcodes: tu
     _check_line(state, code, name, gcol, L)
     factor = input_factor(state)     # D and E are lengths the units module leaves alone
     here = to_work(state, state.pos)
-    x, z = here[0], here[2]
-    if state.incremental:
-        x += L["X"][0] if "X" in L else 0.0
-        z += L["Z"][0] if "Z" in L else 0.0
-    else:
-        x = L["X"][0] if "X" in L else x
-        z = L["Z"][0] if "Z" in L else z
+    x = L["X"][0] if "X" in L else here[0]     # absolute: _check_line refuses them in G91
+    z = L["Z"][0] if "Z" in L else here[2]
     src = Source(*state.where(state.line_no), first_col + 1)
     out = _Emitter(state, name, src, mcodes, emit, here[1], gcol)
     out.straight_rapid(complex(z, x), comp_off=True)
@@ -152,6 +148,14 @@ def _check_line(state: GCodeState, code: int, name: str, gcol: int, L: dict) -> 
     if state.feed_mode == "inverse":
         raise state.error(f"{name} with inverse time feed (G93): the cycle makes its own "
                           "moves, which have no F of their own; program G94 first", gcol)
+    for a in "XZ":
+        if state.incremental and a in L:
+            # convert_g7x sets G90 before its first rapid, which reads the words as
+            # they are: the rapid and the cycle would start at different points
+            raise state.error(f"{a} word with {name} under G91: LinuxCNC's first rapid "
+                              f"takes {a} as an absolute coordinate while the cycle adds it "
+                              "to the position; program the cycle's line under G90",
+                              L[a][1])
     for a in _OTHER_AXES:
         if a in L:
             raise state.error(f"{a} word with {name}: the lathe cycles move X and Z only "
