@@ -38,7 +38,8 @@ CASES = [
     ("M3 M4", 1, 4, "same modal group"),
     ("G1 N10 X1 F60", 1, 4, "N (line number) must be the first word"),
     ("G1 X1 ü F60", 1, 7, "not allowed outside comments"),
-    ("G1 X1 F60 @", 1, 11, "unexpected character '@'"),
+    ("G1 X1 F60 !", 1, 11, "unexpected character '!'"),
+    ("G1 X1 F60 @", 1, 11, "@ word has no value"),     # @ is LinuxCNC's polar radius
     ("G1 X1 Y2 (a comment) 3 F60", 1, 22, "unexpected character '3'"),
     ("/G1 X1 F60", 1, 1, "block delete"),
     ("M98 P100", 1, 5, "no subprogram O100"),

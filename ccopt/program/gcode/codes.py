@@ -69,9 +69,9 @@ _M_GROUPS: dict[int, str] = {0: "stop", 1: "stop", 2: "stop", 30: "stop", 60: "s
                              7: "coolant", 8: "coolant", 9: "coolant"}
 _M_LIMIT = 1000  # M-codes run from M0 to M999
 
-_WORD_LETTERS = set("GMXYZIJKRFPDHTSQLEABCUVW")
+_WORD_LETTERS = set("GMXYZIJKRFPDHTSQLEABCUVW@^")
 # Words holding a length or a feed: bounded by MAX_PROGRAM_COORDINATE where they are written.
-_BOUNDED_LETTERS = set("XYZIJKRFEABCUVW")
+_BOUNDED_LETTERS = set("XYZIJKRFEABCUVW@^")
 
 
 @dataclass(slots=True)
@@ -147,7 +147,7 @@ def _not_a_word(ch: str, p: int) -> ExprError:
                          "switch; remove the '/' or the line", p)
     if "A" <= up <= "Z":
         return ExprError(f"unknown word {up}: ccopt reads G M X Y Z A B C U V W I J K R F P D H "
-                         "T S L N Q E words, #parameters and O-words", p)
+                         "T S L N Q E words, @ and ^ (polar), #parameters and O-words", p)
     return ExprError(f"unexpected character {ch!r}: expected a word such as G1 or X10", p)
 
 

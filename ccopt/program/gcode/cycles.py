@@ -46,6 +46,7 @@ without K > 0, and with the spindle stopped or at S0 (nothing to time).
 from __future__ import annotations
 
 from ccopt.program.gcode.coordinates import to_machine, to_work
+from ccopt.program.gcode.polar import has_polar, turn
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, gname
 from ccopt.program.model import NOTES, PLANE_AXES, Block, Motion, Source
@@ -170,8 +171,11 @@ def run_cycle(state: GCodeState, code: int, gcol: int, L: dict, mcodes: tuple,
         out.traverse(cur_u, cur_v, r)
         old = current = r
     clear = r if cs.retract == "r" else old
+    polar = state.incremental and has_polar(L)
     for n in range(repeats):
         u, v = u + du, v + dv
+        if polar:                        # G91 @ and ^ at every repeat (CYCLE_MACRO)
+            u, v = turn(state, u, v, L, gcol)
         if n == 0 and current > r:
             out.traverse(u, v, current)
             out.traverse(u, v, r)

@@ -25,6 +25,7 @@ from ccopt.program.gcode.lathe_cycles import LATHE_CYCLES, ROUGHING, run_lathe_c
 from ccopt.program.gcode.machine_words import (END_CODES, frame_of, record_after_motion,
                                                record_line, with_words)
 from ccopt.program.gcode.setup import go_home, is_tool_setup, save_home, set_tool_data
+from ccopt.program.gcode.polar import check_polar, has_polar, polar_to_xy
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.threading import THREADING, threading_cycle
 from ccopt.program.gcode.units import (feed_factor, length_factor, output_units,
@@ -36,7 +37,7 @@ from ccopt.program.model import (ENDLESS_MAIN, MAX_PROGRAM_COORDINATE, Block, Mo
 
 _AXES = "XYZ"
 #: Words that make a move: X Y Z and the axes carried along (axes.py).
-_MOVE_AXES = "XYZABCUVW"
+_MOVE_AXES = "XYZABCUVW@^"
 _PLANES = {170: "XY", 180: "ZX", 190: "YZ"}
 _TOOL_NUMBER_LIMIT = 2**31  # tool numbers are C ints in LinuxCNC
 #: Tool number 0 is LinuxCNC's "no tool": diameter 0 whatever the table says.
@@ -77,6 +78,14 @@ def execute_words(state: GCodeState, words: Words) -> None:
     previous_mode = state.motion_mode
     if motion_g is not None:
         state.motion_mode = None if motion_g[0] == 800 else motion_g[0]
+    if has_polar(L) and motion is not None:
+        check_polar(state, L, "machine_coords" in gc)
+        if motion in CYCLE_CODES and state.plane != "XY":
+            raise state.error("polar coordinates in a canned cycle need G17 (LinuxCNC reads "
+                              "them in the XY plane's cycles only)",
+                              min(L[w][1] for w in "@^" if w in L))
+        if not (motion in CYCLE_CODES and state.incremental):
+            L = polar_to_xy(state, L)      # a G91 cycle turns at every repeat (cycles.py)
     axis = any(a in L for a in _MOVE_AXES)
     gcol = motion_g[1] if motion_g else first_col
     if motion in CYCLE_CODES and (axis or motion_g is not None):

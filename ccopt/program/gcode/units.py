@@ -16,7 +16,7 @@ from ccopt.program.gcode.state import GCodeState
 
 MM_PER_INCH = 25.4
 UNITS = ("mm", "inch")
-_LENGTH_LETTERS = "XYZIJKUVW"
+_LENGTH_LETTERS = "XYZIJKUVW@"
 
 
 def length_factor(from_units: str, to_units: str) -> float:
