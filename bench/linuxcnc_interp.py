@@ -282,8 +282,11 @@ def _compare_run(folder: Path, run: Run, segment: str, echoes: set[str]) -> tupl
         return "refused", str(exc)
     if run.fails:
         return "differs", f"ccopt reads {run.program}; LinuxCNC stops with an error"
-    problems = differences(canonical_moves(compensate(prog, style="linuxcnc")),
-                           parse_canon(segment))
+    try:
+        got = canonical_moves(compensate(prog, style="linuxcnc"))
+    except ProgramError as exc:
+        return "refused", str(exc)
+    problems = differences(got, parse_canon(segment))
     if problems:
         return "differs", problems[0]
     prints = [m["text"] for m in prog.meta.get(MESSAGES, ()) if m.get("kind") == "print"]

@@ -6,11 +6,8 @@ gives the STRAIGHT_TRAVERSE, STRAIGHT_FEED and ARC_FEED calls of LinuxCNC's
 timeout (these tests once looped for ever in LinuxCNC).
 
 Two of them set feed per revolution with constant surface speed (``G95``,
-``G96 S D``), which ccopt does not read: their originals are refused at that
-line, and their cycles are checked with those lines written as feed per
-minute (the cycles' geometry does not depend on the feed mode). One of
-those also compensates with ``G42`` and no tool loaded, LinuxCNC's tool 0 of
-diameter 0; it is written ``G42.1 D0`` (the same zero radius).
+``G96 S D``: the feed does not change the moves), and one of those
+compensates with ``G42`` and no tool loaded (LinuxCNC's tool 0, diameter 0).
 """
 from __future__ import annotations
 
@@ -20,19 +17,12 @@ import time
 import pytest
 
 from ccopt.compensate import compensate
-from ccopt.errors import ProgramError
 from ccopt.program.gcode import read_gcode
 from linuxcnc_data import CONFORMANCE, TOL, canonical_moves, expected_moves
 
 G7X = CONFORMANCE / "g7x"
-AS_IS = ["g71-endless-loop", "g71-with-g70", "g72-facing", "g72-missing-iteration"]
-#: test -> (the line ccopt refuses, its column, [(original text, rewritten)]).
-REWRITTEN = {
-    "g71-endless-loop2": (1, 4, [("G18G95", "G18G94"), ("G96 M3 S250 D700", "M3 S250"),
-                                 ("F.24", "F240")]),
-    "g71-endless-loop_2": (27, 4, [("M3 G96 S200 d1400", "M3 S200"),
-                                   ("G95 F0.12", "G94 F120"), ("\ng42\n", "\ng42.1 D0\n")]),
-}
+AS_IS = ["g71-endless-loop", "g71-with-g70", "g72-facing", "g72-missing-iteration",
+         "g71-endless-loop2", "g71-endless-loop_2"]
 
 
 def _program(test: str):
@@ -61,23 +51,3 @@ def _check(text: str, path, test: str) -> None:
 def test_lathe_cycle_program_matches_linuxcnc_move_for_move(test):
     path = _program(test)
     _check(path.read_text(), path, test)
-
-
-@pytest.mark.parametrize("test", sorted(REWRITTEN))
-def test_feed_per_revolution_program_is_refused_where_it_sets_it(test):
-    path = _program(test)
-    line, col, _ = REWRITTEN[test]
-    with pytest.raises(ProgramError) as info:
-        read_gcode(path.read_text(), str(path))
-    assert (info.value.line, info.value.col) == (line, col)
-    assert re.search(r"G9[56]", info.value.message)
-
-
-@pytest.mark.parametrize("test", sorted(REWRITTEN))
-def test_feed_per_revolution_program_cycles_match_with_feed_per_minute(test):
-    path = _program(test)
-    text = path.read_text()
-    for old, new in REWRITTEN[test][2]:
-        assert old in text
-        text = text.replace(old, new)
-    _check(text, path, test)

@@ -408,8 +408,14 @@ def test_g41_uses_loaded_tool_and_negative_table_diameter_flips():
     assert (b.modal.side, b.modal.radius, b.modal.tool) == (-1, 4.0, 4)
     b, = moves("T4 M6\nG41 G1 X1 F60", tool_table={4: -8.0})
     assert (b.modal.side, b.modal.radius, b.modal.tool) == (-1, 4.0, 4)
-    b, = moves("T4\nG41 G1 X1 F60", tool_table={4: 8.0})  # selected but never loaded
-    assert (b.modal.side, b.modal.radius, b.modal.tool) == (1, None, None)
+    # selected but never loaded: LinuxCNC compensates with the spindle's tool 0
+    # ("no tool", diameter 0), and the reader says so
+    prog = read_gcode("T4\nG41 G1 X1 F60", "p.ngc", tool_table={4: 8.0})
+    b, = prog.blocks
+    assert (b.modal.side, b.modal.radius, b.modal.tool) == (1, 0.0, 0)
+    assert prog.meta["notes"] == ["p.ngc:2:1: G41 with no tool loaded and no D word: LinuxCNC "
+                                  "compensates with tool 0, of diameter 0 (no offset); load "
+                                  "the tool (T M6) or give D"]
 
 
 def test_tool_zero_is_no_tool_radius_zero():

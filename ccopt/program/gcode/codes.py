@@ -52,16 +52,20 @@ G_GROUPS: dict[int, str] = {
     900: "distance", 910: "distance",
     70: "lathe_diameter", 80: "lathe_diameter",
     901: "arc_distance", 911: "arc_distance",
-    930: "feed_mode", 940: "feed_mode",
+    930: "feed_mode", 940: "feed_mode", 950: "feed_mode",
+    960: "spindle_mode", 970: "spindle_mode",
     1360: "corner", 1370: "corner",
     1380: "start_end", 1390: "start_end",
 }
 _KNOWN_G = ("G0 G1 G2 G3 G4 G7 G8 G33 G33.1 G10 G17 G18 G19 G20 G21 G40 G41 G42 G41.1 G42.1 G43 G43.1 G49 "
             "G28 G28.1 G30 G30.1 G52 G53 G54-G59.3 G61 G61.1 G64 G80 G90 G91 G90.1 G91.1 G92 G92.1 G92.2 G92.3 "
-            "G70 G71 G71.1 G71.2 G72 G72.1 G72.2 G73 G74 G76 G81-G87 G89 G93 G94 G98 G99 G136 "
+            "G70 G71 G71.1 G71.2 G72 G72.1 G72.2 G73 G74 G76 G81-G87 G89 G93 G94 G95 G96 G97 G98 G99 G136 "
             "G137 G138 G139")
 _G_UNSUPPORTED_HINT: dict[int, str] = {
-    950: "feed per revolution: use G94 (units per minute) or G93",
+    **{t: "probing ends where the probe touches the part, which the program does not say; "
+          "write the moves out" for t in (382, 383, 384, 385)},
+    **{t: "splines (G5 cubic, G5.1 quadratic, G5.2/G5.3 NURBS): write them out as lines "
+          "or arcs" for t in (50, 51, 52, 53)},
 }
 # M-code modal groups that may not appear twice on a line.
 _M_GROUPS: dict[int, str] = {0: "stop", 1: "stop", 2: "stop", 30: "stop", 60: "stop",

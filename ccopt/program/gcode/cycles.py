@@ -47,6 +47,7 @@ from __future__ import annotations
 
 from ccopt.program.gcode.coordinates import to_machine, to_work
 from ccopt.program.gcode.polar import has_polar, turn
+from ccopt.program.gcode.spindle import per_revolution
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, gname
 from ccopt.program.model import NOTES, PLANE_AXES, Block, Motion, Source
@@ -90,8 +91,9 @@ class _Emitter:
     """Writes the cycle's canon moves as blocks, in work coordinates ``(u, v, w)``."""
 
     def __init__(self, state: GCodeState, code: int, src: Source, mcodes: tuple,
-                 emit, feed: float):
+                 emit, feed: float, gcol: int):
         self.state = state
+        self.gcol = gcol
         self.code = gname(code)
         self.src = src
         self.mcodes = mcodes
@@ -119,7 +121,11 @@ class _Emitter:
         self._block(Motion.RAPID, self.machine(u, v, w))
 
     def feed_to(self, u: float, v: float, w: float) -> None:
-        self._block(Motion.LINE, self.machine(u, v, w), feed=self.feed)
+        end = self.machine(u, v, w)
+        feed = self.feed
+        if self.state.feed_mode == "per_revolution":
+            feed = per_revolution(self.state, self.state.feed, self.state.pos, end, self.gcol)
+        self._block(Motion.LINE, end, feed=feed)
 
     def dwell(self, seconds: float) -> None:
         self._block(Motion.DWELL, self.state.pos, dwell=seconds)
@@ -164,7 +170,7 @@ def run_cycle(state: GCodeState, code: int, gcol: int, L: dict, mcodes: tuple,
                           f"{fmt(r)} is below the bottom {fmt(bottom)}", gcol)
     params = _parameters(state, code, L, in_force, gcol)
     src = Source(*state.where(state.line_no), first_col + 1)
-    out = _Emitter(state, code, src, mcodes, emit, state.feed / 60.0)
+    out = _Emitter(state, code, src, mcodes, emit, state.feed / 60.0, gcol)
     current = cur_w
     if old < r:
         # below the R plane: straight up to it first
@@ -391,7 +397,7 @@ def rigid_tap(state: GCodeState, L: dict, mcodes: tuple, src: Source, gcol: int,
     if state.spindle == "stopped" or not state.spindle_speed > 0:
         raise state.error("G33.1 with the spindle not turning: start it with S and M3 (or "
                           "M4) first", gcol)
-    feed = L["K"][0] * state.spindle_speed / 60.0
+    feed = per_revolution(state, L["K"][0], state.pos, end, gcol)
     start = state.pos
     for a, b in ((start, end), (end, start)):
         emit(state, Block(src, Motion.LINE, a, b, state.modal(), feed=feed, mcodes=mcodes,

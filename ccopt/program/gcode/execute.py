@@ -26,14 +26,16 @@ from ccopt.program.gcode.machine_words import (END_CODES, frame_of, record_after
                                                record_line, with_words)
 from ccopt.program.gcode.setup import go_home, is_tool_setup, save_home, set_tool_data
 from ccopt.program.gcode.polar import check_polar, has_polar, polar_to_xy
+from ccopt.program.gcode.spindle import (CONSTANT_SURFACE_SPEED, PER_REVOLUTION, per_revolution,
+                                          set_spindle_mode, set_surface_speed)
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.threading import THREADING, threading_cycle
 from ccopt.program.gcode.units import (feed_factor, length_factor, output_units,
                                        scale_lengths, set_units)
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, gname
 from ccopt.program.markers import surface_marker
-from ccopt.program.model import (ENDLESS_MAIN, MAX_PROGRAM_COORDINATE, Block, Motion, Source,
-                                 out_of_range)
+from ccopt.program.model import (ENDLESS_MAIN, MAX_PROGRAM_COORDINATE, NOTES, Block, Motion,
+                                 Source, out_of_range)
 
 _AXES = "XYZ"
 #: Words that make a move: X Y Z and the axes carried along (axes.py).
@@ -177,9 +179,11 @@ def _check_word_usage(state: GCodeState, gc: dict, L: dict, motion: int | None,
     cycle = motion in CYCLE_CODES
     comp = gc.get("comp")
     g7x, roughing = motion in LATHE_CYCLES, motion in ROUGHING   # lathe_cycles.py
-    if "D" in L and (comp is None or comp[0] == 400) and motion not in PECK_CYCLES and not g7x:
-        raise state.error("D word with no G41, G42, G41.1, G42.1, G70, G71, G72, G73 or G83 "
-                          "to use it", L["D"][1])
+    css = gc.get("spindle_mode", (None,))[0] == CONSTANT_SURFACE_SPEED
+    if "D" in L and (comp is None or comp[0] == 400) and motion not in PECK_CYCLES and not g7x \
+            and not css:
+        raise state.error("D word with no G41, G42, G41.1, G42.1, G70, G71, G72, G73, G83 or "
+                          "G96 to use it", L["D"][1])
     thread = motion == THREADING
     if "H" in L and not thread and (gc.get("length") is None or gc["length"][0] != 430):
         raise state.error("H word with no G43 to use it", L["H"][1])
@@ -222,7 +226,7 @@ def _set_feed_and_tool(state: GCodeState, gc: dict, L: dict, mcodes: tuple) -> N
     """Feed mode (switching it forgets the feed rate), F, T and ``M6``."""
     fm = gc.get("feed_mode")
     if fm is not None:
-        mode = "inverse" if fm[0] == 930 else "per_minute"
+        mode = {930: "inverse", 940: "per_minute", PER_REVOLUTION: "per_revolution"}[fm[0]]
         if mode != state.feed_mode:
             state.feed = None
         state.feed_mode = mode
@@ -230,7 +234,7 @@ def _set_feed_and_tool(state: GCodeState, gc: dict, L: dict, mcodes: tuple) -> N
         f, col = L["F"]
         if f < 0:
             raise state.error(f"negative feed rate F{fmt(f)}: F must be >= 0", col)
-        if state.feed_mode == "per_minute":
+        if state.feed_mode != "inverse":      # units per minute or per revolution
             state.feed = f * feed_factor(state)
     if "T" in L:
         t, col = L["T"]
@@ -244,6 +248,10 @@ def _set_feed_and_tool(state: GCodeState, gc: dict, L: dict, mcodes: tuple) -> N
         if speed < 0:
             raise state.error(f"negative spindle speed S{fmt(speed)}: S must be >= 0", col)
         state.spindle_speed = speed
+        set_surface_speed(state)
+    sm = gc.get("spindle_mode")
+    if sm is not None:
+        set_spindle_mode(state, sm[0], L)
     for m, turning in ((3, "cw"), (4, "ccw"), (5, "stopped")):
         if m in mcodes:
             state.spindle = turning
@@ -369,6 +377,14 @@ def _compensation(state: GCodeState, comp: tuple[int, int], L: dict) -> None:
         tool = int(round(d))
     else:
         tool = state.loaded_tool
+        if tool is None:
+            # LinuxCNC starts with tool 0 ("no tool", diameter 0) in the spindle
+            tool = NO_TOOL
+            file, line = state.where(state.line_no)
+            state.meta.setdefault(NOTES, []).append(
+                f"{file}:{line}:{col + 1}: {gname(code)} with no tool loaded and no D word: "
+                "LinuxCNC compensates with tool 0, of diameter 0 (no offset); load the tool "
+                "(T M6) or give D")
     state.tool = tool
     state.side = side
     orientations = getattr(state.tool_table, "orientation", {})
@@ -435,14 +451,14 @@ def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int
         block = Block(src, Motion.RAPID, cur, end_t, state.modal(), mcodes=mcodes)
     elif motion == SYNCHRONISED:
         block = Block(src, Motion.LINE, cur, end_t, state.modal(),
-                      feed=_synchronised_feed(state, L, gcol), mcodes=mcodes)
+                      feed=_synchronised_feed(state, L, cur, end_t, gcol), mcodes=mcodes)
     elif motion == 10 or is_modal_arc_without_plane_motion(state, L, cur, end_t):
-        feed = _feed(state, L, math.dist(cur, end_t), gcol)
+        feed = _feed(state, L, math.dist(cur, end_t), gcol, cur, end_t)
         block = Block(src, Motion.LINE, cur, end_t, state.modal(), feed=feed, mcodes=mcodes)
     else:
         check_unrotated_plane(state, f"{gname(motion)} (an arc)", gcol)
         center, turns, length = arc_geometry(state, motion, L, cur, end_t, gcol)
-        feed = _feed(state, L, length, gcol)
+        feed = _feed(state, L, length, gcol, cur, end_t, center)
         block = Block(src, Motion.ARC_CCW if motion == 30 else Motion.ARC_CW, cur, end_t,
                       state.modal(), center=center, turns=turns, feed=feed, mcodes=mcodes)
     if surface is not None:
@@ -519,7 +535,7 @@ def _check_machine_coords(state: GCodeState, gc: dict, motion: int | None) -> No
 SYNCHRONISED = 330
 
 
-def _synchronised_feed(state: GCodeState, L: dict, gcol: int) -> float:
+def _synchronised_feed(state: GCodeState, L: dict, start, end, gcol: int) -> float:
     """``G33 ... K``: a straight move (compensated like ``G1``) at K program
     units per spindle revolution along the path, so ``K * S / 60`` units per
     second (LinuxCNC's ``START_SPEED_FEED_SYNCH``; threading.ngc's 45-degree
@@ -535,12 +551,15 @@ def _synchronised_feed(state: GCodeState, L: dict, gcol: int) -> float:
                           gcol)
     if not L["K"][0] > 0:
         raise state.error("G33 needs K > 0 (units per revolution)", L["K"][1])
-    return L["K"][0] * state.spindle_speed / 60.0
+    return per_revolution(state, L["K"][0], start, end, gcol)
 
 
-def _feed(state: GCodeState, L: dict, length: float, col: int) -> float:
-    """Feed of a move of ``length`` (program units) in units per second:
-    ``F/60`` under ``G94``; under ``G93`` the move takes ``60/F`` seconds."""
+def _feed(state: GCodeState, L: dict, length: float, col: int, start, end,
+          center=None) -> float:
+    """Feed of a move of ``length`` (program units) from ``start`` to ``end``
+    (machine points; an arc about ``center``) in units per second: ``F/60``
+    under ``G94``; under ``G93`` the move takes ``60/F`` seconds; under
+    ``G95`` F per spindle revolution (spindle.py)."""
     if state.feed_mode == "inverse":
         if "F" not in L:
             raise state.error("G93 inverse time: every G1/G2/G3 move needs its own F word "
@@ -554,4 +573,6 @@ def _feed(state: GCodeState, L: dict, length: float, col: int) -> float:
                           "or an earlier line", col)
     if state.feed <= 0:
         raise state.error("feed move with feed rate F0: set F > 0 before this move", col)
+    if state.feed_mode == "per_revolution":
+        return per_revolution(state, state.feed, start, end, col, center)
     return state.feed / 60.0

@@ -52,6 +52,7 @@ from ccopt.program.gcode.g7x_contour import Chamfer, Fillet, G7xError, Round, Se
 from ccopt.program.gcode.g7x_path import Budget, Profile
 from ccopt.program.gcode.oword import enter_sub, exec_oword, innermost_loop, loop_lines_error
 from ccopt.program.gcode.parameters import set_parameter
+from ccopt.program.gcode.spindle import per_revolution
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.units import input_factor
 from ccopt.program.gcode.words import WHOLE_NUMBER_TOL, fmt, gname, lex
@@ -204,11 +205,16 @@ class _Emitter:
         state.moved = True
         self.at = end
 
-    def _feed(self) -> float:
-        """The feed of the cycle's cutting moves, program units per second."""
+    def _feed(self, end: complex, center=None) -> float:
+        """The feed of a cutting move to ``end`` (about the machine point
+        ``center`` for an arc), program units per second: F per minute, or
+        under ``G95`` per spindle revolution (spindle.py)."""
         if not self.state.feed:
             raise self.state.error("Cannot feed with zero feed rate: give the cycle's F "
                                    "(units per minute) on this or an earlier line", self.gcol)
+        if self.state.feed_mode == "per_revolution":
+            return per_revolution(self.state, self.state.feed, self.state.pos,
+                                  self._machine(end), self.gcol, center)
         return self.state.feed / 60.0
 
     def straight_rapid(self, end: complex, comp_off: bool = False) -> None:
@@ -216,7 +222,7 @@ class _Emitter:
         self.mode = 0
 
     def straight_move(self, end: complex) -> None:
-        self._block(Motion.LINE, end, feed=self._feed())
+        self._block(Motion.LINE, end, feed=self._feed(end))
         self.mode = 10
 
     def circular_move(self, ccw: bool, center: complex, end: complex) -> None:
@@ -226,7 +232,7 @@ class _Emitter:
         _check_radii(self.state, self.at, center, end, self.gcol, self.name)
         c = self._machine(center)
         self._block(Motion.ARC_CCW if ccw else Motion.ARC_CW, end, center=c, turns=0,
-                    feed=self._feed())
+                    feed=self._feed(end, c))
         self.mode = 30 if ccw else 20
 
 

@@ -97,11 +97,15 @@ class GCodeState:
     """Everything the reader knows while it runs one program text.
 
     Positions are absolute ``(x, y, z)`` in program units; ``feed`` is the
-    ``G94`` F word in units per minute; modes are stored as the reader
+    F word in units per minute (``G94``) or per revolution (``G95``); modes are stored as the reader
     exposes them in :class:`~ccopt.program.model.Modal` (``plane`` "XY",
     "ZX" or "YZ"; ``side`` +1 left, -1 right, 0 off). Line numbers held here
     (``line_no``, ``first_line``, ``end_line``, structure lines) are 0-based.
     """
+
+    #: ``G96``: ``[radius x rpm product, maximum rpm or None]`` in output
+    #: units (spindle.py); ``None`` under ``G97``, the start-up mode.
+    css: list | None = None
 
     def __init__(self, text: str, file: str, tool_table: dict[int, float] | None,
                  start: tuple[float, float, float], *,

@@ -16,10 +16,11 @@ radius, Z along the spindle) and cuts towards the line's ``Z`` end:
   along the taper when the start tapers), the cut along Z (fed; then out
   along the end taper), a rapid out; finally a rapid to the line's end point.
 
-Feeds are synchronised to the spindle: ``pitch * S / 60`` units per second
-along a straight cut, and along a taper the pitch scaled by its length per
-unit of Z (LinuxCNC's ``taper_pitch``), so Z always advances one pitch per
-revolution. Every block is marked ``"G76"`` (``Block.cycle``).
+Feeds are synchronised to the spindle: ``pitch * rpm / 60`` units per
+second along a straight cut (rpm: S, or under ``G96`` the speed at the
+cut's radius, spindle.py), and along a taper the pitch scaled by its length
+per unit of Z (LinuxCNC's ``taper_pitch``), so Z always advances one pitch
+per revolution. Every block is marked ``"G76"`` (``Block.cycle``).
 
 Refused, located, as LinuxCNC refuses them: compensation on, I 0, J <= 0,
 K <= J, P or I J K missing, the spindle not turning, rotary or U V W words;
@@ -30,6 +31,7 @@ from __future__ import annotations
 import math
 
 from ccopt.program.gcode.coordinates import to_machine, to_work
+from ccopt.program.gcode.spindle import per_revolution
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.model import Block, Motion, Source
 
@@ -69,9 +71,8 @@ def threading_cycle(state: GCodeState, L: dict, mcodes: tuple, src: Source, gcol
         taper = -taper
     flags = max(int(L["L"][0]), 0) if "L" in L else 0
     target_z = end_w[2] + full_height * math.tan(angle)
-    per_second = state.spindle_speed / 60.0
-    out = _Passes(state, src, mcodes, emit, boring, x0, y0, z0, end_depth, full_height, target_z, taper, bool(flags & 1), bool(flags & 2),
-                  pitch * per_second, taper_pitch * per_second)
+    out = _Passes(state, src, mcodes, emit, boring, x0, y0, z0, end_depth, full_height,
+                  target_z, taper, bool(flags & 1), bool(flags & 2), pitch, taper_pitch, gcol)
     depth, n = full_dia_depth + cut_increment, 1
     while depth < end_depth:
         out.cut(depth, (depth - full_dia_depth) * math.tan(angle))
@@ -118,14 +119,15 @@ class _Passes:
     threads) or outwards (``boring``)."""
 
     def __init__(self, state: GCodeState, src: Source, mcodes: tuple, emit, boring: bool,
-                 safe_x: float, y: float, start_z: float, end_depth: float, full_height: float, target_z: float, taper: float,
-                 entry_taper: bool, exit_taper: bool, feed: float, taper_feed: float):
+                 safe_x: float, y: float, start_z: float, end_depth: float,
+                 full_height: float, target_z: float, taper: float, entry_taper: bool,
+                 exit_taper: bool, pitch: float, taper_pitch: float, gcol: int):
         self.state, self.src, self.mcodes, self.emit = state, src, mcodes, emit
         self.sign = 1.0 if boring else -1.0
         self.safe_x, self.y, self.start_z = safe_x, y, start_z
         self.end_depth, self.full_height, self.target_z = end_depth, full_height, target_z
         self.taper, self.entry_taper, self.exit_taper = taper, entry_taper, exit_taper
-        self.feed, self.taper_feed = feed, taper_feed
+        self.pitch, self.taper_pitch, self.gcol = pitch, taper_pitch, gcol
 
     def _x(self, depth: float) -> float:
         return self.safe_x + self.sign * depth
@@ -140,7 +142,10 @@ class _Passes:
     def rapid(self, x: float, y: float, z: float) -> None:
         self._block(Motion.RAPID, x, y, z)
 
-    def _fed(self, x: float, z: float, feed: float) -> None:
+    def _fed(self, x: float, z: float, per_rev: float) -> None:
+        """A cut to ``(x, z)`` at ``per_rev`` units per spindle revolution."""
+        end = to_machine(self.state, (x, self.y, z))
+        feed = per_revolution(self.state, per_rev, self.state.pos, end, self.gcol)
         self._block(Motion.LINE, x, self.y, z, feed)
 
     def cut(self, depth: float, zoff: float) -> None:
@@ -150,13 +155,13 @@ class _Passes:
         back = self._x(depth - self.end_depth)
         self.rapid(back, self.y, z_in)
         if self.taper and self.entry_taper:
-            self._fed(self._x(depth - self.full_height), z_in, self.taper_feed)
-            self._fed(self._x(depth), z_in - self.taper, self.taper_feed)
+            self._fed(self._x(depth - self.full_height), z_in, self.taper_pitch)
+            self._fed(self._x(depth), z_in - self.taper, self.taper_pitch)
         else:
             self.rapid(self._x(depth), self.y, z_in)
         if self.taper and self.exit_taper:
-            self._fed(self._x(depth), z_out + self.taper, self.feed)
-            self._fed(self._x(depth - self.full_height), z_out, self.taper_feed)
+            self._fed(self._x(depth), z_out + self.taper, self.pitch)
+            self._fed(self._x(depth - self.full_height), z_out, self.taper_pitch)
         else:
-            self._fed(self._x(depth), z_out, self.feed)
+            self._fed(self._x(depth), z_out, self.pitch)
         self.rapid(back, self.y, z_out)
