@@ -84,6 +84,8 @@ class Run:
     fails: bool = False
     errors_shown: bool = False
     first_field_dropped: bool = False     # awk '{$1=""; print}' on its output
+    keep_going: bool = False              # -n 0: rs274 goes on after an error
+    zero_sign_dropped: bool = False       # sed 's/-0\.0000/0.0000/g' on its output
 
 
 def plain_runs(script: str) -> list[Run] | None:
@@ -137,6 +139,8 @@ def _run(line: str) -> Run | None:
     if not _plain_tail(tokens[i:]):
         return None
     run = Run("", fails=neg, errors_shown="__ERR__" in args,
+              zero_sign_dropped=any(a == "sed" and b == r"s/-0\.0000/0.0000/g"
+                                    for a, b in zip(tokens[i:], tokens[i + 1:])),
               first_field_dropped=any(a == "awk" and b.replace(" ", "") == '{$1="";print}'
                                       for a, b in zip(tokens[i:], tokens[i + 1:])))
     it = iter(a for a in args if a != "__ERR__")
@@ -146,10 +150,12 @@ def _run(line: str) -> Run | None:
         elif a == "-g":
             continue
         elif a == "-n":
-            # 2 stops at an error, as ccopt does; 0 goes on after it, where ccopt
-            # stops (the comparison then says so); 1 is interactive
-            if next(it, None) not in ("0", "2"):
+            # 2 stops at an error; 0 goes on after it (read_program's keep_going);
+            # 1 is interactive
+            mode = next(it, None)
+            if mode not in ("0", "2"):
                 return None
+            run.keep_going = mode == "0"
         elif a.startswith("-"):
             return None          # -p plug-in: not a plain run
         else:
@@ -215,7 +221,7 @@ def run_test(folder: Path) -> tuple[str, str]:
         return "needs a plug-in or script", PLUG_IN
     runs = plain_runs(script)
     if runs is None:
-        return "needs a plug-in or script", ""
+        return "needs a plug-in or script", _why_not_plain(folder, script)
     if any(r.ini and re.search(r"^\s*\[PYTHON\]", (folder / r.ini).read_text(), re.M)
            for r in runs):
         return "needs a plug-in or script", PYTHON_INI
@@ -231,6 +237,9 @@ def run_test(folder: Path) -> tuple[str, str]:
                 if o not in ("match", "refuses where LinuxCNC stops")), None)
     if bad is not None:
         return bad
+    notes = [d for o, d in results if o == "match" and d]
+    if notes and not any(o == "refuses where LinuxCNC stops" for o, _ in results):
+        return "match", notes[0]
     stops = [d for o, d in results if o == "refuses where LinuxCNC stops"]
     if len(stops) == len(results):
         return "refuses where LinuxCNC stops", stops[-1]
@@ -242,6 +251,18 @@ def run_test(folder: Path) -> tuple[str, str]:
 
 #: A canon call as rs274 prints it: its line number (``N.....`` or ``N1234``) first.
 _CANON_CALL = re.compile(r"N[.\d]+\s+[A-Z][A-Za-z0-9_.]*\(")
+
+
+def _why_not_plain(folder: Path, script: str) -> str:
+    """What a ``test.sh`` does beyond plain rs274 runs, in words."""
+    why = []
+    if re.search(r"^\s*linuxcnc\s", script, re.M):
+        why.append("it runs LinuxCNC itself against a motion logger")
+    if re.search(r"^\s*for\s", script, re.M):
+        why.append("it loops over programs and judges each run's exit status")
+    if (folder / "xfail").exists():
+        why.append("LinuxCNC expects it to fail (an `xfail` file)")
+    return "; ".join(why)
 
 
 def _segments(expected: str, n: int) -> list[str] | None:
@@ -296,7 +317,30 @@ def _compare_run(folder: Path, run: Run, segment: str, echoes: set[str]) -> tupl
     want = _text_lines(segment, echoes)
     if prints != want and (prints or not run.errors_shown):
         return "differs", f"it prints {prints}, LinuxCNC {want}"
-    return "match", ""
+    return "match", _message_difference(prog, segment, run)
+
+
+def _message_difference(prog, segment: str, run: Run) -> str:
+    """Where the program's ``(debug, ...)``/``(msg, ...)`` messages differ from
+    the MESSAGE calls of LinuxCNC's output (after the script's ``sed`` of
+    -0.0000 to 0.0000, when it has one), in words; empty when they agree.
+    Moves decide the outcome; this is reported beside it."""
+    shown = [m["text"] for m in prog.meta.get(MESSAGES, ()) if m.get("kind") != "print"]
+    if run.zero_sign_dropped:
+        shown = [re.sub(r"-0\.0000", "0.0000", m) for m in shown]
+    if run.first_field_dropped:              # awk rebuilds each line with single blanks
+        shown = [re.sub(r"\s+", " ", m) for m in shown]
+    wanted = re.findall(r'MESSAGE\("(.*)"\)', segment)
+    if shown == wanted:
+        return ""
+    i = next((k for k, (a, b) in enumerate(zip(shown, wanted)) if a != b),
+             min(len(shown), len(wanted)))
+    return (f"{MESSAGES_DIFFER}: message {i}: ccopt {shown[i] if i < len(shown) else None!r}, "
+            f"LinuxCNC {wanted[i] if i < len(wanted) else None!r}")
+
+
+#: How a detail says that a test matches move for move but not in its messages.
+MESSAGES_DIFFER = "its debug messages differ"
 
 
 def _moves_before(exc: ProgramError, segment: str) -> list[str]:
@@ -336,7 +380,8 @@ def _program(folder: Path, run: Run):
                         tool_table=folder / run.table if run.table else None,
                         var_file=folder / run.var if run.var else None,
                         table_units=RS274_TABLE_UNITS if run.table and not run.ini else None,
-                        ini=folder / run.ini if run.ini else None)
+                        ini=folder / run.ini if run.ini else None,
+                        keep_going=run.keep_going)
 
 
 def _moves(folder: Path, run: Run) -> list:
@@ -373,6 +418,11 @@ def docs_body(results: list[tuple[str, str, str]], linuxcnc: str) -> str:
     lines += ["", f"Of the {len(run)} tests LinuxCNC runs without Python (no plug-in, no "
               f"`[PYTHON]` INI), {right} ({100 * right / len(run):.0f} %) match or refuse "
               "where LinuxCNC stops."]
+    differ = [(t, d) for t, o, d in results if o == "match" and MESSAGES_DIFFER in d]
+    if differ:
+        lines += ["", f"{len(differ)} of the matching tests match move for move but not in "
+                  "the text of their `(debug, ...)` messages:", ""]
+        lines += [f"- `{t}`: {d}" for t, d in differ]
     lines += ["", "Every test that does not match:", ""]
     for k in OUTCOMES[1:]:
         for test, outcome, detail in results:

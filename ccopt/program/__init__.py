@@ -62,9 +62,11 @@ def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
               tool_table: dict[int, float] | None = None,
               parameters: dict[int, float] | None = None, units: str | None = None,
               table_units: str | None = None, sub_path=(),
-              max_loop_iterations: int | None = None, ini: LinuxCncIni | None = None) -> Program:
+              max_loop_iterations: int | None = None, ini: LinuxCncIni | None = None,
+              keep_going: bool = False) -> Program:
     """Read program text of the given dialect (``parameters``, ``units``,
-    ``table_units``, ``sub_path``, ``max_loop_iterations`` and ``ini``: G-code only,
+    ``table_units``, ``sub_path``, ``max_loop_iterations``, ``ini`` and
+    ``keep_going``: G-code only,
     see :func:`read_gcode`, except that SINUMERIK programs take ``units``
     and ``max_loop_iterations`` too (:func:`read_sinumerik`); PMAC programs
     have no loops ccopt runs, ``WHILE`` is refused; ``tool_table`` also gives
@@ -72,7 +74,11 @@ def read_text(text: str, file: str = "<string>", dialect: str = "gcode", *,
     if dialect == "gcode":
         return read_gcode(text, file, tool_table=tool_table, parameters=parameters,
                           units=units, table_units=table_units, sub_path=sub_path,
-                          max_loop_iterations=max_loop_iterations, ini=ini)
+                          max_loop_iterations=max_loop_iterations, ini=ini,
+                          keep_going=keep_going)
+    if keep_going:
+        raise ProgramError("keep_going (go on after errors) applies to G-code programs only",
+                           file)
     if ini is not None:
         raise ProgramError("a LinuxCNC INI file (--ini) applies to G-code programs only", file)
     if dialect == "pmac":
@@ -90,7 +96,7 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
                  var_file: str | os.PathLike | None = None, units: str | None = None,
                  table_units: str | None = None, sub_path=(),
                  max_loop_iterations: int | None = None,
-                 ini: str | os.PathLike | None = None) -> Program:
+                 ini: str | os.PathLike | None = None, keep_going: bool = False) -> Program:
     """Read a part program file.
 
     Parameters
@@ -113,6 +119,8 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
         units, the parameter file and the subroutine folders where the
         arguments above do not (a folder given comes first), and the values
         of ``#<_ini[SECTION]NAME>``.
+    keep_going: G-code only: go on after an error, as LinuxCNC's ``rs274 -n 0``
+        (see :func:`~ccopt.program.gcode.read_gcode`).
     """
     file = str(path)
     dialect = dialect or dialect_of(path)
@@ -152,7 +160,7 @@ def read_program(path: str | os.PathLike, dialect: str | None = None, *,
         sub_path = (str(Path(path).resolve().parent), *sub_path)
     prog = read_text(text, file, dialect, tool_table=table, parameters=parameters, units=units,
                      table_units=table_units, sub_path=sub_path,
-                     max_loop_iterations=max_loop_iterations, ini=cfg)
+                     max_loop_iterations=max_loop_iterations, ini=cfg, keep_going=keep_going)
     # every file it was read from: what no output may replace (ccopt.export)
     read_from = [file, *prog.meta.get(INPUT_FILES, ()), *(b.source.file for b in prog.blocks),
                  *(str(f) for f in (tool_table, var_file, ini)

@@ -285,6 +285,9 @@ MESSAGES = "messages"
 #: ``Program.meta`` key: where the main program ended with ``M99`` (a located
 #: sentence): the machine would repeat it for ever; ccopt read one pass.
 ENDLESS_MAIN = "endless_main_program"
+#: ``Program.meta`` key: the errors a program read with ``keep_going`` (LinuxCNC's
+#: ``rs274 -n 0``) went on after, located, in order.
+ERRORS_PASSED = "errors_passed"
 #: ``Program.meta`` key: located sentences on what the controller does that the
 #: program may not mean (a LinuxCNC quirk followed, e.g. G84 in G18 feeding off
 #: the hole); the command line prints them as notes.

@@ -109,3 +109,21 @@ def test_print_comments_carry_parameter_values_and_5599_silences_debug():
                       "(msg, c)\n#5599 = 1\n(debug, d)\nM2\n")
     assert [(m["kind"], m["text"]) for m in prog.meta[MESSAGES]] == [
         ("print", "one 2.500000"), ("debug", " a"), ("msg", " c"), ("debug", " d")]
+
+
+def test_message_formats_line_number_and_near_zero_values():
+    """LinuxCNC's convert_param_comment: %d, %f and %.Nf set the format of the
+    values after them (0, 4, N decimals); a value within 1e-4 of 0 prints as
+    0; #<_line> is the line being executed (worked out from the text)."""
+    prog = read_gcode("G21\n#1 = 1.1234567\n#2 = -0.00001\n"
+                      "(debug,a #1 %d#1 %f#1 %.7f#1 #2 100%)\n(debug,line #<_line>)\nM2\n")
+    assert [m["text"] for m in prog.meta[MESSAGES]] == [
+        "a 1.123457 1 1.1235 1.1234567 0.0000000 100%", "line 5.000000"]
+
+
+def test_position_parameters_of_the_rotary_axes():
+    # A in degrees: A40 is programmed (work), machine = 40 + G54's A origin
+    # (#5224 = 10) = 50
+    prog = read_gcode("G21\nG0 X1 A40\n(debug,#5423 #5024 #<_a> #<_abs_a>)\nM2\n",
+                      parameters={5224: 10.0})
+    assert prog.meta[MESSAGES][0]["text"] == "40.000000 50.000000 40.000000 50.000000"

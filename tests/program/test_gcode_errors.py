@@ -208,3 +208,17 @@ def test_an_error_keeps_what_was_read_before_it():
     assert (err.value.line, err.value.col) == (5, 1) and "feed rate" in err.value.message
     assert [b.end for b in err.value.read_before.blocks] == [(1.0, 0.0, 0.0), (1.0, 2.0, 0.0)]
     assert ProgramError("x").read_before is None
+
+
+def test_keep_going_unwinds_the_calls_and_goes_on_as_rs274_n_0():
+    """LinuxCNC's oword-unwind test, written out: each call fails in its sub;
+    with keep_going the error is recorded, the call unwound (the caller's #1
+    given back) and the program goes on at the line after the call."""
+    text = ("G21\n#1 = 5\no1 sub\n#1 = 7\nG0 X#1\n#2 = [1/0]\nG0 Y9\no1 endsub\n"
+            "o1 call [3]\nG0 Z#1\no1 call [4]\nM2\n")
+    prog = read_gcode(text, "u.ngc", keep_going=True)
+    assert [b.end for b in prog.blocks] == [(7.0, 0.0, 0.0), (7.0, 0.0, 5.0), (7.0, 0.0, 5.0)]
+    assert len(prog.meta["errors_passed"]) == 2
+    assert prog.meta["errors_passed"][0].startswith("u.ngc:6:")
+    with pytest.raises(ProgramError, match="division by zero"):
+        read_gcode(text, "u.ngc")

@@ -42,7 +42,7 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
                start=(0.0, 0.0, 0.0), parameters: dict[int, float] | None = None,
                units: str | None = None, table_units: str | None = None,
                sub_path=(), max_loop_iterations: int | None = None,
-               ini: LinuxCncIni | None = None) -> Program:
+               ini: LinuxCncIni | None = None, keep_going: bool = False) -> Program:
     """Read RS274NGC/LinuxCNC G-code into a :class:`Program` (dialect ``"gcode"``).
 
     Parameters
@@ -81,6 +81,9 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
 
     ini:
         The machine's INI file (:func:`~.ini.read_ini`) for ``#<_ini[SECTION]NAME>``.
+    keep_going:
+        LinuxCNC's ``rs274 -n 0``: an error is recorded (``meta["errors_passed"]``)
+        and reading goes on after it, the calls in progress unwound.
 
     The runaway guards are this module's :data:`MAX_EXECUTED_LINES`,
     :data:`MAX_CALL_DEPTH` and :data:`MAX_LOOP_ITERATIONS`, read at each call.
@@ -101,7 +104,7 @@ def read_gcode(text: str, file: str = "<string>", *, tool_table: dict[int, float
                              parameters=parameters)
         state.out_units, state.table_units = units, table_units
         state.sub_path = tuple(str(p) for p in sub_path)
-        state.ini = ini
+        state.ini, state.keep_going = ini, keep_going
         return run(state)
     except ProgramError:
         raise

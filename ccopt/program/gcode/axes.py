@@ -40,7 +40,7 @@ def extra_origin(state: GCodeState, index: int | None = None) -> tuple[float, ..
 
 def extra_axis_offset(state: GCodeState) -> tuple[float, ...]:
     """The ``G92``/``G52`` offset in force on A .. W."""
-    if state.params.get(_OFFSET_APPLIED, 0.0) != 1.0:
+    if state.params.get(_OFFSET_APPLIED, 0.0) == 0.0:     # any non-zero, as LinuxCNC
         return _ZERO
     return tuple(state.params.get(_OFFSET_BASE + k, 0.0) for k in range(6))
 

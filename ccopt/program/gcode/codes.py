@@ -114,6 +114,7 @@ def read_words(state: GCodeState, lx: Lexed) -> tuple[Words, list[tuple[str, obj
                 raise ExprError("parameter setting needs '=' and a value, e.g. #1 = 2.5", p)
             if kind == "name" and (is_ini_name(key) or is_position_name(key)):
                 what = ("the machine's INI file entry" if is_ini_name(key)
+                        else "the current line number" if key == "_line"
                         else "the current position")
                 raise ExprError(f"cannot assign to read-only parameter #<{key}>: it is {what}",
                                 p)

@@ -22,6 +22,7 @@ from ccopt.program.expr import (
     parse_bracketed,
     parse_operand,
 )
+from ccopt.program.gcode.axes import extra_work
 from ccopt.program.gcode.coordinates import to_work
 from ccopt.program.gcode.state import MAX_PARAMETER, Frame, GCodeState
 from ccopt.program.gcode.units import input_factor
@@ -48,14 +49,18 @@ def attach_grammar(state: GCodeState) -> None:
                             variable=variable)
 
 
-#: LinuxCNC's read-only parameters of the current position (X Y Z): ``#5021``-
-#: ``#5023`` and ``#<_abs_x>``... in machine coordinates (where ``G53`` puts the
-#: tool), ``#5420``-``#5422`` and ``#<_x>``... in the work coordinates in force
-#: (origin, ``G92``/``G52`` offset and rotation applied), program units.
-MACHINE_POSITION = {5021: 0, 5022: 1, 5023: 2}
-WORK_POSITION = {5420: 0, 5421: 1, 5422: 2}
-_POSITION_NAMES = {"_abs_x": (True, 0), "_abs_y": (True, 1), "_abs_z": (True, 2),
-                   "_x": (False, 0), "_y": (False, 1), "_z": (False, 2)}
+#: LinuxCNC's read-only parameters of the current position (X Y Z A B C U V W):
+#: ``#5021``-``#5029`` and ``#<_abs_x>``... in machine coordinates (where
+#: ``G53`` puts the tool), ``#5420``-``#5428`` and ``#<_x>``... in the work
+#: coordinates in force (origin, ``G92``/``G52`` offset and rotation applied),
+#: program units (A B C in degrees).
+_AXIS_LETTERS = "xyzabcuvw"
+MACHINE_POSITION = {5021 + k: k for k in range(9)}
+WORK_POSITION = {5420 + k: k for k in range(9)}
+_POSITION_NAMES = {**{f"_abs_{a}": (True, k) for k, a in enumerate(_AXIS_LETTERS)},
+                   **{f"_{a}": (False, k) for k, a in enumerate(_AXIS_LETTERS)}}
+#: ``#<_line>``: the line number of the block being executed, in its file.
+LINE_NUMBER = "_line"
 
 
 def read_parameter(state: GCodeState, code: str, pos: int) -> tuple[float, int]:
@@ -63,8 +68,12 @@ def read_parameter(state: GCodeState, code: str, pos: int) -> tuple[float, int]:
     position after it."""
     kind, key, end = parameter_target(state, code, pos)
     if kind == "name":
-        value = (_position(state, *_POSITION_NAMES[key]) if key in _POSITION_NAMES
-                 else _get_named(state, key, pos))
+        if key == LINE_NUMBER:
+            value = float(state.where(state.line_no)[1])
+        elif key in _POSITION_NAMES:
+            value = _position(state, *_POSITION_NAMES[key])
+        else:
+            value = _get_named(state, key, pos)
     elif key in MACHINE_POSITION:
         value = _position(state, True, MACHINE_POSITION[key])
     elif key in WORK_POSITION:
@@ -75,9 +84,15 @@ def read_parameter(state: GCodeState, code: str, pos: int) -> tuple[float, int]:
 
 
 def _position(state: GCodeState, machine: bool, axis: int) -> float:
-    """The current position's ``axis`` (0, 1, 2: X Y Z), machine or work
-    coordinates, in the program's units in force (G20/G21), as LinuxCNC gives it."""
-    value = state.pos[axis] if machine else to_work(state, state.pos)[axis]
+    """The current position's ``axis`` (0 .. 8: X Y Z A B C U V W), machine or
+    work coordinates, in the program's units in force (G20/G21; A B C in
+    degrees), as LinuxCNC gives it."""
+    if axis < 3:
+        value = state.pos[axis] if machine else to_work(state, state.pos)[axis]
+    else:
+        value = (state.extra or [0.0] * 6)[axis - 3] if machine else extra_work(state)[axis - 3]
+        if axis < 6:
+            return float(value)                 # A B C: degrees, not lengths
     return float(value) / input_factor(state)
 
 
@@ -156,8 +171,9 @@ _INI_NAME = re.compile(r"_ini\[([^\]]*)\](.+)")
 
 
 def is_position_name(name: str) -> bool:
-    """Whether the (lower-case) parameter name is a position's (``_x``, ``_abs_x``, ...): read-only."""
-    return name in _POSITION_NAMES
+    """Whether the (lower-case) parameter name is a position's (``_x``,
+    ``_abs_x``, ...) or ``_line``: read-only."""
+    return name in _POSITION_NAMES or name == LINE_NUMBER
 
 
 def is_ini_name(name: str) -> bool:
@@ -200,17 +216,47 @@ def _ini_value(state: GCodeState, section: str, key: str, name: str, col: int) -
 _MESSAGE_PARAMETER = re.compile(r"#<[^>]*>|#\d+")
 
 
+#: LinuxCNC's TOLERANCE_EQUAL: a message shows a value this close to 0 as 0.
+_ZERO_IN_MESSAGES = 0.0001
+
+
 def message_text(state: GCodeState, text: str) -> str:
-    """A message comment's text (``(abort, ...)``) with each ``#<name>`` and ``#n``
-    replaced by its value as LinuxCNC prints it (``%f``), ``######`` where it
-    has none."""
-    def value(m: re.Match) -> str:
-        ref = m.group()
+    """A message comment's text (``(debug, ...)``, ``(print, ...)``,
+    ``(abort, ...)``) as LinuxCNC's ``convert_param_comment`` expands it: each
+    ``#<name>`` and ``#n`` replaced by its value (``%f``, six decimals; a value
+    within 1e-4 of 0 as 0), ``######`` where it has none; ``%d``, ``%f`` and
+    ``%.Nf`` set the format of the values that follow (none, 4 and N
+    decimals) and are not shown."""
+    out: list[str] = []
+    decimals = 6
+    i, n = 0, len(text)
+    while i < n:
+        c = text[i]
+        if c == "%":
+            nxt = text[i + 1:i + 2]
+            if nxt in ("d", "f"):
+                decimals, i = (0 if nxt == "d" else 4), i + 2
+            elif nxt == "." and text[i + 2:i + 3].isdigit() and text[i + 3:i + 4] == "f":
+                decimals, i = int(text[i + 2]), i + 4
+            elif nxt == ".":
+                out.append(".")                 # LinuxCNC drops the % here
+                i += 2
+            else:
+                out.append("%")
+                i += 1
+            continue
+        m = _MESSAGE_PARAMETER.match(text, i) if c == "#" else None
+        if m is None:
+            out.append(c)
+            i += 1
+            continue
         try:
-            return f"{read_parameter(state, ref, 0)[0]:f}"
+            value = read_parameter(state, m.group(), 0)[0]
+            out.append(f"{0.0 if abs(value) < _ZERO_IN_MESSAGES else value:.{decimals}f}")
         except ExprError:
-            return "######"
-    return _MESSAGE_PARAMETER.sub(value, text)
+            out.append("######")
+        i = m.end()
+    return "".join(out)
 
 
 def set_parameter(state: GCodeState, kind: str, key, value: float) -> None:

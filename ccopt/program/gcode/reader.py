@@ -18,11 +18,11 @@ from ccopt.program.gcode.execute import execute_words
 from ccopt.program.gcode.fanuc import exec_fanuc, runs_as_fanuc
 from ccopt.program.gcode.oword import exec_oword, innermost_loop, loop_lines_error
 from ccopt.program.gcode.parameters import (MAX_PARAMETER, attach_grammar, message_text,
-                                             set_parameter)
+                                             restore_after_call, set_parameter)
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import output_units
 from ccopt.program.gcode.words import Lexed, lex, olabel, program_span
-from ccopt.program.model import (INPUT_FILES, MESSAGES, PLANE_CHANGES_CHECKED,
+from ccopt.program.model import (ERRORS_PASSED, INPUT_FILES, MESSAGES, PLANE_CHANGES_CHECKED,
                                  START_PARAMETERS, TRAILING_WORDS, Program)
 from ccopt.program.tooltable import ToolTable
 
@@ -146,14 +146,35 @@ def _run_lines(state: GCodeState) -> None:
                 if lx.first is not None:
                     _exec_line(state, lx)
                 pc += 1
-        except ExprError as exc:
-            raise state.error(exc.message, exc.col) from None
+        except (ExprError, ProgramError) as exc:
+            err = state.error(exc.message, exc.col) if isinstance(exc, ExprError) else exc
+            if not state.keep_going:
+                raise err from None
+            pc = _go_on_after(state, pc, err)
         except RecursionError:
             raise state.error("expression or parameter reference nested too deeply") from None
 
 
 #: ``#5599``: LinuxCNC shows ``(debug, ...)`` messages while it is > 0 (1 at start).
 DEBUG_MESSAGES = 5599
+
+
+def _go_on_after(state: GCodeState, pc: int, err: ProgramError) -> int:
+    """LinuxCNC's ``rs274 -n 0``: the error ``err`` met at line ``pc`` is
+    recorded (``Program.meta[ERRORS_PASSED]``, located) and reading goes on:
+    the subroutine calls in progress unwound (``Interp::unwind_call``: each
+    caller's ``#1``-``#30`` given back, except over an ``M98``) to the line
+    after the outermost call, or else at the next line."""
+    state.meta.setdefault(ERRORS_PASSED, []).append(str(err))
+    if len(state.frames) == 1:
+        return pc + 1
+    for frame in reversed(state.frames[1:]):
+        if not frame.fanuc:
+            restore_after_call(state, frame, None)
+    pc = state.frames[1].return_pc
+    del state.frames[1:]
+    state.in_loop = innermost_loop(state) is not None
+    return pc
 
 
 def _message(state: GCodeState, kind: str, text: str) -> None:

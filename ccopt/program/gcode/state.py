@@ -106,6 +106,8 @@ class GCodeState:
     #: ``G96``: ``[radius x rpm product, maximum rpm or None]`` in output
     #: units (spindle.py); ``None`` under ``G97``, the start-up mode.
     css: list | None = None
+    #: LinuxCNC's ``rs274 -n 0``: go on after an error (reader._go_on_after).
+    keep_going: bool = False
 
     def __init__(self, text: str, file: str, tool_table: dict[int, float] | None,
                  start: tuple[float, float, float], *,
