@@ -79,10 +79,10 @@ def largest_radius(state: GCodeState, start, end, center=None) -> float:
     if center is not None:
         c = to_work(state, center)
         far = max(far, abs(c[0]) + math.dist(start, center))
-    notes = state.meta.setdefault(NOTES, [])
+    notes = state.meta.get(NOTES, ())
     if state.css is not None and far != min(xa, xb) and not any(_BOUND in n for n in notes):
         file, line = state.where(state.line_no)
-        notes.append(
+        state.meta.setdefault(NOTES, []).append(
             f"{file}:{line}: {_BOUND}: a move that changes its radius is fed at the "
             "spindle speed of its largest radius (the slowest), so its time is an upper "
             "bound")
