@@ -373,7 +373,7 @@ def _export_program(res: ExportResult, path: ToolPath, out: Path, program: Progr
     if res.format == "gcode" and program is not None and program.dialect == "gcode":
         header.append("kept from the program: tool, spindle, coolant and other machine words, "
                       "its work coordinates and G54-G59.3, its program end; canned cycles and "
-                      "subroutines written as their moves")
+                      "subroutines written as their moves, threads as G33 K")
     job = _ProgramExport(path, res.format, res.tolerance, out, program, header)
     seg_tol: dict[int, float] = {}
     moves, roundtrip, cert = job.attempt(seg_tol)

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 
+from ccopt.errors import ProgramError
 from ccopt.export.arcfit import fit_arcs, fit_bezier, fit_located, fit_tolerance
 from ccopt.export.machine import MachineWords, machine_prefix, written_frame, written_offset
 from ccopt.export.text import gcode_comment
@@ -100,6 +101,11 @@ class _Writer:
             self.move(idx, f"{self.prefix}G1 {self.coords(g.end, w1)}{self.feed_word(feed)}", g,
                       bound)
 
+    def synchronised(self, idx: int, g: Line, w1: float, per_rev: float) -> None:
+        """A move synchronised to the spindle: ``G33 ... K`` (per revolution
+        along the path, as the reader takes it; F stays as it was)."""
+        self.move(idx, f"{self.prefix}G33 {self.coords(g.end, w1)} K{fmt(per_rev, 9)}", g)
+
     def arc(self, idx: int, arc: Arc, w0: float, w1: float, feed, bound: float = 0.0) -> None:
         s, e = arc.start, arc.end
         word = "G3" if arc.sweep > 0 else "G2"
@@ -113,6 +119,27 @@ class _Writer:
         p = f" P{turns + 1}" if turns else ""
         self.move(idx, f"{word} {self.coords(e, w1)} {self.ci}{fmt(i, self.digits)} "
                        f"{self.cj}{fmt(j, self.digits)}{p}{self.feed_word(feed)}", arc, bound)
+
+
+def synchronised_pitch(seg) -> float | None:
+    """The units per spindle revolution of a segment made by a spindle-
+    synchronised block (``G33``, ``G76``'s cuts), or None; refused, located,
+    where the export cannot keep the synchronisation: a rigid tap (``G33.1``,
+    whose way back reverses the spindle) and a curve (G33 moves straight)."""
+    block = seg.block
+    per_rev = block.per_revolution if block is not None else None
+    if per_rev is None:
+        return None
+    s = block.source
+    if block.cycle == "G33.1":
+        raise ProgramError("rigid tapping (G33.1) is not exported yet: its way back reverses "
+                           "the spindle, which a G33 cannot say; nothing written",
+                           s.file, s.line, s.col)
+    if not isinstance(seg.geom, Line):
+        raise ProgramError("a spindle-synchronised move made a curve of the tool path (a "
+                           "compensation corner?): G33 moves straight; nothing written",
+                           s.file, s.line, s.col)
+    return per_rev
 
 
 def bezier_pieces(g: BezierCurve, w0: float, w1: float, tol: float):
@@ -139,7 +166,10 @@ def _write_segment(wr: _Writer, idx: int, seg, tol: float) -> float:
     ``tol``); the largest fitting error."""
     g = seg.geom
     max_err = 0.0
-    if isinstance(g, Line):
+    per_rev = synchronised_pitch(seg)
+    if per_rev is not None:
+        wr.synchronised(idx, g, seg.w1, per_rev)
+    elif isinstance(g, Line):
         wr.line(idx, g, seg.w1, seg.feed)
     elif isinstance(g, Arc):
         wr.arc(idx, g, seg.w0, seg.w1, seg.feed)

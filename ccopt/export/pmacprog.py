@@ -13,6 +13,7 @@ segment is written in its own plane: ``NORMAL K-1`` (XY), ``J-1`` (ZX) or
 """
 from __future__ import annotations
 
+from ccopt.errors import ProgramError
 from ccopt.export.arcfit import DEFAULT_TOL, fit_located, fit_tolerance
 from ccopt.export.gcode import bezier_pieces, fmt
 from ccopt.export.text import pmac_comment
@@ -54,6 +55,19 @@ def _pieces(g):
         return [g]
     a, b = g.split(g.length / 2)
     return _pieces(a) + _pieces(b)
+
+
+def _not_synchronised(seg) -> None:
+    """A spindle-synchronised move (``G33``, ``G33.1``, ``G76``) is refused,
+    located: PMAC synchronises through an external time base that its motion
+    program does not hold."""
+    block = seg.block
+    if block is not None and block.per_revolution is not None:
+        s = block.source
+        raise ProgramError("a spindle-synchronised move (G33, G33.1, G76) cannot be written "
+                           "as a PMAC motion program (PMAC synchronises through an external "
+                           "time base its program does not hold); export G-code; nothing "
+                           "written", s.file, s.line, s.col)
 
 
 def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
@@ -111,6 +125,7 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
             lines.append(NORMAL[seg.plane])
             axes.set_plane(seg.plane)
         g = seg.geom
+        _not_synchronised(seg)
         if isinstance(g, Line):
             emit(idx, "RAPID" if seg.feed is None else "LINEAR", coords(g.end, seg.w1), seg.feed, g)
         elif isinstance(g, (Arc, Spiral)):

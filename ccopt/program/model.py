@@ -340,6 +340,10 @@ class Block:
         C, program units for U V W), ``None`` while the program has moved none
         of them: carried for exports, not part of the path
         (:mod:`ccopt.program.gcode.axes`).
+    per_revolution: for a move synchronised to the spindle (``G33``, ``G33.1``,
+        ``G76``'s cuts), the program units it advances along the path per
+        spindle revolution (its ``feed`` is that times the speed in force);
+        ``None`` for any other move. An export writes it back (``G33 K``).
     """
 
     source: Source
@@ -358,6 +362,7 @@ class Block:
     words: tuple[str, ...] = ()
     frame: Frame | None = None
     axes: tuple[float, ...] | None = None
+    per_revolution: float | None = None
 
     # -- plane helpers -------------------------------------------------
     def uvw(self, p: Vec3) -> tuple[float, float, float]:

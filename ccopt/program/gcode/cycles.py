@@ -401,6 +401,6 @@ def rigid_tap(state: GCodeState, L: dict, mcodes: tuple, src: Source, gcol: int,
     start = state.pos
     for a, b in ((start, end), (end, start)):
         emit(state, Block(src, Motion.LINE, a, b, state.modal(), feed=feed, mcodes=mcodes,
-                          cycle="G33.1"))
+                          cycle="G33.1", per_revolution=L["K"][0]))
         mcodes = ()
     state.moved = True

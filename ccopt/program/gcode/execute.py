@@ -451,7 +451,8 @@ def _move(state: GCodeState, motion: int, L: dict, mcodes: tuple, first_col: int
         block = Block(src, Motion.RAPID, cur, end_t, state.modal(), mcodes=mcodes)
     elif motion == SYNCHRONISED:
         block = Block(src, Motion.LINE, cur, end_t, state.modal(),
-                      feed=_synchronised_feed(state, L, cur, end_t, gcol), mcodes=mcodes)
+                      feed=_synchronised_feed(state, L, cur, end_t, gcol), mcodes=mcodes,
+                      per_revolution=L["K"][0])
     elif motion == 10 or is_modal_arc_without_plane_motion(state, L, cur, end_t):
         feed = _feed(state, L, math.dist(cur, end_t), gcol, cur, end_t)
         block = Block(src, Motion.LINE, cur, end_t, state.modal(), feed=feed, mcodes=mcodes)

@@ -33,10 +33,14 @@ import math
 from ccopt.program.gcode.coordinates import to_machine, to_work
 from ccopt.program.gcode.spindle import per_revolution
 from ccopt.program.gcode.state import GCodeState
+from ccopt.program.gcode.words import fmt
 from ccopt.program.model import Block, Motion, Source
 
 #: ``G76`` in tenths.
 THREADING = 760
+#: Most passes a ``G76`` may cut below its full depth before ccopt refuses it
+#: (LinuxCNC has no bound; reading stays bounded in time and memory).
+MAX_PASSES = 10_000
 #: Words of a rotary or parallel axis, which ``G76`` may not move.
 _OTHER_AXES = "ABCUVW"
 
@@ -73,6 +77,12 @@ def threading_cycle(state: GCodeState, L: dict, mcodes: tuple, src: Source, gcol
     target_z = end_w[2] + full_height * math.tan(angle)
     out = _Passes(state, src, mcodes, emit, boring, x0, y0, z0, end_depth, full_height,
                   target_z, taper, bool(flags & 1), bool(flags & 2), pitch, taper_pitch, gcol)
+    # passes below full depth: n >= 1 with J * n**(1/R) < K, n < (K/J)**R
+    passes = (full_height / cut_increment) ** degression
+    if passes > MAX_PASSES:
+        raise state.error(f"G76 would cut about {passes:.3g} passes (J {fmt(cut_increment)}, "
+                          f"K {fmt(full_height)}, R {fmt(degression)}: (K/J)**R), more than "
+                          f"{MAX_PASSES}, ccopt's bound (LinuxCNC has none)", gcol)
     depth, n = full_dia_depth + cut_increment, 1
     while depth < end_depth:
         out.cut(depth, (depth - full_dia_depth) * math.tan(angle))
@@ -132,10 +142,12 @@ class _Passes:
     def _x(self, depth: float) -> float:
         return self.safe_x + self.sign * depth
 
-    def _block(self, motion: Motion, x: float, y: float, z: float, feed=None) -> None:
+    def _block(self, motion: Motion, x: float, y: float, z: float, feed=None,
+               per_rev=None) -> None:
         end = to_machine(self.state, (x, y, z))
         self.emit(self.state, Block(self.src, motion, self.state.pos, end, self.state.modal(),
-                                    feed=feed, mcodes=self.mcodes, cycle="G76"))
+                                    feed=feed, mcodes=self.mcodes, cycle="G76",
+                                    per_revolution=per_rev))
         self.mcodes = ()
         self.state.pos = end
 
@@ -146,7 +158,7 @@ class _Passes:
         """A cut to ``(x, z)`` at ``per_rev`` units per spindle revolution."""
         end = to_machine(self.state, (x, self.y, z))
         feed = per_revolution(self.state, per_rev, self.state.pos, end, self.gcol)
-        self._block(Motion.LINE, x, self.y, z, feed)
+        self._block(Motion.LINE, x, self.y, z, feed, per_rev)
 
     def cut(self, depth: float, zoff: float) -> None:
         """One pass at ``depth`` (from the drive line), the start shifted by
