@@ -61,3 +61,9 @@ def test_refusals_are_located(text, line, message):
     with pytest.raises(ProgramError) as err:
         blocks(text)
     assert message in str(err.value) and err.value.line == line
+
+
+def test_a_facing_move_across_the_axis_is_noted_as_a_bound():
+    # X50 to X-50 passes radius 0: the speed varies along it (found by generation)
+    _, notes = blocks("G96 S100 D2000 M3\nG95 F0.1\nG0 X50 Z0\nG1 X-50\nM2\n")
+    assert len(notes) == 1 and notes[0].startswith("s.ngc:5: G96")

@@ -68,8 +68,6 @@ def css_programs(draw):
             lines.append(word)
             continue
         x1 = draw(x_word) if "X" in step else x
-        if x1 == -x != 0.0:
-            continue        # left out: across the axis to -X ccopt notes no bound (a bug)
         z = z - draw(_milli(1, 20000)) if "Z" in step else z
         lines.append("G1" + (f" X{x1}" if "X" in step else "") + (f" Z{z}" if "Z" in step else ""))
         moves.append((mode, x, x1, len(lines)))

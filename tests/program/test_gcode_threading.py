@@ -122,3 +122,16 @@ def test_g33_refusals_are_located(line, col, message):
     with pytest.raises(ProgramError) as err:
         passes(line + "\n")
     assert message in str(err.value) and err.value.col == col
+
+
+def test_g76_degression_is_a_number_whatever_the_units_and_passes_are_bounded():
+    # R is no length: after a G21 -> G20 switch, J0.01 K0.05 R2 still cuts the
+    # n >= 1 with 0.01 * sqrt(n) < 0.05, n = 1..24, then the full depth once
+    prog = read_gcode("G18 G21\nS600 M3\nG0 X10 Z2\nG20\n"
+                      "G76 P0.1 Z-1 I-0.04 J0.01 K0.05 R2\nM2\n", "t.ngc")
+    cuts = [b for b in prog.blocks if b.per_revolution is not None]
+    assert len(cuts) == 24 + 1
+    # (K/J)**R = 10**12 passes: refused, located, in bounded time
+    with pytest.raises(ProgramError, match="G76 would cut about 1e[+]12 passes") as err:
+        passes("G76 P1 Z-10 I-1 J0.1 K1 R12\n")
+    assert (err.value.line, err.value.col) == (4, 1)

@@ -8,8 +8,8 @@ outwards for a bore). Pass n (n >= 1) cuts to ``|I| + J * n**(1/R)`` while
 that is below the full depth ``|I| + K``, then the full depth is cut H + 1
 times. Feeds are synchronised: ``P * S / 60`` along Z, the taper pitch
 ``P * hypot(E, K) / E`` along a taper. Lengths are in the program's first
-unit; a G20/G21 switch before the cycle scales its lengths P I J K E (such
-programs leave R out: ccopt scales R, a plain number, as a length there).
+unit; a G20/G21 switch before the cycle scales its lengths P I J K E, not
+the degression R (a plain number).
 """
 from __future__ import annotations
 
@@ -46,9 +46,6 @@ def g76_lines(draw):
          "J": max(0.001, round(k * draw(st.floats(0.1, 0.95)), 3)), "K": k,
          "R": draw(_milli(1000, 3000)), "Q": draw(_milli(0, 45000)),
          "H": draw(st.integers(0, 3)), "E": draw(_milli(0, 4000)), "L": draw(st.integers(0, 3))}
-    if units[0] != units[1]:
-        # left out: ccopt scales the degression R like a length here (a bug)
-        del w["R"]
     x0, z0 = draw(_milli(5000, 30000)), draw(_milli(-5000, 5000))
     z1 = z0 + draw(_milli(2000, 40000)) * draw(st.sampled_from([-1, 1]))
     s = draw(st.integers(50, 3000))

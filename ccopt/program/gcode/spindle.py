@@ -74,13 +74,15 @@ def largest_radius(state: GCodeState, start, end, center=None) -> float:
     """The largest distance from the spindle axis (work ``|X|``) along the move
     from ``start`` to ``end`` (machine points); an arc about ``center`` is
     bounded by its centre's distance plus its radius."""
-    xa, xb = abs(to_work(state, start)[0]), abs(to_work(state, end)[0])
-    far = max(xa, xb)
+    xa, xb = to_work(state, start)[0], to_work(state, end)[0]
+    far = max(abs(xa), abs(xb))
+    near = 0.0 if xa * xb < 0.0 else min(abs(xa), abs(xb))    # a move across the axis
     if center is not None:
         c = to_work(state, center)
         far = max(far, abs(c[0]) + math.dist(start, center))
+        near = -1.0                                           # an arc: its radius varies
     notes = state.meta.get(NOTES, ())
-    if state.css is not None and far != min(xa, xb) and not any(_BOUND in n for n in notes):
+    if state.css is not None and far != near and not any(_BOUND in n for n in notes):
         file, line = state.where(state.line_no)
         state.meta.setdefault(NOTES, []).append(
             f"{file}:{line}: {_BOUND}: a move that changes its radius is fed at the "

@@ -54,15 +54,16 @@ def scale_lengths(state: GCodeState, L: dict, gcodes: dict) -> dict:
     letters = _LENGTH_LETTERS
     setting = gcodes.get("axis_setting")
     tool_data = "L" in L and L["L"][0] in (1, 10, 11)
-    if not (setting and setting[0] == 100) or tool_data:
-        letters += "R"                      # G10 L2's R is a rotation in degrees
+    motion = gcodes.get("motion")
+    mode = motion[0] if motion else state.motion_mode
+    if (not (setting and setting[0] == 100) or tool_data) and mode != 760:
+        letters += "R"          # G10 L2's R is a rotation in degrees, G76's a degression
     comp = gcodes.get("comp")
     if comp and comp[0] in (411, 421):      # G41.1/G42.1 D is a diameter
         letters += "D"
-    motion = gcodes.get("motion")
-    if (motion[0] if motion else state.motion_mode) in (730, 830):
+    if mode in (730, 830):
         letters += "QD"                     # G73/G83 peck depth and clearance
-    if (motion[0] if motion else state.motion_mode) == 760:
+    if mode == 760:
         letters += "PE"                     # G76 pitch and taper length
     for letter in letters:
         if letter in scaled:
