@@ -50,7 +50,7 @@ from ccopt.program.gcode.codes import classify, read_words
 from ccopt.program.gcode.coordinates import check_unrotated_plane, to_machine, to_work
 from ccopt.program.gcode.g7x_contour import Chamfer, Fillet, G7xError, Round, Segment, Straight
 from ccopt.program.gcode.g7x_path import Budget, Profile
-from ccopt.program.gcode.oword import enter_sub, exec_oword, innermost_loop, loop_lines_error
+from ccopt.program.gcode.oword import count_line, enter_sub, exec_oword, innermost_loop
 from ccopt.program.gcode.parameters import set_parameter
 from ccopt.program.gcode.spindle import per_revolution
 from ccopt.program.gcode.state import GCodeState
@@ -297,15 +297,7 @@ def _count_line(state: GCodeState, pc: int) -> None:
     """The runaway guards of the reader's line loop, for line ``pc``."""
     if pc >= len(state.lines):
         raise state.error("the contour's subroutine runs past the end of the text")
-    state.line_no = pc
-    state.executed += 1
-    if state.executed > state.max_executed_lines:
-        raise state.error(f"more than {state.max_executed_lines} lines executed: endless "
-                          "loop or runaway recursion? check the loop conditions")
-    if state.in_loop:
-        state.loop_lines += 1
-        if state.loop_lines > state.max_loop_lines:
-            raise loop_lines_error(state)
+    count_line(state, pc)
 
 
 class _Contour:

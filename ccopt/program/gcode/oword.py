@@ -465,6 +465,21 @@ def innermost_loop(state: GCodeState) -> Ctrl | None:
     return None
 
 
+def count_line(state: GCodeState, pc: int) -> None:
+    """Line ``pc`` is about to execute: the runaway guards (every executed line
+    against ``max_executed_lines``, a line inside a loop against the loops'
+    line budget), for the reader's line loop and the lathe cycles' contour."""
+    state.line_no = pc
+    state.executed += 1
+    if state.executed > state.max_executed_lines:
+        raise state.error(f"more than {state.max_executed_lines} lines executed: endless "
+                          "loop or runaway recursion? check the loop conditions")
+    if state.in_loop:
+        state.loop_lines += 1
+        if state.loop_lines > state.max_loop_lines:
+            raise loop_lines_error(state)
+
+
 def loop_lines_error(state: GCodeState):
     """The error when the loops executed more than their line budget,
     located at the innermost open loop's first line."""

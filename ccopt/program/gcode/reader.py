@@ -16,7 +16,7 @@ from ccopt.program.gcode.codes import read_words
 from ccopt.program.gcode.coordinates import init_coordinates
 from ccopt.program.gcode.execute import execute_words
 from ccopt.program.gcode.fanuc import exec_fanuc, runs_as_fanuc
-from ccopt.program.gcode.oword import exec_oword, innermost_loop, loop_lines_error
+from ccopt.program.gcode.oword import count_line, exec_oword, innermost_loop
 from ccopt.program.gcode.parameters import (MAX_PARAMETER, attach_grammar, message_text,
                                              restore_after_call, set_parameter)
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
@@ -119,15 +119,7 @@ def _run_lines(state: GCodeState) -> None:
     # the program's lines, or a sub file's while a call runs there
     while (pc < state.end_line and not state.in_sub_file(pc)) or (
             len(state.frames) > 1 and state.in_sub_file(pc)):
-        state.line_no = pc
-        state.executed += 1
-        if state.executed > state.max_executed_lines:
-            raise state.error(f"more than {state.max_executed_lines} lines executed: endless "
-                              "loop or runaway recursion? check the loop conditions")
-        if state.in_loop:
-            state.loop_lines += 1
-            if state.loop_lines > state.max_loop_lines:
-                raise loop_lines_error(state)
+        count_line(state, pc)
         try:
             lx = lex(state, pc)
             if lx.oword is not None:
