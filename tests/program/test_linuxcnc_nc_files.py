@@ -10,6 +10,7 @@ import math
 
 import pytest
 
+import ccopt
 from ccopt.compensate import compensate
 from ccopt.errors import ProgramError
 from ccopt.feed import AxisLimits, plan_feed
@@ -79,6 +80,18 @@ def test_lathe_samples_compensate_with_the_lathe_tool_table(name, radius):
     path = compensate(prog, style="linuxcnc")
     assert path.radius == pytest.approx(radius) and {s.plane for s in path.segments} == {"ZX"}
     _timed(prog)
+
+
+def test_g70_finishing_passes_verify_against_the_last_pass_only():
+    # G70 ... D0.5 P2: the first pass runs 0.25 off the contour, the last on it;
+    # only the last is the part's surface, the first is marked air (what the
+    # last removes), so the compensated finish verifies
+    prog = _read("lathe_g70_71_demo.ngc", "lathe.ini")
+    g70 = [b for b in prog.blocks if b.cycle == "G70"]
+    assert {b.surface for b in g70} == {"air", None}
+    assert g70[-1].surface is None
+    cert = ccopt.verify(compensate(prog, style="linuxcnc"), prog)
+    assert cert.ok
 
 
 def test_g76_sample_is_refused_where_its_compensated_facing_enters():

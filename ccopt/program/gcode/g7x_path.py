@@ -157,6 +157,9 @@ class Profile:
         swapped = self.motion(out)
         for n in range(passes, 0, -1):
             distance = (n - 1) * (d - e) / passes + e
+            # only the last pass cuts the part's surface; the ones before are
+            # off it by what the next passes remove (the verifier's air)
+            out.surface = "air" if n > 1 else None
             paths = self.copy()
             paths.add_distance(distance)
             swapped.straight_rapid(paths.segs[0].start, comp_off=True)

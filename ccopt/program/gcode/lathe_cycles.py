@@ -182,6 +182,7 @@ class _Emitter:
         self.at: complex | None = None   # where the tool is, z + x*1j
         self.mode: int | None = 0        # the motion mode the moves leave
         self.moves = 0
+        self.surface: str | None = None   # Block.surface of the moves (G70's early passes)
 
     def _machine(self, p: complex) -> tuple[float, float, float]:
         return to_machine(self.state, (p.imag, self.y, p.real))
@@ -199,7 +200,7 @@ class _Emitter:
                               self.gcol)
         target = self._machine(end)
         self.emit(state, Block(self.src, motion, state.pos, target, modal, mcodes=self.mcodes,
-                               cycle=self.name, **kw))
+                               cycle=self.name, surface=self.surface, **kw))
         self.mcodes = ()
         state.pos = target
         state.moved = True
