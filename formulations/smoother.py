@@ -456,7 +456,9 @@ def smooth(problem: BlendProblem, delta: float | None = None, solver: str = "CLA
     t0 = time.perf_counter()
     delta = float(problem.band if delta is None else delta)
     if not delta > 0:
-        raise BlendRejected(f"delta must be > 0, got {delta!r}")
+        why = (" (the default band is 1 % of the cutter radius, and the radius is 0: give "
+               "--delta)" if problem.delta is None else "")
+        raise BlendRejected(f"delta must be > 0, got {delta!r}{why}")
     sm = Smoother(problem, delta, solver)
     joins = find_joins(sm.path)
     for jn in joins:
