@@ -56,6 +56,7 @@ import numpy as np
 from ccopt.errors import ProgramError
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
+from ccopt.program.model import MAX_PROGRAM_COORDINATE
 from ccopt.geometry.curve import (
     bernstein,
     cross_bernstein,
@@ -98,6 +99,13 @@ _COLLINEAR_REL = 1e-14
 #: A chord whose distance from the tangent line is at most this fraction of its
 #: length lies along the tangent: no tangent circle through both ends.
 _CHORD_ALONG_TANGENT_REL = 1e-12
+
+#: Largest radius of a fitted arc, program units: a tenth of the reader's
+#: coordinate bound, so that the written centre words (I, J, or a CIRCLE's
+#: centre) read back, and the arc's ends ``c + R (cos, sin)`` stay within
+#: ``R * eps`` ~ 2e-11 of the curve's. A piece that only a flatter arc fits is
+#: halved (its halves become lines or arcs).
+MAX_ARC_RADIUS = MAX_PROGRAM_COORDINATE / 10.0
 
 #: Angular slack (radians) when testing that a sample's polar angle lies in an
 #: arc's sweep: the ends themselves come back from atan2 a few ulps off.
@@ -319,6 +327,8 @@ def _arc_piece(Q: np.ndarray, D1: np.ndarray, D2: np.ndarray, kappa: float,
         if circ is None:
             return None
         c, R, ccw = circ
+    if R > MAX_ARC_RADIUS:
+        return None                      # numerically a line (module docstring)
     sg = 1.0 if ccw else -1.0
     turn = cross_bernstein(D1, D2) * sg
     if turn.min() < -_SIGN_SLACK * max(float(np.abs(turn).max()), _SCALE_FLOOR):

@@ -257,6 +257,24 @@ def test_tolerance_in_inches_is_the_mm_default(tmp_path):
     assert "G20" in (tmp_path / "in.nc").read_text()
 
 
+def test_a_nearly_straight_piece_is_never_a_huge_arc():
+    """Found by the property below (random profile): a curve running down and
+    back along x = 0 was fitted with an arc of radius 1.86e6, whose end came
+    back 1.04e-9 off the curve and whose centre words would be beyond the
+    reader's coordinate bound. Arcs stay within MAX_ARC_RADIUS; the pieces
+    still end on the curve and stay within their bounds."""
+    from ccopt.export.arcfit import MAX_ARC_RADIUS
+    ctrl = np.array([(0.0, 12.75), (0.0, 0.0), (0.0, 2.0), (6.103515625e-05, 0.0)])
+    pieces = fit_bezier(BezierCurve(ctrl), 0.01)
+    for p in pieces:
+        ends = bezier_points(ctrl, [p.t0, p.t1])
+        assert math.dist(p.geom.start, ends[0]) <= 1e-9
+        assert math.dist(p.geom.end, ends[1]) <= 1e-9
+        assert getattr(p.geom, "radius", 0.0) <= MAX_ARC_RADIUS and p.bound <= 0.01
+        q = bezier_points(ctrl, np.linspace(p.t0, p.t1, 2001))
+        assert distance_to(q, p.geom).max() <= p.bound * (1 + 1e-9) + 1e-10
+
+
 regular_curves = st.integers(min_value=2, max_value=6).flatmap(
     lambda n: st.lists(st.tuples(st.floats(-20, 20), st.floats(-20, 20)),
                        min_size=n + 1, max_size=n + 1))
