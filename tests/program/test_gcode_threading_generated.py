@@ -75,10 +75,14 @@ def _check_g76(case) -> None:
     feeds = [b for b in blocks if b.motion is Motion.LINE]
     cuts = [b for b in feeds if b.start[0] == b.end[0]]
     depths = [sign * (b.end[0] - w["X0"]) for b in cuts]
-    below = [d for d in depths if d < full - EPS]
-    assert depths[:len(below)] == below and all(a < b for a, b in zip(below, below[1:])), text
-    assert len(below) == _planned_cuts(w), text
-    assert depths[len(below):] == pytest.approx([full] * (w["H"] + 1), abs=EPS), text
+    # counted, not told apart by depth: a planned pass may end within rounding
+    # of the full depth (J0.093 K0.93 R1: the tenth cuts to 0.98, full 0.98 + 1 ulp)
+    planned = _planned_cuts(w)
+    assert len(depths) == planned + w["H"] + 1, text
+    below = depths[:planned]
+    assert all(a < b for a, b in zip(below, below[1:])), text
+    assert all(d < full + EPS for d in below), text
+    assert depths[planned:] == pytest.approx([full] * (w["H"] + 1), abs=EPS), text
     for b in feeds:
         for p in (b.start, b.end):
             assert sign * (p[0] - w["X0"]) <= full + EPS, text
