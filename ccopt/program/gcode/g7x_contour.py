@@ -195,15 +195,24 @@ class Straight(Segment):
         """An arc ``p`` followed by this line."""
         if abs(self.start - p.end) < TOLERANCE:
             return
-        rot = div(self.start.conjugate() - self.end.conjugate(), abs(self.start - self.end))
-        pe = (p.end - self.end) * rot
-        pc = (p.center - self.end) * rot
-        b = norm(pc - pe) - pc.imag * pc.imag
-        b = 0.0 if b < 0 else math.sqrt(b)
-        s1 = div(complex(pc.real + b), rot) + self.end
-        s2 = div(complex(pc.real - b), rot) + self.end
-        point = s1 if abs(self.start - s1) < abs(self.start - s2) else s2
-        self.start = p.end = point
+        self.start = p.end = _line_meets_circle(self.start, self.end, p.end, p.center,
+                                                self.start)
+
+
+def _line_meets_circle(a: complex, b: complex, on_circle: complex, center: complex,
+                       near: complex) -> complex:
+    """Where the line through ``a`` and ``b`` meets the circle about ``center``
+    through ``on_circle``, the crossing nearer ``near`` (LinuxCNC's
+    ``intersect_end`` of a line and an arc, in the frame of the line at ``b``;
+    a line that misses the circle gives its closest point)."""
+    rot = div(a.conjugate() - b.conjugate(), abs(a - b))
+    pe = (on_circle - b) * rot
+    pc = (center - b) * rot
+    disc = norm(pc - pe) - pc.imag * pc.imag
+    root = 0.0 if disc < 0 else math.sqrt(disc)
+    s1 = div(complex(pc.real + root), rot) + b
+    s2 = div(complex(pc.real - root), rot) + b
+    return s1 if abs(near - s1) < abs(near - s2) else s2
 
 
 class Round(Segment):
@@ -351,15 +360,8 @@ class Round(Segment):
             return
         if abs(self.start - p.end) < TOLERANCE:
             return
-        rot = div(p.start.conjugate() - p.end.conjugate(), abs(p.start - p.end))
-        pe = (self.end - p.end) * rot
-        pc = (self.center - p.end) * rot
-        b = norm(pc - pe) - pc.imag * pc.imag
-        b = 0.0 if b < 0 else math.sqrt(b)
-        s1 = div(complex(pc.real + b), rot) + p.end
-        s2 = div(complex(pc.real - b), rot) + p.end
-        point = s1 if abs(self.start - s1) < abs(self.start - s2) else s2
-        self.start = p.end = point
+        self.start = p.end = _line_meets_circle(p.start, p.end, self.end, self.center,
+                                                self.start)
 
     def _after_arc(self, p: "Round") -> None:
         """Two arcs: the crossing of their circles by the law of cosines."""
