@@ -21,7 +21,8 @@ from ccopt.program.gcode.cycles import (CYCLE_CODES, P_CYCLES, PECK_CYCLES, RIGI
 from ccopt.program.gcode.coordinates import (check_unrotated_plane, rotation, select_origin,
                                              set_axis_offset, set_origin, to_machine, to_work,
                                              work_offset)
-from ccopt.program.gcode.lathe_cycles import LATHE_CYCLES, ROUGHING, run_lathe_cycle
+from ccopt.program.gcode.lathe_cycles import (FINISHING, LATHE_CYCLES, ROUGHING,
+                                              run_lathe_cycle)
 from ccopt.program.gcode.machine_words import (END_CODES, frame_of, record_after_motion,
                                                record_line, with_words)
 from ccopt.program.gcode.setup import go_home, is_tool_setup, save_home, set_tool_data
@@ -161,7 +162,7 @@ DYNAMIC_TOOL_LENGTH = 431
 #: Motions taking the E word (LinuxCNC ``check_other_codes``): G70 (finishing
 #: pass) and G76 (threading), in tenths. M66-M68 take it too; ccopt has no
 #: analog I/O.
-E_CYCLES = frozenset({700, 760})
+E_CYCLES = frozenset({FINISHING, THREADING})
 
 #: ``M19``, spindle orientation: it takes ``R`` (angle), ``Q`` (timeout) and
 #: ``P`` (direction), which move nothing (LinuxCNC ``check_other_codes``).
@@ -202,7 +203,7 @@ def _check_word_usage(state: GCodeState, gc: dict, L: dict, motion: int | None,
         raise state.error("E word with no G70 or G76 to use it", L["E"][1])
     dwell = gc.get("dwell")
     if "P" in L and not (is_arc or dwell or g10 or blend or orient or thread
-                         or motion in P_CYCLES or motion == 700):
+                         or motion in P_CYCLES or motion == FINISHING):
         raise state.error("P word with no G2, G3, G4, G10, G64, G74, G82, G84, G86, G89 or "
                           "M19 to use it", L["P"][1])
     lathe = comp is not None and comp[0] in (411, 421)
