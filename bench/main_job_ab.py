@@ -64,9 +64,12 @@ def cases_of(pythonpath: Path) -> list[str]:
 
 
 def variants_of(pythonpath: Path) -> list[str]:
-    """The variant names ``ccopt compare`` runs by default in that tree."""
-    return ask(pythonpath, "from ccopt.compare.registry import available; "
-                           "print(','.join(available()))").split(",")
+    """The variant names ``ccopt run`` runs by default in that tree (its
+    ``main_job_variants`` where it has one, else every variant, as ``run``
+    did before the lead families went on demand)."""
+    return ask(pythonpath, "import ccopt.compare.registry as r\n"
+                           "names = r.main_job_variants() if hasattr(r, 'main_job_variants') "
+                           "else r.available()\nprint(','.join(names))").split(",")
 
 
 def start(pythonpath: Path, out: Path, extra: list[str]) -> subprocess.Popen:
