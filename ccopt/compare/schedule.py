@@ -66,10 +66,11 @@ def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress):
     times = ref.times()
     yield from reference_row(times)
     timed: list[tuple[ToolPath, tuple]] = []
+    measured: dict = {}    # id(problem) -> its rows: a path two variants leave is measured once
     for i, name, problem in jobs:
         say(progress, f"variant {i + 1}/{total} {name}")
         local = problem if progress is None else replace(problem, progress=progress)
-        row = solve(name, local)
+        row = solve(name, local, measured.setdefault(id(problem), []))
         if gets_cycle_time(row):
             got = _of_path(timed, row.toolpath)
             if got is None:

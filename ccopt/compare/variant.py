@@ -19,7 +19,7 @@ from ccopt.compare.leads import lead_joins
 from ccopt.compare.registry import load
 from ccopt.compare.timing import StretchTimes, duration_figures
 from ccopt.errors import CcoptError
-from ccopt.toolpath import ToolPath
+from ccopt.toolpath import FITTED_PIECES, STRAIGHT_JOINS, ToolPath
 
 #: Figures every listed variant has (``None`` when it has no tool path).
 FIGURES = ("length", "max_curvature", "max_curvature_jump", "continuity", "path_continuity",
@@ -131,10 +131,16 @@ def with_duration(row: VariantResult, duration) -> VariantResult:
     return row
 
 
-def solve(name: str, problem: BlendProblem) -> VariantResult:
+def solve(name: str, problem: BlendProblem, measured: list | None = None) -> VariantResult:
     """The blend ``name`` on ``problem``, certified and measured but for its cycle
     time (:func:`measure_shape`); a blend that is refused, rejected or fails
-    gives its row with the reason."""
+    gives its row with the reason.
+
+    ``measured``: rows measured before under the same problem (the same
+    settings and reference; this call appends its own): a path equal to one
+    of theirs takes that row's certificate and figures (:func:`measured_as`)
+    instead of being certified and measured again (controller styles often
+    leave the same path)."""
     t0 = time.perf_counter()
     try:
         blend = load(name)
@@ -158,4 +164,40 @@ def solve(name: str, problem: BlendProblem) -> VariantResult:
     if not isinstance(out, ToolPath):
         return VariantResult(name, "failed", f"blend returned {type(out).__name__}, "
                              "not a ToolPath or BlendOutcome", figures={"solve_time": seconds})
-    return measure_shape(name, out, problem, seconds, info, cert)
+    twin = measured_as(measured, out) if measured is not None else None
+    if twin is not None:
+        return VariantResult(name, twin.status, twin.message, out, twin.certificate,
+                             {**twin.figures, "solve_time": seconds}, info)
+    row = measure_shape(name, out, problem, seconds, info, cert)
+    if measured is not None:
+        measured.append(row)
+    return row
+
+
+def measured_as(measured: list, path: ToolPath) -> VariantResult | None:
+    """The row of ``measured`` (rows measured under one problem) whose path
+    is measured as ``path`` is (:func:`measured_alike`), or None: its
+    certificate and figures are this path's."""
+    return next((row for row in measured if measured_alike(row.toolpath, path)), None)
+
+
+#: The entries of a tool path's ``meta`` that its certificate and figures read:
+#: the fitted pieces (the contact check), the straight joins (the cause of a
+#: tolerated violation) and the blend joins (:func:`~.leads.lead_joins`).
+MEASURED_META = (FITTED_PIECES, STRAIGHT_JOINS, "joins")
+
+
+def measured_alike(a: ToolPath, b: ToolPath) -> bool:
+    """Whether :func:`measure_shape` gives ``a`` and ``b`` the same certificate
+    and figures: the same segments, plane, radius, dwells and units, the same
+    :data:`MEASURED_META` entries, and the same style where the certificate
+    names it (a tolerated violation's cause at a straight join); two
+    controller styles often leave the same path."""
+    if a is b:
+        return True
+    if (a.segments, a.plane, a.radius, a.dwells, a.units) != \
+            (b.segments, b.plane, b.radius, b.dwells, b.units):
+        return False
+    if any(a.meta.get(k) != b.meta.get(k) for k in MEASURED_META):
+        return False
+    return a.style == b.style or not a.meta.get(STRAIGHT_JOINS)
