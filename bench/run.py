@@ -23,10 +23,17 @@ Run on every bundled case with the default options (no argument), it also
 writes the main job's section of ``docs/benchmarks.md``: the table, the
 machine (cores, platform), the load average before and after, the date and
 the commit (``--no-write``: print only).
+
+``--load N`` times the main job as on a busy machine: N processes that keep
+a core busy each (a Python loop) run from a warm-up before the first run
+until the last ends, and the runs are those a user makes (the parallel
+one, with the default workers; ``--serial`` adds the serial one). On every
+bundled case it writes a section of its own, "the main job at load N".
 """
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import platform
@@ -99,6 +106,52 @@ def write_main_job(table: str, load_before: tuple, load_after: tuple, workers: i
                   f"```\n{table}\n```")
 
 
+#: Seconds the busy processes of ``--load`` run before the first timed run, so
+#: that the 1-minute load average has risen towards N when the run starts.
+LOAD_WARMUP = 60.0
+
+
+@contextlib.contextmanager
+def busy_processes(n: int):
+    """``n`` processes each spinning a core (a Python loop) while the block runs."""
+    procs = [subprocess.Popen([sys.executable, "-c", "while True: pass"]) for _ in range(n)]
+    try:
+        if n:
+            time.sleep(LOAD_WARMUP)
+        yield
+    finally:
+        for p in procs:
+            p.kill()
+            p.wait()
+
+
+def loaded_report(parallel: dict, serial: dict | None, n: int) -> str:
+    """The table of a ``--load`` run: per case its total, then the wall times."""
+    w = max([len(r["name"]) for r in parallel["cases"]] + [5])
+    lines = [f"{'case'.ljust(w)}  {'compare':>8s}  {'case':>8s}"]
+    for r in parallel["cases"]:
+        st = r["stage_seconds"]
+        lines.append(f"{r['name'].ljust(w)}  {st.get('compare', 0.0):8.3f}  "
+                     f"{sum(st.values()):8.3f}")
+    lines.append(f"ccopt run wall time with {n} busy processes: parallel (--workers "
+                 f"{parallel['workers']}) {parallel['wall']:.2f} s"
+                 + (f", serial (--workers 1) {serial['wall']:.2f} s" if serial else ""))
+    return "\n".join(lines)
+
+
+def write_loaded(table: str, load_before: tuple, load_start: tuple, load_after: tuple,
+                 n: int) -> None:
+    """The section "the main job at load ``n``" of docs/benchmarks.md."""
+    fmt = lambda la: "/".join(f"{x:.2f}" for x in la)  # noqa: E731
+    write_section(BENCHMARKS, f"{SECTION} --load {n}",
+                  f"`python bench/run.py --load {n}` on {now()}, commit {commit()}: "
+                  f"{os.cpu_count()} cores, {platform.platform()}, Python "
+                  f"{platform.python_version()}; {n} busy processes started "
+                  f"{LOAD_WARMUP:.0f} s before the run; load average (1/5/15 min) "
+                  f"{fmt(load_before)} before they started, {fmt(load_start)} when the run "
+                  f"started, {fmt(load_after)} after it.\n\n```\n{table}\n```")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("cases", nargs="*", help="cases or programs (default: every bundled case)")
@@ -107,6 +160,10 @@ def main() -> None:
     ap.add_argument("--no-compare", action="store_true", help="pass --no-compare")
     ap.add_argument("--variants", help="pass --variants")
     ap.add_argument("--json", action="store_true", help="print the figures as JSON")
+    ap.add_argument("--load", type=int, default=0, metavar="N",
+                    help="time the parallel run with N busy processes beside it")
+    ap.add_argument("--serial", action="store_true",
+                    help="with --load: time the serial run under the load too")
     ap.add_argument("--no-write", action="store_true",
                     help="do not write docs/benchmarks.md (written only for every bundled case "
                          "with the default options)")
@@ -115,6 +172,9 @@ def main() -> None:
     extra = ["--no-compare"] if args.no_compare else []
     if args.variants:
         extra += ["--variants", args.variants]
+    if args.load:
+        loaded(args, extra, load_before)
+        return
     with tempfile.TemporaryDirectory() as tmp:
         serial = timed_run(args.cases, 1, extra, Path(tmp) / "serial")
         parallel = timed_run(args.cases, args.workers, extra, Path(tmp) / "parallel")
@@ -125,6 +185,24 @@ def main() -> None:
         print(report(serial, parallel))
     if not (args.no_write or args.cases or extra):
         write_main_job(report(serial, parallel), load_before, os.getloadavg(), args.workers)
+        print(f"written: {BENCHMARKS.relative_to(ROOT)}")
+
+
+def loaded(args, extra: list[str], load_before: tuple) -> None:
+    """``--load``: the parallel run (and the serial one with ``--serial``)
+    beside ``args.load`` busy processes; prints and writes its section."""
+    with busy_processes(args.load), tempfile.TemporaryDirectory() as tmp:
+        load_start = os.getloadavg()
+        parallel = timed_run(args.cases, args.workers, extra, Path(tmp) / "parallel")
+        serial = timed_run(args.cases, 1, extra, Path(tmp) / "serial") if args.serial else None
+        load_after = os.getloadavg()
+    table = loaded_report(parallel, serial, args.load)
+    if args.json:
+        print(json.dumps({"load": args.load, "parallel": parallel, "serial": serial}))
+    else:
+        print(table)
+    if not (args.no_write or args.cases or extra):
+        write_loaded(table, load_before, load_start, load_after, args.load)
         print(f"written: {BENCHMARKS.relative_to(ROOT)}")
 
 
