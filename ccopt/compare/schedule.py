@@ -22,7 +22,7 @@ from dataclasses import replace
 from ccopt.compare.contract import BUILTIN_NAMES
 from ccopt.compare.registry import load
 from ccopt.compare.timing import (PartialTime, StretchTimes, duration_figures, load_planner,
-                                  partial_figures)
+                                  partial_figures, timed_alike)
 from ccopt.compare.variant import VariantResult, gets_cycle_time, solve, with_duration
 from ccopt.feed.limits import AxisLimits
 from ccopt.toolpath import ToolPath
@@ -57,9 +57,8 @@ def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress):
     A job is done in two parts: the blend and what needs no feed plan
     (:func:`solve`), then the cycle time (:func:`_duration`) under the
     reference's stretch times (``ref.times()``). A variant whose
-    tool path is another's takes that one's cycle time, planned once (Fagor's
-    G138 and G139 with G136 leave the same path on 15 of the 27 bundled
-    cases, all three Fagor styles on 7)."""
+    tool path is another's (:func:`~.timing.timed_alike`, whatever style
+    made it) takes that one's cycle time, planned once."""
     if workers > 1 and len(jobs) > 1:
         yield from _run_in_processes(jobs, ref, reference_row, total, workers, progress)
         return
@@ -220,9 +219,9 @@ def _timed_or_queued(job, row: VariantResult, timed, to_time, running, partial,
 
 
 def _of_path(pairs, path: ToolPath):
-    """The value paired with a tool path equal to ``path`` in ``(path, value)``
-    ``pairs``, or None."""
-    return next((value for p, value in pairs if p == path), None)
+    """The value paired with a tool path timed as ``path`` is
+    (:func:`~.timing.timed_alike`) in ``(path, value)`` ``pairs``, or None."""
+    return next((value for p, value in pairs if timed_alike(p, path)), None)
 
 
 def _longest_first(jobs):

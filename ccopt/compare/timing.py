@@ -327,6 +327,14 @@ class PartialTime:
         return total, max((g[1] for g in got), default=0.0)
 
 
+def timed_alike(a: ToolPath, b: ToolPath) -> bool:
+    """Whether the planners give ``a`` and ``b`` one cycle time: the same
+    segments, dwells and plane (:class:`~ccopt.feed.ExactPath` reads nothing
+    else of a tool path; the style that made it is not among them, so two
+    controller styles that leave the same path get one figure)."""
+    return a is b or (a.segments, a.dwells, a.plane) == (b.segments, b.dwells, b.plane)
+
+
 def same_plan(profile, reference: ToolPath, limits: AxisLimits, ts: float | None) -> bool:
     """Whether ``profile`` is the plan :meth:`StretchTimes.from_reference` would
     make of ``reference``: a plan of that very path object (the caller gave
