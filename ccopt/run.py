@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Callable, Protocol
 
 # DEFAULT_LIMITS: the axis limits of an input with none (ccopt.cases defines them)
 from ccopt.cases import DEFAULT_LIMITS, Job  # noqa: F401 - re-exported for ccopt run
+from ccopt.compare.registry import available
 from ccopt.errors import CcoptError, ProgramError
 from ccopt.atomic import job_inputs, refuse_overwriting_inputs, write_text_atomic
 from ccopt.export import refuse_foreign_files
@@ -125,6 +126,9 @@ def _fill(row: dict, done: Outcome, files: dict[str, str]) -> None:
         row["min_clearance"] = cert.min_clearance
     if done.comparison is not None:
         row["compare"] = [v.to_json() for v in done.comparison]
+        # what this run left to be asked for (the lead families and opt-cvxpy by default)
+        compared = {v["name"] for v in row["compare"]}
+        row["not_compared"] = [n for n in available() if n not in compared]
     for res in done.exports:
         files[Path(res.file).suffix[1:]] = Path(res.file).name
 

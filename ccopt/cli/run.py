@@ -14,7 +14,7 @@ from ccopt.cli.options import (add_limit_options, add_output_option, add_quiet_o
 from ccopt.cli.output import emit_json
 from ccopt.cli.progress import cases_progress
 from ccopt.compare.contract import LEAD_FAMILY_NAMES
-from ccopt.compare.registry import main_job_variants, require_known
+from ccopt.compare.registry import MAIN_JOB_ON_DEMAND, main_job_variants, require_known
 from ccopt.errors import ProgramError
 from ccopt.run import PLANNERS, RunOptions, default_out, exit_code, run_all
 from ccopt.workers import resolve_workers
@@ -30,8 +30,9 @@ Limits: --vmax/--amax, else a case's [limits], else 100 units/s and 1000
 units/s^2 per axis; style: --style, else a case's, else by dialect (pmac for
 PMAC programs, siemens for SINUMERIK, linuxcnc for G-code, fagor where G136-G139
 appear). The comparison leaves out the lead families (HEIDENHAIN APPR/DEP and
-SINUMERIK approach parameter searches) unless --variants names them or says
-all; ccopt compare runs them by default. Exit 0 when
+SINUMERIK approach parameter searches) and opt-cvxpy (the costliest variant
+per lead; opt-casadi optimises the same leads) unless --variants names them
+or says all; ccopt compare runs them by default. Exit 0 when
 every case gets its expected verdict, 1 when a verification fails
 unexpectedly, 2 when an input cannot be read or compensated."""
 
@@ -50,7 +51,7 @@ def cmd_run(args: argparse.Namespace) -> int:
     variants = chosen_variants(args)
     if variants:
         require_known(variants, "--variants")
-    # the lead families on demand: the main job's comparison without them by default
+    # the lead families and opt-cvxpy on demand: the main job's comparison without them
     compared = tuple(variants or main_job_variants())
     jobs = [job(a, args, planners=PLANNERS, variants=compared)
             for a in args.inputs or bundled_cases()]
@@ -121,7 +122,8 @@ def add_commands(sub, commands: dict) -> None:
     p.add_argument("--no-compare", action="store_true", help="skip the blend comparison")
     add_variants_option(p, "blend variants to compare, or all (default: every available one "
                            "but the lead families " + ", ".join(LEAD_FAMILY_NAMES)
-                           + ", which search a parameter set each; see ccopt compare --list)")
+                           + ", which search a parameter set each, and "
+                           + ", ".join(MAIN_JOB_ON_DEMAND) + "; see ccopt compare --list)")
     add_reading_options(p)
     add_quiet_option(p)
     add_style_options(p)

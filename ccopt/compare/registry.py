@@ -88,12 +88,22 @@ def available() -> list[str]:
 ALL = "all"
 
 
+#: Plug-in blends the main job runs on demand only, as the lead families:
+#: ``opt-cvxpy`` solves a conic subproblem per iteration of its sequential
+#: convex programme, a dozen or more per lead and curvature weight, and is
+#: the costliest variant per lead (docs/benchmarks.md, the main job's
+#: compare stage). ``opt-casadi`` optimises the same leads and stays, so
+#: the main job's report still has an optimised lead beside the smoother.
+MAIN_JOB_ON_DEMAND = ("opt-cvxpy",)
+
+
 def main_job_variants() -> list[str]:
     """The variants the main job (``ccopt run``) compares by default: every
     available one but the lead families (:data:`~.contract.LEAD_FAMILY_NAMES`),
     which search a parameter set each (every member compensated, certified
-    and timed); ``--variants all`` (or their names) brings them in."""
-    return [n for n in available() if n not in LEAD_FAMILY_NAMES]
+    and timed), and :data:`MAIN_JOB_ON_DEMAND`; ``--variants all`` (or
+    their names) brings them in, and ``ccopt compare`` runs them all."""
+    return [n for n in available() if n not in LEAD_FAMILY_NAMES + MAIN_JOB_ON_DEMAND]
 
 
 def expand(names) -> list[str]:

@@ -233,6 +233,11 @@ def render_case(r: dict, title: str = TITLE) -> str:
         parts.append(_table(rows, cols))
     if r.get("compare"):
         parts += ["<h3>Variants</h3>", _variants(r["compare"], units)]
+        if r.get("not_compared"):
+            parts.append("<p class='muted'>not compared in this run: "
+                         + ", ".join(html_text(n) for n in r["not_compared"])
+                         + " (<code>ccopt run --variants all</code>, or "
+                         "<code>ccopt compare</code>)</p>")
     if r.get("certificate"):
         parts += _certificate(r["certificate"], r.get("certificate_text"))
     if r.get("files"):
