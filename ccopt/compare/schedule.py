@@ -22,7 +22,7 @@ from dataclasses import replace
 from ccopt.compare.contract import BUILTIN_NAMES
 from ccopt.compare.registry import load
 from ccopt.compare.timing import (PartialTime, StretchTimes, duration_figures, load_planner,
-                                  partial_figures, timed_alike)
+                                  partial_figures, same_timing_message, timed_alike)
 from ccopt.compare.variant import VariantResult, gets_cycle_time, solve, with_duration
 from ccopt.feed.limits import AxisLimits
 from ccopt.toolpath import ToolPath
@@ -57,8 +57,10 @@ def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress):
     A job is done in two parts: the blend and what needs no feed plan
     (:func:`solve`), then the cycle time (:func:`_duration`) under the
     reference's stretch times (``ref.times()``). A variant whose
-    tool path is another's (:func:`~.timing.timed_alike`, whatever style
-    made it) takes that one's cycle time, planned once."""
+    tool path is another's takes that one's cycle time, planned once: here
+    any path the planners time alike (:func:`_timed_twin`, whatever style
+    made it), in workers an equal one (:func:`_of_path`); the figures are
+    the same either way."""
     if workers > 1 and len(jobs) > 1:
         yield from _run_in_processes(jobs, ref, reference_row, total, workers, progress)
         return
@@ -71,7 +73,7 @@ def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress):
         local = problem if progress is None else replace(problem, progress=progress)
         row = solve(name, local, measured.setdefault(id(problem), []))
         if gets_cycle_time(row):
-            got = _of_path(timed, row.toolpath)
+            got = _timed_twin(timed, row.toolpath)
             if got is None:
                 got = _timed(row.toolpath, problem.limits,
                              times.copy() if times is not None else None)
@@ -219,9 +221,22 @@ def _timed_or_queued(job, row: VariantResult, timed, to_time, running, partial,
 
 
 def _of_path(pairs, path: ToolPath):
-    """The value paired with a tool path timed as ``path`` is
-    (:func:`~.timing.timed_alike`) in ``(path, value)`` ``pairs``, or None."""
-    return next((value for p, value in pairs if timed_alike(p, path)), None)
+    """The value paired with a tool path equal to ``path`` in ``(path, value)``
+    ``pairs``, or None (the figures of a path timed in a worker arrive later,
+    its message with them, so only an equal path, whose lines are the same,
+    shares them)."""
+    return next((value for p, value in pairs if p == path), None)
+
+
+def _timed_twin(timed, path: ToolPath):
+    """The cycle-time figures of a path of ``timed`` (``(path, figures)``)
+    the planners time as ``path`` (:func:`~.timing.timed_alike`), or None;
+    not when they carry a refusal naming other lines than ``path``'s would
+    (:func:`~.timing.same_timing_message`)."""
+    for p, got in timed:
+        if timed_alike(p, path) and (not got[2] or same_timing_message(p, path)):
+            return got
+    return None
 
 
 def _longest_first(jobs):

@@ -328,11 +328,27 @@ class PartialTime:
 
 
 def timed_alike(a: ToolPath, b: ToolPath) -> bool:
-    """Whether the planners give ``a`` and ``b`` one cycle time: the same
-    segments, dwells and plane (:class:`~ccopt.feed.ExactPath` reads nothing
-    else of a tool path; the style that made it is not among them, so two
-    controller styles that leave the same path get one figure)."""
-    return a is b or (a.segments, a.dwells, a.plane) == (b.segments, b.dwells, b.plane)
+    """Whether the planners give ``a`` and ``b`` one cycle time and axis
+    acceleration ratio: the same geometry, roles, feeds, out-of-plane
+    coordinates and planes of their segments, the same dwells (where and how
+    long) and plane. :class:`~ccopt.feed.ExactPath` reads nothing else of a
+    tool path, but for the program lines a planner's refusal names
+    (:func:`same_timing_message`); the style that made a path is not read,
+    so two controller styles that leave the same path get one figure."""
+    if a is b:
+        return True
+    if a.plane != b.plane or len(a.segments) != len(b.segments) or \
+            [d[:2] for d in a.dwells] != [d[:2] for d in b.dwells]:
+        return False
+    return all(x.geom == y.geom and x.role == y.role and x.feed == y.feed and x.w0 == y.w0
+               and x.w1 == y.w1 and x.plane == y.plane for x, y in zip(a.segments, b.segments))
+
+
+def same_timing_message(a: ToolPath, b: ToolPath) -> bool:
+    """Whether a planner's message about ``a`` reads the same for ``b``
+    (:func:`timed_alike` paths): the same blocks, whose lines it names."""
+    return a is b or (all(x.block == y.block for x, y in zip(a.segments, b.segments))
+                      and [d[2] for d in a.dwells] == [d[2] for d in b.dwells])
 
 
 def same_plan(profile, reference: ToolPath, limits: AxisLimits, ts: float | None) -> bool:

@@ -17,7 +17,7 @@ from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.figures import max_deviation, path_figures
 from ccopt.compare.leads import lead_joins
 from ccopt.compare.registry import load
-from ccopt.compare.timing import StretchTimes, duration_figures, timed_alike
+from ccopt.compare.timing import StretchTimes, duration_figures, same_timing_message, timed_alike
 from ccopt.errors import CcoptError
 from ccopt.toolpath import FITTED_PIECES, STRAIGHT_JOINS, ToolPath
 
@@ -189,13 +189,15 @@ MEASURED_META = (FITTED_PIECES, STRAIGHT_JOINS, "joins")
 
 def measured_alike(a: ToolPath, b: ToolPath) -> bool:
     """Whether :func:`measure_shape` gives ``a`` and ``b`` the same certificate
-    and figures: the same segments, plane, radius, dwells and units, the same
+    and figures: the same segments (blocks too: the certificate names their
+    lines), plane, radius, dwells and units, the same
     :data:`MEASURED_META` entries, and the same style where the certificate
     names it (a tolerated violation's cause at a straight join); two
     controller styles often leave the same path."""
     if a is b:
         return True
-    if not timed_alike(a, b) or (a.radius, a.units) != (b.radius, b.units):
+    if not timed_alike(a, b) or not same_timing_message(a, b) or \
+            (a.radius, a.units) != (b.radius, b.units):
         return False
     if any(a.meta.get(k) != b.meta.get(k) for k in MEASURED_META):
         return False

@@ -64,3 +64,32 @@ def test_paths_alike_only_where_every_measured_entry_agrees():
     assert not measured_alike(path, replace(path, meta={**path.meta, FITTED_PIECES: (1,)}))
     assert not measured_alike(path, replace(path, radius=path.radius + 1e-12))
     assert not measured_alike(path, replace(path, segments=path.segments[:-1]))
+
+
+def test_paths_the_planners_time_alike_are_timed_once(monkeypatch):
+    """SINUMERIK's path of leadin-inside-line is PMAC's but for the block its
+    entry corner is attributed to (line 8, not 7): certified apart (the
+    certificate names lines), timed once (the planners read no block)."""
+    from ccopt.compare import schedule
+    from ccopt.compare.timing import same_timing_message, timed_alike
+    done = pipeline(make_job("leadin-inside-line"), compare=False, export=[])
+    prog, limits = done.program, done.limits
+    planned = []
+    timed = schedule._timed
+
+    def counted(path, *a, **k):
+        planned.append(path)
+        return timed(path, *a, **k)
+
+    monkeypatch.setattr(schedule, "_timed", counted)
+    rows = {r.name: r for r in compare(prog, ["pmac", "fagor-g138", "siemens"], limits=limits)}
+    a, b = rows["fagor-g138"].toolpath, rows["siemens"].toolpath
+    assert timed_alike(a, b) and not same_timing_message(a, b)
+    assert not measured_alike(a, b)
+    assert len(planned) == 1          # fagor-g138's path; siemens takes its figures
+    assert rows["siemens"].figures["duration"] == rows["fagor-g138"].figures["duration"]
+    # and they are the figures siemens's path has when timed on its own
+    from ccopt.compare.timing import duration_figures
+    alone = duration_figures(b, limits, None)
+    assert abs(alone[0] - rows["siemens"].figures["duration"]) <= 1e-9 * alone[0]
+    assert alone[2] is None
