@@ -15,7 +15,8 @@ described in ``docs/pmac.md``.
 Modules: :mod:`.lexer` (lines, command words, constants), :mod:`.buffers`
 (``OPEN PROG``/``CLOSE``, on-line commands), :mod:`.variables` (P/Q/I/M
 variables, ``{data}`` and expressions), :mod:`.moves` (the move of a line,
-circle centres), :mod:`.statements` (modal state and statement execution),
+circle centres), :mod:`.blocks` (the block of a move, made quickly),
+:mod:`.statements` (modal state and statement execution),
 :mod:`.reader` (:func:`read_pmac`).
 """
 from __future__ import annotations

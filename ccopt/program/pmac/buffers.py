@@ -53,7 +53,13 @@ def split_buffers(lines: Lines, file: str) -> Download | None:
     current: int | None = None      # PROG number being filled
     skipping: str | None = None     # other buffer being skipped
     opened_at = 0
-    for n, line in lines:
+    for item in lines:
+        n, line = item
+        if "OPEN" not in line and "CL" not in line:
+            # neither OPEN, CLOSE nor CLEAR: the common line, in one test
+            if skipping is None:
+                (out.outside if current is None else out.programs[current]).append(item)
+            continue
         stripped = line.strip()
         if stripped.startswith("OPEN"):
             col = len(line) - len(line.lstrip()) + 1

@@ -24,18 +24,25 @@ class PendingMove:
     Attributes
     ----------
     line, col: where its first axis word is (1-based).
-    axes: ``"X"`` -> ``(value, incremental)``, the mode taken when the word was read.
-    vector: centre-vector components, ``"I"`` -> value.
-    radius: ``R`` (signed), or ``None``.
-    words: the letters written so far (each at most once).
+    words: ``"X"`` -> value for each of ``X Y Z I J K R`` written (each at
+        most once), in the order written. An axis value is read ``ABS`` or
+        ``INC`` by the mode in force when the move runs, the mode it was
+        written in: ``ABS``/``INC`` runs the move written before it first.
     """
 
     line: int
     col: int
-    axes: dict = field(default_factory=dict)
-    vector: dict = field(default_factory=dict)
-    radius: float | None = None
-    words: set = field(default_factory=set)
+    words: dict = field(default_factory=dict)
+
+    @property
+    def vector(self) -> dict:
+        """Centre-vector components written, ``"I"`` -> value."""
+        return {k: v for k, v in self.words.items() if k in _VECTORS}
+
+    @property
+    def radius(self) -> float | None:
+        """``R`` (signed), or ``None``."""
+        return self.words.get("R")
 
 
 def finite_point(p, file: str, line: int, col: int, what: str) -> Vec3:
