@@ -443,6 +443,14 @@ PEAK_TOL = 1e-6
 _BANNER_SHOWN = []
 
 
+#: HiGHS's dual simplex pricing on the window LPs: Devex (1). Its default,
+#: steepest edge (2), takes fewer iterations on a cold start but costs more
+#: per iteration on these banded LPs, more than it saves
+#: (bench/jerk_pricing.py measures both on the same plans); the optimum is
+#: the same LP's, so the cycle times agree to the LP's tolerances.
+DUAL_EDGE_WEIGHTS = 1
+
+
 def _new_highs():
     """A silent ``highspy.Highs`` running the simplex without presolve. The
     first one made in a process prints HiGHS's banner on the C-level stdout,
@@ -467,6 +475,7 @@ def _new_highs():
     # highspy directly: scipy.optimize.milp runs the MIP machinery around the
     # simplex, ten times slower on these LPs
     h.setOptionValue("solver", "simplex")
+    h.setOptionValue("simplex_dual_edge_weight_strategy", DUAL_EDGE_WEIGHTS)
     return h
 
 
