@@ -17,7 +17,7 @@ from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
 from ccopt.compare.figures import max_deviation, path_figures
 from ccopt.compare.leads import lead_joins
 from ccopt.compare.registry import load
-from ccopt.compare.timing import StretchTimes, duration_figures, same_timing_message, timed_alike
+from ccopt.compare.timing import StretchTimes, duration_figures
 from ccopt.errors import CcoptError
 from ccopt.toolpath import FITTED_PIECES, STRAIGHT_JOINS, ToolPath
 
@@ -196,8 +196,8 @@ def measured_alike(a: ToolPath, b: ToolPath) -> bool:
     controller styles often leave the same path."""
     if a is b:
         return True
-    if not timed_alike(a, b) or not same_timing_message(a, b) or \
-            (a.radius, a.units) != (b.radius, b.units):
+    if (a.segments, a.plane, a.radius, a.dwells, a.units) != \
+            (b.segments, b.plane, b.radius, b.dwells, b.units):
         return False
     if any(a.meta.get(k) != b.meta.get(k) for k in MEASURED_META):
         return False
