@@ -105,6 +105,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ccopt.feed.grading import braking_measure, curve_zones, graded_grids
 from ccopt.feed.path import ExactPath
 
 #: Default of :attr:`GridOptions.min_spacing` (program units): extra gridpoints
@@ -251,50 +252,11 @@ def _curve_samples(path: ExactPath, ks: np.ndarray, kappa_f: np.ndarray,
         q2 = np.concatenate([q2, q2_new])[order]
 
 
-def _braking_measure(sigma, S, ds, zone):
-    """Part 1 of the measure ``M`` at ``sigma`` into segments of length ``S``:
-    ``sigma / ds`` when ``zone`` is ``inf``; else a density ``1 / ds`` within
-    ``zone`` of both ends, ``1 / (ds + (GRADE_RATIO - 1) (d - zone))`` at
-    distance ``d > zone`` from the nearer end (the spacing grows by about
-    :data:`GRADE_RATIO` per interval), integrated in closed form."""
-    g = GRADE_RATIO - 1.0
-    z = np.minimum(zone, 0.5 * S)
-
-    def half(d):
-        return np.where(d <= z, d / ds, z / ds + np.log1p(g * np.maximum(d - z, 0.0) / ds) / g)
-
-    return np.where(sigma <= 0.5 * S, half(sigma),
-                    2.0 * half(0.5 * S) - half(np.maximum(S - sigma, 0.0)))
-
-
-def _curve_zones(path: ExactPath, k, s, v_axis, a_axis, ramps) -> np.ndarray:
-    """Ramp zone (:func:`_ramp_lengths`) of every sampled curve ``k`` (indexed by
-    segment), from the largest ``|q''|`` of its samples; ``inf`` without ``ramps``."""
-    zone = np.full(path.lengths.size, np.inf)
-    if ramps is None:
-        return zone
-    tangential_acc, centripetal_acc = ramps
-    c = np.zeros(path.lengths.size)
-    np.maximum.at(c, k, path.curvature_norm(k, s))
-    ks = np.unique(k)
-    feed = path.feeds[ks]
-    side = c[ks] * feed * feed
-    a_min = float(np.min(a_axis))
-    ok = (np.isfinite(feed) & (feed <= GRADE_FEED_SHARE * float(np.min(v_axis)))
-          & (side < a_min))
-    if centripetal_acc is not None:
-        ok &= side <= float(centripetal_acc)
-    a_t = np.inf if tangential_acc is None else float(tangential_acc)
-    with np.errstate(invalid="ignore"):
-        zone[ks] = np.where(ok, feed * feed / np.minimum(a_min - side, a_t), np.inf)
-    return zone
-
-
 def _segment_grids(path: ExactPath, v_axis, a_axis, options: GridOptions, ramps=None):
     """``(n, interior)``: intervals per segment, and ``{k: interior gridpoints}``
     (``n[k] - 1`` path positions) of the sampled segments, not evenly spaced.
     ``ramps`` as in :func:`gridpoints`: part 1 of ``M`` graded on curves
-    whose speed cap is their feed (:func:`_braking_measure`)."""
+    whose speed cap is their feed (:func:`~ccopt.feed.grading.braking_measure`)."""
     ds, n = _spacing(path, v_axis, a_axis, options)
     step = min(options.max_angle, options.max_curvature_change, options.max_curvature_bend)
     n = np.maximum(n, np.ceil(path.uniform_turning / step))
@@ -306,9 +268,9 @@ def _segment_grids(path: ExactPath, v_axis, a_axis, options: GridOptions, ramps=
     kappa_f = _curvature_floor(path, v_axis, a_axis, ds, options)
     k, s, h, turn, change, bend = _curve_samples(path, ks, kappa_f, options)
     if ramps is not None and options.ds is None:
-        zone = _curve_zones(path, k, s, v_axis, a_axis, ramps)[k]
+        zone = curve_zones(path, k, s, v_axis, a_axis, ramps)[k]
         sigma = s - path.offsets[k]
-        F = _braking_measure(sigma, path.lengths[k], ds[k], zone)
+        F = braking_measure(sigma, path.lengths[k], ds[k], zone)
         braking = F[1:] - F[:-1]
     else:
         braking = h / ds[k[:-1]]
@@ -327,104 +289,6 @@ def _segment_grids(path: ExactPath, v_axis, a_axis, options: GridOptions, ramps=
     return n, interior
 
 
-#: Graded grids (:func:`gridpoints` with ``ramps``): the spacing grows by this
-#: factor per interval away from the end zones, where the speed is at its cap.
-GRADE_RATIO = 2.0
-
-#: Graded grids: an arc is graded only when its feed is at most this fraction of
-#: the smallest axis velocity limit (an interval's velocity bound uses the
-#: largest ``|q_j'|`` on it plus a small allowance, which must not bind).
-GRADE_FEED_SHARE = 0.99
-
-
-def _ramp_lengths(path: ExactPath, ks: np.ndarray, v_axis, a_axis, tangential_acc,
-                  centripetal_acc) -> np.ndarray:
-    """Twice the longest speed ramp (units) on each constant-curvature segment
-    ``ks``, or ``inf`` where none is bounded.
-
-    On a line the path speed cap is ``v_c = min(feed, min_j V_j / |q_j'|)`` and
-    the path acceleration at least ``a_p = min(min_j A_j / |q_j'|, a_t)``
-    everywhere on it, so from any speed the profile reaches the cap (or falls
-    from it to any end speed) within ``v_c^2 / (2 a_p)``. On an arc with
-    ``|q''| = c``, feed ``f <= min_j V_j`` (the feed is the cap all along it)
-    and ``c f^2`` below ``min_j A_j`` (and at most the centripetal limit), the
-    tangential acceleration left is at least ``a_p = min(min_j A_j - c f^2, a_t)``
-    (``|q_j'' s'^2| <= c f^2`` leaves that much of every axis's limit);
-    elsewhere ``inf``. No margin is kept below ``min_j A_j``: the ramp grows
-    as the centripetal part takes more of the limit, and a ramp longer than
-    half the segment leaves it evenly gridded (:func:`_graded`).
-    """
-    mid = path.offsets[ks] + 0.5 * path.lengths[ks]
-    q1 = np.abs(path.eval_segments(ks, mid, 1))
-    c = np.linalg.norm(path.eval_segments(ks, mid, 2), axis=1)
-    feed = path.feeds[ks]
-    a_t = np.inf if tangential_acc is None else float(tangential_acc)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        v_line = np.minimum(feed, np.where(q1 > 0, v_axis / q1, np.inf).min(axis=1))
-        a_line = np.minimum(np.where(q1 > 0, a_axis / q1, np.inf).min(axis=1), a_t)
-        a_min = float(np.min(a_axis))
-        side = c * feed * feed
-        arc_ok = (np.isfinite(feed) & (feed <= GRADE_FEED_SHARE * float(np.min(v_axis)))
-                  & (side < a_min))
-        if centripetal_acc is not None:
-            arc_ok &= side <= float(centripetal_acc)
-        a_arc = np.minimum(a_min - side, a_t)
-        ramp = np.where(c == 0.0, v_line * v_line / a_line,
-                        np.where(arc_ok, feed * feed / a_arc, np.inf))
-    return np.where(np.isfinite(ramp) & (ramp >= 0.0), ramp, np.inf)
-
-
-def _graded(S: float, zone: float, ds: float, h_cap: float) -> np.ndarray | None:
-    """Interior gridpoints (offsets into a segment of length ``S``): spacing
-    ``ds`` within ``zone`` of either end, then growing by :data:`GRADE_RATIO`
-    per interval up to ``h_cap``; ``None`` when the zones cover the segment."""
-    if 2.0 * zone >= S:
-        return None
-    m = int(np.ceil(zone / ds))
-    near = ds * np.arange(1, m + 1)
-    grow = [near[-1]]
-    h = ds
-    while True:
-        h = min(h * GRADE_RATIO, h_cap)
-        if grow[-1] + h >= 0.5 * S:
-            break
-        grow.append(grow[-1] + h)
-    half = np.concatenate([near[:-1], grow])
-    gap = S - 2.0 * half[-1]
-    k = max(1, int(np.ceil(gap / h_cap)))
-    middle = half[-1] + gap * np.arange(1, k) / k
-    return np.concatenate([half, middle, S - half[::-1]])
-
-
-def _graded_grids(path: ExactPath, n: np.ndarray, ds: np.ndarray, v_axis, a_axis,
-                  options: GridOptions, ramps: tuple) -> dict[int, np.ndarray]:
-    """``{k: interior gridpoints}`` of the lines and arcs whose even grid is set by
-    the braking spacing ``ds`` but whose speed ramps are short: they keep
-    ``ds`` within twice the longest ramp (:func:`_ramp_lengths`) of both ends,
-    where TOPPRA's switch points can fall, and grow the spacing geometrically
-    in between, where the time-optimal speed is its cap (constant on these
-    segments) and any gridding represents it exactly. The turning and
-    ``min_intervals`` still bound every interval. Used only where it at least
-    halves the segment's intervals."""
-    out: dict[int, np.ndarray] = {}
-    if options.ds is not None:
-        return out
-    ks = np.flatnonzero(path.constant_curvature)
-    if ks.size == 0:
-        return out
-    zone = _ramp_lengths(path, ks, v_axis, a_axis, *ramps)
-    step = min(options.max_angle, options.max_curvature_change, options.max_curvature_bend)
-    n_turn = np.maximum(np.ceil(path.uniform_turning / step), options.min_intervals)
-    for j, k in enumerate(ks):
-        S = float(path.lengths[k])
-        if not np.isfinite(zone[j]):
-            continue
-        inner = _graded(S, zone[j], float(ds[k]), S / n_turn[k])
-        if inner is not None and 2 * (inner.size + 1) <= n[k]:
-            out[int(k)] = path.offsets[k] + inner
-    return out
-
-
 def intervals_per_segment(path: ExactPath, v_axis: np.ndarray, a_axis: np.ndarray,
                           options: GridOptions = GridOptions()) -> np.ndarray:
     """Number of grid intervals on each segment of ``path``."""
@@ -439,13 +303,13 @@ def gridpoints(path: ExactPath, v_axis, a_axis, options: GridOptions = GridOptio
     ``ramps``: ``(tangential_acc, centripetal_acc)`` of the limits (each
     ``None`` when not set) for a time-optimal planner whose profile is
     limited by the acceleration alone: lines and arcs are then graded
-    (:func:`_graded_grids`). Without it every line and arc is gridded evenly.
+    (:func:`~ccopt.feed.grading.graded_grids`). Without it every line and arc is gridded evenly.
     """
     v_axis, a_axis = np.asarray(v_axis, float), np.asarray(a_axis, float)
     n, interior = _segment_grids(path, v_axis, a_axis, options, ramps)
     if ramps is not None:
         ds = _spacing(path, v_axis, a_axis, options)[0]
-        for k, inner in _graded_grids(path, n, ds, v_axis, a_axis, options, ramps).items():
+        for k, inner in graded_grids(path, n, ds, v_axis, a_axis, options, ramps).items():
             n[k] = inner.size + 1
             interior[k] = inner
     k = np.repeat(np.arange(n.size), n)
