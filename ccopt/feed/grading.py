@@ -10,10 +10,24 @@ the spacing geometrically in between, where the time-optimal speed is its cap
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 
 from ccopt.feed.path import ExactPath
 
+
+class Ramps(NamedTuple):
+    """The limits a graded grid's ramp zones are worked out from, besides the
+    axis velocity and acceleration limits (plane order): the path's
+    tangential and centripetal acceleration limits (units/s^2, None: not
+    set), and for a planner that also limits the jerk, the axis jerk limits
+    (units/s^3, plane order; None: the profile is limited by the acceleration
+    alone, as TOPPRA's)."""
+
+    tangential_acc: float | None
+    centripetal_acc: float | None
+    jerk: np.ndarray | None = None
 
 def braking_measure(sigma, S, ds, zone):
     """Part 1 of the measure ``M`` at ``sigma`` into segments of length ``S``:
@@ -33,11 +47,14 @@ def braking_measure(sigma, S, ds, zone):
 
 def curve_zones(path: ExactPath, k, s, v_axis, a_axis, ramps) -> np.ndarray:
     """Ramp zone (:func:`ramp_lengths`) of every sampled curve ``k`` (indexed by
-    segment), from the largest ``|q''|`` of its samples; ``inf`` without ``ramps``."""
+    segment), from the largest ``|q''|`` of its samples; ``inf`` without
+    ``ramps`` (a :class:`Ramps`, or its first two fields) and with jerk limits
+    (the share of the jerk a curve's changing ``q'''`` takes is not bounded
+    here, so its braking measure stays even)."""
     zone = np.full(path.lengths.size, np.inf)
-    if ramps is None:
+    if ramps is None or Ramps(*ramps).jerk is not None:
         return zone
-    tangential_acc, centripetal_acc = ramps
+    tangential_acc, centripetal_acc = ramps[:2]
     c = np.zeros(path.lengths.size)
     np.maximum.at(c, k, path.curvature_norm(k, s))
     ks = np.unique(k)
@@ -65,7 +82,7 @@ GRADE_FEED_SHARE = 0.99
 
 
 def ramp_lengths(path: ExactPath, ks: np.ndarray, v_axis, a_axis, tangential_acc,
-                 centripetal_acc) -> np.ndarray:
+                 centripetal_acc, jerk=None) -> np.ndarray:
     """Twice the longest speed ramp (units) on each constant-curvature segment
     ``ks``, or ``inf`` where none is bounded.
 
@@ -81,6 +98,11 @@ def ramp_lengths(path: ExactPath, ks: np.ndarray, v_axis, a_axis, tangential_acc
     as the centripetal part takes more of the limit, and a ramp longer than
     half the segment leaves it evenly gridded (:func:`_graded`).
 
+    With axis jerk limits ``jerk`` (plane order) only lines are graded, by
+    an S-curve's ramp (:func:`scurve_ramp`) under that ``a_p`` and the path
+    jerk every axis allows along the line, ``j_p = min_j J_j / |q_j'|``; arcs
+    stay even (the jerk planner imposes an arc's axis jerk at its gridpoints
+    only, :data:`ccopt.feed.jerk.planner.GRADED`).
     """
     mid = path.offsets[ks] + 0.5 * path.lengths[ks]
     q1 = np.abs(path.eval_segments(ks, mid, 1))
@@ -97,9 +119,29 @@ def ramp_lengths(path: ExactPath, ks: np.ndarray, v_axis, a_axis, tangential_acc
         if centripetal_acc is not None:
             arc_ok &= side <= float(centripetal_acc)
         a_arc = np.minimum(a_min - side, a_t)
-        ramp = np.where(c == 0.0, v_line * v_line / a_line,
-                        np.where(arc_ok, feed * feed / a_arc, np.inf))
+        if jerk is None:
+            ramp = np.where(c == 0.0, v_line * v_line / a_line,
+                            np.where(arc_ok, feed * feed / a_arc, np.inf))
+        else:
+            j_line = np.where(q1 > 0, np.asarray(jerk, float) / q1, np.inf).min(axis=1)
+            ramp = np.where(c == 0.0, scurve_ramp(v_line, a_line, j_line), np.inf)
     return np.where(np.isfinite(ramp) & (ramp >= 0.0), ramp, np.inf)
+
+
+def scurve_ramp(v, a, j):
+    """Twice the distance (units) within which a profile under path
+    acceleration ``a`` and jerk ``j`` goes from any state on a segment to its
+    speed cap ``v``, or from the cap to any end state: first its acceleration
+    to 0, from at most ``a_max = min(a, sqrt(2 j v))`` (a larger one would
+    carry the speed past ``v``, or below 0), in ``a_max / j`` seconds at most
+    ``v`` fast; then the S-curve from rest to ``v``, ``v (v / a + a / j) / 2``
+    where it reaches ``a`` (``v j >= a^2``), else ``v sqrt(v / j)``. Twice,
+    as :func:`ramp_lengths` keeps twice the ramp; as ``j`` grows it tends to
+    ``v^2 / a``, the zone without jerk limits."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a_max = np.minimum(a, np.sqrt(2.0 * j * v))
+        s_curve = np.where(v * j >= a * a, 0.5 * v * (v / a + a / j), v * np.sqrt(v / j))
+        return 2.0 * (s_curve + v * a_max / j)
 
 
 def _graded(S: float, zone: float, ds: float, h_cap: float) -> np.ndarray | None:
@@ -141,7 +183,7 @@ def graded_grids(path: ExactPath, n: np.ndarray, ds: np.ndarray, v_axis, a_axis,
     ks = np.flatnonzero(path.constant_curvature)
     if ks.size == 0:
         return out
-    zone = ramp_lengths(path, ks, v_axis, a_axis, *ramps)
+    zone = ramp_lengths(path, ks, v_axis, a_axis, *Ramps(*ramps))
     step = min(options.max_angle, options.max_curvature_change, options.max_curvature_bend)
     n_turn = np.maximum(np.ceil(path.uniform_turning / step), options.min_intervals)
     for j, k in enumerate(ks):

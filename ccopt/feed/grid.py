@@ -300,10 +300,11 @@ def gridpoints(path: ExactPath, v_axis, a_axis, options: GridOptions = GridOptio
                ramps: tuple | None = None) -> np.ndarray:
     """Strictly increasing gridpoints from 0 to ``path.length``, every boundary included.
 
-    ``ramps``: ``(tangential_acc, centripetal_acc)`` of the limits (each
-    ``None`` when not set) for a time-optimal planner whose profile is
-    limited by the acceleration alone: lines and arcs are then graded
-    (:func:`~ccopt.feed.grading.graded_grids`). Without it every line and arc is gridded evenly.
+    ``ramps``: a :class:`~ccopt.feed.grading.Ramps` (or its first two fields,
+    ``(tangential_acc, centripetal_acc)``, each ``None`` when not set) for a
+    time-optimal planner: lines and arcs are then graded
+    (:func:`~ccopt.feed.grading.graded_grids`), with ramp zones under jerk
+    limits when it has them. Without it every line and arc is gridded evenly.
     """
     v_axis, a_axis = np.asarray(v_axis, float), np.asarray(a_axis, float)
     n, interior = _segment_grids(path, v_axis, a_axis, options, ramps)

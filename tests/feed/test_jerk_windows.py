@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from ccopt.feed import AxisLimits, ExactPath, plan_feed
+from ccopt.feed.jerk import planner as jerk_planner
 from ccopt.feed.jerk import windows as jerk_windows
 from ccopt.feed.jerk.speed_bound import StretchBound
 from ccopt.geometry import Line
@@ -186,24 +187,31 @@ def test_chained_windows_start_from_the_last_ones_state(monkeypatch):
     # each from the state the one before kept: none is merged with the one before
     # (they were, before a window took its predecessor's speed bound on their
     # overlap: on freeform-hsm's smoothed path that made every window fall back
-    # to the stretch's start, quadratic in its length), the time is within 0.2 %
-    # of one window over the stretch (no stated figure: measured 0.14 % faster),
-    # and the limits hold as the certificate checks them (its sampling, within
-    # LIMITS_TOL); at 10 kHz the velocity and acceleration do too, while the
-    # jerk reaches 1.00101 just after the first window's kept end (docs/commands.md
-    # says so: windows of 100 gridpoints are far below the default).
+    # to the stretch's start, quadratic in its length), the time on the same
+    # gridpoints (no refinement) is within 0.2 % of one window over the stretch
+    # (no stated figure: measured 0.14 % faster), and the limits hold as the
+    # certificate checks them (its sampling, within LIMITS_TOL); at 10 kHz the
+    # velocity and acceleration do too. The jerk reached 1.00101 there just
+    # after the first window's kept end; with the planner's refinement of
+    # curved intervals (ccopt.feed.jerk.refine) it holds at 10 kHz too.
     lim = AxisLimits((100, 100), (1000, 1000), j=(20000, 20000))
     whole = plan_feed(wiggle(), lim, planner="jerk")
-    assert whole.info["windows"] == 1
+    assert whole.info["windows"] == 1 and whole.info["refined_intervals"] == 0
     monkeypatch.setattr(jerk_windows, "WINDOW_POINTS", 100)
-    chained = plan_feed(wiggle(), lim, planner="jerk")
+    with monkeypatch.context() as m:
+        m.setattr(jerk_planner, "MAX_PASSES", 0)
+        chained = plan_feed(wiggle(), lim, planner="jerk")
     assert chained.info["windows"] >= 5 and chained.info["merged_windows"] == 0
+    assert chained.info["gridpoints"] == whole.info["gridpoints"]
     assert chained.duration == pytest.approx(whole.duration, rel=2e-3)
     check, violations = check_limits(chained, LIMITS_TOL)
     assert check.ok and not violations, check.figure
     smp = chained.sample(1e-4)
     assert max(float(smp.axis_velocity_ratio.max()),
                float(smp.axis_acceleration_ratio.max())) <= OVER
+    refined = plan_feed(wiggle(), lim, planner="jerk")
+    assert refined.info["refined_intervals"] > 0 and refined.info["jerk_over_inside"] == 0
+    assert_within_limits(refined.sample(1e-4))
 
 
 def test_rest_bound_is_motion_from_the_nearest_stop():

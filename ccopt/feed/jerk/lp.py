@@ -26,6 +26,15 @@ SLINEAR, FROM_REST, TO_REST = 0, 1, 2
 #: least this share of the window's largest, so the weights span at most
 #: 1e3 and none falls under HiGHS's optimality tolerance (1e-7 relative).
 WEIGHT_FLOOR = 1e-2
+#: The unit of a ``b`` column is the window's first bound there, but at least
+#: this (scaled): HiGHS's feasibility tolerance is absolute, so each column in
+#: its own unit makes it relative (see :class:`WindowLP`), down to squared
+#: speeds of this share of the scale. Smaller units put HiGHS in numerical
+#: trouble (units to 2.5e-9 near a stop: a window of a generated CAM plate,
+#: seed 179 of tests/feed/test_jerk_generated.py, ended in an unknown status,
+#: by the interior-point method too); with a floor of 1e-6 a squared speed 5e-9 mm
+#: from a stop passed its bound by 3.5 % (seed 196); 1e-7 and 1e-8 hold both.
+B_UNIT_FLOOR = 1e-8
 #: Simplex iterations per gridpoint after which a round's solve counts as run
 #: away (then solved once more from scratch by the interior-point method, see
 #: :meth:`WindowLP.solve`): about twice the most a solve that converges takes
@@ -272,8 +281,9 @@ def _assemble(n, r, rows, cols, vals, stop, acc_rows, twin, jerk_rows, jerk_at, 
 
 def _peak_cap_rows(g: JerkGrid, i0: int, i1: int, scale: float):
     """``(A, hi)``: one row ``b_k + h alpha_k <= bmax`` (scaled) on every
-    ``SLINEAR`` interval of ``i0..i1`` along one straight line whose box bound
-    ``bmax`` is the same at both ends (a feed or velocity cap along a line).
+    ``SLINEAR`` interval of ``i0..i1`` whose box bound ``bmax`` is the same at
+    both ends (a feed or velocity cap along a line; on an arc, the feed where
+    it binds at both ends, the axis velocity caps changing along it).
 
     Why: where ``alpha`` falls through 0 inside the interval (``alpha_k > 0 >
     alpha_k+1``) the squared speed peaks there at ``b* = b_k + alpha_k^2 h /
@@ -289,13 +299,9 @@ def _peak_cap_rows(g: JerkGrid, i0: int, i1: int, scale: float):
     n = i1 - i0
     k = np.arange(n)
     h = np.diff(g.s[i0:i1 + 1])
-    q1s, q2s, q3s = g.q1[1, i0:i1], g.q2[1, i0:i1], g.q3[1, i0:i1]
-    q1e, q2e, q3e = g.q1[0, i0 + 1:i1 + 1], g.q2[0, i0 + 1:i1 + 1], g.q3[0, i0 + 1:i1 + 1]
-    straight = np.all((q2s == 0.0) & (q3s == 0.0) & (q2e == 0.0) & (q3e == 0.0)
-                      & (q1s == q1e), axis=1)
     bmax0, bmax1 = g.bmax[i0:i1], g.bmax[i0 + 1:i1 + 1]
     stop = g.stop[i0:i1 + 1]
-    use = ((g.kind[i0:i1] == SLINEAR) & straight & (bmax0 == bmax1) & np.isfinite(bmax0)
+    use = ((g.kind[i0:i1] == SLINEAR) & (bmax0 == bmax1) & np.isfinite(bmax0)
            & ~stop[:-1] & ~stop[1:])
     ks = k[use]
     m = ks.size
@@ -314,7 +320,8 @@ class WindowLP:
     Between rounds only bounds and costs change (the jerk rows' bounds, see
     :func:`_interval_rows`; the caps on ``b``; the objective weights), so one
     ``highspy.Highs`` keeps the model and HiGHS's simplex starts each round
-    from the last one's optimal basis. Values are scaled by ``1 / scale``;
+    from the last one's optimal basis. Values are scaled by ``1 / scale``
+    (the LP's ``b`` columns further by ``bref``, see the comment in ``__init__``);
     ``bref``: the window's first ``bhat`` (scaled); ``start``: fixed scaled
     ``(b, alpha)`` at ``i0``, or None (then ``i0`` is a stop or free as the
     grid says).
@@ -343,6 +350,16 @@ class WindowLP:
             lb[0] = ub[0] = self.bmax[0] = start[0]
             lb[nb] = ub[nb] = start[1]
         self.b_low = lb[:nb].copy()
+        # each b column in units of its own first bound (B_UNIT_FLOOR at
+        # least): HiGHS's feasibility tolerance is absolute, and near a stop,
+        # where b is orders of magnitude below the scale, it let b pass its
+        # bound bhat by 2.3 % (bhat is the jerk rows' speed factor, so the
+        # jerk went 1 % over its limit: a generated CAM plate, seed 127 of
+        # tests/feed/test_jerk_generated.py)
+        self.b_unit = np.maximum(np.where(bref[:nb] > 0.0, bref[:nb], 1.0), B_UNIT_FLOOR)
+        A = A @ sp.diags(np.concatenate([self.b_unit, np.ones(nb)]), format="csc")
+        lb[:nb] /= self.b_unit
+        ub[:nb] /= self.b_unit
         s = g.s[i0:i1 + 1]
         self.hbar = np.zeros(nb)
         self.hbar[:-1] += 0.5 * np.diff(s)
@@ -376,10 +393,10 @@ class WindowLP:
             jb = np.where(b_at > 0.0, v_at / np.sqrt(B), np.inf)
         h.changeRowsBounds(self.jerk_rows.size, self.jerk_rows, -jb, jb)
         ub = np.maximum(np.minimum(self.bmax, cap), self.b_low)   # a fixed start stays fixed
-        h.changeColsBounds(nb, self.b_cols, self.b_low, ub)
+        h.changeColsBounds(nb, self.b_cols, self.b_low / self.b_unit, ub / self.b_unit)
         floor = WEIGHT_FLOOR * max(float(bhat.max(initial=0.0)), np.finfo(float).tiny)
         w = self.hbar / np.maximum(bhat, floor) ** 1.5
-        h.changeColsCost(nb, self.b_cols, -w / w.max())
+        h.changeColsCost(nb, self.b_cols, -w * self.b_unit / w.max())
         # every run bounded: by max_iterations when asked, else against a run-away
         runaway = int(RUNAWAY_ITERATIONS * nb)
         h.setOptionValue("simplex_iteration_limit",
@@ -405,7 +422,7 @@ class WindowLP:
         if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
             return None
         x = np.asarray(h.getSolution().col_value, dtype=float)
-        return np.maximum(x[:nb], 0.0), x[nb:]
+        return np.maximum(x[:nb] * self.b_unit, 0.0), x[nb:]
 
     def peaks_over(self, b: np.ndarray, alpha: np.ndarray) -> np.ndarray:
         """The straight intervals' jerk rows to tighten for the speed's peak
