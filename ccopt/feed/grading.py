@@ -101,8 +101,8 @@ def ramp_lengths(path: ExactPath, ks: np.ndarray, v_axis, a_axis, tangential_acc
     With axis jerk limits ``jerk`` (plane order) only lines are graded, by
     an S-curve's ramp (:func:`scurve_ramp`) under that ``a_p`` and the path
     jerk every axis allows along the line, ``j_p = min_j J_j / |q_j'|``; arcs
-    stay even (the jerk planner imposes an arc's axis jerk at its gridpoints
-    only, :data:`ccopt.feed.jerk.planner.GRADED`).
+    stay even (see :data:`ccopt.feed.jerk.planner.GRADED`, which uses these
+    zones).
     """
     mid = path.offsets[ks] + 0.5 * path.lengths[ks]
     q1 = np.abs(path.eval_segments(ks, mid, 1))

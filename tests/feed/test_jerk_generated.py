@@ -10,9 +10,9 @@ writes). Properties, independent of how the planner grids the path:
 * the cycle time lies between TOPPRA's (fewer limits) and the jerk-limited
   stop baseline's (an S-curve per block, a feasible profile).
 
-Seed 134 failed the jerk limit (1.0021, inside an arc interval) with lines
-gridded by their ramps (:data:`ccopt.feed.jerk.planner.GRADED`), which is
-why that grid is not the default.
+Before the planner held its squared speeds in their own units and split
+curved intervals over the jerk limit (ccopt.feed.jerk.refine), seeds 127
+and 155 went 1.0 % and 0.28 % over the jerk limit.
 """
 from __future__ import annotations
 
@@ -51,7 +51,7 @@ def _check(seed: int) -> None:
     assert toppra * (1 - ORDER_SLACK) <= prof.duration <= stop * (1 + ORDER_SLACK), (seed, what)
 
 
-@pytest.mark.parametrize("seed", [4, 9])
+@pytest.mark.parametrize("seed", [4, 127])
 def test_jerk_planner_on_generated_cam_programs_quick(seed):
     _check(seed)
 

@@ -166,16 +166,13 @@ JERK_GRID = GridOptions(max_curvature_change=0.4, max_curvature_bend=0.4)
 #: with :class:`~ccopt.feed.grading.Ramps`, their ramp zones S-curves',
 #: :func:`~ccopt.feed.grading.scurve_ramp`): dense within those zones at both
 #: ends, where the speed can change, growing geometrically in between, where
-#: it is at its cap and any gridding represents it exactly. Off: it plans
-#: within 1.3e-4 of the even grid's cycle time in 0.85 of its time (median
-#: over the bundled cases and 40 generated CAM programs, 0.37-0.62 on the
-#: low-feed Fagor and SINUMERIK plates; bench/jerk_grid.py), but the LP's
-#: solutions change with the grid, and on a generated CAM program (seed 134
-#: of tests/feed/test_jerk_generated.py) the axis jerk between two gridpoints
-#: of an (evenly gridded) arc then reached 1.0021 of its limit: on arcs it is
-#: imposed at the gridpoints only. Jerk rows inside arc intervals (as
-#: :func:`~ccopt.feed.jerk.lp._inner_rows` has on curves) hold it, but cost
-#: more on arc-heavy paths than the grading saves. True: graded (for bench/).
+#: it is at its cap and any gridding represents it exactly. Off: it plans the
+#: low-feed Fagor and SINUMERIK plates in 0.37-0.62 of the even grid's time
+#: within 1e-4 of its cycle time (bench/jerk_grid.py), but on the generated
+#: CAM plates it gains little (0.82-1.13 of the time, seeds 100-103 of
+#: tests/feed/test_jerk_generated.py) and on seed 104 a window chained over
+#: the graded lines had an infeasible LP (the planner refuses the program).
+#: True: graded (for bench/).
 GRADED = False
 #: Ratio of consecutive interval lengths in the geometric refinement at stops.
 #: On the 1,000-block pocket of bench/feed.py (2 stops every 4 blocks) 1.06,
