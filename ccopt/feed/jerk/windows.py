@@ -170,9 +170,18 @@ def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: f
     if out is None:
         bhat = np.maximum(bhat, b)
         out = lp.solve(bhat, np.minimum(cap, bhat))
-    # the speed peaks inside straight intervals: their rows tightened where
-    # the profile breaks the jerk limit there, and solved again (each pass from
-    # the last basis); after PEAK_PASSES, all of them (exact whatever comes)
+    out = cover_peaks(lp, bhat, np.minimum(cap, bhat), out)
+    if out is None:
+        return None
+    return out[0], out[1], rounds + 1, bhat
+
+
+def cover_peaks(lp: WindowLP, bhat: np.ndarray, cap: np.ndarray, out):
+    """``out`` (a solution of ``lp`` under ``bhat`` and ``cap``, or None) once
+    the speed's peaks inside straight intervals are covered: their rows
+    tightened where the profile breaks the jerk limit there, and solved again
+    (each pass from the last basis); after :data:`PEAK_PASSES`, all of them
+    (exact whatever comes). None when a solve fails."""
     for k in range(PEAK_PASSES + 1):
         if out is None:
             return None
@@ -180,10 +189,8 @@ def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: f
         if not over.any():
             break
         lp.peaked |= over if k < PEAK_PASSES else lp.rise > 0.0
-        out = lp.solve(bhat, np.minimum(cap, bhat))
-    if out is None:
-        return None
-    return out[0], out[1], rounds + 1, bhat
+        out = lp.solve(bhat, cap)
+    return out
 
 
 def _settled(durations: list[float]) -> bool:
