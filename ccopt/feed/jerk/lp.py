@@ -324,11 +324,12 @@ class WindowLP:
     (the LP's ``b`` columns further by ``bref``, see the comment in ``__init__``);
     ``bref``: the window's first ``bhat`` (scaled); ``start``: fixed scaled
     ``(b, alpha)`` at ``i0``, or None (then ``i0`` is a stop or free as the
-    grid says).
+    grid says); ``end`` likewise at ``i1``.
     """
 
     def __init__(self, g: JerkGrid, i0: int, i1: int, bref: np.ndarray,
-                 start: tuple[float, float] | None, scale: float):
+                 start: tuple[float, float] | None, scale: float,
+                 end: tuple[float, float] | None = None):
         self.nb = nb = i1 - i0 + 1
         self.scale = scale
         self.vref = np.sqrt(np.where(bref > 0.0, bref, 1.0) * scale)     # units/s
@@ -349,6 +350,9 @@ class WindowLP:
         if start is not None:
             lb[0] = ub[0] = self.bmax[0] = start[0]
             lb[nb] = ub[nb] = start[1]
+        if end is not None:
+            lb[nb - 1] = ub[nb - 1] = self.bmax[nb - 1] = end[0]
+            lb[-1] = ub[-1] = end[1]
         self.b_low = lb[:nb].copy()
         # each b column in units of its own first bound (B_UNIT_FLOOR at
         # least): HiGHS's feasibility tolerance is absolute, and near a stop,

@@ -77,8 +77,11 @@ seven inner points (:func:`~ccopt.feed.jerk.refine.jerk_over_inside`) and
 splits every interval over the limit there by more than
 :data:`~ccopt.feed.jerk.refine.REFINE_TOL` into as many pieces as the
 square root of its excess over that tolerance asks (the excess is second
-order in the spacing), then plans the stretches that gained gridpoints again
-(at most :data:`~ccopt.feed.jerk.refine.MAX_PASSES` passes; ``info``
+order in the spacing), then plans around them again: a window a little
+beyond them with its ends held at the last plan's state
+(:func:`~ccopt.feed.jerk.refine.replan_locally`), or their whole stretch
+where no such window is feasible short of its stops (at most
+:data:`~ccopt.feed.jerk.refine.MAX_PASSES` passes; ``info``
 counts ``refined_intervals``, ``refine_passes`` and what is left over,
 ``jerk_over_inside``). Without it, the small corner arcs of bench/feed.py's
 pocket went 14 % over the jerk limit between gridpoints that all met it, and
@@ -136,7 +139,8 @@ from ccopt.feed.grid import GridOptions, gridpoints
 from ccopt.feed.jerk.lp import (FROM_REST, INNER_POINTS, SLINEAR, TO_REST, JerkGrid,
                                 piece_times)
 from ccopt.feed.jerk.profile import CUBIC, JerkProfile, slinear_time
-from ccopt.feed.jerk.refine import MAX_PASSES, MAX_SPLIT, REFINE_TOL, jerk_over_inside
+from ccopt.feed.jerk.refine import (MAX_PASSES, MAX_SPLIT, REFINE_TOL, jerk_over_inside,
+                                   profile_at, replan_locally)
 from ccopt.feed.jerk.profile import SLINEAR as PIECE_SLINEAR
 from ccopt.feed.jerk.speed_bound import StretchBound, speed_bound
 from ccopt.feed.jerk.windows import _grid_slice, any_chained, plan_windows, split
@@ -307,7 +311,7 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
     extra = np.zeros(0)
     refined = passes = 0
     # split the curved intervals whose axis jerk goes over the limit between
-    # their gridpoints (ccopt.feed.jerk.refine) and plan their stretches again
+    # their gridpoints (ccopt.feed.jerk.refine) and plan around them again
     while True:
         over, excess = jerk_over_inside(path, g, b, alpha, j)
         if not over.any() or passes == MAX_PASSES:
@@ -322,30 +326,16 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         extra = np.union1d(extra, new)
         refined += k.size
         finer = build_grid(path, limits, ts, grid, extra)
-        g, b, alpha = _replan_stretches(path, limits, grid, finer, g, b, alpha, new, scurve)
+        b, alpha = profile_at(g.s, b, alpha, finer.s)
+        b, alpha, failed = replan_locally(finer, b, alpha, new, _scale(finer.bmax))
+        for lo, hi in failed:
+            b[lo:hi + 1], alpha[lo:hi + 1], _, _ = _plan_grid(path, limits,
+                                                              _grid_slice(finer, lo, hi),
+                                                              grid, scurve)
+        g = finer
     info.update(ts=ts, gridpoints=int(g.s.size), refined_intervals=refined, refine_passes=passes,
                 jerk_over_inside=int(np.count_nonzero(over)))
     return _profile(path, limits, g, b, alpha, info, scurve)
-
-
-def _replan_stretches(path: ExactPath, limits: AxisLimits, grid: GridOptions, g: JerkGrid,
-                      old: JerkGrid, b_old: np.ndarray, alpha_old: np.ndarray,
-                      new: np.ndarray, scurve: dict):
-    """``(g, b, alpha)`` on the refined grid ``g`` (``old``'s gridpoints and
-    ``new``): the stretches between stops that gained a gridpoint planned
-    again, each on its own (stops fix the speed at 0 between them), the
-    others' figures kept from ``b_old``, ``alpha_old``."""
-    at = np.searchsorted(g.s, old.s)                    # old gridpoints within g
-    b = np.full(g.s.size, np.nan)
-    alpha = np.zeros(g.s.size)
-    b[at], alpha[at] = b_old, alpha_old
-    stops = np.flatnonzero(g.stop)
-    hit = np.unique(np.searchsorted(g.s[stops], new) - 1)       # stretches with new points
-    for i in hit:
-        lo, hi = int(stops[i]), int(stops[i + 1])
-        bs, als, _, _ = _plan_grid(path, limits, _grid_slice(g, lo, hi), grid, scurve)
-        b[lo:hi + 1], alpha[lo:hi + 1] = bs, als
-    return g, b, alpha
 
 
 def _plan_grid(path: ExactPath, limits: AxisLimits, g: JerkGrid, grid: GridOptions,
