@@ -31,6 +31,7 @@ from __future__ import annotations
 import numpy as np
 
 from ccopt.feed.jerk.lp import SLINEAR, JerkGrid
+from ccopt.feed.jerk.windows import solve_rounds
 from ccopt.feed.path import ExactPath
 from ccopt.verify.limits import LIMITS_TOL
 
@@ -119,8 +120,6 @@ def replan_locally(g: JerkGrid, b: np.ndarray, alpha: np.ndarray, new: np.ndarra
     bench/feed.py 0.3 % slower in 12 % less CPU.) Returns ``(b, alpha,
     failed)``: ``failed`` the stretches ``(lo, hi)`` (stop to stop) whose
     window stayed infeasible up to its stops, for the caller to plan whole."""
-    from ccopt.feed.jerk.windows import solve_rounds
-
     b, alpha = b.copy(), alpha.copy()
     stops = np.flatnonzero(g.stop)
     at = np.searchsorted(g.s, new)
