@@ -139,11 +139,11 @@ from ccopt.feed.grid import GridOptions, gridpoints
 from ccopt.feed.jerk.lp import (FROM_REST, INNER_POINTS, SLINEAR, TO_REST, JerkGrid,
                                 piece_times)
 from ccopt.feed.jerk.profile import CUBIC, JerkProfile, slinear_time
-from ccopt.feed.jerk.refine import (MAX_PASSES, MAX_SPLIT, REFINE_TOL, jerk_over_inside,
-                                   profile_at, replan_locally)
+from ccopt.feed.jerk.refine import (MAX_PASSES, jerk_over_inside, profile_at, replan_locally,
+                                   split_points)
 from ccopt.feed.jerk.profile import SLINEAR as PIECE_SLINEAR
 from ccopt.feed.jerk.speed_bound import StretchBound, speed_bound
-from ccopt.feed.jerk.windows import _grid_slice, any_chained, plan_windows, split
+from ccopt.feed.jerk.windows import grid_slice, any_chained, plan_windows, split
 from ccopt.feed.limits import AxisLimits
 from ccopt.feed.path import ExactPath
 from ccopt.feed.planners import DEFAULT_TS
@@ -317,20 +317,15 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         if not over.any() or passes == MAX_PASSES:
             break
         passes += 1
-        k = np.flatnonzero(over)
-        # the excess falls with the square of the spacing
-        m = np.clip(np.ceil(np.sqrt(excess[k] / REFINE_TOL)), 2, MAX_SPLIT).astype(int)
-        frac = np.concatenate([np.arange(1, n) / n for n in m])
-        at = np.repeat(k, m - 1)
-        new = g.s[at] + frac * (g.s[at + 1] - g.s[at])
+        new = split_points(g.s, over, excess)
         extra = np.union1d(extra, new)
-        refined += k.size
+        refined += int(np.count_nonzero(over))
         finer = build_grid(path, limits, ts, grid, extra)
         b, alpha = profile_at(g.s, b, alpha, finer.s)
         b, alpha, failed = replan_locally(finer, b, alpha, new, _scale(finer.bmax))
         for lo, hi in failed:
             b[lo:hi + 1], alpha[lo:hi + 1], _, _ = _plan_grid(path, limits,
-                                                              _grid_slice(finer, lo, hi),
+                                                              grid_slice(finer, lo, hi),
                                                               grid, scurve)
         g = finer
     info.update(ts=ts, gridpoints=int(g.s.size), refined_intervals=refined, refine_passes=passes,
@@ -358,7 +353,7 @@ def _plan_grid(path: ExactPath, limits: AxisLimits, g: JerkGrid, grid: GridOptio
     else:
         if g.s[0] == 0.0 and g.s[-1] == path.length:
             upper = speed_bound(path, limits, grid, g.s, g.stop, g.bmax)
-        else:                           # a stretch planned again (_replan_stretches)
+        else:                           # a stretch planned again after refinement
             upper = StretchBound.of(path, limits, grid, g.s[0], g.s[-1])(g.s, g.stop, g.bmax)
         scale, bound_of = _scale(upper), None
         cap = upper / scale

@@ -82,6 +82,18 @@ def jerk_over_inside(path: ExactPath, g: JerkGrid, b: np.ndarray, alpha: np.ndar
     return excess > REFINE_TOL, excess
 
 
+
+def split_points(s: np.ndarray, over: np.ndarray, excess: np.ndarray) -> np.ndarray:
+    """The gridpoints that split the intervals ``over`` of the gridpoints ``s``
+    (:func:`jerk_over_inside`): each into ``sqrt(excess / REFINE_TOL)`` equal
+    pieces, 2 to :data:`MAX_SPLIT` (the excess falls with the square of the
+    spacing)."""
+    k = np.flatnonzero(over)
+    m = np.clip(np.ceil(np.sqrt(excess[k] / REFINE_TOL)), 2, MAX_SPLIT).astype(int)
+    frac = np.concatenate([np.arange(1, n) / n for n in m]) if k.size else np.zeros(0)
+    at = np.repeat(k, m - 1)
+    return s[at] + frac * (s[at + 1] - s[at])
+
 #: Gridpoints a local re-plan reaches beyond the intervals it refines, on each
 #: side (up to the stops; doubled while its LP is infeasible, see
 #: :func:`replan_locally`).

@@ -215,7 +215,7 @@ def _chains(wins: list[tuple[int, int, int]], stop: np.ndarray) -> list[list[tup
     return chains
 
 
-def _grid_slice(g: JerkGrid, i0: int, i1: int) -> JerkGrid:
+def grid_slice(g: JerkGrid, i0: int, i1: int) -> JerkGrid:
     """The gridpoints ``i0..i1`` of ``g`` (its intervals between them)."""
     sl = slice(i0, i1 + 1)
     return replace(g, s=g.s[sl], q1=g.q1[:, sl], q2=g.q2[:, sl], q3=g.q3[:, sl],
@@ -351,9 +351,9 @@ def _tasks(g: JerkGrid, cap: np.ndarray | None, chains, scale: float, bound_of=N
         local = [[(i0 - lo, i1 - lo, keep - lo) for i0, i1, keep in chain] for chain in group]
         if cap is None:
             bound = bound_of(lo, hi) if bound_of is not None else None
-            yield lo, (_grid_slice(g, lo, hi), None, local, scale, bound)
+            yield lo, (grid_slice(g, lo, hi), None, local, scale, bound)
         else:
-            yield lo, (_grid_slice(g, lo, hi), cap[lo:hi + 1], local, scale)
+            yield lo, (grid_slice(g, lo, hi), cap[lo:hi + 1], local, scale)
 
 
 def split(g: JerkGrid) -> bool:
