@@ -18,8 +18,8 @@ intervals from the LP's own ``(b, alpha)``; the planner splits them
 plans a window around them again, its ends held at the last plan's state
 (the profile between stops depends on all of it, so a window is the
 planner's own approximation, as its overlapping windows are; planning the
-whole stretch again instead gave the 1,000-block pocket a 0.3 % shorter
-cycle for 35 % more CPU).
+whole stretch again instead gave bench/feed.py's 1,000-block pocket a 0.6 %
+shorter cycle for 50 % more CPU).
 
 Straight intervals are not checked here: their only inner excess, the
 speed's peak where ``alpha`` changes sign, is bounded in the LP itself
@@ -30,8 +30,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from ccopt.feed.jerk.lp import SLINEAR, JerkGrid
-from ccopt.feed.jerk.windows import solve_rounds
+from ccopt.feed.jerk.lp import SLINEAR, JerkGrid, WindowLP
+from ccopt.feed.jerk.windows import cover_peaks
 from ccopt.feed.path import ExactPath
 from ccopt.verify.limits import LIMITS_TOL
 
@@ -125,11 +125,13 @@ def replan_locally(g: JerkGrid, b: np.ndarray, alpha: np.ndarray, new: np.ndarra
     """The profile ``(b, alpha)`` on the refined grid ``g`` (the last plan
     there, :func:`profile_at`) planned again around the ``new`` gridpoints:
     a window of :data:`LOCAL_MARGIN` gridpoints beyond them on each side
-    (clipped at stops), its ends held at the last plan's state, by the
-    pseudo-jerk rounds (:func:`~ccopt.feed.jerk.windows.solve_rounds`) from
-    that plan's speed, capped by the box bound. (One LP under the last plan's
-    speed as the bound, only ever slower, planned the 1,000-block pocket of
-    bench/feed.py 0.3 % slower in 12 % less CPU.) Returns ``(b, alpha,
+    (clipped at stops), its ends held at the last plan's state, one LP with
+    that plan's speed as the bound (``b <= bhat = b_last``: the jerk rows exact
+    at every gridpoint, and never faster than the last plan there). The
+    pseudo-jerk rounds from that speed instead
+    (:func:`~ccopt.feed.jerk.windows.solve_rounds`) wander: they planned
+    bench/feed.py's 1,000-block pocket 0.3 % faster but its 100-block one
+    2.9 % slower (a stretch then fell back to the S-curve). Returns ``(b, alpha,
     failed)``: ``failed`` the stretches ``(lo, hi)`` (stop to stop) whose
     window stayed infeasible up to its stops, for the caller to plan whole."""
     b, alpha = b.copy(), alpha.copy()
@@ -144,8 +146,8 @@ def replan_locally(g: JerkGrid, b: np.ndarray, alpha: np.ndarray, new: np.ndarra
             bhat = b[lo:hi + 1] / scale
             start = None if lo == lo_s else (bhat[0], alpha[lo] / scale)
             end = None if hi == hi_s else (bhat[-1], alpha[hi] / scale)
-            box = np.where(g.stop[lo:hi + 1], 0.0, g.bmax[lo:hi + 1] / scale)
-            out = solve_rounds(g, lo, hi, np.maximum(box, bhat), start, scale, bhat, end)
+            lp = WindowLP(g, lo, hi, bhat, start, scale, end)
+            out = cover_peaks(lp, bhat, bhat, lp.solve(bhat, bhat))
             if out is not None and np.all(out[0][~g.stop[lo:hi + 1]] > 0.0):
                 b[lo:hi + 1], alpha[lo:hi + 1] = out[0] * scale, out[1] * scale
                 break

@@ -113,7 +113,7 @@ def windows(g: JerkGrid) -> list[tuple[int, int, int]]:
 
 
 def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: float,
-                 bhat0: np.ndarray | None = None, end=None):
+                 bhat0: np.ndarray | None = None):
     """The pseudo-jerk rounds on one window (see :mod:`ccopt.feed.jerk.planner`):
     ``(b, alpha, rounds, bhat)`` scaled, or None when an LP is infeasible.
 
@@ -131,7 +131,7 @@ def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: f
     bhat = cap.copy()
     if bhat0 is not None:
         bhat[:bhat0.size] = np.minimum(bhat0, cap[:bhat0.size])
-    lp = WindowLP(g, i0, i1, cap, start, scale, end)
+    lp = WindowLP(g, i0, i1, cap, start, scale)
     h = np.diff(g.s[i0:i1 + 1])
     durations: list[float] = []
     rounds = 0
@@ -164,7 +164,7 @@ def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: f
     # only) as fast with the raised bound (11.1485 s against 11.1494 s) in
     # 59 CPU s instead of 77, where 29 of its 37 capped rounds ran out of
     # iterations.
-    in_chain = start is not None or end is not None or not g.stop[i1]   # see chained()
+    in_chain = start is not None or not g.stop[i1]        # see chained()
     out = None if in_chain else lp.solve(bhat, np.minimum(cap, bhat),
                                          max_iterations=int(FINAL_ITERATIONS * bhat.size))
     if out is None:
