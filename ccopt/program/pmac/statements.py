@@ -197,7 +197,9 @@ class Interpreter:
             return False
         if not first:
             return False
-        # |value| <= bound (which inf is not), then the end point as finite_point wants it
+        # |value| <= bound (which inf is not), then the end point as finite_point wants it;
+        # written out per axis: this runs once per line of a long program, and a loop
+        # over the three axes measured slower (bench/io.py)
         bound = MAX_PROGRAM_COORDINATE
         start = self.pos
         end_x, end_y, end_z = start
