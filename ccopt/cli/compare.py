@@ -12,7 +12,7 @@ from ccopt.cli.options import (add_limit_options, add_output_option, add_program
                                positive_float)
 from ccopt.cli.output import EXIT_FAILED, EXIT_OK, aligned, emit_json, figure, nothing_to_do
 from ccopt.compare import REFERENCE, BlendProblem, Comparison, available
-from ccopt.compare.plot import plot_comparison
+from ccopt.compare.plot import check_plot_name, plot_comparison
 from ccopt.compare.registry import require_known
 from ccopt.errors import ProgramError
 from ccopt.export import ExportResult, export
@@ -75,6 +75,8 @@ def cmd_compare(args: argparse.Namespace) -> int:
     names = chosen_variants(args)
     if names:
         require_known(names, args.program)
+    if args.output:
+        check_plot_name(args.output)            # before the comparison, not after it
     with reading(args, "compare") as (work, prog, say):
         if prog.nothing_to_verify():
             return nothing_to_do(args, prog, "compare")

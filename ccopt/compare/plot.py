@@ -5,10 +5,14 @@ path. Right: a close-up of the first lead-in (where the variants differ most).
 """
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 
+from ccopt.atomic import write_with_atomic
 from ccopt.compare.figures import FEED_ROLES
 from ccopt.compare.leads import find_leads
+from ccopt.errors import ProgramError
 from ccopt.geometry.curve import bernstein
 from ccopt.toolpath import programmed_path
 
@@ -29,8 +33,22 @@ def _xy(path):
     return np.vstack(pts) if pts else np.zeros((0, 2))
 
 
+#: The plot formats ``ccopt compare -o`` writes, by suffix (lower case).
+PLOT_SUFFIXES = (".png", ".svg", ".pdf")
+
+
+def check_plot_name(out) -> None:
+    """A :class:`~ccopt.errors.ProgramError` naming ``out`` unless its suffix is
+    one of :data:`PLOT_SUFFIXES` (checked before the comparison runs)."""
+    if Path(out).suffix.lower() not in PLOT_SUFFIXES:
+        raise ProgramError(f"compare -o writes a plot: use one of {', '.join(PLOT_SUFFIXES)} "
+                           f"(the table as JSON: --json)", str(out))
+
+
 def plot_comparison(comparison, out, title: str | None = None) -> str:
-    """Write the plot to ``out`` (PNG/SVG/PDF by suffix); returns the file name."""
+    """Write the plot to ``out`` (PNG/SVG/PDF by suffix, :data:`PLOT_SUFFIXES`;
+    atomically: :func:`ccopt.atomic.write_with_atomic`); returns the file name."""
+    check_plot_name(out)
     # deferred: matplotlib is heavy and optional (only plots need it). A
     # Figure of its own, not pyplot: writing the file neither chooses nor
     # changes the backend of a notebook or program that calls this (its
@@ -67,7 +85,8 @@ def plot_comparison(comparison, out, title: str | None = None) -> str:
     axes[0].set_title(title or f"{prog.file}: variants")
     axes[0].legend(fontsize=7, loc="best")
     fig.tight_layout()
-    fig.savefig(out, dpi=120)
+    fmt = Path(out).suffix.lower()[1:]
+    write_with_atomic(out, lambda p: fig.savefig(p, format=fmt, dpi=120))
     return str(out)
 
 

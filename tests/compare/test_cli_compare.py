@@ -30,6 +30,23 @@ def test_compare_json_and_plot(capsys, tmp_path):
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_compare_refuses_a_plot_name_it_cannot_write_before_comparing(capsys, tmp_path,
+                                                                       monkeypatch):
+    # -o names a plot; a .json there was an internal error (matplotlib's), after
+    # the whole comparison had run
+    import ccopt.cli.compare as cli_compare
+
+    def never(*_a, **_k):
+        raise AssertionError("the comparison ran")
+
+    monkeypatch.setattr(cli_compare, "pipeline", never)
+    out = tmp_path / "v.json"
+    code, _, err = run(capsys, "compare", "leadin-inside-line", "-o", str(out))
+    assert code == 2
+    assert err.startswith(f"{out}: compare -o writes a plot") and "--json" in err
+    assert "Traceback" not in err and not out.exists()
+
+
 def test_compare_text_and_limits_override(capsys):
     code, out, _ = run(capsys, "compare", "leadin-inside-line", "--variants", "pmac",
                        "--vmax", "10,10,10", "--amax", "100,100,100")
