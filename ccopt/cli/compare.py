@@ -75,9 +75,9 @@ def cmd_compare(args: argparse.Namespace) -> int:
     names = chosen_variants(args)
     if names:
         require_known(names, args.program)
-    if args.output:
-        check_plot_name(args.output)            # before the comparison, not after it
     with reading(args, "compare") as (work, prog, say):
+        if args.output:
+            check_plot_name(args.output)        # before the comparison, not after it
         if prog.nothing_to_verify():
             return nothing_to_do(args, prog, "compare")
         done = pipeline(work, program=prog, compensate=False, feed=False, verify=False,
