@@ -1,9 +1,9 @@
 """The jerk planner on graded and on even grids, on the same paths.
 
-``ccopt.feed.jerk.planner.GRADED`` chooses the LP's gridpoints on lines:
-graded by S-curve ramps (True: dense within the ramp zones at both ends of a
-line, growing in between where the speed is at its cap) or evenly spaced by
-TOPPRA's braking rule (False, ccopt's setting; its docstring says why). This plans the
+``ccopt.feed.jerk.planner.GRADED`` chooses the LP's gridpoints on lines and
+arcs: graded by S-curve ramps (True, ccopt's setting: dense within the ramp
+zones at both ends of a segment, growing in between where the speed is at
+its cap) or evenly spaced by TOPPRA's braking rule (False). This plans the
 same paths under both, alternating, and prints per path the gridpoints, the
 median wall time of each, their ratio and the relative difference of the
 cycle times:

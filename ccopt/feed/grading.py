@@ -47,14 +47,13 @@ def braking_measure(sigma, S, ds, zone):
 
 def curve_zones(path: ExactPath, k, s, v_axis, a_axis, ramps) -> np.ndarray:
     """Ramp zone (:func:`ramp_lengths`) of every sampled curve ``k`` (indexed by
-    segment), from the largest ``|q''|`` of its samples; ``inf`` without
-    ``ramps`` (a :class:`Ramps`, or its first two fields) and with jerk limits
-    (the share of the jerk a curve's changing ``q'''`` takes is not bounded
-    here, so its braking measure stays even)."""
+    segment), from the largest ``|q''|`` of its samples (and, with jerk
+    limits, the largest ``|q'''|``, :func:`curved_ramp`); ``inf`` without
+    ``ramps`` (a :class:`Ramps`, or its first two fields)."""
     zone = np.full(path.lengths.size, np.inf)
-    if ramps is None or Ramps(*ramps).jerk is not None:
+    if ramps is None:
         return zone
-    tangential_acc, centripetal_acc = ramps[:2]
+    r = Ramps(*ramps)
     c = np.zeros(path.lengths.size)
     np.maximum.at(c, k, path.curvature_norm(k, s))
     ks = np.unique(k)
@@ -63,12 +62,38 @@ def curve_zones(path: ExactPath, k, s, v_axis, a_axis, ramps) -> np.ndarray:
     a_min = float(np.min(a_axis))
     ok = (np.isfinite(feed) & (feed <= GRADE_FEED_SHARE * float(np.min(v_axis)))
           & (side < a_min))
-    if centripetal_acc is not None:
-        ok &= side <= float(centripetal_acc)
-    a_t = np.inf if tangential_acc is None else float(tangential_acc)
+    if r.centripetal_acc is not None:
+        ok &= side <= float(r.centripetal_acc)
+    a_t = np.inf if r.tangential_acc is None else float(r.tangential_acc)
     with np.errstate(invalid="ignore"):
-        zone[ks] = np.where(ok, feed * feed / np.minimum(a_min - side, a_t), np.inf)
+        a_p = np.minimum(a_min - side, a_t)
+        if r.jerk is None:
+            zone[ks] = np.where(ok, feed * feed / a_p, np.inf)
+        else:
+            c3 = np.zeros(path.lengths.size)
+            np.maximum.at(c3, k, np.linalg.norm(path.eval_segments(k, s, 3), axis=1))
+            ramp = curved_ramp(feed, c[ks], c3[ks], a_p, float(np.min(r.jerk)))
+            zone[ks] = np.where(ok, ramp, np.inf)
     return zone
+
+
+def curved_ramp(f, c, c3, a_p, j_min):
+    """Twice the longest speed ramp (units) to or from the feed ``f`` on a curve
+    with ``|q''| <= c`` and ``|q'''| <= c3`` (an arc: ``c3 = c^2``), under the
+    tangential acceleration ``a_p`` its centripetal part leaves and the axis
+    jerk limit ``j_min``; ``inf`` where no jerk is left. The axis jerk is
+    ``q''' s'^3 + 3 q'' s' s'' + q' s'''``: the curve's own terms take at most
+    ``c3 f^3 + 3 c f a`` at path acceleration ``a``, so with ``a`` at most
+    half of what the jerk the first term leaves allows, ``(j_min - c3 f^3) /
+    (6 c f)``, the path keeps a jerk of at least half that
+    (:func:`scurve_ramp` under the smaller ``a`` and that jerk: a longer ramp,
+    so a wider zone)."""
+    f, c, c3, a_p = (np.asarray(x, float) for x in (f, c, c3, a_p))
+    left = j_min - c3 * f ** 3
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a = np.minimum(a_p, np.where(c * f > 0.0, left / (6.0 * c * f), np.inf))
+        j = left - 3.0 * c * f * a
+        return np.where((left > 0.0) & (a > 0.0), scurve_ramp(f, a, j), np.inf)
 
 
 #: Graded grids (:func:`gridpoints` with ``ramps``): the spacing grows by this
@@ -98,11 +123,11 @@ def ramp_lengths(path: ExactPath, ks: np.ndarray, v_axis, a_axis, tangential_acc
     as the centripetal part takes more of the limit, and a ramp longer than
     half the segment leaves it evenly gridded (:func:`_graded`).
 
-    With axis jerk limits ``jerk`` (plane order) only lines are graded, by
-    an S-curve's ramp (:func:`scurve_ramp`) under that ``a_p`` and the path
-    jerk every axis allows along the line, ``j_p = min_j J_j / |q_j'|``; arcs
-    stay even (see :data:`ccopt.feed.jerk.planner.GRADED`, which uses these
-    zones).
+    With axis jerk limits ``jerk`` (plane order) the ramp is an S-curve's
+    (:func:`scurve_ramp`) under that ``a_p`` and the path jerk every axis
+    allows along a line, ``min_j J_j / |q_j'|``; on an arc under what the
+    arc's own terms of the axis jerk leave (:func:`curved_ramp`)
+    (:data:`ccopt.feed.jerk.planner.GRADED` uses these zones).
     """
     mid = path.offsets[ks] + 0.5 * path.lengths[ks]
     q1 = np.abs(path.eval_segments(ks, mid, 1))
@@ -124,7 +149,9 @@ def ramp_lengths(path: ExactPath, ks: np.ndarray, v_axis, a_axis, tangential_acc
                             np.where(arc_ok, feed * feed / a_arc, np.inf))
         else:
             j_line = np.where(q1 > 0, np.asarray(jerk, float) / q1, np.inf).min(axis=1)
-            ramp = np.where(c == 0.0, scurve_ramp(v_line, a_line, j_line), np.inf)
+            arc = curved_ramp(feed, c, c * c, a_arc, float(np.min(jerk)))
+            ramp = np.where(c == 0.0, scurve_ramp(v_line, a_line, j_line),
+                            np.where(arc_ok, arc, np.inf))
     return np.where(np.isfinite(ramp) & (ramp >= 0.0), ramp, np.inf)
 
 

@@ -51,7 +51,9 @@ def _check(seed: int) -> None:
     assert toppra * (1 - ORDER_SLACK) <= prof.duration <= stop * (1 + ORDER_SLACK), (seed, what)
 
 
-@pytest.mark.parametrize("seed", [4, 127])
+# 104: a corner arc of sweep 6.5e-8 rad next to a stop, whose gridpoints 3.8e-9 mm
+# apart stalled the planner (zero speed away from the stop) on a coarser grid
+@pytest.mark.parametrize("seed", [4, 104, 127])
 def test_jerk_planner_on_generated_cam_programs_quick(seed):
     _check(seed)
 

@@ -166,18 +166,18 @@ from ccopt.geometry import Line
 #: 4x, 10.6682 and 10.1908 s (+0.05 %) with 8x, jerk within 1.00024; with the
 #: middle point alone and budgets 2x TOPPRA's the jerk reached 1.0023.
 JERK_GRID = GridOptions(max_curvature_change=0.4, max_curvature_bend=0.4)
-#: Whether lines are graded as TOPPRA grades them (:func:`ccopt.feed.grid.gridpoints`
-#: with :class:`~ccopt.feed.grading.Ramps`, their ramp zones S-curves',
-#: :func:`~ccopt.feed.grading.scurve_ramp`): dense within those zones at both
-#: ends, where the speed can change, growing geometrically in between, where
-#: it is at its cap and any gridding represents it exactly. Off: it plans the
-#: low-feed Fagor and SINUMERIK plates in 0.37-0.62 of the even grid's time
-#: within 1e-4 of its cycle time (bench/jerk_grid.py), but on the generated
-#: CAM plates it gains little (0.82-1.13 of the time, seeds 100-103 of
-#: tests/feed/test_jerk_generated.py) and on seed 104 a window chained over
-#: the graded lines had an infeasible LP (the planner refuses the program).
-#: True: graded (for bench/).
-GRADED = False
+#: Whether lines and arcs are graded as TOPPRA grades them
+#: (:func:`ccopt.feed.grid.gridpoints` with :class:`~ccopt.feed.grading.Ramps`,
+#: their ramp zones S-curves', :func:`~ccopt.feed.grading.scurve_ramp` and
+#: :func:`~ccopt.feed.grading.curved_ramp`): the even grid's spacing within
+#: those zones at both ends, where the speed can change, growing
+#: geometrically in between, where it is at its cap and any gridding
+#: represents it exactly. bench/jerk_grid.py measures graded against even.
+#: Lines alone gained little on generated CAM plates (their arcs, at the
+#: feed, kept the even grid), and a window of seed 104 of
+#: tests/feed/test_jerk_generated.py stalled (gridpoints 3.8e-9 mm from a
+#: stop, now dropped: :func:`_clear_of_stops`). False: every line and arc evenly.
+GRADED = True
 #: Ratio of consecutive interval lengths in the geometric refinement at stops.
 #: On the 1,000-block pocket of bench/feed.py (2 stops every 4 blocks) 1.06,
 #: 1.1, 1.15 and 1.25 planned 157.54, 157.72, 157.76 and 157.84 s with
@@ -226,6 +226,7 @@ def build_grid(path: ExactPath, limits: AxisLimits, ts: float,
     s = _stop_refinement(path, stop_s, a, j, base)
     if extra is not None and extra.size:
         s = np.union1d(s, extra)
+    s = _clear_of_stops(s, stop_s, (JERK_GRID if grid is None else grid).min_spacing)
     q = [np.stack([path.eval_sided(s, o, "left"), path.eval_sided(s, o, "right")])
          for o in (1, 2, 3)]
     stop = np.isin(s, stop_s)
@@ -243,6 +244,24 @@ def build_grid(path: ExactPath, limits: AxisLimits, ts: float,
     m = [path.eval_sided(x, o, "right").reshape(inner.size, s.size - 1, -1) for o in (1, 2, 3)]
     return JerkGrid(s, q[0], q[1], q[2], kind, stop, bmax, a_t, a, j, *m,
                     lone=lone_lines(path, s, stop))
+
+
+def _clear_of_stops(s: np.ndarray, stops: np.ndarray, min_spacing: float) -> np.ndarray:
+    """``s`` without the gridpoints closer than ``min_spacing`` to a stop
+    (``stops``, themselves kept; units). The interval from rest to such a point
+    is below what the LP resolves: the speed there (pure jerk from rest,
+    ``b ~ (J d)^(4/3)``) is under HiGHS's tolerance even in the ``b`` column's
+    own unit, and a squared speed of 0 away from a stop, which the LP may
+    then give (its objective weight there is as small as the interval), is a
+    stall. Such points come from a segment shorter than ``min_spacing`` next
+    to a stop (a corner arc of sweep 6.5e-8 rad, a generated CAM plate, seed
+    104 of tests/feed/test_jerk_generated.py: the segment's own 16 intervals of
+    3.8e-9 mm). The interval from the stop then reaches past that segment's
+    curvature break, a distance the tool covers at under 1e-3 of its speed."""
+    k = np.searchsorted(stops, s)
+    near = np.minimum(np.abs(s - stops[np.clip(k - 1, 0, stops.size - 1)]),
+                      np.abs(stops[np.clip(k, 0, stops.size - 1)] - s))
+    return s[(near >= min_spacing) | np.isin(s, stops)]
 
 
 def lone_lines(path: ExactPath, s: np.ndarray, stop: np.ndarray) -> np.ndarray:
