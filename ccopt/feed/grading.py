@@ -6,7 +6,9 @@ longest speed ramp the limits allow there, :func:`ramp_lengths`) and grows
 the spacing geometrically in between, where the time-optimal speed is its cap
 (constant on lines and arcs) and any gridding represents it exactly
 (:func:`graded_grids`); curves get the same zones in their braking measure
-(:func:`braking_measure`, :func:`curve_zones`).
+(:func:`braking_measure`, :func:`curve_zones`), under jerk limits also around
+the places inside them where the speed can leave the feed
+(:func:`curve_braking`).
 """
 from __future__ import annotations
 
@@ -47,13 +49,13 @@ def braking_measure(sigma, S, ds, zone):
 
 def curve_zones(path: ExactPath, k, s, v_axis, a_axis, ramps) -> np.ndarray:
     """Ramp zone (:func:`ramp_lengths`) of every sampled curve ``k`` (indexed by
-    segment), from the largest ``|q''|`` of its samples (and, with jerk
-    limits, the largest ``|q'''|``, :func:`curved_ramp`); ``inf`` without
-    ``ramps`` (a :class:`Ramps`, or its first two fields)."""
+    segment), from the largest ``|q''|`` of its samples; ``inf`` without
+    ``ramps`` (a :class:`Ramps`, or its first two fields) and with jerk limits
+    (:func:`curve_braking` grades those curves around their critical samples)."""
     zone = np.full(path.lengths.size, np.inf)
-    if ramps is None:
+    if ramps is None or Ramps(*ramps).jerk is not None:
         return zone
-    r = Ramps(*ramps)
+    tangential_acc, centripetal_acc = ramps[:2]
     c = np.zeros(path.lengths.size)
     np.maximum.at(c, k, path.curvature_norm(k, s))
     ks = np.unique(k)
@@ -62,19 +64,76 @@ def curve_zones(path: ExactPath, k, s, v_axis, a_axis, ramps) -> np.ndarray:
     a_min = float(np.min(a_axis))
     ok = (np.isfinite(feed) & (feed <= GRADE_FEED_SHARE * float(np.min(v_axis)))
           & (side < a_min))
-    if r.centripetal_acc is not None:
-        ok &= side <= float(r.centripetal_acc)
-    a_t = np.inf if r.tangential_acc is None else float(r.tangential_acc)
+    if centripetal_acc is not None:
+        ok &= side <= float(centripetal_acc)
+    a_t = np.inf if tangential_acc is None else float(tangential_acc)
     with np.errstate(invalid="ignore"):
-        a_p = np.minimum(a_min - side, a_t)
-        if r.jerk is None:
-            zone[ks] = np.where(ok, feed * feed / a_p, np.inf)
-        else:
-            c3 = np.zeros(path.lengths.size)
-            np.maximum.at(c3, k, np.linalg.norm(path.eval_segments(k, s, 3), axis=1))
-            ramp = curved_ramp(feed, c[ks], c3[ks], a_p, float(np.min(r.jerk)))
-            zone[ks] = np.where(ok, ramp, np.inf)
+        zone[ks] = np.where(ok, feed * feed / np.minimum(a_min - side, a_t), np.inf)
     return zone
+
+
+#: Under jerk limits, a curve's sample is *critical* where its own terms take
+#: more than this share of a limit at the feed: ``|q'''| f^3`` of the axis
+#: jerk, ``|q''| f^2`` of the axis acceleration (there the speed can fall
+#: below the feed). Any share in (0, 1) grids correctly; a smaller one makes
+#: more samples anchors (denser grids), a larger one longer ramp zones.
+CRITICAL_SHARE = 0.5
+
+
+def curve_braking(path: ExactPath, k, s, ds, v_axis, a_axis, ramps) -> np.ndarray:
+    """Part 1 of the measure ``M`` on each piece between consecutive samples
+    ``(k, s)`` of the curves (pieces across two segments: any value).
+
+    Without jerk limits the ramp zones of :func:`curve_zones` at both ends of
+    each curve (:func:`braking_measure`). With them the speed can also leave
+    the feed inside a curve, where its own terms take more than
+    :data:`CRITICAL_SHARE` of a limit at the feed: such samples are anchors as
+    the ends are, the spacing ``ds`` is kept within the ramp zone
+    (:func:`curved_ramp`, from the largest ``|q''|`` and ``|q'''|`` of the
+    curve's other samples) of every anchor and grows beyond it; a curve with
+    no such zone (the feed above the axis velocity share, no jerk left) stays
+    even."""
+    r = Ramps(*ramps)
+    S = path.lengths[k]
+    if r.jerk is None:
+        zone = curve_zones(path, k, s, v_axis, a_axis, ramps)[k]
+        F = braking_measure(s - path.offsets[k], S, ds[k], zone)
+        return F[1:] - F[:-1]
+    feed = path.feeds[k]
+    c = path.curvature_norm(k, s)
+    c3 = np.linalg.norm(path.eval_segments(k, s, 3), axis=1)
+    j_min, a_min = float(np.min(r.jerk)), float(np.min(a_axis))
+    critical = ((c3 * feed ** 3 > CRITICAL_SHARE * j_min)
+                | (c * feed * feed > CRITICAL_SHARE * a_min))
+    first = np.r_[True, k[1:] != k[:-1]]
+    last = np.r_[k[1:] != k[:-1], True]
+    anchor = critical | first | last
+    # the curve's largest |q''|, |q'''| away from its critical samples
+    ks = np.unique(k)
+    cn, c3n = np.zeros(path.lengths.size), np.zeros(path.lengths.size)
+    np.maximum.at(cn, k[~critical], c[~critical])
+    np.maximum.at(c3n, k[~critical], c3[~critical])
+    f = path.feeds[ks]
+    ok = np.isfinite(f) & (f <= GRADE_FEED_SHARE * float(np.min(v_axis)))
+    if r.centripetal_acc is not None:
+        ok &= cn[ks] * f * f <= float(r.centripetal_acc)
+    a_t = np.inf if r.tangential_acc is None else float(r.tangential_acc)
+    zone_k = np.full(path.lengths.size, np.inf)
+    with np.errstate(invalid="ignore"):
+        a_p = np.minimum(a_min - cn[ks] * f * f, a_t)
+        zone_k[ks] = np.where(ok, curved_ramp(f, cn[ks], c3n[ks], a_p, j_min), np.inf)
+    # each piece between its anchors: the last at or before its start, the
+    # first at or after its end (a curve's ends are anchors: never another curve's)
+    idx = np.arange(k.size)
+    lo = np.maximum.accumulate(np.where(anchor, idx, 0))[:-1]
+    hi = np.minimum.accumulate(np.where(anchor, idx, k.size - 1)[::-1])[::-1][1:]
+    length = s[hi] - s[lo]
+    zone = zone_k[k[:-1]]
+    dsk = ds[k[:-1]]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        out = (braking_measure(s[1:] - s[lo], length, dsk, zone)
+               - braking_measure(s[:-1] - s[lo], length, dsk, zone))
+    return np.where(length > 0.0, out, 0.0)
 
 
 def curved_ramp(f, c, c3, a_p, j_min):

@@ -105,7 +105,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ccopt.feed.grading import braking_measure, curve_zones, graded_grids
+from ccopt.feed.grading import curve_braking, graded_grids
 from ccopt.feed.path import ExactPath
 
 #: Default of :attr:`GridOptions.min_spacing` (program units): extra gridpoints
@@ -256,7 +256,7 @@ def _segment_grids(path: ExactPath, v_axis, a_axis, options: GridOptions, ramps=
     """``(n, interior)``: intervals per segment, and ``{k: interior gridpoints}``
     (``n[k] - 1`` path positions) of the sampled segments, not evenly spaced.
     ``ramps`` as in :func:`gridpoints`: part 1 of ``M`` graded on curves
-    whose speed cap is their feed (:func:`~ccopt.feed.grading.braking_measure`)."""
+    whose speed cap is their feed (:func:`~ccopt.feed.grading.curve_braking`)."""
     ds, n = _spacing(path, v_axis, a_axis, options)
     step = min(options.max_angle, options.max_curvature_change, options.max_curvature_bend)
     n = np.maximum(n, np.ceil(path.uniform_turning / step))
@@ -268,10 +268,7 @@ def _segment_grids(path: ExactPath, v_axis, a_axis, options: GridOptions, ramps=
     kappa_f = _curvature_floor(path, v_axis, a_axis, ds, options)
     k, s, h, turn, change, bend = _curve_samples(path, ks, kappa_f, options)
     if ramps is not None and options.ds is None:
-        zone = curve_zones(path, k, s, v_axis, a_axis, ramps)[k]
-        sigma = s - path.offsets[k]
-        F = braking_measure(sigma, path.lengths[k], ds[k], zone)
-        braking = F[1:] - F[:-1]
+        braking = curve_braking(path, k, s, ds, v_axis, a_axis, ramps)
     else:
         braking = h / ds[k[:-1]]
     dm = np.maximum.reduce([braking, turn / options.max_angle,

@@ -18,6 +18,7 @@ import pytest
 import ccopt.feed.jerk.planner as jerk_planner
 from ccopt.feed import plan_feed
 from ccopt.feed.jerk.windows import DURATION_TOL
+from ccopt.verify.limits import LIMITS_TOL
 from feed.test_jerk_generated import _path_and_limits
 
 
@@ -60,3 +61,25 @@ def test_no_gridpoint_closer_than_min_spacing_to_a_stop():
     assert nearest.min() >= jerk_planner.JERK_GRID.min_spacing
     tiny = [k for k, sg in enumerate(path.segments) if sg.length < 1e-7]
     assert tiny, "the program no longer has the degenerate arc this test is about"
+
+
+@pytest.mark.parametrize("feed", [10.0, 60.0])
+@pytest.mark.parametrize("shape", ["tight-bezier", "spiral"])
+def test_graded_curves_plan_as_the_even_ones(shape, feed, monkeypatch):
+    # curves are graded around their critical samples (grading.curve_braking):
+    # the tight quintic's curvature changes fast enough near its middle that
+    # |q'''| f^3 there passes the jerk limit at F600
+    from feed.test_feed_grid import spiral_path, tight_bezier_path
+    from ccopt.feed import AxisLimits, ExactPath
+    tp = tight_bezier_path(feed) if shape == "tight-bezier" else spiral_path(feed)
+    path = ExactPath(tp)
+    lim = AxisLimits((100.0, 100.0), (1000.0, 1000.0), j=(10_000.0, 10_000.0))
+    out = []
+    for graded in (False, True):
+        monkeypatch.setattr(jerk_planner, "GRADED", graded)
+        prof = plan_feed(path, lim, planner="jerk")
+        assert prof.sample(1e-4).axis_jerk_ratio.max() <= 1 + LIMITS_TOL
+        out.append((prof.duration, prof.info["gridpoints"]))
+    (even, n_even), (graded, n_graded) = out
+    assert abs(graded - even) <= DURATION_TOL * even, (even, graded)
+    assert n_graded <= n_even
