@@ -62,10 +62,7 @@ def curve_zones(path: ExactPath, k, s, v_axis, a_axis, ramps) -> np.ndarray:
     feed = path.feeds[ks]
     side = c[ks] * feed * feed
     a_min = float(np.min(a_axis))
-    ok = (np.isfinite(feed) & (feed <= GRADE_FEED_SHARE * float(np.min(v_axis)))
-          & (side < a_min))
-    if centripetal_acc is not None:
-        ok &= side <= float(centripetal_acc)
+    ok = _feed_is_cap(feed, side, v_axis, centripetal_acc) & (side < a_min)
     a_t = np.inf if tangential_acc is None else float(tangential_acc)
     with np.errstate(invalid="ignore"):
         zone[ks] = np.where(ok, feed * feed / np.minimum(a_min - side, a_t), np.inf)
@@ -94,10 +91,9 @@ def curve_braking(path: ExactPath, k, s, ds, v_axis, a_axis, ramps) -> np.ndarra
     no such zone (the feed above the axis velocity share, no jerk left) stays
     even."""
     r = Ramps(*ramps)
-    S = path.lengths[k]
     if r.jerk is None:
         zone = curve_zones(path, k, s, v_axis, a_axis, ramps)[k]
-        F = braking_measure(s - path.offsets[k], S, ds[k], zone)
+        F = braking_measure(s - path.offsets[k], path.lengths[k], ds[k], zone)
         return F[1:] - F[:-1]
     feed = path.feeds[k]
     c = path.curvature_norm(k, s)
@@ -114,9 +110,7 @@ def curve_braking(path: ExactPath, k, s, ds, v_axis, a_axis, ramps) -> np.ndarra
     np.maximum.at(cn, k[~critical], c[~critical])
     np.maximum.at(c3n, k[~critical], c3[~critical])
     f = path.feeds[ks]
-    ok = np.isfinite(f) & (f <= GRADE_FEED_SHARE * float(np.min(v_axis)))
-    if r.centripetal_acc is not None:
-        ok &= cn[ks] * f * f <= float(r.centripetal_acc)
+    ok = _feed_is_cap(f, cn[ks] * f * f, v_axis, r.centripetal_acc)
     a_t = np.inf if r.tangential_acc is None else float(r.tangential_acc)
     zone_k = np.full(path.lengths.size, np.inf)
     with np.errstate(invalid="ignore"):
@@ -165,6 +159,17 @@ GRADE_RATIO = 2.0
 GRADE_FEED_SHARE = 0.99
 
 
+def _feed_is_cap(feed, side, v_axis, centripetal_acc) -> np.ndarray:
+    """Where a segment's speed cap is its feed: the feed finite and within
+    :data:`GRADE_FEED_SHARE` of the smallest axis velocity limit, and its
+    centripetal acceleration at the feed ``side`` (units/s^2) within the
+    centripetal limit (None: not set)."""
+    ok = np.isfinite(feed) & (feed <= GRADE_FEED_SHARE * float(np.min(v_axis)))
+    if centripetal_acc is not None:
+        ok &= side <= float(centripetal_acc)
+    return ok
+
+
 def ramp_lengths(path: ExactPath, ks: np.ndarray, v_axis, a_axis, tangential_acc,
                  centripetal_acc, jerk=None) -> np.ndarray:
     """Twice the longest speed ramp (units) on each constant-curvature segment
@@ -198,10 +203,7 @@ def ramp_lengths(path: ExactPath, ks: np.ndarray, v_axis, a_axis, tangential_acc
         a_line = np.minimum(np.where(q1 > 0, a_axis / q1, np.inf).min(axis=1), a_t)
         a_min = float(np.min(a_axis))
         side = c * feed * feed
-        arc_ok = (np.isfinite(feed) & (feed <= GRADE_FEED_SHARE * float(np.min(v_axis)))
-                  & (side < a_min))
-        if centripetal_acc is not None:
-            arc_ok &= side <= float(centripetal_acc)
+        arc_ok = _feed_is_cap(feed, side, v_axis, centripetal_acc) & (side < a_min)
         a_arc = np.minimum(a_min - side, a_t)
         if jerk is None:
             ramp = np.where(c == 0.0, v_line * v_line / a_line,
