@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from scipy.spatial import cKDTree
@@ -50,6 +51,18 @@ class Element:
     geom: object
     open_start: bool = False
     open_end: bool = False
+
+    @cached_property
+    def fine(self) -> np.ndarray:
+        """The fine polyline (``(DENSE_SAMPLES, 2)``) an element of another kind is
+        measured by, made once per element (a model measures an element at every
+        iterate and every sample size)."""
+        return _dense(self, DENSE_SAMPLES)
+
+    @cached_property
+    def fine_tree(self) -> cKDTree:
+        """A k-d tree of :attr:`fine`'s vertices."""
+        return cKDTree(self.fine)
 
 
 def contour_elements(contour) -> list[Element]:
@@ -101,7 +114,7 @@ def element_distance(el: Element, pts: np.ndarray) -> np.ndarray:
         return point_segment(pts, g.p0, g.p1)[0]
     if el.kind == "arc":
         return point_arc(pts, g.center, g.radius, g.theta0, g.sweep)[0]
-    return polyline_distance(_dense(el, DENSE_SAMPLES), pts)
+    return polyline_distance(el.fine, pts, el.fine_tree)
 
 
 #: Samples of an element of another kind (a spiral, a Bezier curve) for the
@@ -112,9 +125,10 @@ DENSE_SAMPLES = 2049
 PIECE_BLOCK = 64
 
 
-def polyline_distance(q: np.ndarray, pts: np.ndarray) -> np.ndarray:
+def polyline_distance(q: np.ndarray, pts: np.ndarray, tree: cKDTree | None = None) -> np.ndarray:
     """Distance from each point of ``pts`` (``(N, 2)``) to the polyline ``q``
-    (``(M, 2)``, M >= 2), exact for the polyline.
+    (``(M, 2)``, M >= 2), exact for the polyline; ``tree``: a k-d tree of ``q``'s
+    vertices, if the caller keeps one.
 
     The pieces go in blocks of :data:`PIECE_BLOCK`; a point is measured against a
     block only when the block's bounding box comes no farther from it than the
@@ -122,7 +136,7 @@ def polyline_distance(q: np.ndarray, pts: np.ndarray) -> np.ndarray:
     most of a long curve meets only the blocks around its nearest piece."""
     pts = np.asarray(pts, float).reshape(-1, 2)
     q = np.asarray(q, float).reshape(-1, 2)
-    upper = cKDTree(q).query(pts)[0]
+    upper = (cKDTree(q) if tree is None else tree).query(pts)[0]
     out = upper.copy()
     for k in range(0, len(q) - 1, PIECE_BLOCK):
         a = q[k:k + PIECE_BLOCK + 1]
@@ -207,8 +221,7 @@ def classify(el: Element, p: np.ndarray):
             if is_open:
                 kind[m], vec[m], scal[m] = EXEMPT, u, float(u @ E)
         return kind, vec, scal
-    q = _dense(el, DENSE_SAMPLES)
-    vec[:] = q[cKDTree(q).query(p)[1]]          # the nearest sample of the fine polyline
+    vec[:] = el.fine[el.fine_tree.query(p)[1]]     # the nearest sample of the fine polyline
     return kind, vec, scal
 
 

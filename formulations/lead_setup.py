@@ -500,6 +500,39 @@ def _first_certified(problem: BlendProblem, path, lead: Lead, setup: LeadSetup, 
     return x, cand, err
 
 
+#: Violations a lead blend can never remove where they lie outside its reach.
+LASTING_KINDS = ("gouge", "gap", "side")
+
+
+def lasting_violation(problem: BlendProblem, leads: list[Lead]) -> str | None:
+    """Why no lead blend of ``problem.reference`` can be certified, or ``None``.
+
+    A lead blend replaces a lead's run of segments (and at most its host, with
+    a free join); :meth:`BlendProblem.check` certifies those and their
+    neighbours. A gouge, gap or side violation of the start path on any other
+    tool segment stays as it is in every blended path (the same segment
+    against the same contour), so its certificate cannot hold whatever the
+    leads become: solving them would be work for a row that is certain to be
+    uncertified (on LinuxCNC's crazy-paths every controller's path gouges
+    between its leads)."""
+    cert = problem.reference_verdict
+    if cert.ok:
+        return None
+    reach: set[int] = set()
+    for ld in leads:
+        lo, hi = min(ld.first, ld.host) - 1, max(ld.last, ld.host) + 1
+        reach.update(range(lo, hi + 1))
+    outside = [v for v in cert.violations if v.kind in LASTING_KINDS
+               and v.tool_segment is not None and v.tool_segment not in reach]
+    if not outside:
+        return None
+    v = max(outside, key=lambda v: v.depth)
+    at = f" at line {v.tool_block}" if v.tool_block is not None else ""
+    return (f"the path it starts from is not certified away from its leads ({v.kind} "
+            f"{v.depth:.3g}{at}, {len(outside)} violation(s) outside every lead): "
+            f"no lead blend can make it so")
+
+
 def run_leads(problem: BlendProblem, solve_lead, name: str,
               attempts: tuple[int, ...] = ATTEMPTS,
               curvature_bounded: bool = True) -> BlendOutcome:
@@ -526,6 +559,9 @@ def run_leads(problem: BlendProblem, solve_lead, name: str,
     leads = problem.leads()
     if not leads:
         raise BlendRejected("the reference path has no lead-in or lead-out to replace")
+    lasting = lasting_violation(problem, leads)
+    if lasting is not None:
+        raise BlendRejected(lasting)
     report = []
     for ld in reversed(leads):
         entry = {"lead": ld.kind, "segment": ld.host}

@@ -87,7 +87,7 @@ from ccopt_formulations.smoother_chain import chain_path
 from ccopt_formulations.smoother_deviation import windowed_deviation
 from ccopt_formulations.smoother_joins import (  # noqa: F401  (the smoother's vocabulary)
     CHECK_SAMPLES, DEGREE, LIFTS, BlendFrame, ElementIndex, Join, assemble, closed_blend, exact_ok,
-    contour_inside, find_joins, frame, initial, largest_closed, size_estimate,
+    contour_inside, find_joins, frame, initial, largest_closed, lasting_gouge, size_estimate,
 )
 
 #: Samples of the blend constrained in each model.
@@ -443,7 +443,7 @@ class Smoother:
 
 
 def smooth(problem: BlendProblem, delta: float | None = None, solver: str = "CLARABEL",
-           deviation: bool = True):
+           deviation: bool = True, certifiable: bool = False):
     """Smooth ``problem.reference`` within ``delta`` (default :attr:`BlendProblem.band`).
 
     Returns ``(toolpath, info)``; ``info["joins"]`` says what became of each join
@@ -451,7 +451,10 @@ def smooth(problem: BlendProblem, delta: float | None = None, solver: str = "CLA
     or of the corner arc an absorbed corner replaced). ``deviation``: also measure
     the Hausdorff distance to PMAC's path (``info["max_deviation"]`` and its bound;
     :func:`smooth_variant` leaves it to :func:`ccopt.compare.variant.measure`, which
-    measures every variant so).
+    measures every variant so). ``certifiable``: raise :class:`BlendRejected`
+    before any join is solved when the reference gouges where no blend reaches
+    (:func:`~ccopt_formulations.smoother_joins.lasting_gouge`): the result
+    could not be certified.
     """
     t0 = time.perf_counter()
     delta = float(problem.band if delta is None else delta)
@@ -461,6 +464,10 @@ def smooth(problem: BlendProblem, delta: float | None = None, solver: str = "CLA
         raise BlendRejected(f"delta must be > 0, got {delta!r}{why}")
     sm = Smoother(problem, delta, solver)
     joins = find_joins(sm.path)
+    if certifiable:
+        lasting = lasting_gouge(problem, sm.path, sm.ref, sm.chain.origin, joins)
+        if lasting is not None:
+            raise BlendRejected(lasting)
     for jn in joins:
         sm.solve_join(jn, delta)
     out_origin: list = []
@@ -523,7 +530,7 @@ def smooth_variant(problem: BlendProblem) -> BlendOutcome:
     """Entry point ``smooth`` (group ``ccopt.blends``): the smoother at ``problem.band``.
     Option ``conic_solver``: the CVXPY solver name (default ``"CLARABEL"``)."""
     path, info = smooth(problem, solver=str(problem.options.get("conic_solver", "CLARABEL")),
-                        deviation=False)
+                        deviation=False, certifiable=True)
     for key in ("max_deviation", "max_deviation_bound"):
         info.pop(key)
     if info["joins_found"] and not info["joins_blended"]:

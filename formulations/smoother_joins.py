@@ -50,11 +50,12 @@ Exact checks of a blend (:func:`exact_ok`), at :data:`CHECK_SAMPLES` points:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ccopt.compare.figures import joins as path_joins
+from ccopt.compare.leads import split_segment
 from ccopt.geometry import Arc, BezierCurve, Line, point_arc, point_segment
 from ccopt.geometry.bezier import DIVISION_FLOOR, g2_end, g2_start
 from ccopt.geometry.curve import bernstein, derivative_matrix
@@ -438,3 +439,48 @@ def assemble(path: ToolPath, joins: list[Join], style: str = "smooth",
                    dwells=tuple(dwells), units=path.units, meta=dict(path.meta))
     res.meta["joins"] = [j[0] for j in path_joins(res)]
     return res
+
+
+
+def lasting_gouge(problem, path: ToolPath, reference: ToolPath, origin: list,
+                  joins: list[Join]) -> str | None:
+    """Why no smoothing of ``path`` (``reference`` with chords chained, its
+    segment ``k`` from reference segment ``origin[k]``) can be certified, or
+    ``None``.
+
+    A blend at the join before segment ``k`` takes at most ``lim_out`` of that
+    segment's arc length from its start, and the one at its end at most that
+    join's ``lim_in`` (:func:`find_joins`; the verifier's retries only halve
+    them). What lies between is kept by every smoothed path, so a gouge the
+    verifier finds there (each piece checked against the whole contour, as
+    :meth:`~ccopt.compare.contract.BlendProblem.check` checks a blend's
+    segments) is in every result, and its certificate cannot hold. Only asked
+    when the reference itself is not certified (``problem.reference_verdict``);
+    segments the chaining changed are left out (their pieces are not all kept)."""
+    if problem.reference_verdict.ok:
+        return None
+    start = {jn.index: jn.lim_out for jn in joins}
+    end = {jn.index - 1: jn.lim_in for jn in joins}
+    pieces = []
+    for k, seg in enumerate(path.segments):
+        if seg.role not in FEED_ROLES or seg is not reference.segments[origin[k]]:
+            continue
+        a, b = start.get(k, 0.0), end.get(k, 0.0)
+        if a + b >= seg.length:
+            continue
+        if b > 0.0:
+            seg = split_segment(seg, seg.length - b)[0]
+        if a > 0.0:
+            seg = split_segment(seg, a)[1]
+        pieces.append(seg)
+    if not pieces:
+        return None
+    cert = problem.certify(replace(path, segments=tuple(pieces), dwells=()))
+    kept = [v for v in cert.violations if v.kind == "gouge"]
+    if not kept:
+        return None
+    v = max(kept, key=lambda v: v.depth)
+    at = f" at line {v.tool_block}" if v.tool_block is not None else ""
+    return (f"the path it starts from gouges beyond the reach of every blend (gouge "
+            f"{v.depth:.3g}{at}, {len(kept)} violation(s) on what every blend keeps): no "
+            f"smoothing within the band can make it certified")

@@ -74,6 +74,9 @@ class BlendProblem:
     deviation_from: the path every row's deviation is measured from when the
         blend starts from another controller's path (``reference`` is then
         that path); ``None``: ``reference`` itself.
+    reference_certificate: the verifier's certificate of ``reference`` when the
+        comparison has it already (its row's); ``None``: made when asked
+        (:meth:`reference_verdict`).
     """
 
     program: Program
@@ -87,6 +90,7 @@ class BlendProblem:
     tolerance: float | None = None
     ts: float | None = None
     deviation_from: ToolPath | None = None
+    reference_certificate: Certificate | None = None
 
     def report(self, line: str) -> None:
         """Pass ``line`` (e.g. "blend 2/6") to :attr:`progress`, if any."""
@@ -129,6 +133,14 @@ class BlendProblem:
         the job's ``tolerance`` when it names one)."""
         given = {} if self.tolerance is None else {"tolerance": self.tolerance}
         return verify(toolpath, self.program, radius=self.radius, side=self.side, **given)
+
+    @cached_property
+    def reference_verdict(self) -> Certificate:
+        """The certificate of :attr:`reference`: the one the comparison gave
+        (:attr:`reference_certificate`), else made here once."""
+        if self.reference_certificate is not None:
+            return self.reference_certificate
+        return self.certify(self.reference)
 
     def accept(self, toolpath: ToolPath, segments) -> Certificate:
         """Certify ``toolpath``; :class:`BlendRejected` when a gouge, gap or side

@@ -145,7 +145,13 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     base = base_row(rows, REFERENCE) if limits is not None and problem is not None else None
     if base is not None:
         later = [(i, name, replace(problem, reference=base.toolpath,
-                                   deviation_from=problem.reference))
+                                   deviation_from=problem.reference,
+                                   reference_certificate=base.certificate))
+                 for i, name, _ in later]
+    elif ref_index is not None and rows[ref_index] is not None:
+        # the plug-ins start from PMAC's path: its row's certificate says whether
+        # anything outside their reach keeps them from being certified
+        later = [(i, name, replace(problem, reference_certificate=rows[ref_index].certificate))
                  for i, name, _ in later]
     # the plug-ins' cycle times take the base path's stretch times as the
     # reference's: each of its stretches is planned once, not once per plug-in

@@ -1,0 +1,63 @@
+"""An optimised lead blend is not solved when the path it starts from gouges
+away from every lead: no blend of the leads can make that path certified, so
+the row says so at once (LinuxCNC's crazy-paths spent minutes of IPOPT on
+such leads). Gouges *at* a lead are the blends' to remove; they still run
+(``test_opt_blends.py::test_leads_stay_local_on_the_fagor_episodes``)."""
+from __future__ import annotations
+
+import pytest
+
+import ccopt
+from ccopt.compare import compare
+from ccopt.compare.contract import BlendProblem
+
+# An outside profile of a 40 x 40 mm square (G41 cut clockwise, lead-in and
+# lead-out perpendicular at the middle of the bottom edge) with a notch 1 mm
+# wide and 10 mm deep in its top edge (lines 7-9), for a cutter of 3 mm
+# diameter: the notch is narrower than the cutter, so any tool path that
+# follows it comes within 0.5 mm of one wall, a gouge of at least 1.0 mm,
+# 30 mm and more away from the leads.
+NOTCH = """G21 G17 G90 G94
+G0 X20 Y-10
+G41.1 D3 G1 X20 Y0 F600
+G1 X0 Y0
+G1 X0 Y40
+G1 X18 Y40
+G1 X18 Y30
+G1 X19 Y30
+G1 X19 Y40
+G1 X40 Y40
+G1 X40 Y0
+G1 X20 Y0
+G40 G1 X20 Y-10
+M2
+"""
+
+
+@pytest.fixture(scope="module")
+def notch():
+    return ccopt.read_text(NOTCH, "notch.ngc", "gcode")
+
+
+@pytest.mark.parametrize("name", ["opt-casadi", "opt-cvxpy"])
+def test_lead_blends_refuse_a_path_that_gouges_away_from_its_leads(notch, name):
+    cmp = compare(notch, ["pmac", name], limits=ccopt.AxisLimits((100, 100, 100),
+                                                                  (1000, 1000, 1000)))
+    ref = cmp["pmac"]
+    assert ref.status == "uncertified"
+    deepest = max(v.depth for v in ref.certificate.violations if v.kind == "gouge")
+    assert deepest >= 1.0 - 1e-9
+    row = cmp[name]
+    assert row.status == "rejected"
+    assert "not certified away from its leads" in row.message
+    line = int(row.message.split(" at line ")[1].split(",")[0])
+    assert 6 <= line <= 10          # the notch and the edge it cuts into
+
+
+def test_reference_verdict_is_the_given_certificate(notch):
+    ref = ccopt.compensate(notch, "pmac")
+    cert = ccopt.verify(ref, notch)
+    problem = BlendProblem(notch, ref, reference_certificate=cert)
+    assert problem.reference_verdict is cert
+    made = BlendProblem(notch, ref).reference_verdict
+    assert made.ok == cert.ok and len(made.violations) == len(cert.violations)
