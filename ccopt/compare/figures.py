@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from ccopt.geometry import Arc, Line, point_segment
+from ccopt.geometry import Arc, Line, Spiral, point_segment
 from ccopt.geometry.bezier_arclength import ARC_LENGTH_REL_TOL
 from ccopt.geometry.bezier_batch import batches_by_degree
 from ccopt.geometry.curve import curvature_bound
@@ -143,18 +143,23 @@ def path_figures(path: ToolPath, join_indices=None) -> dict:
 def _same(g, h) -> bool:
     if g is h:
         return True
-    if type(g) is not type(h) or not isinstance(g, (Line, Arc)):
+    if type(g) is not type(h) or not isinstance(g, _BY_VALUE):
         return False
     return g == h
 
 
 def _shared(src_geoms, dst_geoms) -> list[bool]:
-    """Whether each of ``src_geoms`` is one of ``dst_geoms`` (:func:`_same`): lines and
-    arcs by value (a set), other primitives by identity."""
-    by_value = {g for g in dst_geoms if isinstance(g, (Line, Arc))}
+    """Whether each of ``src_geoms`` is one of ``dst_geoms`` (:func:`_same`): lines,
+    arcs and spirals by value (a set: two styles offset a program's spiral alike,
+    each its own object), other primitives by identity."""
+    by_value = {g for g in dst_geoms if isinstance(g, _BY_VALUE)}
     by_id = {id(g) for g in dst_geoms}
-    return [id(g) in by_id or (isinstance(g, (Line, Arc)) and g in by_value)
+    return [id(g) in by_id or (isinstance(g, _BY_VALUE) and g in by_value)
             for g in src_geoms]
+
+
+#: Primitives :func:`_shared` compares by value (hashable frozen dataclasses).
+_BY_VALUE = (Line, Arc, Spiral)
 
 
 def _points(g, n: int) -> np.ndarray:

@@ -126,3 +126,21 @@ def test_deviation_of_lines_beside_the_reference_lines():
         est, bound = max_deviation(a, b, h)
         assert est == pytest.approx(e, abs=1e-12)
         assert e - 1e-12 <= bound <= e + h / 8 + 1e-12
+
+
+def test_deviation_skips_a_spiral_both_paths_share_by_value():
+    # two styles offset a program's spiral alike, each into its own object: the
+    # deviation leaves it out as it leaves out equal lines and arcs, so it is
+    # that of the one line that differs, 0.2 (parallel lines 0.2 apart, beside
+    # the same spiral end to end). Sampled every h instead, the spiral alone
+    # made crazy-paths' heidenhain deviation take 14 s.
+    from ccopt.compare.figures import _shared
+    from ccopt.geometry import Spiral
+    sp = dict(center=(0.0, 0.0), rho0=5.0, rho1=6.0, theta0=0.0, sweep=math.pi)
+    a, b = Spiral(**sp), Spiral(**sp)
+    assert a is not b and _shared([a], [b]) == [True]
+    end = a.end
+    ref = ToolPath((seg(a), seg(Line(end, (end[0], end[1] - 10.0)))))
+    var = ToolPath((seg(b), seg(Line((end[0] + 0.2, end[1]), (end[0] + 0.2, end[1] - 10.0)))))
+    est, bound = max_deviation(var, ref)
+    assert est == pytest.approx(0.2, abs=1e-9) and 0.2 <= bound <= 0.2 + 1e-3
