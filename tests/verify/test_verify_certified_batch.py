@@ -205,3 +205,39 @@ def test_bezier_against_a_curve_goes_one_at_a_time():
     assert not batchable(a, Spiral((0, 0), 2.0, 3.0, 0.0, 1.0))
     assert not batchable(a, a)
     assert not batchable(Line((0, 0), (1, 0)), Line((0, 1), (1, 1)))
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_first_pieces_of_every_pair_at_once_are_the_one_at_a_time_cuts(seed):
+    # the batch cuts all pairs' first pieces at once; each pair's must be the
+    # cuts np.linspace gives one curve at a time (a spiral one per pi/16 of
+    # sweep, at least 8; a Bezier curve 8), curved pairs as their outer product
+    from ccopt.verify.distance.certified_batch import _Beziers, _first, _Spirals
+    rng = np.random.default_rng(seed)
+    spirals = [Spiral((0.0, 0.0), rng.uniform(1, 5), rng.uniform(1, 5), rng.uniform(-3, 3),
+                      rng.choice([-1, 1]) * rng.uniform(0.01, 12)) for _ in range(40)]
+    beziers = [BezierCurve(rng.uniform(-5, 5, (4, 2))) for _ in range(10)]
+
+    def cuts(U, spiral):
+        n = max(8, math.ceil(U / (math.pi / 16))) if spiral else 8
+        u = np.linspace(0.0, U, n + 1)
+        return u[:-1], u[1:]
+
+    sel = rng.integers(0, 40, 25)
+    for A, spiral in ((_Spirals(spirals), True), (_Beziers(beziers), False)):
+        s = sel % len(A.U)
+        others = [spirals[i] for i in rng.integers(0, 40, s.size)]
+        B = _Spirals(others)
+        for curved in (False, True):
+            pid, ua0, ua1, ub0, ub1 = _first(A, B, s, curved)
+            for m, i in enumerate(s):
+                a0, a1 = cuts(A.U[i], spiral)
+                mine = pid == m
+                if not curved:
+                    assert np.array_equal(ua0[mine], a0) and np.array_equal(ua1[mine], a1)
+                    continue
+                b0, b1 = cuts(B.U[m], True)
+                assert np.array_equal(ua0[mine], np.repeat(a0, b0.size))
+                assert np.array_equal(ua1[mine], np.repeat(a1, b0.size))
+                assert np.array_equal(ub0[mine], np.tile(b0, a0.size))
+                assert np.array_equal(ub1[mine], np.tile(b1, a0.size))

@@ -30,8 +30,8 @@ from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
 from ccopt.verify.distance.concentric import polar_gap, same_angle
 from ccopt.geometry.bezier_arclength import bernstein_basis, bezier_points
 from ccopt.verify.distance.certified import (
-    MAX_PIECES, BezierParam, Bound, SpiralParam, _first_pieces, _fraction, is_bezier,
-    is_exact,
+    FIRST_PIECE_ANGLE, FIRST_PIECES, MAX_PIECES, BezierParam, Bound, SpiralParam, _fraction,
+    is_bezier, is_exact,
 )
 
 
@@ -330,24 +330,44 @@ def _exempt(pid, c0, c1, da, qa, exempts):
     return live, ok
 
 
+def _piece_counts(C: _Spirals | _Beziers, k) -> np.ndarray:
+    """How many first pieces :func:`~ccopt.verify.distance.certified._first_pieces`
+    cuts curve ``k`` of ``C`` into: a spiral (or arc) one per
+    :data:`~ccopt.verify.distance.certified.FIRST_PIECE_ANGLE` of sweep, at
+    least :data:`~ccopt.verify.distance.certified.FIRST_PIECES`; a Bezier curve
+    that many."""
+    if isinstance(C, _Spirals):
+        return np.maximum(FIRST_PIECES, np.ceil(C.U[k] / FIRST_PIECE_ANGLE)).astype(np.intp)
+    return np.full(np.size(k), FIRST_PIECES, np.intp)
+
+
+def _cuts(U: np.ndarray, n: np.ndarray, k: np.ndarray):
+    """``(u0, u1)`` of piece ``k`` of ``[0, U]`` cut into ``n`` equal pieces, with
+    the numbers ``np.linspace(0, U, n + 1)`` gives (``k * step``, the last end
+    ``U`` itself)."""
+    step = U / n
+    return k * step, np.where(k + 1 == n, U, (k + 1) * step)
+
+
 def _first(A: _Spirals | _Beziers, B, sel, curved: bool):
-    """Every pair's first pieces (pairs of pieces for a curved ``b``), pair by pair."""
-    parts = []
-    for m, i in enumerate(sel):
-        a0, a1 = _first_pieces(A.params[i])
-        if curved:
-            b0, b1 = _first_pieces(B.params[m])
-            parts.append((np.full(a0.size * b0.size, m), np.repeat(a0, b0.size),
-                          np.repeat(a1, b1.size), np.tile(b0, a0.size), np.tile(b1, a1.size)))
-        else:
-            parts.append((np.full(a0.size, m), a0, a1, None, None))
-    pid = np.concatenate([p[0] for p in parts]).astype(np.intp)
-    ua0 = np.concatenate([p[1] for p in parts])
-    ua1 = np.concatenate([p[2] for p in parts])
+    """Every pair's first pieces (pairs of pieces for a curved ``b``): the cuts
+    of :func:`~ccopt.verify.distance.certified._first_pieces`, all pairs at once."""
+    sel = np.asarray(sel, np.intp)
+    m = np.arange(sel.size)
+    na = _piece_counts(A, sel)
+    nb = _piece_counts(B, m) if curved else np.ones(sel.size, np.intp)
+    per = na * nb
+    pid = np.repeat(m, per)
+    t = np.arange(pid.size) - np.repeat(np.cumsum(per) - per, per)   # index within its pair
+    if curved:
+        ia, ib = np.divmod(t, nb[pid])
+    else:
+        ia = t
+    ua0, ua1 = _cuts(A.U[sel][pid], na[pid], ia)
     if not curved:
         return pid, ua0, ua1, None, None
-    return (pid, ua0, ua1, np.concatenate([p[3] for p in parts]),
-            np.concatenate([p[4] for p in parts]))
+    ub0, ub1 = _cuts(B.U[pid], nb[pid], ib)
+    return pid, ua0, ua1, ub0, ub1
 
 
 def _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb, curved):
