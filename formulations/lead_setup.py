@@ -45,7 +45,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
+from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected, deepest
 from ccopt.compare.figures import FEED_ROLES, curvature_samples
 from ccopt.compare.leads import Lead, LeadGeometry, splice
 from ccopt.geometry import Arc, BezierCurve, Line
@@ -526,10 +526,8 @@ def lasting_violation(problem: BlendProblem, leads: list[Lead]) -> str | None:
                and v.tool_segment is not None and v.tool_segment not in reach]
     if not outside:
         return None
-    v = max(outside, key=lambda v: v.depth)
-    at = f" at line {v.tool_block}" if v.tool_block is not None else ""
-    return (f"the path it starts from is not certified away from its leads ({v.kind} "
-            f"{v.depth:.3g}{at}, {len(outside)} violation(s) outside every lead): "
+    return (f"the path it starts from is not certified away from its leads "
+            f"({deepest(outside)}, {len(outside)} violation(s) outside every lead): "
             f"no lead blend can make it so")
 
 

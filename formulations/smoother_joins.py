@@ -54,6 +54,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from ccopt.compare.contract import deepest
 from ccopt.compare.figures import joins as path_joins
 from ccopt.compare.leads import split_segment
 from ccopt.geometry import Arc, BezierCurve, Line, point_arc, point_segment
@@ -479,8 +480,6 @@ def lasting_gouge(problem, path: ToolPath, reference: ToolPath, origin: list,
     kept = [v for v in cert.violations if v.kind == "gouge"]
     if not kept:
         return None
-    v = max(kept, key=lambda v: v.depth)
-    at = f" at line {v.tool_block}" if v.tool_block is not None else ""
-    return (f"the path it starts from gouges beyond the reach of every blend (gouge "
-            f"{v.depth:.3g}{at}, {len(kept)} violation(s) on what every blend keeps): no "
+    return (f"the path it starts from gouges beyond the reach of every blend "
+            f"({deepest(kept)}, {len(kept)} violation(s) on what every blend keeps): no "
             f"smoothing within the band can make it certified")

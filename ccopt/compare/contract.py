@@ -170,6 +170,14 @@ class BlendProblem:
         _reject_on(self.certify(part), set(mine), lo)
 
 
+def deepest(violations) -> str:
+    """The deepest of ``violations`` in words: ``"gouge 0.25 at line 10"``
+    (its kind, depth in program units, and program line when known)."""
+    v = max(violations, key=lambda v: v.depth)
+    at = f" at line {v.tool_block}" if v.tool_block is not None else ""
+    return f"{v.kind} {v.depth:.3g}{at}"
+
+
 def _reject_on(cert: Certificate, mine: set[int], offset: int) -> None:
     """:class:`BlendRejected` when ``cert`` (of a path whose segment 0 is
     segment ``offset`` of the whole) has a gouge, gap or side violation on one
