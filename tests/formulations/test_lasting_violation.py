@@ -61,3 +61,17 @@ def test_reference_verdict_is_the_given_certificate(notch):
     assert problem.reference_verdict is cert
     made = BlendProblem(notch, ref).reference_verdict
     assert made.ok == cert.ok and len(made.violations) == len(cert.violations)
+
+
+def test_smoother_refuses_a_path_that_gouges_on_what_every_blend_keeps(notch):
+    # PMAC's path runs down the notch's right wall at x = 19.5 (its walls are at
+    # x = 18 and 19): 0.5 mm from the wall x = 19 over the notch's depth, a
+    # gouge of 1.0 mm for the 1.5 mm cutter radius, in the middle of a segment
+    # 8.5 mm long, which no corner blend within the band (1 % of the radius) reaches
+    cmp = compare(notch, ["pmac", "smooth"], limits=ccopt.AxisLimits((100, 100, 100),
+                                                                      (1000, 1000, 1000)))
+    row = cmp["smooth"]
+    assert row.status == "rejected"
+    assert "gouges beyond the reach of every blend" in row.message
+    depth = float(row.message.split("(gouge ")[1].split()[0])
+    assert depth >= 1.0 - 1e-9
