@@ -47,7 +47,7 @@ import numpy as np
 
 from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected, deepest
 from ccopt.compare.figures import FEED_ROLES, curvature_samples
-from ccopt.compare.leads import Lead, LeadGeometry, splice
+from ccopt.compare.leads import Lead, LeadGeometry, outside_leads, splice
 from ccopt.geometry import Arc, BezierCurve, Line
 from ccopt.geometry.bezier import DIVISION_FLOOR, g2_end, jerk_gram, speed_profile_time
 from ccopt.geometry.curve import bernstein, derivative_matrix
@@ -500,30 +500,14 @@ def _first_certified(problem: BlendProblem, path, lead: Lead, setup: LeadSetup, 
     return x, cand, err
 
 
-#: Violations a lead blend can never remove where they lie outside its reach.
-LASTING_KINDS = ("gouge", "gap", "side")
-
-
 def lasting_violation(problem: BlendProblem, leads: list[Lead]) -> str | None:
-    """Why no lead blend of ``problem.reference`` can be certified, or ``None``.
-
-    A lead blend replaces a lead's run of segments (and at most its host, with
-    a free join); :meth:`BlendProblem.check` certifies those and their
-    neighbours. A gouge, gap or side violation of the start path on any other
-    tool segment stays as it is in every blended path (the same segment
-    against the same contour), so its certificate cannot hold whatever the
-    leads become: solving them would be work for a row that is certain to be
-    uncertified (on LinuxCNC's crazy-paths every controller's path gouges
-    between its leads)."""
+    """Why no lead blend of ``problem.reference`` can be certified, or ``None``:
+    a gouge, gap or side violation of the start path outside every lead
+    (:func:`~ccopt.compare.leads.outside_leads`) stays in every blended path,
+    so solving the leads would be work for a row certain to be uncertified (on
+    LinuxCNC's crazy-paths every controller's path gouges between its leads)."""
     cert = problem.reference_verdict
-    if cert.ok:
-        return None
-    reach: set[int] = set()
-    for ld in leads:
-        lo, hi = min(ld.first, ld.host) - 1, max(ld.last, ld.host) + 1
-        reach.update(range(lo, hi + 1))
-    outside = [v for v in cert.violations if v.kind in LASTING_KINDS
-               and v.tool_segment is not None and v.tool_segment not in reach]
+    outside = [] if cert.ok else outside_leads(cert.violations, leads)
     if not outside:
         return None
     return (f"the path it starts from is not certified away from its leads "

@@ -108,6 +108,24 @@ def find_leads(path: ToolPath) -> list[Lead]:
     return out
 
 
+#: Violations a change of the leads can never remove where they lie outside them.
+LASTING_KINDS = ("gouge", "gap", "side")
+
+
+def outside_leads(violations, leads: list[Lead]) -> list:
+    """The gouge, gap and side ``violations`` (of a path's certificate) on tool
+    segments no change of ``leads`` touches: outside every lead's run, host
+    and their neighbours (a lead blend replaces the run and at most part of
+    the host; :meth:`~ccopt.compare.contract.BlendProblem.check` certifies
+    those and their neighbours). Every path that differs from this one only
+    at its leads keeps them: the same segment against the same contour."""
+    reach: set[int] = set()
+    for ld in leads:
+        reach.update(range(min(ld.first, ld.host) - 1, max(ld.last, ld.host) + 2))
+    return [v for v in violations if v.kind in LASTING_KINDS
+            and v.tool_segment is not None and v.tool_segment not in reach]
+
+
 def free_side(host: PathSegment) -> int:
     """+1 when the tool segment ``host`` lies LEFT of its programmed element
     (so the free side, away from the part, is its left), else -1."""
