@@ -26,7 +26,8 @@ from __future__ import annotations
 import math
 
 from ccopt.compare.contract import (SIEMENS_NAMES, Blend, BlendOutcome, BlendProblem,
-                                    BlendRejected)
+                                    BlendRejected, deepest)
+from ccopt.compare.leads import find_leads, outside_leads
 from ccopt.compare.timing import StretchTimes, duration_figures
 from ccopt.compensate import compensate
 from ccopt.errors import CcoptError
@@ -60,8 +61,12 @@ def _cutter_radius(problem: BlendProblem) -> float:
                             side=problem.side).radius)
 
 
-def _fastest(problem: BlendProblem, members: dict[str, dict], label: str) -> BlendOutcome:
-    """Compensate with each member's options, certify, and keep the fastest."""
+def _fastest(problem: BlendProblem, members: dict[str, dict], label: str,
+             leads_only: bool = False) -> BlendOutcome:
+    """Compensate with each member's options, certify, and keep the fastest.
+    ``leads_only``: the members differ only at their leads (the smooth approach
+    families), so a fault outside every lead of one (:func:`.leads.outside_leads`)
+    is every member's: the family is rejected there, its other members not tried."""
     best, tried, refusals = None, {}, []
     times = None if problem.limits is None else StretchTimes(problem.limits, ts=problem.ts)
     for key, options in members.items():
@@ -74,6 +79,12 @@ def _fastest(problem: BlendProblem, members: dict[str, dict], label: str) -> Ble
             continue
         cert = problem.certify(path)
         faults = [v for v in cert.violations if v.kind in _FAULTS]
+        if faults and leads_only:
+            shared = outside_leads(faults, find_leads(path))
+            if shared:
+                raise BlendRejected(f"{label}: no member can be certified: {key} has "
+                                    f"{len(shared)} fault(s) away from its leads, which every "
+                                    f"member shares ({deepest(shared)})")
         if faults:
             tried[key] = f"not certified: {faults[0].kind} of depth {faults[0].depth:.3g}"
             continue
@@ -113,7 +124,7 @@ def _smooth(kind: str) -> Blend:
             members[f"DISR={disr:g}"] = {"sar": kind, "disr": disr}
         if not members:
             raise BlendRejected(f"{kind}: no DISR to try with cutter radius {r:g}")
-        return _fastest(problem, members, f"siemens {kind}")
+        return _fastest(problem, members, f"siemens {kind}", leads_only=True)
     run.__doc__ = (f"SINUMERIK smooth approach/retraction {kind}/{kind[:3]}8, DISR the "
                    "fastest certified of " + ", ".join(f"{f:g}r" for f in DISR_FACTORS[kind]))
     run.compensates = True

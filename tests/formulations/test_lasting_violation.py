@@ -75,3 +75,26 @@ def test_smoother_refuses_a_path_that_gouges_on_what_every_blend_keeps(notch):
     assert "gouges beyond the reach of every blend" in row.message
     depth = float(row.message.split("(gouge ")[1].split()[0])
     assert depth >= 1.0 - 1e-9
+
+
+def test_siemens_smooth_approach_members_share_their_faults_away_from_the_leads(notch):
+    # the family stops at its first member when that member gouges away from its
+    # leads, because every member (another DISR) differs only at the leads: here
+    # each member's faults away from its leads are checked to be the same ones
+    from ccopt.compare.leads import find_leads, outside_leads
+    from ccopt.compare.siemens_leads import DISR_FACTORS
+    r = 1.5
+    for kind, factors in DISR_FACTORS.items():
+        seen = []
+        for f in factors:
+            if f * r <= 0 and kind != "G147":
+                continue
+            path = ccopt.compensate(notch, "siemens", sar=kind, disr=f * r)
+            cert = ccopt.verify(path, notch)
+            out = outside_leads(cert.violations, find_leads(path))
+            seen.append(sorted((v.kind, v.tool_block, round(v.depth, 9)) for v in out))
+        assert seen[0] and all(s == seen[0] for s in seen), kind
+    row = compare(notch, ["siemens-g247"], limits=ccopt.AxisLimits((100, 100, 100),
+                                                                   (1000, 1000, 1000)))
+    row = row["siemens-g247"]
+    assert row.status == "rejected" and "every member shares" in row.message
