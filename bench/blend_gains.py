@@ -216,6 +216,45 @@ def window_bound(path, limits: AxisLimits, parts: list | None = None) -> float |
     return saved / prof.duration
 
 
+def _spread(values) -> str:
+    """Median and quartiles of ``values`` (shares), in percent."""
+    v = sorted(values)
+    return (f"{100 * statistics.median(v):+.2f} % (quartiles {100 * v[len(v) // 4]:+.2f} to "
+            f"{100 * v[3 * len(v) // 4]:+.2f} %, {len(v)} programs)")
+
+
+def _write_docs(args, summary: list[str], broken: list[str], medians: dict) -> None:
+    """The figures as a marked section of docs/benchmarks.md (one per kind of run,
+    :mod:`docs_section`), and from a run of the optimised blends under (b) their
+    medians in one paragraph of README.md."""
+    from docs_section import commit, now, write_section
+    kind = "bounds" if args.bounds_only else "gains"
+    cmd = (f"python bench/blend_gains.py --programs {args.programs} --first {args.first} "
+           f"--limits {args.limits}" + (" --bounds-only" if args.bounds_only else "")
+           + (f" --search {args.search}" if args.search else ""))
+    lines = [f"`{cmd}` at {commit()}, {now()}: seeds {args.first}-"
+             f"{args.first + args.programs - 1} of the tests' CAM plate generator, (a) v/a, "
+             f"(b) v/a/j limits; gain over the fastest certified controller variant:", ""]
+    lines += [f"- {line}" for line in summary]
+    if not args.bounds_only:
+        lines += ["", "Optimised rows certified and never slower than the fastest controller: "
+                  + ("all." if not broken else f"{len(broken)} not.")]
+    write_section(ROOT / "docs" / "benchmarks.md", f"bench/blend_gains.py {kind}",
+                  "\n".join(lines))
+    if args.bounds_only or "b" not in medians:
+        return
+    m = medians["b"]
+    n = len(m.get("smooth", ()))
+    med = {k: 100 * statistics.median(v) for k, v in m.items() if v}
+    readme = (f"Under jerk limits, median gain over the fastest certified controller on {n} "
+              f"generated CAM plates: smoother {med.get('smooth', 0):+.2f} %, opt-cvxpy "
+              f"{med.get('opt-cvxpy', 0):+.2f} %, opt-casadi {med.get('opt-casadi', 0):+.2f} %; "
+              f"no lead blend could gain more than {med.get('window', 0):+.2f} % (median window "
+              f"bound). Distribution and bounds: [docs/benchmarks.md](docs/benchmarks.md#"
+              f"blend-gains-on-generated-plates) (`bench/blend_gains.py` at {commit()}).")
+    write_section(ROOT / "README.md", "bench/blend_gains.py", readme)
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--programs", type=int, default=20)
@@ -226,6 +265,8 @@ def main(argv=None) -> int:
                     help="(a) v/a, (b) v/a/j, or both")
     ap.add_argument("--bounds-only", action="store_true",
                     help="the controllers and the bounds alone, no optimised variant")
+    ap.add_argument("--docs", action="store_true",
+                    help="write the medians into docs/benchmarks.md and README.md")
     args = ap.parse_args(argv)
     chosen = LIMITS if args.limits == "both" else {args.limits: LIMITS[args.limits]}
     optimised = () if args.bounds_only else OPTIMISED
@@ -265,17 +306,20 @@ def main(argv=None) -> int:
             print(f"{seed:4d} {key}      {fastest:18s}  " + "  ".join(line) + f"  {bound:+.4f}"
                   + ("  -" if window is None else f"  {window:+.4f}"), flush=True)
     print("\nmedians over the programs (gain over the fastest certified controller variant)")
+    summary = []
     for key in chosen:
-        parts = [f"{name} {statistics.median(gains[(key, name)]):+.4f}"
+        parts = [f"{name} {_spread(gains[(key, name)])}"
                  for name in optimised if gains[(key, name)]]
         if bounds[key]:
-            parts.append(f"lead bound {statistics.median(bounds[key]):+.4f}")
+            parts.append(f"lead bound {_spread(bounds[key])}")
         if windows[key]:
-            w = sorted(windows[key])
-            parts.append(f"window bound {statistics.median(w):+.4f} (quartiles "
-                         f"{w[len(w) // 4]:+.4f} to {w[3 * len(w) // 4]:+.4f}, "
-                         f"{len(w)} programs)")
-        print(f"  ({key}) " + ", ".join(parts))
+            parts.append(f"window bound {_spread(windows[key])}")
+        summary.append(f"({key}) " + ", ".join(parts))
+        print("  " + summary[-1])
+    if args.docs:
+        medians = {key: {**{name: gains[(key, name)] for name in optimised},
+                         "window": windows[key]} for key in chosen}
+        _write_docs(args, summary, broken, medians)
     print(f"optimised rows certified and never slower than the fastest controller: "
           f"{'all' if not broken else f'{len(broken)} not'}")
     for line in broken:
