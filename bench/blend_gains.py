@@ -216,6 +216,11 @@ def window_bound(path, limits: AxisLimits, parts: list | None = None) -> float |
     return saved / prof.duration
 
 
+#: The limits of a run (``--limits``), in words.
+LIMITS_WORDS = {"a": "(a) v/a limits", "b": "(b) v/a/j limits",
+                "both": "(a) v/a and (b) v/a/j limits"}
+
+
 def _spread(values) -> str:
     """Median and quartiles of ``values`` (shares), in percent."""
     v = sorted(values)
@@ -233,8 +238,9 @@ def _write_docs(args, summary: list[str], broken: list[str], medians: dict) -> N
            f"--limits {args.limits}" + (" --bounds-only" if args.bounds_only else "")
            + (f" --search {args.search}" if args.search else ""))
     lines = [f"`{cmd}` at {commit()}, {now()}: seeds {args.first}-"
-             f"{args.first + args.programs - 1} of the tests' CAM plate generator, (a) v/a, "
-             f"(b) v/a/j limits; gain over the fastest certified controller variant:", ""]
+             f"{args.first + args.programs - 1} of the tests' CAM plate generator under "
+             f"{LIMITS_WORDS[args.limits]}; gain over the fastest certified controller "
+             f"variant:", ""]
     lines += [f"- {line}" for line in summary]
     if not args.bounds_only:
         lines += ["", "Optimised rows certified and never slower than the fastest controller: "
