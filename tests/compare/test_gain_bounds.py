@@ -3,15 +3,19 @@ bound from: closed forms where they exist, and never above the time of a
 motion that keeps the limits (an S-curve written out here)."""
 from __future__ import annotations
 
+import importlib.util
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "bench"))
-from blend_gains import rapid_to_feed, travel_from_rest  # noqa: E402
+# loaded from its file: bench/ on sys.path would make its feed.py shadow tests/feed
+_spec = importlib.util.spec_from_file_location(
+    "blend_gains", Path(__file__).resolve().parents[2] / "bench" / "blend_gains.py")
+_bench = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(_bench)
+rapid_to_feed, travel_from_rest = _bench.rapid_to_feed, _bench.travel_from_rest
 
 
 def test_travel_from_rest_closed_forms():
