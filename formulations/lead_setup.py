@@ -500,19 +500,19 @@ def _first_certified(problem: BlendProblem, path, lead: Lead, setup: LeadSetup, 
     return x, cand, err
 
 
-def lasting_violation(problem: BlendProblem, leads: list[Lead]) -> str | None:
-    """Why no lead blend of ``problem.reference`` can be certified, or ``None``:
-    a gouge, gap or side violation of the start path outside every lead
-    (:func:`~ccopt.compare.leads.outside_leads`) stays in every blended path,
-    so solving the leads would be work for a row certain to be uncertified (on
-    LinuxCNC's crazy-paths every controller's path gouges between its leads)."""
+def refuse_lasting(problem: BlendProblem, leads: list[Lead]) -> None:
+    """:class:`BlendRejected` saying why, when no lead blend of
+    ``problem.reference`` can be certified: a gouge, gap or side violation of
+    the start path outside every lead (:func:`~ccopt.compare.leads.outside_leads`)
+    stays in every blended path, so solving the leads would be work for a row
+    certain to be uncertified (on LinuxCNC's crazy-paths every controller's
+    path gouges between its leads)."""
     cert = problem.reference_verdict
     outside = [] if cert.ok else outside_leads(cert.violations, leads)
-    if not outside:
-        return None
-    return (f"the path it starts from is not certified away from its leads "
-            f"({deepest(outside)}, {len(outside)} violation(s) outside every lead): "
-            f"no lead blend can make it so")
+    if outside:
+        raise BlendRejected(f"the path it starts from is not certified away from its leads "
+                            f"({deepest(outside)}, {len(outside)} violation(s) outside every "
+                            f"lead): no lead blend can make it so")
 
 
 def run_leads(problem: BlendProblem, solve_lead, name: str,
@@ -541,9 +541,7 @@ def run_leads(problem: BlendProblem, solve_lead, name: str,
     leads = problem.leads()
     if not leads:
         raise BlendRejected("the reference path has no lead-in or lead-out to replace")
-    lasting = lasting_violation(problem, leads)
-    if lasting is not None:
-        raise BlendRejected(lasting)
+    refuse_lasting(problem, leads)
     report = []
     for ld in reversed(leads):
         entry = {"lead": ld.kind, "segment": ld.host}
