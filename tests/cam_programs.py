@@ -173,7 +173,10 @@ class CamProgram:
     """A generated program: ``text`` in ``dialect`` with cutter radius ``radius``
     (program units, mm), ``contour_lines`` the program lines of the part
     contour (first, last), ``pushed(depth)`` the same program with one straight
-    contour edge's middle third moved ``depth`` into the part."""
+    contour edge's middle third moved ``depth`` into the part, ``notched(width,
+    depth)`` with a rectangular slot cut into the part at the middle of the
+    longest straight contour move but the first and the last (away from the
+    leads): ``(text, slot_lines)``, the program lines of its walls and bottom."""
 
     seed: int
     dialect: str
@@ -184,9 +187,13 @@ class CamProgram:
     description: str
     tool_table: dict = field(default_factory=dict)
     _pusher: object = field(default=None, repr=False)
+    _notcher: object = field(default=None, repr=False)
 
     def pushed(self, depth: float) -> str:
         return self._pusher(depth)
+
+    def notched(self, width: float, depth: float) -> tuple[str, tuple[int, int]]:
+        return self._notcher(width, depth)
 
     @property
     def file(self) -> str:
@@ -318,9 +325,21 @@ def cam_program(seed: int, dialect: str | None = None,
         dented = moves[:q] + [("line", m1, None, None), ("line", m2, None, None)] + moves[q:]
         return text_with(dented)[0]
 
+    def notcher(width: float, depth: float) -> tuple[str, tuple[int, int]]:
+        inner = [q for q in straight if first_contour < q < last_contour] or straight
+        q = max(inner, key=lambda q: math.dist(moves[q - 1][1], moves[q][1]))
+        a, b = np.asarray(moves[q - 1][1]), np.asarray(moves[q][1])
+        t = _unit(b - a)
+        inward = -(side * _left(t))
+        m = 0.5 * (a + b)
+        p1, p2 = m - 0.5 * width * t, m + 0.5 * width * t
+        slot = [p1, p1 + depth * inward, p2 + depth * inward, p2]
+        cut = moves[:q] + [("line", p, None, None) for p in slot] + moves[q:]
+        return text_with(cut)[0], (first_line + q + 1, first_line + q + 3)
+
     out = CamProgram(seed, dialect, text, radius, decimals,
                      (first_line + first_contour, first_line + last_contour), desc,
-                     {1: 2 * radius}, pusher)
+                     {1: 2 * radius}, pusher, notcher)
     out.lead_in, out.lead_out = lead_in, lead_out
     out.entry, out.start, out.exit, out.end = E, start, X, moves[-1][1]
     return out
