@@ -7,7 +7,7 @@ A straight move line (``[LINEAR|RAPID] [X..] [Y..] [Z..]``) is run by
 line statement by statement. Switching the fast paths off, one after the
 other, must leave the Program unchanged: every block field, the meta and
 every error message with its file:line:col. The blocks of a move are built
-by ``blocks.new_block`` without ``Block.__init__``: they must be the blocks
+by ``ccopt.program.blocks.new_block`` without ``Block.__init__``: they must be the blocks
 ``Block(...)`` makes.
 """
 from __future__ import annotations
@@ -22,7 +22,7 @@ from hypothesis import strategies as st
 from ccopt.errors import ProgramError
 from ccopt.program.model import Block, Modal, Motion, Source
 from ccopt.program.pmac import read_pmac, statements
-from ccopt.program.pmac.blocks import new_block
+from ccopt.program.blocks import new_block
 from ccopt.program.pmac.lexer import split_lines
 from ccopt.program.pmac.statements import Interpreter
 

@@ -16,7 +16,7 @@ import re
 from ccopt.errors import ProgramError
 from ccopt.program.model import (MAX_PROGRAM_COORDINATE, Block, Modal, Motion, Source, Vec3,
                                  out_of_range)
-from ccopt.program.pmac.blocks import new_block
+from ccopt.program.blocks import new_block
 from ccopt.program.pmac.lexer import (AXES, LETTERS_RE, MOVE_MODES, OTHER_AXES,
                                       PLAIN_LINE_RE, STRAIGHT_LINE_RE, UNSUPPORTED,
                                       UNSUPPORTED_MODES, UNSUPPORTED_WHY, VECTORS, keyword_at,
