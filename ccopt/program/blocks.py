@@ -1,4 +1,5 @@
-"""Making the :class:`~ccopt.program.model.Block` of a PMAC move quickly.
+"""Making a :class:`~ccopt.program.model.Block` quickly: a PMAC move's, and a
+copy with some fields changed (the G-code reader's every move).
 
 A long PMAC program makes one block per line. ``Block`` and its ``Source``
 are frozen dataclasses with slots, whose generated ``__init__`` stores each
@@ -35,6 +36,8 @@ if [f.name for f in fields(Source)] != ["file", "line", "col"]:
 _set_file, _set_line, _set_col = (getattr(Source, name).__set__
                                   for name in ("file", "line", "col"))
 _new = object.__new__
+#: (name, setter) of every field of Block.
+_ALL = tuple((f.name, _SET[f.name]) for f in fields(Block))
 
 
 def new_block(file: str, line: int, col: int, motion: Motion, start: Vec3, end: Vec3,
@@ -62,3 +65,16 @@ def new_block(file: str, line: int, col: int, motion: Motion, start: Vec3, end: 
     for setter, default in _DEFAULTS:
         setter(block, default)
     return block
+
+
+def replace_block(block: Block, **changes) -> Block:
+    """``dataclasses.replace(block, **changes)``, without ``Block.__init__``
+    (the same object: every field set, from ``changes`` or ``block``; Block
+    has no ``__post_init__``, checked on import). Unknown names raise
+    ``TypeError`` as ``replace`` does."""
+    out = _new(Block)
+    for name, setter in _ALL:
+        setter(out, changes[name] if name in changes else getattr(block, name))
+    if len(changes) > 0 and not changes.keys() <= _SET.keys():
+        raise TypeError(f"Block has no field {sorted(changes.keys() - _SET.keys())[0]!r}")
+    return out

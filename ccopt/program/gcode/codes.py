@@ -8,6 +8,8 @@ error). G-codes are kept in tenths (``G41.1`` -> 411), with their column.
 """
 from __future__ import annotations
 
+import math
+import re
 from dataclasses import dataclass, field
 
 from ccopt.program.expr import ExprError
@@ -93,10 +95,54 @@ class Words:
     classified: bool = False
 
 
+#: One word written as a letter and a literal number, and the blanks after it:
+#: the number as :data:`~ccopt.program.gcode.words._NUMBER` reads it (sign
+#: directly before the digits, no blank or second point inside).
+_LITERAL_WORD = re.compile(r"([A-Za-z])[ \t]*([+-]?(?:\d+\.?\d*|\.\d+))(?![.\d]|[ \t]+[.\d])"
+                           r"[ \t]*")
+
+
+def _literal_words(code: str, p: int, first: int | None) -> Words | None:
+    """The words of a line written only as letters and literal numbers (most
+    lines of a long CAM program), read from ``p``: what the general loop of
+    :func:`read_words` reads there, or None for any other line (a parameter,
+    an expression, a sign apart from its digits, a number with blanks inside,
+    a letter that is no word, a value out of range, a letter twice), which
+    that loop then reads and reports."""
+    n = len(code)
+    p = skip_blanks(code, p)
+    words = Words()
+    letters = words.letters
+    match = _LITERAL_WORD.match
+    while p < n:
+        m = match(code, p)
+        if m is None:
+            return None
+        up = m.group(1).upper()
+        value = float(m.group(2))
+        if up not in _WORD_LETTERS or not math.isfinite(value):
+            return None
+        if up == "G":
+            words.g.append((value, p))
+        elif up == "M":
+            words.m.append((value, p))
+        elif up in letters or (up in _BOUNDED_LETTERS and out_of_range(value)):
+            return None
+        else:
+            letters[up] = (value, p)
+        p = m.end()
+    words.first = first
+    return words
+
+
 def read_words(state: GCodeState, lx: Lexed) -> tuple[Words, list[tuple[str, object, float]]]:
     """The words of line ``lx`` and its parameter settings ``(kind, key,
     value)``, which take effect after the whole line has been read."""
     code = lx.code
+    if "#" not in code and "[" not in code:
+        words = _literal_words(code, lx.start, lx.first)
+        if words is not None:
+            return words, []
     n = len(code)
     p = lx.start
     words = Words()

@@ -80,14 +80,15 @@ def init_coordinates(state: GCodeState) -> None:
 def origin(state: GCodeState, index: int | None = None) -> tuple[float, float, float]:
     """Origin ``index`` (default: the active one) in machine coordinates."""
     base = origin_base(state.origin_index if index is None else index)
-    return tuple(state.params.get(base + k, 0.0) for k in range(3))
+    get = state.params.get
+    return (get(base, 0.0), get(base + 1, 0.0), get(base + 2, 0.0))
 
 
 def work_offset(state: GCodeState) -> tuple[float, float, float]:
     """Machine minus programmed coordinates: active origin plus axis offset
     (of an unrotated system; :func:`to_machine` holds for any)."""
-    o = origin(state)
-    return tuple(o[k] + state.axis_offset[k] for k in range(3))
+    o, a = origin(state), state.axis_offset
+    return (o[0] + a[0], o[1] + a[1], o[2] + a[2])
 
 
 def rotation(state: GCodeState, index: int | None = None) -> float:

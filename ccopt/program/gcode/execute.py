@@ -41,6 +41,7 @@ from ccopt.program.model import (ENDLESS_MAIN, MAX_PROGRAM_COORDINATE, NOTES, Bl
 _AXES = "XYZ"
 #: Words that make a move: X Y Z and the axes carried along (axes.py).
 _MOVE_AXES = "XYZABCUVW@^"
+_MOVE_AXIS_SET = frozenset(_MOVE_AXES)
 _PLANES = {170: "XY", 180: "ZX", 190: "YZ"}
 _TOOL_NUMBER_LIMIT = 2**31  # tool numbers are C ints in LinuxCNC
 #: Tool number 0 is LinuxCNC's "no tool": diameter 0 whatever the table says.
@@ -89,7 +90,7 @@ def execute_words(state: GCodeState, words: Words) -> None:
                               min(L[w][1] for w in "@^" if w in L))
         if not (motion in CYCLE_CODES and state.incremental):
             L = polar_to_xy(state, L)      # a G91 cycle turns at every repeat (cycles.py)
-    axis = any(a in L for a in _MOVE_AXES)
+    axis = not _MOVE_AXIS_SET.isdisjoint(L)
     gcol = motion_g[1] if motion_g else first_col
     if motion in CYCLE_CODES and (axis or motion_g is not None):
         run_cycle(state, motion, gcol, L, mcodes, first_col, previous_mode, _emit)
@@ -124,7 +125,7 @@ def _motion_of(state: GCodeState, gc: dict, L: dict) -> int | None:
     (an error under ``G80``); centre words alone repeat a modal ``G2``/``G3``
     (a full circle).
     """
-    axis = any(a in L for a in _MOVE_AXES)
+    axis = not _MOVE_AXIS_SET.isdisjoint(L)
     motion_g = gc.get("motion")
     setting = gc.get("axis_setting")
     length = gc.get("length")
@@ -419,10 +420,10 @@ def _emit(state: GCodeState, block: Block) -> None:
     values = list(block.start) + list(block.end) + list(block.center or ())
     if block.feed is not None:
         values.append(block.feed)
-    if not all(math.isfinite(v) for v in values):
-        raise state.error("coordinates or feed overflow (not finite numbers): check the "
-                          "values on this line", block.source.col - 1)
-    if any(out_of_range(v) for v in values):
+    if not all(abs(v) <= MAX_PROGRAM_COORDINATE for v in values):   # NaN compares False
+        if not all(math.isfinite(v) for v in values):
+            raise state.error("coordinates or feed overflow (not finite numbers): check the "
+                              "values on this line", block.source.col - 1)
         # incremental moves add up, and an R arc's centre is computed: check what they make
         raise state.error(f"the move's end point, centre or feed is beyond "
                           f"+-{MAX_PROGRAM_COORDINATE:g} program units: check the values on "

@@ -16,8 +16,7 @@ is recorded here too, from the state's coordinate systems.
 """
 from __future__ import annotations
 
-from dataclasses import replace
-
+from ccopt.program.blocks import replace_block
 from ccopt.program.gcode.axes import extra_axis_offset, extra_origin
 from ccopt.program.gcode.coordinates import origin, rotation
 from ccopt.program.gcode.state import GCodeState
@@ -83,5 +82,5 @@ def with_words(state: GCodeState, block: Block) -> Block:
     if state.pending_words:
         words = tuple(state.pending_words)
         state.pending_words.clear()
-        return replace(block, words=words, frame=frame, axes=axes)
-    return replace(block, frame=frame, axes=axes)
+        return replace_block(block, words=words, frame=frame, axes=axes)
+    return replace_block(block, frame=frame, axes=axes)
