@@ -33,6 +33,7 @@ from ccopt.export.arcfit import DEFAULT_TOL
 from ccopt.export.gcode import write_gcode
 from ccopt.export.pmacprog import write_pmac
 from ccopt.export.svg import write_svg
+from ccopt.export.text import gcode_comment, pmac_comment
 from ccopt.geometry import Arc, Line
 from ccopt.program import read_text
 from ccopt.program.gcode.execute import LATHE_DIAMETER_MODE_USED
@@ -73,10 +74,21 @@ class ExportResult:
     fit_error: float = 0.0
     fitted_moves: int = 0
     verified: bool | None = None
-    certificate: dict | None = None
     notes: list[str] = field(default_factory=list)
     kept_existing: str | None = None
     nothing_to_verify: str | None = None
+    #: the verifier's :class:`~ccopt.verify.Certificate` of the read-back path,
+    #: or None; :attr:`certificate` is its JSON, made when first asked (a path
+    #: with many violations or warnings takes long to put in dicts)
+    verdict: object = field(default=None, repr=False)
+    _certificate: list = field(default_factory=list, repr=False)
+
+    @property
+    def certificate(self) -> dict | None:
+        """The certificate as JSON (:meth:`Certificate.to_json`), or None."""
+        if not self._certificate:
+            self._certificate.append(None if self.verdict is None else self.verdict.to_json())
+        return self._certificate[0]
 
     def to_json(self) -> dict:
         return {"file": self.file, "format": self.format, "tolerance": self.tolerance,
@@ -259,6 +271,19 @@ def _verify(path: ToolPath, program: Program | None):
     return verify(path, program)
 
 
+def with_header(text: str, header: list[str], fmt: str) -> str:
+    """``text`` (:func:`write_gcode` or :func:`write_pmac` of a path without a
+    header) with ``header``'s comment lines where those writers put them: the
+    same text as the writer's with that header (G-code: after the opening
+    ``%``; PMAC: first)."""
+    if not header:
+        return text
+    if fmt == "gcode":
+        first, rest = text.split("\n", 1)
+        return "\n".join([first, *map(gcode_comment, header), rest])
+    return "\n".join([*map(pmac_comment, header), text])
+
+
 @dataclass
 class _ProgramExport:
     """One G-code or PMAC export: write, read back with ccopt's reader, verify.
@@ -274,8 +299,23 @@ class _ProgramExport:
     program: Program | None
     header: list[str]
 
+    #: The text written without a header and its moves, by the fit tolerances
+    #: it was written with (``seg_tol`` as a sorted tuple): the final file
+    #: differs from the attempt that was read back only in its header comments.
+    _bodies: dict = field(default_factory=dict)
+
     def write(self, header: list[str], seg_tol: dict[int, float]) -> tuple[str, list]:
         """Program text and its moves ``(source segment, meant geometry, fit bound)``."""
+        key = tuple(sorted(seg_tol.items()))
+        if key not in self._bodies:
+            self._bodies.clear()
+            self._bodies[key] = self._write(seg_tol)
+        body, moves = self._bodies[key]
+        return with_header(body, header, self.fmt), moves
+
+    def _write(self, seg_tol: dict[int, float]) -> tuple[str, list]:
+        """:meth:`write` without a header."""
+        header: list[str] = []
         if self.fmt == "gcode":
             # a program that used G7 (lathe diameter mode) is written in radii under G8
             radius_mode = bool(self.program is not None
@@ -350,7 +390,7 @@ def _verdict(res: ExportResult, path: ToolPath, fit: str, cert) -> list[str]:
              f"computed path (tolerance {res.tolerance:g}; {fit})"]
     if cert is not None:
         res.verified = bool(cert.ok)
-        res.certificate = cert.to_json()
+        res.verdict = cert
         # no clearance figure when the path has no compensated move to check
         clearance = ("no compensated move to check" if cert.min_clearance is None else
                      f"minimum clearance {cert.min_clearance:.6g} for radius {path.radius:g}")
@@ -389,10 +429,10 @@ def _export_program(res: ExportResult, path: ToolPath, out: Path, program: Progr
 def _export_json(res: ExportResult, path: ToolPath, out: Path, program: Program | None) -> None:
     """The tool path and, given the program, its certificate."""
     cert = _verify(path, program)
-    doc = {"toolpath": path.to_json(), "certificate": cert.to_json() if cert else None}
     if cert is not None:
         res.verified = bool(cert.ok)
-        res.certificate = doc["certificate"]
+        res.verdict = cert
+    doc = {"toolpath": path.to_json(), "certificate": res.certificate}
     _write_checked(res, out, json.dumps(doc) + "\n", program)
 
 

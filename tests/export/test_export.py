@@ -245,3 +245,21 @@ def test_readback_gets_the_same_verdict(case, tmp_path):
     assert before.ok == (case.expect == "ok")
     head = (tmp_path / f"{case.name}.nc").read_text().splitlines()[:5]
     assert any(("OK" if before.ok else "FAILED") in h for h in head)
+
+
+@pytest.mark.parametrize("case", ["profile", "sinumerik-sar-plate", "z-plunges"])
+def test_header_inserted_is_the_writers_own(case):
+    # an export reads back the text written without its final header and writes
+    # the file with it (export.with_header): the very text each writer gives
+    # with that header, hostile characters included
+    from ccopt.export import with_header
+    from ccopt.export.pmacprog import write_pmac
+
+    c = pmac_case(case)
+    prog = read_program(c.program)
+    path = ccopt.compensate(prog, c.style, radius=c.radius)
+    header = ["ccopt export (test)", "a (comment) with ; and % inside", "verified: OK"]
+    assert with_header(write_gcode(path, 1e-3, [], program=prog)[0], header, "gcode") == \
+        write_gcode(path, 1e-3, header, program=prog)[0]
+    assert with_header(write_pmac(path, [])[0], header, "pmac") == write_pmac(path, header)[0]
+    assert with_header("%\nG0 X0\n%\n", [], "gcode") == "%\nG0 X0\n%\n"
