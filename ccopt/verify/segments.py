@@ -16,7 +16,7 @@ curve object (a blend), which must offer ``start``, ``end``, ``length``,
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from itertools import chain
 from operator import attrgetter
 
@@ -40,6 +40,10 @@ class Packed:
     arr: SegmentArray
     bbox: np.ndarray
     curved: dict
+    #: row index -> the line or arc object :meth:`geom` made of it (made once:
+    #: the certificate asks for a row once per pair it is in, tens of times
+    #: on a dense contour)
+    made: dict = field(default_factory=dict, repr=False)
 
     def __len__(self) -> int:
         return len(self.arr)
@@ -50,9 +54,14 @@ class Packed:
         return self.arr.kind <= KIND_ARC
 
     def geom(self, i: int):
-        """Row ``i`` as a primitive object."""
-        g = self.curved.get(int(i))
-        return g if g is not None else self.arr.segment(int(i))
+        """Row ``i`` as a primitive object (immutable; one object per row)."""
+        i = int(i)
+        g = self.curved.get(i)
+        if g is None:
+            g = self.made.get(i)
+            if g is None:
+                g = self.made[i] = self.arr.segment(i)
+        return g
 
 
 def arc_bbox(center, radius, theta0, sweep, p0, p1) -> np.ndarray:
