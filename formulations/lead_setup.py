@@ -48,7 +48,7 @@ import numpy as np
 from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected, deepest
 from ccopt.compare.figures import FEED_ROLES, curvature_samples
 from ccopt.compare.leads import Lead, LeadGeometry, outside_leads, splice
-from ccopt.geometry import Arc, BezierCurve, Line
+from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.bezier import DIVISION_FLOOR, g2_end, jerk_gram, speed_profile_time
 from ccopt.geometry.curve import bernstein, derivative_matrix
 from ccopt_formulations.clearance import checked_distance, contour_elements, near, row_margin
@@ -106,7 +106,7 @@ class LeadSetup:
     lead: Lead
     lg: LeadGeometry
     A: np.ndarray
-    host_kind: str                  # "line" | "arc"
+    host_kind: str                  # "line" | "arc" (a spiral host: its osculating circle at the join)
     H0: np.ndarray
     t0: np.ndarray
     n_free_dir: np.ndarray          # unit normal to the free side at H0
@@ -349,9 +349,22 @@ def lead_setup(problem: BlendProblem, lead: Lead, *, join: str = "start",
         th0 = float(host.theta0)
         # the tool is outside its element circle when the free side points away from the centre
         outside = float(n_free @ (H0 - center)) > 0.0
+    elif isinstance(host, Spiral) and join == "start":
+        # the blend joins at the host's start (sigma = 0), and a G2 join reads
+        # only the host's point, tangent and curvature there: those of its
+        # osculating circle, the arc the models are given (a spiral host is an
+        # arc whose end radius the program's decimals moved, or its offset)
+        kind = "arc"
+        kappa = float(host.curvature(0.0))
+        rho, sgn = 1.0 / abs(kappa), math.copysign(1.0, kappa)
+        center = H0 + sgn * rho * np.array([-t0[1], t0[0]])
+        th0 = math.atan2(H0[1] - center[1], H0[0] - center[0])
+        outside = float(n_free @ (H0 - center)) > 0.0
     else:
         raise BlendRejected(f"lead-{lg.kind}: host segment is a {type(host).__name__}; "
-                            "only line and arc hosts are supported")
+                            "only line and arc hosts are supported"
+                            + (" (and a spiral with the join at its start, option "
+                               "join=start)" if isinstance(host, Spiral) else ""))
     L_host = float(host.length)
     if join == "free":
         lo, hi = min(0.5 * r, 0.25 * L_host), 0.9 * L_host
