@@ -19,7 +19,10 @@ about 170 and 190 degrees alternately), run clockwise and cut with CC1
 to the left), both timed in the same run, and the certificate of ccopt's
 tool path (``verify``) is timed too. ccopt's tool path holds its segments as
 columns (``ToolPath.from_columns``); the time to make them objects, on their
-first use, is printed apart.
+first use, is printed apart. With pyclipr installed (``pip install -e
+'.[bench]'``), Clipper2's polygon offset of the same ring (round joins, the
+coordinates scaled by :data:`CLIPPER_SCALE` to its integers) is timed in the
+same turns: issue 34 asks ccopt to be at most 1.0x it.
 
     python bench/compensate.py [--n 100000] [--repeat 5] [--serrated-only]
 """
@@ -137,6 +140,26 @@ def serrated_program(pts) -> Program:
     return Program(tuple(blocks), "serrated", "pmac")
 
 
+#: Clipper2 offsets integer coordinates: pyclipr scales by this (1e-4 units).
+CLIPPER_SCALE = 10_000
+
+
+def clipper_offset(pts: np.ndarray, delta: float):
+    """A function running Clipper2's offset (pyclipr) of the closed polygon
+    ``pts`` by ``delta`` (round joins), or None without pyclipr."""
+    try:
+        import pyclipr
+    except ImportError:
+        return None
+
+    def run():
+        po = pyclipr.ClipperOffset()
+        po.scaleFactor = CLIPPER_SCALE
+        po.addPaths([pts], pyclipr.JoinType.Round, pyclipr.EndType.Polygon)
+        return po.execute(delta)
+    return run
+
+
 def serrated_bench(n: int, repeat: int) -> None:
     """Time ccopt's compensation and certificate of the serrated ring against
     shapely's offset_curve, alternating turns so load hits both alike."""
@@ -147,11 +170,14 @@ def serrated_bench(n: int, repeat: int) -> None:
     pts = serrated(n)
     prog = serrated_program(pts)
     line = shapely.linestrings(np.vstack([pts, pts[:1]]))
-    wall = {"ccopt": [], "shapely": []}
-    cpu = {"ccopt": [], "shapely": []}
     runs = {"ccopt": lambda: compensate(prog, "pmac"),
             "shapely": lambda: shapely.offset_curve(line, SERRATED_CUTTER, quad_segs=8,
                                                     join_style="round")}
+    clipper = clipper_offset(pts, SERRATED_CUTTER)
+    if clipper is not None:
+        runs["clipper2"] = clipper
+    wall = {name: [] for name in runs}
+    cpu = {name: [] for name in runs}
     for _ in range(repeat):
         for name, fn in runs.items():
             t0, c0 = time.perf_counter(), time.process_time()
@@ -184,6 +210,13 @@ def serrated_bench(n: int, repeat: int) -> None:
     print(f"shapely offset_curve   : {ts * 1e3:9.1f} ms wall, {cs * 1e3:9.1f} ms CPU "
           f"(round, quad_segs 8)")
     print(f"ratio ccopt/shapely    : {tc / ts:9.2f} wall, {cc / cs:.2f} CPU  (target <= 2)")
+    if clipper is None:
+        print("Clipper2 (pyclipr)     : not installed (pip install -e '.[bench]')")
+    else:
+        tk, ck = statistics.median(wall["clipper2"]), statistics.median(cpu["clipper2"])
+        print(f"Clipper2 offset        : {tk * 1e3:9.1f} ms wall, {ck * 1e3:9.1f} ms CPU "
+              f"(pyclipr, round joins); ratio ccopt/Clipper2 {tc / tk:.2f} wall, "
+              f"{cc / ck:.2f} CPU (target <= 1.0, issue 34)")
     print(f"ccopt  verify          : {statistics.median(v_wall) * 1e3:9.1f} ms wall, "
           f"{statistics.median(v_cpu) * 1e3:9.1f} ms CPU (target < 1000; first call, with "
           f"its imports: {first[0] * 1e3:.0f} ms wall, {first[1] * 1e3:.0f} ms CPU), "
