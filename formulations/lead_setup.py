@@ -341,30 +341,22 @@ def lead_setup(problem: BlendProblem, lead: Lead, *, join: str = "start",
     center, rho, sgn, outside, th0 = None, 0.0, 1.0, True, 0.0
     if isinstance(host, Line):
         kind = "line"
-    elif isinstance(host, Arc):
+    elif isinstance(host, Arc) or (isinstance(host, Spiral) and join == "start"):
+        # a spiral joined at its start: a G2 join reads only the host's point, tangent
+        # and curvature there, which its osculating circle has (the models get that arc)
         kind = "arc"
-        center = np.asarray(host.center, float)
-        rho = float(host.radius)
-        sgn = math.copysign(1.0, host.sweep)
-        th0 = float(host.theta0)
+        if isinstance(host, Arc):
+            center, rho = np.asarray(host.center, float), float(host.radius)
+            sgn, th0 = math.copysign(1.0, host.sweep), float(host.theta0)
+        else:
+            rho, sgn = 1.0 / abs(k := float(host.curvature(0.0))), math.copysign(1.0, k)
+            center = H0 + sgn * rho * np.array([-t0[1], t0[0]])
+            th0 = math.atan2(H0[1] - center[1], H0[0] - center[0])
         # the tool is outside its element circle when the free side points away from the centre
         outside = float(n_free @ (H0 - center)) > 0.0
-    elif isinstance(host, Spiral) and join == "start":
-        # the blend joins at the host's start (sigma = 0), and a G2 join reads
-        # only the host's point, tangent and curvature there: those of its
-        # osculating circle, the arc the models are given (a spiral host is an
-        # arc whose end radius the program's decimals moved, or its offset)
-        kind = "arc"
-        kappa = float(host.curvature(0.0))
-        rho, sgn = 1.0 / abs(kappa), math.copysign(1.0, kappa)
-        center = H0 + sgn * rho * np.array([-t0[1], t0[0]])
-        th0 = math.atan2(H0[1] - center[1], H0[0] - center[0])
-        outside = float(n_free @ (H0 - center)) > 0.0
     else:
-        raise BlendRejected(f"lead-{lg.kind}: host segment is a {type(host).__name__}; "
-                            "only line and arc hosts are supported"
-                            + (" (and a spiral with the join at its start, option "
-                               "join=start)" if isinstance(host, Spiral) else ""))
+        raise BlendRejected(f"lead-{lg.kind}: host segment is a {type(host).__name__}; only "
+                            "line and arc hosts are supported, and spirals with join=start")
     L_host = float(host.length)
     if join == "free":
         lo, hi = min(0.5 * r, 0.25 * L_host), 0.9 * L_host
@@ -604,6 +596,5 @@ def run_leads(problem: BlendProblem, solve_lead, name: str,
         report.append(entry)
     if all(e["status"] != "ok" for e in report):
         raise BlendRejected("; ".join(f"lead-{e['lead']}: {e.get('reason')}" for e in report))
-    # no certificate of the whole path here: each blend was checked on its own
-    # segments (BlendProblem.check), the comparison certifies the result once
+    # each blend was checked on its own segments (BlendProblem.check); compare certifies all
     return BlendOutcome(path, {"leads": report[::-1]})
