@@ -25,6 +25,7 @@ import math
 import os
 import re
 from dataclasses import dataclass, field
+from functools import cached_property
 from pathlib import Path
 
 from ccopt.atomic import refuse_overwriting_inputs, write_text_atomic
@@ -33,7 +34,7 @@ from ccopt.export.arcfit import DEFAULT_TOL
 from ccopt.export.gcode import write_gcode
 from ccopt.export.pmacprog import write_pmac
 from ccopt.export.svg import write_svg
-from ccopt.export.text import gcode_comment, pmac_comment
+from ccopt.export.text import with_header
 from ccopt.geometry import Arc, Line
 from ccopt.program import read_text
 from ccopt.program.gcode.execute import LATHE_DIAMETER_MODE_USED
@@ -81,14 +82,11 @@ class ExportResult:
     #: or None; :attr:`certificate` is its JSON, made when first asked (a path
     #: with many violations or warnings takes long to put in dicts)
     verdict: object = field(default=None, repr=False)
-    _certificate: list = field(default_factory=list, repr=False)
 
-    @property
+    @cached_property
     def certificate(self) -> dict | None:
         """The certificate as JSON (:meth:`Certificate.to_json`), or None."""
-        if not self._certificate:
-            self._certificate.append(None if self.verdict is None else self.verdict.to_json())
-        return self._certificate[0]
+        return None if self.verdict is None else self.verdict.to_json()
 
     def to_json(self) -> dict:
         return {"file": self.file, "format": self.format, "tolerance": self.tolerance,
@@ -271,19 +269,6 @@ def _verify(path: ToolPath, program: Program | None):
     return verify(path, program)
 
 
-def with_header(text: str, header: list[str], fmt: str) -> str:
-    """``text`` (:func:`write_gcode` or :func:`write_pmac` of a path without a
-    header) with ``header``'s comment lines where those writers put them: the
-    same text as the writer's with that header (G-code: after the opening
-    ``%``; PMAC: first)."""
-    if not header:
-        return text
-    if fmt == "gcode":
-        first, rest = text.split("\n", 1)
-        return "\n".join([first, *map(gcode_comment, header), rest])
-    return "\n".join([*map(pmac_comment, header), text])
-
-
 @dataclass
 class _ProgramExport:
     """One G-code or PMAC export: write, read back with ccopt's reader, verify.
@@ -299,33 +284,30 @@ class _ProgramExport:
     program: Program | None
     header: list[str]
 
-    #: The text written without a header and its moves, by the fit tolerances
-    #: it was written with (``seg_tol`` as a sorted tuple): the final file
-    #: differs from the attempt that was read back only in its header comments.
-    _bodies: dict = field(default_factory=dict)
+    #: The last text written without a header, its moves and the fit
+    #: tolerances it was written with: the final file differs from the attempt
+    #: that was read back only in its header comments.
+    _last: tuple | None = None
 
     def write(self, header: list[str], seg_tol: dict[int, float]) -> tuple[str, list]:
         """Program text and its moves ``(source segment, meant geometry, fit bound)``."""
-        key = tuple(sorted(seg_tol.items()))
-        if key not in self._bodies:
-            self._bodies.clear()
-            self._bodies[key] = self._write(seg_tol)
-        body, moves = self._bodies[key]
+        if self._last is None or self._last[0] != seg_tol:
+            self._last = (dict(seg_tol), *self._write(seg_tol))
+        _, body, moves = self._last
         return with_header(body, header, self.fmt), moves
 
     def _write(self, seg_tol: dict[int, float]) -> tuple[str, list]:
         """:meth:`write` without a header."""
-        header: list[str] = []
         if self.fmt == "gcode":
             # a program that used G7 (lathe diameter mode) is written in radii under G8
             radius_mode = bool(self.program is not None
                                and self.program.meta.get(LATHE_DIAMETER_MODE_USED))
-            return write_gcode(self.path, self.tol, header, seg_tol=seg_tol,
+            return write_gcode(self.path, self.tol, None, seg_tol=seg_tol,
                                radius_mode=radius_mode, program=self.program)[:2]
         # the program number the PMAC program was read from, kept
         number = (self.program.meta.get("program") if self.program is not None
                   and self.program.dialect == "pmac" else None)
-        return write_pmac(self.path, header, tol=self.tol, seg_tol=seg_tol,
+        return write_pmac(self.path, None, tol=self.tol, seg_tol=seg_tol,
                           program_number=number if isinstance(number, int) else 1)
 
     def attempt(self, seg_tol: dict[int, float]):

@@ -16,7 +16,7 @@ import math
 from ccopt.errors import ProgramError
 from ccopt.export.arcfit import fit_arcs, fit_bezier, fit_located, fit_tolerance
 from ccopt.export.machine import MachineWords, machine_prefix, written_frame, written_offset
-from ccopt.export.text import gcode_comment
+from ccopt.export.text import with_header
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import PLANE_AXES
@@ -216,8 +216,6 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
     machine = MachineWords(program)
     seg_tol = seg_tol or {}
     out = ["%"]
-    for h in header or []:
-        out.append(gcode_comment(h))
     modes = f"{PLANE_WORD[path.plane]} G90 G94" + (" G8" if radius_mode else "")
     number = program.meta.get("program_number") if program is not None else None
     if isinstance(number, int):
@@ -252,4 +250,5 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
         wr.lines.append(f"G4 P{fmt(seconds, 4)}")
     out += wr.lines
     out += machine.finish() + ["%"]
-    return "\n".join(out) + "\n", list(zip(wr.source, *zip(*wr.intended))), max_err
+    return (with_header("\n".join(out) + "\n", header, "gcode"),
+            list(zip(wr.source, *zip(*wr.intended))), max_err)

@@ -16,7 +16,7 @@ from __future__ import annotations
 from ccopt.errors import ProgramError
 from ccopt.export.arcfit import DEFAULT_TOL, fit_located, fit_tolerance
 from ccopt.export.gcode import bezier_pieces, fmt
-from ccopt.export.text import pmac_comment
+from ccopt.export.text import with_header
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import PLANE_AXES
@@ -83,8 +83,7 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
     if tol is None:
         tol = DEFAULT_TOL[path.units]
     seg_tol = seg_tol or {}
-    lines = [pmac_comment(h) for h in header or []]
-    lines += ["CLOSE", f"OPEN PROG {program_number} CLEAR", NORMAL[path.plane], "ABS"]
+    lines = ["CLOSE", f"OPEN PROG {program_number} CLEAR", NORMAL[path.plane], "ABS"]
     moves: list = []
     mode = None
     feed = None
@@ -148,4 +147,4 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
     for seconds in dwell_at.get(len(path.segments), ()):
         lines.append(f"DWELL {fmt(seconds * 1000.0, 3)}")
     lines.append("CLOSE")
-    return "\n".join(lines) + "\n", moves
+    return with_header("\n".join(lines) + "\n", header, "pmac"), moves

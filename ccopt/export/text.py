@@ -97,6 +97,18 @@ def pmac_comment(text: object) -> str:
     return f"; {_inert(note)}"
 
 
+def with_header(text: str, header: list[str] | None, fmt: str) -> str:
+    """A written program ``text`` with ``header``'s notes as comment lines,
+    where the writers put them: G-code after the opening ``%``, PMAC first
+    (``fmt``: ``"gcode"`` or ``"pmac"``)."""
+    if not header:
+        return text
+    if fmt == "gcode":
+        first, rest = text.split("\n", 1)
+        return "\n".join([first, *map(gcode_comment, header), rest])
+    return "\n".join([*map(pmac_comment, header), text])
+
+
 def xml_text(text: object) -> str:
     """Text or attribute value for SVG/XML: one line, ``& < > " '`` escaped.
 

@@ -72,9 +72,10 @@ def replace_block(block: Block, **changes) -> Block:
     (the same object: every field set, from ``changes`` or ``block``; Block
     has no ``__post_init__``, checked on import). Unknown names raise
     ``TypeError`` as ``replace`` does."""
+    unknown = changes.keys() - _SET.keys()
+    if unknown:
+        raise TypeError(f"Block has no field {sorted(unknown)[0]!r}")
     out = _new(Block)
     for name, setter in _ALL:
         setter(out, changes[name] if name in changes else getattr(block, name))
-    if len(changes) > 0 and not changes.keys() <= _SET.keys():
-        raise TypeError(f"Block has no field {sorted(changes.keys() - _SET.keys())[0]!r}")
     return out

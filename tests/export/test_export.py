@@ -248,18 +248,25 @@ def test_readback_gets_the_same_verdict(case, tmp_path):
 
 
 @pytest.mark.parametrize("case", ["profile", "sinumerik-sar-plate", "z-plunges"])
-def test_header_inserted_is_the_writers_own(case):
+def test_header_lines_go_where_each_format_keeps_them(case):
     # an export reads back the text written without its final header and writes
-    # the file with it (export.with_header): the very text each writer gives
-    # with that header, hostile characters included
-    from ccopt.export import with_header
+    # the file with it (export.text.with_header, which the writers use): the
+    # header's comments right after the opening % (G-code) or first (PMAC),
+    # hostile characters made inert, and the rest the text without a header
     from ccopt.export.pmacprog import write_pmac
+    from ccopt.export.text import gcode_comment, pmac_comment
 
     c = pmac_case(case)
     prog = read_program(c.program)
     path = ccopt.compensate(prog, c.style, radius=c.radius)
     header = ["ccopt export (test)", "a (comment) with ; and % inside", "verified: OK"]
-    assert with_header(write_gcode(path, 1e-3, [], program=prog)[0], header, "gcode") == \
-        write_gcode(path, 1e-3, header, program=prog)[0]
-    assert with_header(write_pmac(path, [])[0], header, "pmac") == write_pmac(path, header)[0]
-    assert with_header("%\nG0 X0\n%\n", [], "gcode") == "%\nG0 X0\n%\n"
+    bare = write_gcode(path, 1e-3, [], program=prog)[0].split("\n")
+    got = write_gcode(path, 1e-3, header, program=prog)[0].split("\n")
+    assert got[:4] == ["%", *map(gcode_comment, header)]
+    assert got[2] == "(a [comment] with , and % inside)"
+    assert got[4:] == bare[1:]
+    bare = write_pmac(path, [])[0].split("\n")
+    got = write_pmac(path, header)[0].split("\n")
+    assert got[:3] == list(map(pmac_comment, header))
+    assert got[1] == "; a (comment) with , and % inside"
+    assert got[3:] == bare
