@@ -15,8 +15,9 @@ of a small set:
 
 "Fastest" is the cycle time under the comparison's limits (planned stretch
 by stretch, the stretches the members share once:
-:class:`~ccopt.compare.timing.StretchTimes`); without limits, the shortest
-path. A member the verifier does not certify (a gouge, a gap, a
+:class:`~ccopt.compare.timing.StretchTimes`, starting from the stretches of
+the ``siemens`` path as the program asks, planned once per process:
+:func:`_base_times`); without limits, the shortest path. A member the verifier does not certify (a gouge, a gap, a
 side fault) is not chosen; with none certified the variant is rejected
 with the reasons. The row's ``info`` names the member chosen and every
 member's figure.
@@ -28,7 +29,7 @@ import math
 from ccopt.compare.contract import (SIEMENS_NAMES, Blend, BlendOutcome, BlendProblem,
                                     BlendRejected, deepest)
 from ccopt.compare.leads import find_leads, outside_leads
-from ccopt.compare.timing import StretchTimes, duration_figures
+from ccopt.compare.timing import StretchTimes, duration_figures, stretch_keys
 from ccopt.compensate import compensate
 from ccopt.errors import CcoptError
 from ccopt.toolpath import ToolPath
@@ -39,6 +40,43 @@ DISR_FACTORS = {"G147": (0.0, 0.5, 1.0), "G247": (0.5, 1.0, 2.0), "G347": (0.5, 
 CORNERS = ("G450", "G451")
 #: The verifier's findings that keep a member from being chosen.
 _FAULTS = ("gouge", "gap", "side")
+#: Base stretch times kept per process (:func:`_base_times`): a comparison
+#: needs one (its limits, ``ts`` and program); a sweep's worker moves on.
+_BASES_KEPT = 4
+_BASES: dict = {}
+
+
+def _base_times(problem: BlendProblem) -> StretchTimes:
+    """A copy of the stretch times of the ``siemens`` path as the program asks
+    (planned whole and cut at its stops,
+    :meth:`~ccopt.compare.timing.StretchTimes.from_reference`), planned once
+    per process for this path, limits and ``ts``.
+
+    Why: the families change that path only at its leads (and NORM/KONT at
+    the corners their G450/G451 member changes), so without it each family's
+    first member planned the whole path again, five times in a comparison.
+    The memo is keyed by the path's stretch keys, limits and ``ts``, so a
+    family's figures do not depend on which families ran before it in the
+    process (serial and parallel comparisons agree); each family gets a copy,
+    so the stretches its own members add reach no other. Empty where the
+    style refuses the program or the planner its path (the members then say
+    why)."""
+    empty = StretchTimes(problem.limits, ts=problem.ts)
+    try:
+        path = compensate(problem.program, "siemens", radius=problem.radius, side=problem.side)
+        key = (problem.limits, problem.ts, tuple(stretch_keys(path)))
+    except CcoptError:
+        return empty
+    base = _BASES.get(key)
+    if base is None:
+        try:
+            base = StretchTimes.from_reference(path, problem.limits, problem.ts)[0]
+        except CcoptError:
+            base = empty
+        while len(_BASES) >= _BASES_KEPT:
+            del _BASES[next(iter(_BASES))]
+        _BASES[key] = base
+    return base.copy()
 
 
 def _figure(path: ToolPath, problem: BlendProblem, times: StretchTimes | None) -> float | None:
@@ -68,7 +106,7 @@ def _fastest(problem: BlendProblem, members: dict[str, dict], label: str,
     families), so a fault outside every lead of one (:func:`.leads.outside_leads`)
     is every member's: the family is rejected there, its other members not tried."""
     best, tried, refusals = None, {}, []
-    times = None if problem.limits is None else StretchTimes(problem.limits, ts=problem.ts)
+    times = None if problem.limits is None else _base_times(problem)
     for key, options in members.items():
         try:
             path = compensate(problem.program, "siemens", radius=problem.radius,
