@@ -105,7 +105,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ccopt.feed.grading import curve_braking, graded_grids
+from ccopt.feed.grading import Ramps, curve_braking, graded_grids
 from ccopt.feed.path import ExactPath
 
 #: Default of :attr:`GridOptions.min_spacing` (program units): extra gridpoints
@@ -161,19 +161,38 @@ _MIN_PIECE = 1e-11
 
 
 def _spacing(path: ExactPath, v_axis: np.ndarray, a_axis: np.ndarray,
-             options: GridOptions) -> np.ndarray:
+             options: GridOptions, jerk=None) -> np.ndarray:
     """``(ds, n)``: braking-based spacing of each segment (units), at least
     ``S / max_intervals``, and the number of intervals it asks for (at most
     ``max_intervals``; counted from the spacing before the cap, which
-    ``S / (S / max_intervals)`` could round above)."""
+    ``S / (S / max_intervals)`` could round above).
+
+    With axis jerk limits ``jerk`` (units/s^3, plane order) the braking
+    length is ``v^2 / a_j``, ``a_j = min(a, sqrt(2 |J|_2 v))`` the largest path
+    acceleration a jerk-limited profile reaches below the cap ``v`` (as
+    :func:`~ccopt.feed.grading.scurve_ramp` bounds it; ``|J|_2`` bounds the
+    path jerk on a line in any direction). The spacing keeps what it is for:
+    over one interval the squared speed changes by at most ``2 a_j ds``, a
+    share ``2 / density`` of its value at the cap, as TOPPRA's grid does
+    with ``a``; the jerk planner's rows lose time in proportion to that
+    relative change (each end's speed factor bounds the interval's jerk)."""
     S = path.lengths
     if options.ds is not None:
         ds = np.full(S.size, options.ds)
     else:
         v = np.minimum(path.feeds, float(np.min(v_axis)))
-        ds = np.minimum(v * v / float(np.max(a_axis)), S) / options.density
+        a = float(np.max(a_axis))
+        if jerk is not None:
+            a = np.minimum(a, np.sqrt(2.0 * float(np.linalg.norm(jerk)) * v))
+        ds = np.minimum(v * v / a, S) / options.density
     n = np.minimum(np.ceil(S / ds), options.max_intervals)
     return np.maximum(ds, S / options.max_intervals), n
+
+
+def _jerk_of(ramps) -> np.ndarray | None:
+    """The axis jerk limits of ``ramps`` (a :class:`~ccopt.feed.grading.Ramps`,
+    its first two fields, or None)."""
+    return None if ramps is None else Ramps(*ramps).jerk
 
 
 def _curvature_floor(path: ExactPath, v_axis, a_axis, ds, options: GridOptions) -> np.ndarray:
@@ -257,7 +276,7 @@ def _segment_grids(path: ExactPath, v_axis, a_axis, options: GridOptions, ramps=
     (``n[k] - 1`` path positions) of the sampled segments, not evenly spaced.
     ``ramps`` as in :func:`gridpoints`: part 1 of ``M`` graded on curves
     whose speed cap is their feed (:func:`~ccopt.feed.grading.curve_braking`)."""
-    ds, n = _spacing(path, v_axis, a_axis, options)
+    ds, n = _spacing(path, v_axis, a_axis, options, _jerk_of(ramps))
     step = min(options.max_angle, options.max_curvature_change, options.max_curvature_bend)
     n = np.maximum(n, np.ceil(path.uniform_turning / step))
     n = np.maximum(n, options.min_intervals).astype(int)
@@ -306,7 +325,7 @@ def gridpoints(path: ExactPath, v_axis, a_axis, options: GridOptions = GridOptio
     v_axis, a_axis = np.asarray(v_axis, float), np.asarray(a_axis, float)
     n, interior = _segment_grids(path, v_axis, a_axis, options, ramps)
     if ramps is not None:
-        ds = _spacing(path, v_axis, a_axis, options)[0]
+        ds = _spacing(path, v_axis, a_axis, options, _jerk_of(ramps))[0]
         for k, inner in graded_grids(path, n, ds, v_axis, a_axis, options, ramps).items():
             n[k] = inner.size + 1
             interior[k] = inner
