@@ -152,3 +152,20 @@ def test_cycle_247_another_preset_is_refused():
         read(PRESET + "\n7 CYCL DEF 247 DATUM SETTING ~\n    Q339=+2    ;DATUM NUMBER")
     assert (info.value.line, info.value.col) == (9, 3)
     assert "preset 2 after preset 1 (line 3)" in info.value.message
+
+
+def test_tool_call_with_an_axis_and_no_tool_number_keeps_the_tool():
+    # the Autodesk posts' 'TOOL CALL Z' (before 'L M140 MB MAX'), and an axis-only
+    # call later with a DR: the tool of the last numbered call stays (tool 7,
+    # diameter 6 from the table, so radius 3; with DR+0.5 3.5), the axis sets the
+    # working plane (Y: ZX, whose arcs turn about Y)
+    text = ("0 BEGIN PGM T MM\n1 TOOL CALL  Z ;SET TOOL AXIS FOR M140\n"
+            "2 L M140 MB MAX\n3 TOOL CALL 7 Z S4000\n4 L X+0 Y+0 RL F100\n"
+            "5 TOOL CALL Z DR+0.5\n6 L X+10 Y+0 RL F100\n7 L R0 Z+50 FMAX\n"
+            "8 TOOL CALL Y S2000\n9 L X+20 R0 F100\n99 END PGM T MM\n")
+    prog = read_text(text, "t.h", "heidenhain", tool_table={7: 6.0})
+    m = moves(prog)
+    # source lines count from the file's first line, the block numbers from 0
+    radii = [b.modal.radius for b in m if b.source.line in (5, 7)]
+    assert radii == [pytest.approx(3.0), pytest.approx(3.5)]
+    assert [b.modal.plane for b in m if b.source.line == 10] == ["ZX"]

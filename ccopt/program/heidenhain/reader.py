@@ -233,15 +233,28 @@ class _Run:
             raise self.err("expected TOOL CALL or TOOL DEF", st)
         ident = words[2].text
         tool = None
+        rest = list(words[3:])
+        if words[1].text == "CALL" and ident in PLANE_OF_AXIS:
+            # TOOL CALL without a tool number (``TOOL CALL Z``, as the Autodesk
+            # posts write it before ``L M140 MB MAX``): the tool axis, S, F and
+            # DR change, the tool in the spindle stays
+            self._tool_axis_call(src, st, list(words[2:]))
+            return
         if not ident.startswith('"'):
             tool = int(self.q.number(ident, st.line, words[2].col, "TOOL "))
-        rest = list(words[3:])
         if words[1].text == "DEF":
             a = read_args(st, [w for w in rest if not w.text.startswith("L")], self.q,
                           self.file)
             if tool is not None and a.radius is not None:
                 self.m.tool_radii[tool] = a.radius
             return
+        a = self._tool_call_args(st, rest)
+        self.m.set_tool_radius(tool, a.dr_value or 0.0, src)
+
+    def _tool_call_args(self, st: Statement, rest: list):
+        """The words of ``TOOL CALL`` after its tool number: the tool axis (it
+        sets the working plane), then S, F, DL, DR (DR2 is read past), M;
+        sets the spindle speed and the feed, returns the arguments."""
         if rest and rest[0].text in PLANE_OF_AXIS:
             self.m.plane = PLANE_OF_AXIS[rest[0].text]
             rest = rest[1:]
@@ -251,7 +264,14 @@ class _Run:
             self.m.tool_feed = a.feed
         if a.speed is not None:
             self.m.speed = a.speed
-        self.m.set_tool_radius(tool, a.dr_value or 0.0, src)
+        return a
+
+    def _tool_axis_call(self, src: Source, st: Statement, rest: list) -> None:
+        """``TOOL CALL`` with a tool axis and no tool number: the axis, S and F
+        as any ``TOOL CALL``; the tool stays, with this call's DR when it gives one."""
+        a = self._tool_call_args(st, rest)
+        if a.dr_value is not None:
+            self.m.set_tool_radius(self.m.tool, a.dr_value, src)
 
     def _cycle(self, src: Source, st: Statement) -> None:
         if len(st.words) > 1 and st.words[1].text == "CALL":
