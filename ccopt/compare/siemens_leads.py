@@ -17,9 +17,9 @@ of a small set:
 by stretch, the stretches the members share once:
 :class:`~ccopt.compare.timing.StretchTimes`, starting from the stretches of
 the ``siemens`` path as the program asks, planned once per process:
-:func:`_base_times`); without limits, the shortest path. A member the verifier does not certify (a gouge, a gap, a
-side fault) is not chosen; with none certified the variant is rejected
-with the reasons. The row's ``info`` names the member chosen and every
+:func:`_base_times`); without limits, the shortest path. A member the
+verifier does not certify (a gouge, a gap, a side fault) is not chosen;
+with none certified the variant is rejected with the reasons. The row's ``info`` names the member chosen and every
 member's figure.
 """
 from __future__ import annotations
