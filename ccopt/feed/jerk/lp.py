@@ -467,13 +467,23 @@ _BANNER_SHOWN = []
 #: HiGHS's dual simplex pricing on the window LPs: Devex (1). Its default,
 #: steepest edge (2), takes fewer iterations on a cold start but costs more
 #: per iteration on these banded LPs, more than it saves
-#: (bench/jerk_pricing.py measures both on the same plans); the optimum is
+#: (bench/jerk_highs.py measures both on the same plans); the optimum is
 #: the same LP's, so the cycle times agree to the LP's tolerances.
 DUAL_EDGE_WEIGHTS = 1
+#: HiGHS's simplex scaling of the window LPs: 4, "max value" (every row and
+#: column divided by a power of 2 near its largest entry), instead of its
+#: default 2, equilibration. The window LPs come scaled by construction (each
+#: ``b`` column in its own unit, the jerk rows times ``vref / J``, see
+#: :class:`WindowLP`); equilibrating them again costs the cold solves more
+#: iterations, and on some windows ends them a hair short of the optimum the
+#: interior-point method confirms (bench/jerk_highs.py --setting scaling
+#: measures both on the same plans).
+SIMPLEX_SCALE = 4
 
 
 def _new_highs():
-    """A silent ``highspy.Highs`` running the simplex without presolve. The
+    """A silent ``highspy.Highs`` running the simplex without presolve, with
+    :data:`DUAL_EDGE_WEIGHTS` and :data:`SIMPLEX_SCALE`. The
     first one made in a process prints HiGHS's banner on the C-level stdout,
     before any option can stop it, which would spoil ``--json`` output: that
     one is made with file descriptor 1 pointed at the null device."""
@@ -497,6 +507,7 @@ def _new_highs():
     # simplex, ten times slower on these LPs
     h.setOptionValue("solver", "simplex")
     h.setOptionValue("simplex_dual_edge_weight_strategy", DUAL_EDGE_WEIGHTS)
+    h.setOptionValue("simplex_scale_strategy", SIMPLEX_SCALE)
     return h
 
 
