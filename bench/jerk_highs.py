@@ -19,7 +19,8 @@ every path): worker processes start afresh from the files and would not see
 the setting (the 1,000-block pocket has about 66,000 gridpoints, past the
 default).
 
-    python bench/jerk_highs.py [--setting pricing|scaling] [--repeat 3] [--cases fagor-g136-g138,pocket]
+    python bench/jerk_highs.py [--setting pricing|scaling] [--repeat 3]
+                               [--cases fagor-g136-g138,pocket]
 """
 from __future__ import annotations
 

@@ -19,8 +19,8 @@ by stretch, the stretches the members share once:
 the ``siemens`` path as the program asks, planned once per process:
 :func:`_base_times`); without limits, the shortest path. A member the
 verifier does not certify (a gouge, a gap, a side fault) is not chosen;
-with none certified the variant is rejected with the reasons. The row's ``info`` names the member chosen and every
-member's figure.
+with none certified the variant is rejected with the reasons. The row's
+``info`` names the member chosen and every member's figure.
 """
 from __future__ import annotations
 

@@ -272,8 +272,9 @@ def _curve_samples(path: ExactPath, ks: np.ndarray, kappa_f: np.ndarray,
 
 
 def _segment_grids(path: ExactPath, v_axis, a_axis, options: GridOptions, ramps=None):
-    """``(n, interior)``: intervals per segment, and ``{k: interior gridpoints}``
-    (``n[k] - 1`` path positions) of the sampled segments, not evenly spaced.
+    """``(n, interior, ds)``: intervals per segment, ``{k: interior gridpoints}``
+    (``n[k] - 1`` path positions) of the sampled segments, not evenly spaced,
+    and each segment's braking spacing (:func:`_spacing`).
     ``ramps`` as in :func:`gridpoints`: part 1 of ``M`` graded on curves
     whose speed cap is their feed (:func:`~ccopt.feed.grading.curve_braking`)."""
     ds, n = _spacing(path, v_axis, a_axis, options, _jerk_of(ramps))
@@ -283,7 +284,7 @@ def _segment_grids(path: ExactPath, v_axis, a_axis, options: GridOptions, ramps=
     interior: dict[int, np.ndarray] = {}
     ks = np.flatnonzero(~path.constant_curvature)
     if ks.size == 0:
-        return n, interior
+        return n, interior, ds
     kappa_f = _curvature_floor(path, v_axis, a_axis, ds, options)
     k, s, h, turn, change, bend = _curve_samples(path, ks, kappa_f, options)
     if ramps is not None and options.ds is None:
@@ -302,7 +303,7 @@ def _segment_grids(path: ExactPath, v_axis, a_axis, options: GridOptions, ramps=
         nk = max(options.min_intervals, int(np.ceil(mm[-1])))
         n[kk] = nk
         interior[kk] = np.interp(mm[-1] * np.arange(1, nk) / nk, mm, s[a:b])
-    return n, interior
+    return n, interior, ds
 
 
 def intervals_per_segment(path: ExactPath, v_axis: np.ndarray, a_axis: np.ndarray,
@@ -323,9 +324,8 @@ def gridpoints(path: ExactPath, v_axis, a_axis, options: GridOptions = GridOptio
     limits when it has them. Without it every line and arc is gridded evenly.
     """
     v_axis, a_axis = np.asarray(v_axis, float), np.asarray(a_axis, float)
-    n, interior = _segment_grids(path, v_axis, a_axis, options, ramps)
+    n, interior, ds = _segment_grids(path, v_axis, a_axis, options, ramps)
     if ramps is not None:
-        ds = _spacing(path, v_axis, a_axis, options, _jerk_of(ramps))[0]
         for k, inner in graded_grids(path, n, ds, v_axis, a_axis, options, ramps).items():
             n[k] = inner.size + 1
             interior[k] = inner
