@@ -37,6 +37,30 @@ def fmt(x: float, digits: int = 6) -> str:
     return "0" if s in ("-0", "") else s
 
 
+#: An arc of less than half a turn whose written end lies within this many
+#: units of the last decimal of its written start (:func:`written_as_line`).
+SHORT_CHORD_UNITS = 4
+
+
+def written_as_line(arc, starts, end, digits: int) -> bool:
+    """Whether ``arc`` (less than half a turn) must be written as a straight
+    move: its written end ``end`` (in-plane, rounded to ``digits``) lies within
+    :data:`SHORT_CHORD_UNITS` of the last decimal of one of ``starts`` (the
+    written point the reader starts from, and the arc's own start rounded).
+
+    Written as an arc there, the reader (LinuxCNC's and PMAC's rules alike)
+    takes an end at the start for a full turn, and an end a rounding step
+    behind the start, seen from the rounded centre, for all but a sliver of
+    one: a corner arc of 1.8e-7 rad (radius 1.5 mm) after a contour written
+    with 6 decimals read back as a full circle. Written as a line, the move
+    stays within the arc's length of the arc (the bound the caller adds)."""
+    if abs(arc.sweep) >= math.pi:
+        return False
+    near = SHORT_CHORD_UNITS * 10.0 ** -digits
+    return any(p is not None and math.hypot(end[0] - p[0], end[1] - p[1]) <= near
+               for p in starts)
+
+
 class _Writer:
     def __init__(self, path: ToolPath, digits: int):
         self.path = path
@@ -49,6 +73,7 @@ class _Writer:
         self.shift = (0.0, 0.0, 0.0)   # machine minus written (u, v, w) of the next moves
         self.rotated = None            # or the rotated frame they are written in
         self.prefix = ""               # "G53 " for moves written in machine coordinates
+        self.at = None                 # the last written (u, v), rounded
 
     def set_frame(self, block) -> None:
         """Write the next moves in ``block``'s frame (work coordinates, or
@@ -79,7 +104,10 @@ class _Writer:
         self.ci, self.cj = CENTRE[iu], CENTRE[iv]
 
     def coords(self, uv, w) -> str:
+        """The axis words of a move's end; it is remembered as the written
+        point the next move starts from (in-plane, rounded as written)."""
         u, v, w = self.written(uv[0], uv[1], w)
+        self.at = (round(u, self.digits), round(v, self.digits))
         return (f"{self.u}{fmt(u, self.digits)} {self.v}{fmt(v, self.digits)} "
                 f"{self.w}{fmt(w, self.digits)}")
 
@@ -113,6 +141,11 @@ class _Writer:
         # start and end radii consistent after rounding.
         su, sv, _ = self.written(s[0], s[1], w0)
         su, sv = round(su, self.digits), round(sv, self.digits)
+        eu, ev, _ = self.written(e[0], e[1], w1)
+        if written_as_line(arc, (self.at, (su, sv)), (round(eu, self.digits),
+                                                     round(ev, self.digits)), self.digits):
+            self.line(idx, Line(s, e), w1, feed, bound + arc.length)
+            return
         cu, cv, _ = self.written(arc.center[0], arc.center[1], w0)
         i, j = cu - su, cv - sv
         turns = max(int(math.ceil(abs(arc.sweep) / TWO_PI - _TURNS_SLACK)) - 1, 0)

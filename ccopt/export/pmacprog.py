@@ -15,7 +15,7 @@ from __future__ import annotations
 
 from ccopt.errors import ProgramError
 from ccopt.export.arcfit import DEFAULT_TOL, fit_located, fit_tolerance
-from ccopt.export.gcode import bezier_pieces, fmt
+from ccopt.export.gcode import bezier_pieces, fmt, written_as_line
 from ccopt.export.text import with_header
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
@@ -32,6 +32,7 @@ class _PlaneWords:
 
     def __init__(self, plane: str, digits: int):
         self.digits = digits
+        self.at = None                 # the last written (u, v), rounded
         self.set_plane(plane)
 
     def set_plane(self, plane: str) -> None:
@@ -41,7 +42,10 @@ class _PlaneWords:
         self.centres = (CENTRE[iu], CENTRE[iv])
 
     def coords(self, uv, w) -> str:
+        """The axis words of a move's end; it is remembered as the written
+        point the next move starts from (in-plane, rounded as written)."""
         (U, V, W), d = self.letters, self.digits
+        self.at = (round(uv[0], d), round(uv[1], d))
         return f"{U}{fmt(uv[0], d)} {V}{fmt(uv[1], d)} {W}{fmt(w, d)}"
 
     def centre(self, i: float, j: float) -> str:
@@ -104,6 +108,12 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
 
     def circle(idx, piece, w, f, bound=0.0):
         su, sv = round(piece.start[0], digits), round(piece.start[1], digits)
+        end = (round(piece.end[0], digits), round(piece.end[1], digits))
+        if written_as_line(piece, (axes.at, (su, sv)), end, digits):
+            line = Line(piece.start, piece.end)
+            emit(idx, "RAPID" if f is None else "LINEAR", coords(piece.end, w), f, line,
+                 bound + piece.length)
+            return
         i, j = piece.center[0] - su, piece.center[1] - sv
         # PMAC has no rapid circle: a circle in a rapid segment keeps the last feed
         emit(idx, "CIRCLE2" if piece.sweep > 0 else "CIRCLE1",
