@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import json
 import os
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from functools import partial
 from pathlib import Path
 from typing import TYPE_CHECKING, Callable, Protocol
@@ -172,6 +172,34 @@ def _plots(path: ToolPath, prog: Program, cert: Certificate, profiles: dict[str,
 FILES_PER_INPUT = (".feed.csv", ".certificate.json", ".toolpath.json")
 
 
+def distinct_labels(jobs: list[Job]) -> list[Job]:
+    """``jobs`` with labels no two of them share, as their files are named
+    ``LABEL.*`` in one folder: a label two or more inputs share (``part.mpf``
+    and ``part.h``, or two folders' ``part.nc``) becomes the program's file
+    name with its suffix as a word (``part-mpf``, ``part-h``), then, where
+    still shared, gets ``-2``, ``-3`` ... in the order given (the first keeps it)."""
+    def shared(labels):
+        return {a for a in labels if labels.count(a) > 1}
+
+    labels = [j.label for j in jobs]
+    twice = shared(labels)
+    labels = [f"{j.program.stem}-{j.program.suffix.lstrip('.').lower()}"
+              if a in twice and j.case is None and j.program.suffix else a
+              for a, j in zip(labels, jobs)]
+    seen: dict[str, int] = {}
+    taken = set(labels)
+    out = []
+    for a, j in zip(labels, jobs):
+        seen[a] = seen.get(a, 0) + 1
+        label, k = a, seen[a]
+        while k > 1 and label in taken:
+            label = f"{a}-{k}"
+            k += 1
+        taken.add(label)
+        out.append(j if label == j.label else replace(j, label=label))
+    return out
+
+
 def planned_files(jobs: list[Job], out: Path) -> list[Path]:
     """Every file :func:`run_all` writes into ``out`` (the report and each
     input's ``LABEL.*``): none of them may be an input."""
@@ -193,6 +221,12 @@ def run_all(jobs: list[Job], out: Path | None, opts: RunOptions,
     write (:func:`planned_files`) is one of the inputs (``-o .`` beside them),
     or a program there ccopt did not write (:func:`ccopt.export.refuse_foreign_files`).
     """
+    labels = [j.label for j in jobs]
+    if len(set(labels)) < len(labels):
+        twice = sorted({a for a in labels if labels.count(a) > 1})
+        raise ProgramError(f"two inputs share the label {twice[0]!r}: their files would "
+                           "overwrite each other; give them distinct labels "
+                           "(ccopt.run.distinct_labels)", twice[0])
     if out is not None:
         refuse_overwriting_inputs(planned_files(jobs, out), job_inputs(*jobs))
         # nor a program (or index.html) of the user's under a name run chooses

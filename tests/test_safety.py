@@ -14,6 +14,7 @@
 """
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 import sys
@@ -351,3 +352,35 @@ def test_inputs_are_guarded_only_within_a_command(workdir):
     ReadOptions().read("p.pmc")
     atomic.write_text_atomic("link-p.pmc", "x")
     assert not (workdir / "link-p.pmc").is_symlink() and (workdir / "p.pmc").read_text() == PMAC
+
+
+def test_run_gives_inputs_that_share_a_name_their_own_files(capsys, workdir):
+    # p.pmc and p.nc (and p.nc again, by another path): each output file named
+    # LABEL.* once per input, none written over by another input's
+    code, out, err = run_cli(capsys, "run", "p.pmc", "p.nc", "sub/up/p.nc", "-o", "out",
+                             "--workers", "1", "--no-compare", "--json")
+    assert code == 0, err
+    rows = json.loads((workdir / "out" / "summary.json").read_text())["cases"]
+    assert [(r["name"], Path(r["program"]).name) for r in rows] == [
+        ("p-pmc", "p.pmc"), ("p-nc", "p.nc"), ("p-nc-2", "p.nc")]
+    for r in rows:
+        for name in r["files"].values():
+            assert (workdir / "out" / name).is_file(), name
+    # each export is its own program's tool path: the PMAC case's lead-in
+    # line against the G-code program's corner moves
+    def moves(label):
+        text = (workdir / "out" / f"{label}.nc").read_text()
+        return [line for line in text.splitlines() if line.startswith("G")]
+
+    assert moves("p-pmc") != moves("p-nc") and moves("p-nc") == moves("p-nc-2")
+
+
+def test_run_all_refuses_two_jobs_with_one_label(workdir):
+    from ccopt.cases import make_job
+    from ccopt.run import RunOptions, distinct_labels, run_all
+
+    jobs = [make_job("p.pmc"), make_job("p.nc")]
+    with pytest.raises(ProgramError, match="share the label 'p'"):
+        run_all(jobs, workdir / "out", RunOptions(compare=False))
+    assert not (workdir / "out").exists()
+    assert [j.label for j in distinct_labels(jobs)] == ["p-pmc", "p-nc"]

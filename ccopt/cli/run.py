@@ -16,7 +16,7 @@ from ccopt.cli.progress import cases_progress
 from ccopt.compare.contract import LEAD_FAMILY_NAMES
 from ccopt.compare.registry import MAIN_JOB_ON_DEMAND, main_job_variants, require_known
 from ccopt.errors import ProgramError
-from ccopt.run import PLANNERS, RunOptions, default_out, exit_code, run_all
+from ccopt.run import PLANNERS, RunOptions, default_out, distinct_labels, exit_code, run_all
 from ccopt.workers import resolve_workers
 
 DESCRIPTION = """\
@@ -53,8 +53,9 @@ def cmd_run(args: argparse.Namespace) -> int:
         require_known(variants, "--variants")
     # the lead families and opt-cvxpy on demand: the main job's comparison without them
     compared = tuple(variants or main_job_variants())
-    jobs = [job(a, args, planners=PLANNERS, variants=compared)
-            for a in args.inputs or bundled_cases()]
+    # inputs that share a name (part.mpf, part.h) get distinct ones: their files share a folder
+    jobs = distinct_labels([job(a, args, planners=PLANNERS, variants=compared)
+                            for a in args.inputs or bundled_cases()])
     if not jobs:
         raise ProgramError("no bundled cases found (is the cases/ folder next to ccopt/?)",
                            "cases")
@@ -81,15 +82,17 @@ def cmd_run(args: argparse.Namespace) -> int:
 def _print_summary(rows: list[dict], out: Path) -> None:
     """One line per input on stdout, their messages on stderr, then where the report is."""
     w = max([len(r["name"]) for r in rows] + [4])
-    print(f"{'case'.ljust(w)}  style     radius  cycle time  min clearance  status")
+    ws = max([len(r.get("style") or "") for r in rows] + [8])     # heidenhain is 10
+    print(f"{'case'.ljust(w)}  {'style'.ljust(ws)}  radius  cycle time  min clearance  status")
     for r in rows:
         if "duration" in r:
             # no clearance figure: the path has no compensated move to check
             clear = "-" if r["min_clearance"] is None else f"{r['min_clearance']:.6g}"
-            print(f"{r['name'].ljust(w)}  {r['style']:8s}  {r['radius'] or 0:6g}  "
+            print(f"{r['name'].ljust(w)}  {r['style'].ljust(ws)}  {r['radius'] or 0:6g}  "
                   f"{r['duration']:8.3f} s  {clear:>13s}  {r['status']}")
         else:
-            print(f"{r['name'].ljust(w)}  {'':8s}  {'':6s}  {'':10s}  {'':13s}  {r['status']}")
+            print(f"{r['name'].ljust(w)}  {''.ljust(ws)}  {'':6s}  {'':10s}  {'':13s}  "
+                  f"{r['status']}")
     for r in rows:
         if r.get("message") and r["status"] != "error (expected)":
             print(r["message"], file=sys.stderr)
