@@ -17,7 +17,11 @@ One outside profile of a plate per program, drawn from a seed:
   (edges, fillets): a program a CAM system would write for that tool;
 - written with 3, 4 or 6 decimals (arcs by their centre offsets I, J, as
   CAM posts write them), in G-code (G41/G42 with a tool table) or PMAC
-  (CCR, CC1/CC2), cut clockwise or counter-clockwise.
+  (CCR, CC1/CC2), cut clockwise or counter-clockwise; on request
+  (``dialect=``) also for a SINUMERIK 840D (``$TC_DP6``, G41/G42, ``I=``
+  ``J=``) or a HEIDENHAIN TNC (``TOOL DEF``, ``RL``/``RR``, ``CC`` + ``C``),
+  the leads written as moves (the controllers' own lead moves:
+  :mod:`family_programs`).
 
 :func:`cam_program` returns a :class:`CamProgram` with the text and what
 the test needs to know: which program lines are the part contour (worked
@@ -197,7 +201,7 @@ class CamProgram:
 
     @property
     def file(self) -> str:
-        return f"cam-{self.seed}.{'nc' if self.dialect == 'gcode' else 'pmc'}"
+        return f"cam-{self.seed}.{SUFFIXES[self.dialect]}"
 
 
 def _draw_part(rng: random.Random):
@@ -307,12 +311,12 @@ def cam_program(seed: int, dialect: str | None = None,
             f"{'corner' if at_corner else 'mid-edge'} entry, lead-in {lead_in}, lead-out "
             f"{lead_out}, overlap {overlap:.3g}, r {radius}, {decimals} decimals, "
             f"{'CW' if clockwise else 'CCW'}")
-    writer = _GCODE if dialect == "gcode" else _PMAC
+    writer = WRITERS[dialect]
 
     def text_with(ms):
         return writer(start, ms, side, radius, decimals, desc)
 
-    text, first_line = text_with(moves)
+    text, line_of = text_with(moves)
     # push: the longest straight contour move's middle third, depth into the part
     straight = [q for q in range(first_contour, last_contour + 1) if moves[q][0] == "line"]
 
@@ -335,13 +339,20 @@ def cam_program(seed: int, dialect: str | None = None,
         p1, p2 = m - 0.5 * width * t, m + 0.5 * width * t
         slot = [p1, p1 + depth * inward, p2 + depth * inward, p2]
         cut = moves[:q] + [("line", p, None, None) for p in slot] + moves[q:]
-        return text_with(cut)[0], (first_line + q + 1, first_line + q + 3)
+        cut_text, cut_lines = text_with(cut)
+        return cut_text, (cut_lines[q + 1], cut_lines[q + 3])
 
     out = CamProgram(seed, dialect, text, radius, decimals,
-                     (first_line + first_contour, first_line + last_contour), desc,
+                     (line_of[first_contour], line_of[last_contour]), desc,
                      {1: 2 * radius}, pusher, notcher)
     out.lead_in, out.lead_out = lead_in, lead_out
     out.entry, out.start, out.exit, out.end = E, start, X, moves[-1][1]
+    # what a writer of the controllers' own leads needs (family_programs.py):
+    # the contour moves from the entry to the exit (the overlap included), the
+    # unit tangents and tool-side normals there, the lead sizes drawn, the side
+    out.contour_moves = moves[first_contour:last_contour + 1 + (1 if overlap else 0)]
+    out.t_in, out.n_in, out.t_x, out.n_x = t_in, n_in, t_x, n_x
+    out.rho, out.ell, out.side = rho, ell, side
     return out
 
 
@@ -355,7 +366,7 @@ def _fmt(x: float, decimals: int) -> str:
 def _GCODE(start, moves, side, radius, dec, desc):
     f = lambda x: _fmt(x, dec)              # noqa: E731
     out = [f"({desc})", "G21 G17 G90 G94", "T1 M6", f"G0 X{f(start[0])} Y{f(start[1])}"]
-    first = len(out) + 1
+    line_of = []                            # each move's line
     cur = np.asarray(start, float)
     g4x = "G41" if side > 0 else "G42"
     for kind, p, c, ccw in moves:
@@ -369,15 +380,16 @@ def _GCODE(start, moves, side, radius, dec, desc):
         else:
             out.append(f"{'G3' if ccw else 'G2'} {xy} I{f(c[0] - cur[0])} J{f(c[1] - cur[1])}")
         cur = np.asarray(p, float)
+        line_of.append(len(out))
     out.append("M30")
-    return "\n".join(out) + "\n", first
+    return "\n".join(out) + "\n", line_of
 
 
 def _PMAC(start, moves, side, radius, dec, desc):
     f = lambda x: _fmt(x, dec)              # noqa: E731
     out = [f"; {desc}", "OPEN PROG 1 CLEAR", f"RAPID X{f(start[0])} Y{f(start[1])}",
            "LINEAR ABS F10", f"CCR{f(radius)}"]
-    first = len(out) + 1
+    line_of = []                            # each move's line
     cur = np.asarray(start, float)
     for kind, p, c, ccw in moves:
         xy = f"X{f(p[0])} Y{f(p[1])}"
@@ -392,9 +404,72 @@ def _PMAC(start, moves, side, radius, dec, desc):
         else:
             out.append(f"CIRCLE{2 if ccw else 1} {xy} I{f(c[0] - cur[0])} J{f(c[1] - cur[1])}")
         cur = np.asarray(p, float)
+        line_of.append(len(out))
     out.append("CLOSE")
-    return "\n".join(out) + "\n", first
+    return "\n".join(out) + "\n", line_of
 
+
+
+def _SINUMERIK(start, moves, side, radius, dec, desc):
+    """A SINUMERIK 840D part program as CAM posts write it: the radius in the
+    tool offset ``$TC_DP6``, ``G41``/``G42`` with ``T1 D1``, arcs by their
+    centre offsets ``I=`` ``J=`` (incremental, the 840D's default)."""
+    f = lambda x: _fmt(x, dec)              # noqa: E731
+    out = [f"; {desc}", f"$TC_DP6[1,1]={f(radius)}", "G17 G71 G90 T1 D1 M6",
+           f"G0 X{f(start[0])} Y{f(start[1])}"]
+    line_of = []                            # each move's line
+    cur = np.asarray(start, float)
+    g4x = "G41" if side > 0 else "G42"
+    for kind, p, c, ccw in moves:
+        xy = f"X{f(p[0])} Y{f(p[1])}"
+        if kind == "on":
+            out.append(f"{g4x} G1 {xy} F600")
+        elif kind == "off":
+            out.append(f"G40 G1 {xy}")
+        elif kind == "line":
+            out.append(f"G1 {xy}")
+        else:
+            out.append(f"{'G3' if ccw else 'G2'} {xy} I={f(c[0] - cur[0])} "
+                       f"J={f(c[1] - cur[1])}")
+        cur = np.asarray(p, float)
+        line_of.append(len(out))
+    out.append("M30")
+    return "\n".join(out) + "\n", line_of
+
+
+def _signed(x: float, dec: int) -> str:
+    """A Klartext coordinate: its sign always written (``X+12.5``)."""
+    s = _fmt(x, dec)
+    return s if s.startswith("-") else "+" + s
+
+
+def _HEIDENHAIN(start, moves, side, radius, dec, desc):
+    """A HEIDENHAIN Klartext program as CAM posts write it: ``TOOL DEF`` with
+    the radius, ``L ... RL``/``RR`` to come on, every arc as its centre ``CC``
+    (absolute, a line of its own) and ``C ... DR+``/``DR-``, ``R0`` to go off."""
+    f = lambda x: _signed(x, dec)           # noqa: E731
+    out = ["BEGIN PGM CAM MM", f"; {desc}", f"TOOL DEF 1 L+0 R{f(radius)}",
+           "TOOL CALL 1 Z S5000", f"L X{f(start[0])} Y{f(start[1])} R0 FMAX"]
+    line_of = []                            # each move's line
+    for kind, p, c, ccw in moves:
+        xy = f"X{f(p[0])} Y{f(p[1])}"
+        if kind == "on":
+            out.append(f"L {xy} {'RL' if side > 0 else 'RR'} F600")
+        elif kind == "off":
+            out.append(f"L {xy} R0")
+        elif kind == "line":
+            out.append(f"L {xy}")
+        else:
+            out.append(f"CC X{f(c[0])} Y{f(c[1])}")
+            out.append(f"C {xy} {'DR+' if ccw else 'DR-'}")
+        line_of.append(len(out))
+    out.append("END PGM CAM MM")
+    return "\n".join(out) + "\n", line_of
+
+
+#: The writer of each dialect, and its file suffix.
+WRITERS = {"gcode": _GCODE, "pmac": _PMAC, "sinumerik": _SINUMERIK, "heidenhain": _HEIDENHAIN}
+SUFFIXES = {"gcode": "nc", "pmac": "pmc", "sinumerik": "mpf", "heidenhain": "h"}
 
 def multipass_program(seed: int) -> tuple[str, tuple[float, ...]]:
     """G-code: one rectangle's outside profile (cut counter-clockwise with

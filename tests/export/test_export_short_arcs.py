@@ -5,7 +5,7 @@ at a contour step of 1e-6 left by a CAM program written with 6 decimals)
 has its end on its start once written with 6 decimals: read back, a G2/G3
 or CIRCLE with the end on the start is a full circle (LinuxCNC's and PMAC's
 rule), 9.4 mm of motion the path does not have. Found by the generated
-SINUMERIK plates (tests/compare/test_family_programs.py, seed 36).
+SINUMERIK plates (tests/verify/test_family_generated.py, seed 36).
 
 The figures here come from the geometry written in the test: the read-back
 path's length is the lines' lengths plus the arc's (1.501 * 1.77e-7 mm), to
