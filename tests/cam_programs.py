@@ -363,26 +363,43 @@ def _fmt(x: float, decimals: int) -> str:
     return "0" if s in ("-0", "") else s
 
 
-def _GCODE(start, moves, side, radius, dec, desc):
+def _ISO(start, moves, side, radius, dec, desc, siemens: bool = False):
+    """G-code (``G41 D1`` with a tool table, arcs by ``I J``) or, with
+    ``siemens``, a SINUMERIK 840D part program as CAM posts write it: the
+    radius in the tool offset ``$TC_DP6``, ``G41``/``G42`` with ``T1 D1``,
+    arcs by their centre offsets ``I=`` ``J=`` (incremental, the 840D's
+    default)."""
     f = lambda x: _fmt(x, dec)              # noqa: E731
-    out = [f"({desc})", "G21 G17 G90 G94", "T1 M6", f"G0 X{f(start[0])} Y{f(start[1])}"]
+    eq = "=" if siemens else ""
+    head = ([f"; {desc}", f"$TC_DP6[1,1]={f(radius)}", "G17 G71 G90 T1 D1 M6"] if siemens
+            else [f"({desc})", "G21 G17 G90 G94", "T1 M6"])
+    out = head + [f"G0 X{f(start[0])} Y{f(start[1])}"]
     line_of = []                            # each move's line
     cur = np.asarray(start, float)
-    g4x = "G41" if side > 0 else "G42"
+    g4x = ("G41" if side > 0 else "G42") + ("" if siemens else " D1")
     for kind, p, c, ccw in moves:
         xy = f"X{f(p[0])} Y{f(p[1])}"
         if kind == "on":
-            out.append(f"{g4x} D1 G1 {xy} F600")
+            out.append(f"{g4x} G1 {xy} F600")
         elif kind == "off":
             out.append(f"G40 G1 {xy}")
         elif kind == "line":
             out.append(f"G1 {xy}")
         else:
-            out.append(f"{'G3' if ccw else 'G2'} {xy} I{f(c[0] - cur[0])} J{f(c[1] - cur[1])}")
+            out.append(f"{'G3' if ccw else 'G2'} {xy} I{eq}{f(c[0] - cur[0])} "
+                       f"J{eq}{f(c[1] - cur[1])}")
         cur = np.asarray(p, float)
         line_of.append(len(out))
     out.append("M30")
     return "\n".join(out) + "\n", line_of
+
+
+def _GCODE(*args):
+    return _ISO(*args)
+
+
+def _SINUMERIK(*args):
+    return _ISO(*args, siemens=True)
 
 
 def _PMAC(start, moves, side, radius, dec, desc):
@@ -408,33 +425,6 @@ def _PMAC(start, moves, side, radius, dec, desc):
     out.append("CLOSE")
     return "\n".join(out) + "\n", line_of
 
-
-
-def _SINUMERIK(start, moves, side, radius, dec, desc):
-    """A SINUMERIK 840D part program as CAM posts write it: the radius in the
-    tool offset ``$TC_DP6``, ``G41``/``G42`` with ``T1 D1``, arcs by their
-    centre offsets ``I=`` ``J=`` (incremental, the 840D's default)."""
-    f = lambda x: _fmt(x, dec)              # noqa: E731
-    out = [f"; {desc}", f"$TC_DP6[1,1]={f(radius)}", "G17 G71 G90 T1 D1 M6",
-           f"G0 X{f(start[0])} Y{f(start[1])}"]
-    line_of = []                            # each move's line
-    cur = np.asarray(start, float)
-    g4x = "G41" if side > 0 else "G42"
-    for kind, p, c, ccw in moves:
-        xy = f"X{f(p[0])} Y{f(p[1])}"
-        if kind == "on":
-            out.append(f"{g4x} G1 {xy} F600")
-        elif kind == "off":
-            out.append(f"G40 G1 {xy}")
-        elif kind == "line":
-            out.append(f"G1 {xy}")
-        else:
-            out.append(f"{'G3' if ccw else 'G2'} {xy} I={f(c[0] - cur[0])} "
-                       f"J={f(c[1] - cur[1])}")
-        cur = np.asarray(p, float)
-        line_of.append(len(out))
-    out.append("M30")
-    return "\n".join(out) + "\n", line_of
 
 
 def _signed(x: float, dec: int) -> str:

@@ -61,6 +61,19 @@ def _pieces(g):
     return _pieces(a) + _pieces(b)
 
 
+def _rounded(p, digits: int) -> tuple[float, float]:
+    """The in-plane point ``p`` rounded as it is written."""
+    return round(p[0], digits), round(p[1], digits)
+
+
+def _dwells_before(path: ToolPath) -> dict[int, list[float]]:
+    """The dwells (seconds) before each segment index, in order."""
+    out: dict[int, list[float]] = {}
+    for idx, seconds, _ in path.dwells:
+        out.setdefault(idx, []).append(seconds)
+    return out
+
+
 def _not_synchronised(seg) -> None:
     """A spindle-synchronised move (``G33``, ``G33.1``, ``G76``) is refused,
     located: PMAC synchronises through an external time base that its motion
@@ -108,11 +121,9 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
 
     def circle(idx, piece, w, f, bound=0.0):
         su, sv = round(piece.start[0], digits), round(piece.start[1], digits)
-        end = (round(piece.end[0], digits), round(piece.end[1], digits))
-        if written_as_line(piece, (axes.at, (su, sv)), end, digits):
-            line = Line(piece.start, piece.end)
-            emit(idx, "RAPID" if f is None else "LINEAR", coords(piece.end, w), f, line,
-                 bound + piece.length)
+        if written_as_line(piece, (axes.at, (su, sv)), _rounded(piece.end, digits), digits):
+            emit(idx, "RAPID" if f is None else "LINEAR", coords(piece.end, w), f,
+                 Line(piece.start, piece.end), bound + piece.length)
             return
         i, j = piece.center[0] - su, piece.center[1] - sv
         # PMAC has no rapid circle: a circle in a rapid segment keeps the last feed
@@ -120,9 +131,7 @@ def write_pmac(path: ToolPath, header: list[str] | None = None, digits: int = 6,
              f"{coords(piece.end, w)} {axes.centre(i, j)}",
              f if f is not None else feed, piece, bound)
 
-    dwell_at: dict[int, list[float]] = {}
-    for idx, seconds, _ in path.dwells:
-        dwell_at.setdefault(idx, []).append(seconds)
+    dwell_at = _dwells_before(path)
     if path.segments and not starts_at_origin(path):
         first = path.segments[0]
         emit(-1, "RAPID", coords(first.start, first.w0), None)
