@@ -110,10 +110,12 @@ def curve_braking(path: ExactPath, k, s, ds, v_axis, a_axis, ramps) -> np.ndarra
     np.maximum.at(cn, k[~critical], c[~critical])
     np.maximum.at(c3n, k[~critical], c3[~critical])
     f = path.feeds[ks]
-    ok = _feed_is_cap(f, cn[ks] * f * f, v_axis, r.centripetal_acc)
     a_t = np.inf if r.tangential_acc is None else float(r.tangential_acc)
     zone_k = np.full(path.lengths.size, np.inf)
     with np.errstate(invalid="ignore"):
+        # a curve run at rapid (feed inf) whose every sample is critical: 0 * inf,
+        # NaN, and never a cap (_feed_is_cap wants a finite feed)
+        ok = _feed_is_cap(f, cn[ks] * f * f, v_axis, r.centripetal_acc)
         a_p = np.minimum(a_min - cn[ks] * f * f, a_t)
         zone_k[ks] = np.where(ok, curved_ramp(f, cn[ks], c3n[ks], a_p, j_min), np.inf)
     # each piece between its anchors: the last at or before its start, the
