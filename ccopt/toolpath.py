@@ -442,7 +442,8 @@ def effective_side_radius(block: Block, radius: float | None,
                               f"diameter is not known: give a LinuxCNC tool table "
                               f"(--tool-table FILE) with tool {tool}, or pass --radius")
         raise _located(block, "cutter compensation is on but no cutter radius is set: program "
-                          "CCR{r} (PMAC) or a tool D word (G-code), or pass --radius")
+                          "CCR{r} (PMAC), a tool D word (G-code), $TC_DP6[t,d]={r} "
+                          "(SINUMERIK) or TOOL DEF n R{r} (HEIDENHAIN), or pass --radius")
     if r < 0:
         raise _located(block, f"cutter radius {r:g} is negative")
     return k, r

@@ -11,7 +11,10 @@ either way, radii 0.5-5 mm, 3, 4 or 6 decimals):
 - entered and left by the controller's own lead moves
   (:func:`family_programs.family_program`: ``G147``/``G247``/``G347`` with
   ``DISR`` and their retractions; ``APPR``/``DEP`` ``LN``, ``CT``, ``LCT``,
-  ``LT``).
+  ``LT``), and on odd seeds every arc in a form drawn from the dialect's
+  (``CR=``, ``CIP``, ``I=AC() J=AC()``; ``CR ... R DR``, ``CC`` + ``CP IPA``)
+  and the SINUMERIK approach's ``G140``-``G143`` and ``G340``/``G341`` with
+  ``DISCL`` and ``FAD`` (the tool coming down in the approach).
 
 Properties, each figure from the construction, not from the verifier:
 
@@ -55,7 +58,8 @@ SLOW = range(100, 200)
 def _program(seed: int, dialect: str, native: bool):
     """``(program, generated program, dented text or None)``."""
     if native:
-        fp = family_program(seed, dialect)
+        # odd seeds: each arc in a form drawn from family_programs.ARC_FORMS
+        fp = family_program(seed, dialect, arc_forms=seed % 2 == 1)
         prog = read_text(fp.text, fp.file, dialect)
         return prog, fp, None
     cp = cam_program(seed, dialect=dialect)
