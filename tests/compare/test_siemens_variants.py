@@ -15,10 +15,13 @@ from ccopt.compare.siemens_leads import DISR_FACTORS
 from ccopt.program.sinumerik import read_sinumerik
 
 
-def test_listed_as_builtins_not_as_baselines():
+def test_listed_as_builtins_the_style_a_baseline_its_families_not():
+    # the style as the program asks is a controller's own path, a baseline of
+    # the optimised blends (test_baseline.py); its approach families are
+    # parameter searches, as HEIDENHAIN's APPR/DEP families are
     assert set(SIEMENS_NAMES) <= set(available())
     assert set(SIEMENS_NAMES) <= set(BUILTIN_NAMES)
-    assert not set(SIEMENS_NAMES) & set(CONTROLLER_NAMES)
+    assert set(SIEMENS_NAMES) & set(CONTROLLER_NAMES) == {"siemens"}
 
 
 @pytest.fixture(scope="module")
