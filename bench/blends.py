@@ -34,7 +34,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 import ccopt  # noqa: E402
 from ccopt.cases import find_case  # noqa: E402
 from ccopt.compare import BlendOutcome, BlendProblem, load  # noqa: E402
-from ccopt.compare.figures import max_deviation, path_figures  # noqa: E402
+from ccopt.compare.deviation import max_deviation  # noqa: E402
+from ccopt.compare.figures import path_figures  # noqa: E402
 from ccopt.compare.leads import lead_joins  # noqa: E402
 from ccopt.feed import feed_limited_time as feed_bound  # noqa: E402
 

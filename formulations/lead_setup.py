@@ -46,7 +46,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected, deepest
-from ccopt.compare.figures import FEED_ROLES, curvature_samples
+from ccopt.compare.parts import FEED_ROLES, curvature_samples
 from ccopt.compare.leads import Lead, LeadGeometry, outside_leads, splice
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.bezier import DIVISION_FLOOR, g2_end, jerk_gram, speed_profile_time

@@ -15,7 +15,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ccopt.compare.figures import max_deviation
+from ccopt.compare.deviation import max_deviation
 from ccopt.geometry import Line
 from ccopt.tolerances import POINT_EPS
 from ccopt.toolpath import Role, ToolPath

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 
 from ccopt.atomic import write_with_atomic
-from ccopt.compare.figures import FEED_ROLES
+from ccopt.compare.parts import FEED_ROLES
 from ccopt.compare.leads import find_leads
 from ccopt.errors import ProgramError
 from ccopt.geometry.curve import bernstein

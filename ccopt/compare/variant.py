@@ -14,7 +14,8 @@ import time
 from dataclasses import dataclass, field
 
 from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
-from ccopt.compare.figures import max_deviation, path_figures
+from ccopt.compare.deviation import max_deviation
+from ccopt.compare.figures import path_figures
 from ccopt.compare.leads import lead_joins
 from ccopt.compare.registry import load
 from ccopt.compare.timing import StretchTimes, duration_figures
