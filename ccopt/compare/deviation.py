@@ -9,7 +9,10 @@ closed form; other curves from their samples every ``h`` plus their chords'
 gap), and between samples by the distance being 1-Lipschitz; steps are
 halved, branch and bound, until each step's bound is within ``h/8`` of the
 largest sampled distance, so only the stretches near the maximum are
-sampled finely. The largest samples are then measured exactly (curves as
+sampled finely; a line beside a target line, or an arc or spiral beside a
+target arc or spiral turning the same way (another controller's corner, a
+CAM arc read as a spiral of rounded ends), is bounded in closed form and not
+sampled at all. The largest samples are then measured exactly (curves as
 fine chords) for the estimate.
 """
 from __future__ import annotations
@@ -101,6 +104,8 @@ class _Primitives:
         self.p0, self.p1 = np.zeros((m, 2)), np.zeros((m, 2))
         arc = np.zeros((m, 5))
         arc[:, 2] = 1.0
+        #: arcs and spirals: centre, radius at both ends, start angle, sweep
+        self.circ = np.full((m, 6), np.nan)
         for i, g in enumerate(geoms):
             if type(g) is Line:
                 self.kind[i] = _LINE
@@ -108,6 +113,10 @@ class _Primitives:
             elif type(g) is Arc:
                 self.kind[i] = _ARC
                 arc[i] = (*g.center, g.radius, g.theta0, g.sweep)
+                self.circ[i] = (*g.center, g.radius, g.radius, g.theta0, g.sweep)
+            elif type(g) is Spiral:
+                self.circ[i] = (*g.center, g.rho0, g.rho1, g.theta0, g.sweep)
+        self.circular = ~np.isnan(self.circ[:, 0])
         self.arcs = PreparedArcs(*arc.T)
         self.curves = np.flatnonzero(self.kind == _CURVE)
         self.batch, self.row, self.batches = batches_by_degree(geoms)
@@ -273,6 +282,39 @@ class _Distances:
         out[k[at]] = np.minimum.reduceat(far, at)
         return out
 
+    def circular_bounds(self, src: "_Primitives", local) -> np.ndarray:
+        """Per source primitive, an upper bound of its distance to the targets
+        near it at every one of its points: for an arc or spiral, the least
+        over the arc and spiral targets ``j`` turning the same way of the
+        distance between the points at the same fraction of the angle of both,
+        at most ``|c - c_j| + max(|rho - rho_j|) + max(rho_j) max(|dtheta|)``
+        over the two ends (``dtheta`` the difference of the polar angles
+        about each one's own centre, wrapped at the start, the end's the
+        start's plus that of the sweeps: radius and angle change linearly
+        with the fraction on both, and an arc of angle ``x`` is longer than
+        its chord); ``inf`` for the others. A controller style's corner arc,
+        or a spiral of rounded ends, beside the reference's nearly equal one
+        is held by it instead of being sampled."""
+        out = np.full(src.length.size, math.inf)
+        own = np.flatnonzero(src.circular)
+        pi, pj, first, n = _expand(own, local)
+        k = own[pi]
+        keep = self.t.circular[pj]
+        k, pj = k[keep], pj[keep]
+        A, B = src.circ, self.t.circ
+        keep = np.sign(A[k, 5]) == np.sign(B[pj, 5])
+        k, pj = k[keep], pj[keep]
+        if not k.size:
+            return out
+        d0 = np.remainder(A[k, 4] - B[pj, 4] + math.pi, 2.0 * math.pi) - math.pi
+        d1 = d0 + A[k, 5] - B[pj, 5]
+        bound = (np.hypot(A[k, 0] - B[pj, 0], A[k, 1] - B[pj, 1])
+                 + np.maximum(np.abs(A[k, 2] - B[pj, 2]), np.abs(A[k, 3] - B[pj, 3]))
+                 + np.maximum(B[pj, 2], B[pj, 3]) * np.maximum(np.abs(d0), np.abs(d1)))
+        at = np.flatnonzero(np.r_[True, k[1:] != k[:-1]])
+        out[k[at]] = np.minimum.reduceat(bound, at)
+        return out
+
     def exact(self, p: np.ndarray, near: np.ndarray, reach: float) -> float:
         """Distance from one point to the primitives ``near`` within ``reach`` of it
         by their bounding boxes: lines and arcs exactly, other curves by chords
@@ -380,8 +422,9 @@ def _along(src: _Primitives, local, dist: _Distances, h: float, coarse_h: float)
     all_owner, all_pts, all_d = [owner], [pts], [d]
     top = float(d.max(initial=0.0))
     bound = 0.0
-    # a line within the bound's reach all along by its ends needs no samples between
-    whole = dist.line_bounds(src, local)
+    # a line within the bound's reach all along by its ends, or an arc by the
+    # arc it nearly is, needs no samples between
+    whole = np.minimum(dist.line_bounds(src, local), dist.circular_bounds(src, local))
     held = whole <= top + BOUND_SLACK_SHARE * h
     if held.any():
         bound = float(whole[held].max())

@@ -144,3 +144,25 @@ def test_deviation_skips_a_spiral_both_paths_share_by_value():
     var = ToolPath((seg(b), seg(Line((end[0] + 0.2, end[1]), (end[0] + 0.2, end[1] - 10.0)))))
     est, bound = max_deviation(var, ref)
     assert est == pytest.approx(0.2, abs=1e-9) and 0.2 <= bound <= 0.2 + 1e-3
+
+
+@pytest.mark.parametrize("kind", ["arc", "spiral"])
+def test_deviation_of_an_arc_or_spiral_beside_the_reference_arc(kind):
+    # the reference: a quarter circle of radius 5 about the origin; the variant:
+    # over the same angles, the arc of radius 5 + 3e-4 about it, or the spiral
+    # from radius 5 to 5 + 3e-4 (a CAM arc whose rounded ends make a spiral, and
+    # another controller's corner arc, beside the reference's). A point at
+    # angle phi of either is its radial gap from the other, at most 3e-4 (at
+    # the end, for the spiral): the Hausdorff distance is 3e-4, and the bound
+    # holds it to rounding, by radii, centres and angles, without the
+    # Lipschitz steps' h / 8.
+    from ccopt.geometry import Spiral
+    e, h = 3e-4, 1e-3
+    ref = ToolPath((seg(Arc((0.0, 0.0), 5.0, 0.0, math.pi / 2)),))
+    g = (Arc((0.0, 0.0), 5.0 + e, 0.0, math.pi / 2) if kind == "arc"
+         else Spiral(center=(0.0, 0.0), rho0=5.0, rho1=5.0 + e, theta0=0.0, sweep=math.pi / 2))
+    var = ToolPath((seg(g),))
+    for a, b in ((var, ref), (ref, var)):
+        est, bound = max_deviation(a, b, h)
+        assert est == pytest.approx(e, abs=1e-9)
+        assert e - 1e-9 <= bound <= e + 1e-12
