@@ -99,8 +99,11 @@ def curve_braking(path: ExactPath, k, s, ds, v_axis, a_axis, ramps) -> np.ndarra
     c = path.curvature_norm(k, s)
     c3 = np.linalg.norm(path.eval_segments(k, s, 3), axis=1)
     j_min, a_min = float(np.min(r.jerk)), float(np.min(a_axis))
-    critical = ((c3 * feed ** 3 > CRITICAL_SHARE * j_min)
-                | (c * feed * feed > CRITICAL_SHARE * a_min))
+    with np.errstate(invalid="ignore"):
+        # a curve run at rapid (feed inf): where |q''| or |q'''| is 0 its term
+        # is NaN, not critical (no demand there), elsewhere inf, critical
+        critical = ((c3 * feed ** 3 > CRITICAL_SHARE * j_min)
+                    | (c * feed * feed > CRITICAL_SHARE * a_min))
     first = np.r_[True, k[1:] != k[:-1]]
     last = np.r_[k[1:] != k[:-1], True]
     anchor = critical | first | last

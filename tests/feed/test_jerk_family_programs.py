@@ -90,3 +90,18 @@ def test_jerk_planner_on_generated_family_plates(dialect):
             path = _path(seed, dialect, style)
             if path is not None:
                 _check(path, _limits(seed), (dialect, seed, style))
+
+
+def test_a_blend_curve_run_at_rapid_plans_without_a_nan():
+    # an optimised lead-out replacing a departure written at rapid (HEIDENHAIN
+    # DEP LN then L ... FMAX) is a Bezier curve with no feed: its braking
+    # measure met 0 * inf where the curve is straight for a moment (here at its
+    # start: its first three control points lie on a line) and warned
+    from ccopt.geometry import BezierCurve
+    from ccopt.toolpath import PathSegment, Role, ToolPath
+    curve = BezierCurve([(10.0, 0.0), (13.0, 0.0), (16.0, 0.0), (20.0, 4.0)])
+    segs = (PathSegment(Line((0.0, 0.0), (10.0, 0.0)), Role.COMPENSATED, None, 0.0, 0.0, 50.0),
+            PathSegment(curve, Role.LEAD_OUT, None, 0.0, 0.0, None))
+    path = ExactPath(ToolPath(segs))
+    lim = AxisLimits((200.0, 200.0), (2000.0, 2000.0), j=(20000.0, 20000.0))
+    _check(path, lim, "a lead-out curve at rapid")
