@@ -185,6 +185,6 @@ def test_a_sinumerik_smooth_approach_is_the_baseline_it_wins():
 @pytest.mark.slow
 @pytest.mark.parametrize("dialect", ["sinumerik", "heidenhain"])
 def test_generated_family_plates_optimised_rows_never_slower(dialect):
-    for seed in range(6):
+    for seed in range(4):
         _family_rows_never_slower(seed, dialect)
     _family_rows_never_slower(6, dialect, jerk=(20000.0, 20000.0, 10000.0))
