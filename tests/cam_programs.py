@@ -353,6 +353,7 @@ def cam_program(seed: int, dialect: str | None = None,
     out.contour_moves = moves[first_contour:last_contour + 1 + (1 if overlap else 0)]
     out.t_in, out.n_in, out.t_x, out.n_x = t_in, n_in, t_x, n_x
     out.rho, out.ell, out.side = rho, ell, side
+    out.overlap, out.at_corner = overlap, at_corner
     return out
 
 

@@ -69,11 +69,12 @@ def _room_along(cp, at_entry: bool) -> float:
     (mid-edge entries: the loop's last move) or begins at the exit; 0 when
     the entry is a corner or the move is an arc."""
     moves = cp.contour_moves
-    if "mid-edge" not in cp.description:
+    if cp.at_corner:
         return 0.0
     if at_entry:
-        kind, p, _, _ = moves[-1] if "overlap 0," in cp.description else moves[-2]
-        prev = moves[-2][1] if "overlap 0," in cp.description else moves[-3][1]
+        last = -2 if cp.overlap else -1           # the loop's last move, before any overlap
+        kind, p, _, _ = moves[last]
+        prev = moves[last - 1][1]
         return math.dist(prev, cp.entry) if kind == "line" else 0.0
     kind, p, _, _ = moves[0]
     return math.dist(cp.exit, p) if kind == "line" else 0.0
@@ -121,7 +122,7 @@ def _contour_lines(cp, f, out: list[str], dialect: str, forms=None) -> tuple[int
     else every arc in the first."""
     cur = np.asarray(cp.entry, float)
     first = None
-    loop_end = len(cp.contour_moves) - (0 if "overlap 0," in cp.description else 1)
+    loop_end = len(cp.contour_moves) - (1 if cp.overlap else 0)
     last = None
     for i, (kind, p, c, ccw) in enumerate(cp.contour_moves):
         if i == loop_end:
