@@ -19,7 +19,9 @@ it is exact are); variants that build the same tool path are timed once.
 ``workers > 1`` runs the variants in that many worker
 processes (:mod:`.schedule`); the rows are the same as a serial run's (each
 variant starts from the reference's stretch times alone), ``solve_time``
-aside. A row is made in :mod:`.variant`; blends implement :mod:`.contract`.
+aside. The controller styles run first; the built-in leads then run beside
+the plug-in blends, which start from the fastest certified controller
+variant's path (:mod:`.baseline`) and so wait for the controllers alone. A row is made in :mod:`.variant`; blends implement :mod:`.contract`.
 """
 from __future__ import annotations
 
@@ -28,7 +30,7 @@ from dataclasses import dataclass, field, replace
 from typing import TYPE_CHECKING, Callable
 
 from ccopt.compare.baseline import apply_baseline, base_row, from_base
-from ccopt.compare.contract import BUILTIN_NAMES, BlendProblem
+from ccopt.compare.contract import BUILTIN_NAMES, CONTROLLER_NAMES, BlendProblem
 from ccopt.compare.registry import available, load
 from ccopt.compare.schedule import run_jobs, say
 from ccopt.compare.timing import StretchTimes, duration_figures, same_plan, stretch_keys
@@ -136,28 +138,22 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
         say(progress, f"variant {ref_index + 1}/{len(names)} {REFERENCE}")
         return [(ref_index, measure(REFERENCE, ref.path, problem, ref.seconds, times=times))]
 
-    # the controllers and built-in leads first; the plug-in blends then start
-    # from the fastest certified controller variant's path (issue 30)
-    first = [job for job in jobs if job[1] in BUILTIN_NAMES]
-    for i, row in run_jobs(first, ref, reference_row, len(names), workers, progress):
+    # the controllers first; the plug-in blends then start from the fastest
+    # certified controller variant's path (issue 30), beside the built-in leads
+    memo: dict = {}
+    first = [job for job in jobs if job[1] in CONTROLLER_NAMES]
+    for i, row in run_jobs(first, ref, reference_row, len(names), workers, progress,
+                           memo=memo):
         rows[i] = row
+    leads = [job for job in jobs if job[1] in BUILTIN_NAMES and job[1] not in CONTROLLER_NAMES]
     later = [job for job in jobs if job[1] not in BUILTIN_NAMES]
     base = base_row(rows, REFERENCE) if limits is not None and problem is not None else None
-    if base is not None:
-        later = [(i, name, replace(problem, reference=base.toolpath,
-                                   deviation_from=problem.reference,
-                                   reference_certificate=base.certificate))
-                 for i, name, _ in later]
-    elif ref_index is not None and rows[ref_index] is not None:
-        # the plug-ins start from PMAC's path: its row's certificate says whether
-        # anything outside their reach keeps them from being certified
-        later = [(i, name, replace(problem, reference_certificate=rows[ref_index].certificate))
-                 for i, name, _ in later]
-    # the plug-ins' cycle times take the base path's stretch times as the
-    # reference's: each of its stretches is planned once, not once per plug-in
-    later_ref = ref if base is None else ref.with_stretches(base.stretch_times)
-    for i, row in run_jobs(later, later_ref, lambda _: [], len(names), workers, progress):
-        rows[i] = row if base is None else from_base(row, base.name)
+    later, later_ref = _from_base(later, base, problem, ref,
+                                  rows[ref_index] if ref_index is not None else None)
+    plugins = {i for i, _, _ in later}
+    for i, row in run_jobs(leads + later, ref, lambda _: [], len(names), workers, progress,
+                           refs={i: later_ref for i in plugins}, memo=memo):
+        rows[i] = row if base is None or i not in plugins else from_base(row, base.name)
     ref_duration = rows[ref_index].figures.get("duration") if ref_index is not None else None
     if ref_duration is None and problem is not None and limits is not None:
         ref_duration = duration_figures(ref.path, limits, ref.times())[0]
@@ -168,6 +164,24 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     if limits is not None and problem is not None:
         apply_baseline(rows, REFERENCE)
     return Comparison(rows, ref.path, limits, program)
+
+
+def _from_base(later, base, problem: BlendProblem | None, ref: "_Reference", ref_row):
+    """``(jobs, timing reference)`` of the plug-in blends ``later``: solved from
+    the fastest certified controller variant's path (``base``'s row, when it is
+    not PMAC's) and timed with its stretch times (each of its stretches is
+    planned once, not once per plug-in); else from PMAC's path, with its row's
+    certificate (``ref_row``), which says whether anything outside their reach
+    keeps them from being certified."""
+    if base is not None:
+        return ([(i, name, replace(problem, reference=base.toolpath,
+                                   deviation_from=problem.reference,
+                                   reference_certificate=base.certificate))
+                 for i, name, _ in later], ref.with_stretches(base.stretch_times))
+    if ref_row is not None:
+        later = [(i, name, replace(problem, reference_certificate=ref_row.certificate))
+                 for i, name, _ in later]
+    return later, ref
 
 
 @dataclass
@@ -211,6 +225,10 @@ class _Reference:
                                                     self.ts) else None
                 self._times.append(_reference_times(self.path, self.limits, self.ts, planned))
         return self._times[0]
+
+    def planned(self) -> bool:
+        """Whether :meth:`times` has been computed (it then returns at once)."""
+        return bool(self._times)
 
     def with_stretches(self, extra: dict) -> "_Reference":
         """This reference whose stretch times (:meth:`times`) also hold ``extra``

@@ -49,7 +49,8 @@ def say(progress, line: str) -> None:
         progress(line)
 
 
-def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress):
+def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress, refs=None,
+             memo: dict | None = None):
     """``(row index, VariantResult)`` of the reference (``reference_row(times)``)
     and of every job ``(index, name, problem)``: here, one after the other, or
     in ``workers`` processes (:func:`_run_in_processes`).
@@ -60,30 +61,40 @@ def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress):
     tool path is another's takes that one's cycle time, planned once: here
     any path the planners time alike (:func:`_timed_twin`, whatever style
     made it), in workers an equal one (:func:`_of_path`); the figures are
-    the same either way."""
+    the same either way.
+
+    ``refs``: job index -> the reference whose stretch times that job's cycle
+    time starts from, where it is not ``ref`` (planned already: the plug-in
+    blends' base path, :func:`.core.compare`); twins share a cycle time only
+    under one reference. ``memo``: the paths timed so far, kept across calls
+    (a comparison's later jobs take an earlier one's twin)."""
+    refs = {} if refs is None else refs
+    memo = {} if memo is None else memo
     if workers > 1 and len(jobs) > 1:
-        yield from _run_in_processes(jobs, ref, reference_row, total, workers, progress)
+        yield from _run_in_processes(jobs, ref, reference_row, total, workers, progress, refs,
+                                     memo)
         return
-    times = ref.times()
-    yield from reference_row(times)
-    timed: list[tuple[ToolPath, tuple]] = []
-    measured: dict = {}    # id(problem) -> its rows: a path two variants leave is measured once
+    yield from reference_row(ref.times())
     for i, name, problem in jobs:
         say(progress, f"variant {i + 1}/{total} {name}")
         local = problem if progress is None else replace(problem, progress=progress)
-        row = solve(name, local, measured.setdefault(id(problem), []))
+        # the rows measured under this problem: a path two variants leave is measured once
+        row = solve(name, local, memo.setdefault(("measured", id(problem)), []))
         if gets_cycle_time(row):
-            got = _timed_twin(timed, row.toolpath)
+            by = refs.get(i, ref)
+            alike = memo.setdefault(("here", id(by)), [])
+            got = _timed_twin(alike, row.toolpath)
             if got is None:
+                times = by.times()
                 got = _timed(row.toolpath, problem.limits,
                              times.copy() if times is not None else None)
-                timed.append((row.toolpath, got))
+                alike.append((row.toolpath, got))
             row = with_duration(row, got)
         yield i, row
 
 
 def _run_in_processes(jobs, ref, reference_row, total: int, workers: int,
-                      progress):
+                      progress, refs: dict, memo: dict):
     """:func:`run_jobs` in ``workers`` processes: at most one task per worker,
     a cycle time before a blend (a long blend's plan, the smoother's, starts
     as soon as its path is there), the blends in :func:`_longest_first`
@@ -92,52 +103,63 @@ def _run_in_processes(jobs, ref, reference_row, total: int, workers: int,
     planned plans the stretches it does not share with the reference
     (:func:`.timing.partial_figures`) and takes the shared ones from the
     reference's plan when it is there (:meth:`.timing.PartialTime.finish`),
-    the same figures as a serial run."""
+    the same figures as a serial run. A job timed under another reference
+    (``refs``) is timed under its stretch times, planned already."""
     n_workers = min(workers, len(jobs))
     if ref.limits is not None:
         load_planner(ref.limits)
     to_solve = deque(job for _, job in _longest_first(jobs))
-    to_time: deque = deque()                  # [path, limits, rows waiting for its time]
-    timed: list[tuple[ToolPath, object]] = []   # path, its cycle-time future
-    running: dict = {}                        # future -> (job, rows waiting for it)
-    partial: list = []                        # (PartialTime, rows): the reference's part to come
+    to_time: deque = deque()                  # [path, limits, rows waiting for its time, by]
+    running: dict = {}                        # future -> (job, rows waiting for it, path, limits, by)
+    partial: list = []                        # (PartialTime, rows, path, limits, by): the reference's part to come
     known: list = []                          # [the reference's stretch times], once planned
     done = 0
+
+    def timed(by):
+        """``(path, its cycle-time future)`` of the paths timed under ``by``."""
+        return memo.setdefault(("workers", id(by)), [])
+
     with _pools(n_workers) as (pool, planner):
 
         def refill():
             while len(running) < n_workers and (to_time or to_solve):
                 if to_time:
-                    path, limits, rows = to_time.popleft()
-                    if known or limits is None or ref.path is None:
-                        times = ref.times()
+                    path, limits, rows, by = to_time.popleft()
+                    if by is not ref or known or limits is None or ref.path is None:
+                        times = by.times()
                         fut = pool.submit(_timed, path, limits,
                                           times.copy() if times is not None else None)
                     else:
                         fut = pool.submit(partial_figures, path, limits, ref.ts, ref.keys())
-                    timed.append((path, fut))
-                    running[fut] = (None, rows, path, limits)
+                    timed(by).append((path, fut))
+                    running[fut] = (None, rows, path, limits, by)
                 else:
                     job = to_solve.popleft()
-                    running[pool.submit(solve, job[1], job[2])] = (job, None, None, None)
+                    running[pool.submit(solve, job[1], job[2])] = (job, None, None, None,
+                                                                    refs.get(job[0], ref))
 
         refill()
         ref.keys()          # here, before the thread plans the same geometry
-        reference = planner.submit(ref.times)
+        reference = None
+        if ref.planned():
+            known.append(ref.times())
+            yield from reference_row(known[0])
+        else:
+            reference = planner.submit(ref.times)
         while running or not known:
             finished, _ = wait(set(running) | ({reference} if not known else set()),
                                return_when=FIRST_COMPLETED)
             ready = []
-            now_known = reference in finished
+            now_known = reference is not None and reference in finished
             if now_known:
                 known.append(reference.result())
             for fut in finished - {reference}:
-                job, rows, path, limits = running.pop(fut)
+                job, rows, path, limits, by = running.pop(fut)
                 if job is None:               # a cycle time: to every row that waits for it
-                    partial.append((fut.result(), rows, path, limits))
+                    partial.append((fut.result(), rows, path, limits, by))
                 else:
-                    ready.extend(_timed_or_queued(job, fut.result(), timed, to_time, running,
-                                                  partial, known))
+                    ready.extend(_timed_or_queued(job, fut.result(), timed(by), to_time, running,
+                                                  partial, known, by))
             ready.extend(_finish_partial(partial, known, to_time))
             refill()
             if now_known:
@@ -172,14 +194,14 @@ def _finish_partial(partial: list, known: list, to_time) -> list:
     :class:`~.timing.PartialTime` finished with its stretch times; a path the
     reference's times cannot finish is queued to be timed with them."""
     ready, waiting = [], []
-    for fig, rows, path, limits in partial:
+    for fig, rows, path, limits, by in partial:
         if isinstance(fig, PartialTime):
             if not known:
-                waiting.append((fig, rows, path, limits))
+                waiting.append((fig, rows, path, limits, by))
                 continue
             whole = fig.finish(known[0])
             if whole is None:
-                to_time.append((path, limits, rows))
+                to_time.append((path, limits, rows, by))
                 continue
             fig = (*whole, None, fig.learned)
         ready.extend((i, name, with_duration(row, fig)) for i, name, row in rows)
@@ -188,9 +210,10 @@ def _finish_partial(partial: list, known: list, to_time) -> list:
 
 
 def _timed_or_queued(job, row: VariantResult, timed, to_time, running, partial,
-                     known) -> list:
+                     known, by) -> list:
     """The rows ready now for a solved ``job``: the row itself when it has no
-    path to time, or with the cycle time of the same path planned already;
+    path to time, or with the cycle time of the same path planned already
+    under its reference ``by`` (``timed``: those paths and their futures);
     else none, the row waiting for a plan of its path (running, waiting for
     the reference's, queued, or queued here)."""
     i, name, problem = job
@@ -204,7 +227,7 @@ def _timed_or_queued(job, row: VariantResult, timed, to_time, running, partial,
     if twin is not None:
         fig = twin.result()
         if isinstance(fig, PartialTime):
-            held = _of_path(((p[2], p) for p in partial), row.toolpath)
+            held = _of_path(((p[2], p) for p in partial if p[4] is by), row.toolpath)
             if held is not None:
                 held[1].append(entry)
                 return []
@@ -212,11 +235,11 @@ def _timed_or_queued(job, row: VariantResult, timed, to_time, running, partial,
             fig = None if whole is None else (*whole, None, fig.learned)
         if fig is not None:
             return [(i, name, with_duration(row, fig))]
-    waiting = _of_path(((w[0], w) for w in to_time), row.toolpath)
+    waiting = _of_path(((w[0], w) for w in to_time if w[3] is by), row.toolpath)
     if waiting is not None:
         waiting[2].append(entry)
     else:
-        to_time.append((row.toolpath, problem.limits, [entry]))
+        to_time.append((row.toolpath, problem.limits, [entry], by))
     return []
 
 
