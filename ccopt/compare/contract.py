@@ -48,6 +48,12 @@ class BlendOutcome:
 
     toolpath: ToolPath
     info: dict = field(default_factory=dict)
+    #: ``stretch key -> (seconds, max_acc_ratio)`` of every stretch of
+    #: ``toolpath`` as the blend timed it, starting from the problem's
+    #: :attr:`BlendProblem.stretch_times` (:mod:`.timing`): the row's cycle time
+    #: is read off them, the figure the blend chose by, not planned again.
+    #: ``None``: the comparison times the path.
+    stretch_times: dict | None = None
 
 
 @dataclass(frozen=True, eq=False)
@@ -77,6 +83,10 @@ class BlendProblem:
     reference_certificate: the verifier's certificate of ``reference`` when the
         comparison has it already (its row's); ``None``: made when asked
         (:meth:`reference_verdict`).
+    stretch_times: the comparison reference's stretch times (a
+        :class:`~ccopt.compare.timing.StretchTimes`, not to be changed: copy it)
+        once planned, for a blend that times its candidates by stretches as
+        the comparison times its rows; ``None``: not planned.
     """
 
     program: Program
@@ -91,6 +101,7 @@ class BlendProblem:
     ts: float | None = None
     deviation_from: ToolPath | None = None
     reference_certificate: Certificate | None = None
+    stretch_times: Any = None
 
     def report(self, line: str) -> None:
         """Pass ``line`` (e.g. "blend 2/6") to :attr:`progress`, if any."""

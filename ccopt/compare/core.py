@@ -140,12 +140,14 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
 
     # the controllers first; the plug-in blends then start from the fastest
     # certified controller variant's path (issue 30), beside the built-in leads
-    memo: dict = {}
+    memo: dict = {"jobs": len(jobs)}
     first = [job for job in jobs if job[1] in CONTROLLER_NAMES]
     for i, row in run_jobs(first, ref, reference_row, len(names), workers, progress,
                            memo=memo):
         rows[i] = row
-    leads = [job for job in jobs if job[1] in BUILTIN_NAMES and job[1] not in CONTROLLER_NAMES]
+    leads = _with_reference_times(
+        [job for job in jobs if job[1] in BUILTIN_NAMES and job[1] not in CONTROLLER_NAMES],
+        ref, memo)
     later = [job for job in jobs if job[1] not in BUILTIN_NAMES]
     base = base_row(rows, REFERENCE) if limits is not None and problem is not None else None
     later, later_ref = _from_base(later, base, problem, ref,
@@ -164,6 +166,25 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     if limits is not None and problem is not None:
         apply_baseline(rows, REFERENCE)
     return Comparison(rows, ref.path, limits, program)
+
+
+def _with_reference_times(jobs, ref: "_Reference", memo: dict):
+    """``jobs`` whose problems carry the reference's stretch times
+    (:attr:`~.contract.BlendProblem.stretch_times`), planned by now, for the
+    lead families that time their members by stretches; a problem's measured
+    rows (:func:`.schedule.run_jobs`'s ``memo``) stay its own."""
+    times = ref.times()
+    if times is None:
+        return jobs
+    made: dict = {}
+    out = []
+    for i, name, problem in jobs:
+        if id(problem) not in made:
+            made[id(problem)] = replace(problem, stretch_times=times)
+            memo[("measured", id(made[id(problem)]))] = memo.setdefault(
+                ("measured", id(problem)), [])
+        out.append((i, name, made[id(problem)]))
+    return out
 
 
 def _from_base(later, base, problem: BlendProblem | None, ref: "_Reference", ref_row):

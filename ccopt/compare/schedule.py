@@ -44,6 +44,14 @@ def _timed(path: ToolPath, limits: AxisLimits | None, times: StretchTimes | None
     return (*figures, learned)
 
 
+def _read_off(row: VariantResult, problem):
+    """The cycle-time figures of a row whose blend timed its path by stretches
+    (:attr:`.variant.VariantResult.timed_by_blend`): read off those stretch
+    times, nothing planned, so the row shows the figure the blend chose by."""
+    times = StretchTimes(problem.limits, dict(row.stretch_times), problem.ts)
+    return (*_duration(row.toolpath, problem.limits, times), row.stretch_times)
+
+
 def say(progress, line: str) -> None:
     if progress is not None:
         progress(line)
@@ -67,7 +75,8 @@ def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress, refs=
     time starts from, where it is not ``ref`` (planned already: the plug-in
     blends' base path, :func:`.core.compare`); twins share a cycle time only
     under one reference. ``memo``: the paths timed so far, kept across calls
-    (a comparison's later jobs take an earlier one's twin)."""
+    (a comparison's later jobs take an earlier one's twin), and the count of
+    jobs done (``"done"``) of all of them (``"jobs"``), for the progress lines."""
     refs = {} if refs is None else refs
     memo = {} if memo is None else memo
     if workers > 1 and len(jobs) > 1:
@@ -80,7 +89,9 @@ def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress, refs=
         local = problem if progress is None else replace(problem, progress=progress)
         # the rows measured under this problem: a path two variants leave is measured once
         row = solve(name, local, memo.setdefault(("measured", id(problem)), []))
-        if gets_cycle_time(row):
+        if gets_cycle_time(row) and row.timed_by_blend:
+            row = with_duration(row, _read_off(row, problem))
+        elif gets_cycle_time(row):
             by = refs.get(i, ref)
             alike = memo.setdefault(("here", id(by)), [])
             got = _timed_twin(alike, row.toolpath)
@@ -90,6 +101,7 @@ def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress, refs=
                              times.copy() if times is not None else None)
                 alike.append((row.toolpath, got))
             row = with_duration(row, got)
+        memo["done"] = memo.get("done", 0) + 1
         yield i, row
 
 
@@ -113,7 +125,6 @@ def _run_in_processes(jobs, ref, reference_row, total: int, workers: int,
     running: dict = {}                        # future -> (job, rows waiting for it, path, limits, by)
     partial: list = []                        # (PartialTime, rows, path, limits, by): the reference's part to come
     known: list = []                          # [the reference's stretch times], once planned
-    done = 0
 
     def timed(by):
         """``(path, its cycle-time future)`` of the paths timed under ``by``."""
@@ -165,9 +176,10 @@ def _run_in_processes(jobs, ref, reference_row, total: int, workers: int,
             if now_known:
                 yield from reference_row(ref.times())
             for i, name, row in sorted(ready, key=lambda r: r[0]):
-                done += 1
-                # one counter: the variants done of those the workers run
-                say(progress, f"variants {done}/{len(jobs)} done: {name}")
+                memo["done"] = memo.get("done", 0) + 1
+                # one counter: the variants done of the comparison's jobs
+                say(progress, f"variants {memo['done']}/{memo.get('jobs', len(jobs))} done: "
+                              f"{name}")
                 yield i, row
 
 
@@ -220,6 +232,8 @@ def _timed_or_queued(job, row: VariantResult, timed, to_time, running, partial,
     entry = (i, name, row)
     if not gets_cycle_time(row):
         return [entry]
+    if row.timed_by_blend:
+        return [(i, name, with_duration(row, _read_off(row, problem)))]
     twin = _of_path(timed, row.toolpath)
     if twin is not None and twin in running:
         running[twin][1].append(entry)

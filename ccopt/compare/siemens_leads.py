@@ -15,12 +15,14 @@ of a small set:
 
 "Fastest" is the cycle time under the comparison's limits (planned stretch
 by stretch, the stretches the members share once:
-:class:`~ccopt.compare.timing.StretchTimes`, starting from the stretches of
-the ``siemens`` path as the program asks, planned once per process:
-:func:`_base_times`); without limits, the shortest path. A member the
-verifier does not certify (a gouge, a gap, a side fault) is not chosen;
-with none certified the variant is rejected with the reasons. The row's
-``info`` names the member chosen and every member's figure.
+:class:`~ccopt.compare.timing.StretchTimes`, starting from the reference's
+stretches and those of the ``siemens`` path as the program asks, planned
+once per process: :func:`_base_times`); without limits, the shortest path.
+The row's cycle time is the chosen member's figure, read off the stretch
+times it was timed with (:attr:`~ccopt.compare.contract.BlendOutcome.stretch_times`).
+A member the verifier does not certify (a gouge, a gap, a side fault) is
+not chosen; with none certified the variant is rejected with the reasons.
+The row's ``info`` names the member chosen and every member's figure.
 """
 from __future__ import annotations
 
@@ -47,36 +49,53 @@ _BASES: dict = {}
 
 
 def _base_times(problem: BlendProblem) -> StretchTimes:
-    """A copy of the stretch times of the ``siemens`` path as the program asks
-    (planned whole and cut at its stops,
-    :meth:`~ccopt.compare.timing.StretchTimes.from_reference`), planned once
-    per process for this path, limits and ``ts``.
+    """A copy of the comparison reference's stretch times
+    (:attr:`~ccopt.compare.contract.BlendProblem.stretch_times`, else planned
+    here) with those of the ``siemens`` path as the program asks, timed as the
+    comparison times that path's own row (:meth:`StretchTimes.time` from the
+    reference's): planned once per process for this reference, path, limits
+    and ``ts``.
 
     Why: the families change that path only at its leads (and NORM/KONT at
-    the corners their G450/G451 member changes), so without it each family's
-    first member planned the whole path again, five times in a comparison.
-    The memo is keyed by the path's stretch keys, limits and ``ts``, so a
-    family's figures do not depend on which families ran before it in the
-    process (serial and parallel comparisons agree); each family gets a copy,
-    so the stretches its own members add reach no other. Empty where the
-    style refuses the program or the planner its path (the members then say
-    why)."""
-    empty = StretchTimes(problem.limits, ts=problem.ts)
+    the corners their G450/G451 member changes), so each member plans only
+    the stretches it changes, and a member that leaves the path as it is
+    gets the ``siemens`` row's figure exactly. The memo is keyed by both
+    paths' stretch keys, the limits and ``ts``, so a family's figures do not
+    depend on which families ran before it in the process (serial and
+    parallel comparisons agree); each family gets a copy, so the stretches
+    its own members add reach no other. Just the reference's where the style
+    refuses the program or the planner its path (the members then say why)."""
     try:
         path = compensate(problem.program, "siemens", radius=problem.radius, side=problem.side)
-        key = (problem.limits, problem.ts, tuple(stretch_keys(path)))
+        ref_keys = None if problem.reference is None else tuple(stretch_keys(problem.reference))
+        key = (problem.limits, problem.ts, ref_keys, tuple(stretch_keys(path)))
     except CcoptError:
-        return empty
+        return _reference_times(problem).copy()
     base = _BASES.get(key)
     if base is None:
+        base = _reference_times(problem).copy()
         try:
-            base = StretchTimes.from_reference(path, problem.limits, problem.ts)[0]
+            base.time(path)
         except CcoptError:
-            base = empty
+            pass
         while len(_BASES) >= _BASES_KEPT:
             del _BASES[next(iter(_BASES))]
         _BASES[key] = base
     return base.copy()
+
+
+def _reference_times(problem: BlendProblem) -> StretchTimes:
+    """The comparison reference's stretch times: the problem's, else PMAC's
+    path planned whole and cut at its stops, as the comparison plans it;
+    none known without a reference or where the planner refuses it."""
+    if problem.stretch_times is not None:
+        return problem.stretch_times
+    if problem.reference is not None:
+        try:
+            return StretchTimes.from_reference(problem.reference, problem.limits, problem.ts)[0]
+        except CcoptError:
+            pass
+    return StretchTimes(problem.limits, ts=problem.ts)
 
 
 def _figure(path: ToolPath, problem: BlendProblem, times: StretchTimes | None) -> float | None:
@@ -139,7 +158,11 @@ def _fastest(problem: BlendProblem, members: dict[str, dict], label: str,
         raise BlendRejected(f"{label}: no member certified ("
                             + "; ".join(f"{k}: {v}" for k, v in tried.items()) + ")")
     _, key, path, cert = best
-    return BlendOutcome(path, {"chosen": key, "members": tried, "certificate": cert})
+    # the row's cycle time is the figure the member was chosen by: every
+    # stretch of its path as it was timed here (none without limits)
+    own = None if times is None else {k: times.known[k] for k in stretch_keys(path)
+                                      if k is not None and k in times.known}
+    return BlendOutcome(path, {"chosen": key, "members": tried, "certificate": cert}, own)
 
 
 def _approach(mode: str) -> Blend:

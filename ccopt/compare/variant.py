@@ -43,6 +43,10 @@ class VariantResult:
     #: reference's (:mod:`.timing`): the plug-in blends solved from this row's
     #: path take them, so its stretches are planned once. Not reported.
     stretch_times: dict = field(default_factory=dict, repr=False, compare=False)
+    #: Whether :attr:`stretch_times` are its blend's figures of every stretch
+    #: of its path (:attr:`~.contract.BlendOutcome.stretch_times`): its cycle
+    #: time is read off them (:func:`.schedule.run_jobs`). Not reported.
+    timed_by_blend: bool = field(default=False, repr=False, compare=False)
 
     def __getitem__(self, key):
         return self.to_json()[key]
@@ -158,20 +162,26 @@ def solve(name: str, problem: BlendProblem, measured: list | None = None) -> Var
     seconds = time.perf_counter() - t0
     info: dict = {}
     cert = None
+    stretch_times = None
     if isinstance(out, BlendOutcome):
         info = dict(out.info)
         cert = info.pop("certificate", None)
+        stretch_times = out.stretch_times
         out = out.toolpath
     if not isinstance(out, ToolPath):
         return VariantResult(name, "failed", f"blend returned {type(out).__name__}, "
                              "not a ToolPath or BlendOutcome", figures={"solve_time": seconds})
     twin = measured_as(measured, out) if measured is not None else None
     if twin is not None:
-        return VariantResult(name, twin.status, twin.message, out, twin.certificate,
-                             {**twin.figures, "solve_time": seconds}, info)
-    row = measure_shape(name, out, problem, seconds, info, cert)
-    if measured is not None:
-        measured.append(row)
+        row = VariantResult(name, twin.status, twin.message, out, twin.certificate,
+                            {**twin.figures, "solve_time": seconds}, info)
+    else:
+        row = measure_shape(name, out, problem, seconds, info, cert)
+        if measured is not None:
+            measured.append(row)
+    if stretch_times:
+        row.stretch_times = dict(stretch_times)
+        row.timed_by_blend = True
     return row
 
 

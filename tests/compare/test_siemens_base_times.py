@@ -37,21 +37,50 @@ def _members(rows) -> dict:
 
 def test_the_siemens_path_is_planned_once_for_all_families(monkeypatch):
     prog, lim = _program_and_limits()
-    calls = []
-    real = StretchTimes.from_reference.__func__
+    whole, timed = [], []
+    real_whole = StretchTimes.from_reference.__func__
+    real_time = StretchTimes.time_partial
 
-    def counted(cls, *args, **kwargs):
-        calls.append(args[0])
-        return real(cls, *args, **kwargs)
+    def counted_whole(cls, *args, **kwargs):
+        whole.append(args[0])
+        return real_whole(cls, *args, **kwargs)
+
+    def counted_time(self, path, *args, **kwargs):
+        timed.append(path)
+        return real_time(self, path, *args, **kwargs)
 
     monkeypatch.setattr(siemens_leads, "_BASES", {})
-    monkeypatch.setattr(StretchTimes, "from_reference", classmethod(counted))
+    monkeypatch.setattr(StretchTimes, "from_reference", classmethod(counted_whole))
+    monkeypatch.setattr(StretchTimes, "time_partial", counted_time)
     compare(prog, ["pmac", *FAMILIES], limits=lim, workers=1)
     siemens = compensate(prog, "siemens")
-    # the comparison's reference (PMAC's path) and the siemens path, once
-    planned_siemens = [p for p in calls if p.segments == siemens.segments]
-    assert len(planned_siemens) == 1
-    assert len(calls) == 2
+    # the comparison's reference (PMAC's path) planned whole, once; the siemens
+    # path as the program asks timed from its stretches once, for all five families
+    assert len(whole) == 1
+    assert [p for p in timed if p.segments == siemens.segments] != []
+    assert len([p for p in timed if p.segments == siemens.segments]) == 1
+
+
+@pytest.mark.parametrize("case, alike", [(CASE, 0), ("pocket", 2)])
+def test_a_family_row_shows_the_figure_its_member_was_chosen_by(case, alike):
+    """The row's cycle time is the chosen member's figure (read off the stretch
+    times it was timed with, not planned again), and a member that leaves the
+    siemens path as the program asks has the siemens row's cycle time (on
+    ``pocket``, NORM and KONT with G450: the style's own default)."""
+    c = find_case(case)
+    prog, lim = ccopt.read_program(c.program), ccopt.AxisLimits(c.vmax, c.amax)
+    rows = {r.name: r for r in compare(prog, ["pmac", "siemens", *FAMILIES], limits=lim,
+                                       workers=1)}
+    siemens = compensate(prog, "siemens")
+    same_path = 0
+    for name in FAMILIES:
+        row = rows[name]
+        assert row.status == "ok", (name, row.message)
+        assert row.figures["duration"] == row.info["members"][row.info["chosen"]]
+        if row.toolpath.segments == siemens.segments:
+            assert row.figures["duration"] == rows["siemens"].figures["duration"]
+            same_path += 1
+    assert same_path == alike
 
 
 def test_family_figures_do_not_depend_on_the_order_or_the_process(monkeypatch):
