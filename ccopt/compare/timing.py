@@ -274,7 +274,7 @@ class StretchTimes:
         of ``exact``: planned as one path and cut at its stops, or one by one
         where that path's stops are not the run's (never seen; a safeguard)."""
         def plan(s0: float, s1: float):
-            sub = feed_planning.ExactPath(exact.stretch(s0, s1))
+            sub = feed_planning.ExactPath(exact.stretch(s0, s1), exact.axes)
             return sub, plan_feed(sub, self.limits, planner=certified_planner(self.limits), ts=self.ts)
 
         if len(run) > 1:

@@ -94,9 +94,17 @@ class ExactPath(AbstractGeometricPath):
         tangent is discontinuous (turn above :data:`TURN_EPS`, a reversal,
         or a gap above :data:`GAP_EPS`); the ends are False.
     dwells: tuple of :class:`Dwell`.
+
+    ``axes``: the coordinates of the path this one is a stretch of,
+    ``(machine_frame, dof)`` (:attr:`axes`); ``None``: its own. A stretch
+    between two stops, planned alone in the whole path's coordinates, is
+    planned as within the whole path: the planners' grids read the slowest
+    and largest limits of the path's axes (a stretch that moves no ``w`` of
+    a path that does would be gridded with the ``w`` axis's limits left out,
+    and come out up to 0.1 % apart).
     """
 
-    def __init__(self, toolpath: ToolPath):
+    def __init__(self, toolpath: ToolPath, axes: tuple[bool, int] | None = None):
         super().__init__()
         self.toolpath = toolpath
         keep, S, L, dw = [], [], [], []
@@ -119,14 +127,15 @@ class ExactPath(AbstractGeometricPath):
                                 where=self.lengths > 0)
         self.offsets = np.concatenate([[0.0], np.cumsum(self.lengths)])
         planes = set(s.plane for s in toolpath.segments)
+        machine, dof = (False, 2) if axes is None else axes
         self._perm = None       # (K, 3): machine axis of each segment's (u, v, w)
-        if len(planes) > 1:
+        if len(planes) > 1 or machine:
             self.frame = MACHINE_FRAME
             self._perm = np.array([PLANE_AXES[s.plane] for s in self.segments], int
                                   ).reshape(-1, 3)
         else:
             self.frame = planes.pop() if planes else toolpath.plane
-        self._dof = 3 if self._perm is not None or np.any(self._dw != 0.0) else 2
+        self._dof = 3 if self._perm is not None or np.any(self._dw != 0.0) or dof == 3 else 2
         self.feeds = np.array([np.inf if (s.feed is None or s.role is Role.RAPID) else float(s.feed)
                                for s in self.segments])
         self._prepare_kernels()
@@ -158,6 +167,12 @@ class ExactPath(AbstractGeometricPath):
     @property
     def dof(self) -> int:
         return self._dof
+
+    @property
+    def axes(self) -> tuple[bool, int]:
+        """``(machine_frame, dof)``: the coordinates a stretch of this path is
+        planned in (the constructor's ``axes``)."""
+        return self._perm is not None, self._dof
 
     @property
     def path_interval(self) -> np.ndarray:

@@ -45,19 +45,23 @@ def speed_bound(path: ExactPath, limits: AxisLimits, grid: GridOptions | None,
 class StretchBound:
     """What a worker needs to compute :func:`speed_bound` on its own stretch:
     the stretch's tool path (:meth:`ExactPath.stretch`), the limits, the grid
-    options and the stretch's start ``origin`` on the whole path."""
+    options, the stretch's start ``origin`` on the whole path and the whole
+    path's coordinates ``axes`` (:attr:`ExactPath.axes`: TOPPRA grids the
+    stretch as within the whole path)."""
 
     toolpath: ToolPath
     limits: AxisLimits
     grid: GridOptions | None
     origin: float
+    axes: tuple[bool, int] | None = None
 
     @classmethod
     def of(cls, path: ExactPath, limits: AxisLimits, grid: GridOptions | None,
            s0: float, s1: float) -> "StretchBound":
-        return cls(path.stretch(s0, s1), limits, grid, float(path.offsets[path.boundary(s0)]))
+        return cls(path.stretch(s0, s1), limits, grid, float(path.offsets[path.boundary(s0)]),
+                   path.axes)
 
     def __call__(self, s: np.ndarray, stop: np.ndarray, bmax: np.ndarray) -> np.ndarray:
         """:func:`speed_bound` at the stretch's gridpoints ``s`` (whole-path positions)."""
-        return speed_bound(ExactPath(self.toolpath), self.limits, self.grid, s, stop, bmax,
-                           self.origin)
+        return speed_bound(ExactPath(self.toolpath, self.axes), self.limits, self.grid, s, stop,
+                           bmax, self.origin)
