@@ -83,10 +83,12 @@ class BlendProblem:
     reference_certificate: the verifier's certificate of ``reference`` when the
         comparison has it already (its row's); ``None``: made when asked
         (:meth:`reference_verdict`).
-    stretch_times: the comparison reference's stretch times (a
-        :class:`~ccopt.compare.timing.StretchTimes`, not to be changed: copy it)
-        once planned, for a blend that times its candidates by stretches as
-        the comparison times its rows; ``None``: not planned.
+    stretch_times: the stretch times the comparison has planned by now (a
+        :class:`~ccopt.compare.timing.StretchTimes`, not to be changed: copy
+        it): the reference's, with those its controller rows planned for their
+        own paths as it times them (so far the ``siemens`` row's), for a blend
+        that times its candidates by stretches as the comparison times its
+        rows; ``None``: not planned.
     """
 
     program: Program

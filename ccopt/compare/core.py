@@ -145,9 +145,9 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     for i, row in run_jobs(first, ref, reference_row, len(names), workers, progress,
                            memo=memo):
         rows[i] = row
-    leads = _with_reference_times(
+    leads = _with_stretch_times(
         [job for job in jobs if job[1] in BUILTIN_NAMES and job[1] not in CONTROLLER_NAMES],
-        ref, memo)
+        ref, memo, rows)
     later = [job for job in jobs if job[1] not in BUILTIN_NAMES]
     base = base_row(rows, REFERENCE) if limits is not None and problem is not None else None
     later, later_ref = _from_base(later, base, problem, ref,
@@ -168,14 +168,18 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     return Comparison(rows, ref.path, limits, program)
 
 
-def _with_reference_times(jobs, ref: "_Reference", memo: dict):
-    """``jobs`` whose problems carry the reference's stretch times
-    (:attr:`~.contract.BlendProblem.stretch_times`), planned by now, for the
-    lead families that time their members by stretches; a problem's measured
-    rows (:func:`.schedule.run_jobs`'s ``memo``) stay its own."""
+def _with_stretch_times(jobs, ref: "_Reference", memo: dict, rows):
+    """``jobs`` whose problems carry the stretch times planned by now
+    (:attr:`~.contract.BlendProblem.stretch_times`): the reference's, and the
+    ``siemens`` row's own (the SINUMERIK families start from that path, and
+    would plan the very same stretches again); a problem's measured rows
+    (:func:`.schedule.run_jobs`'s ``memo``) stay its own."""
     times = ref.times()
     if times is None:
         return jobs
+    siemens = next((r for r in rows if r is not None and r.name == "siemens"), None)
+    if siemens is not None and siemens.stretch_times:
+        times = ref.with_stretches(siemens.stretch_times).times()
     made: dict = {}
     out = []
     for i, name, problem in jobs:

@@ -85,9 +85,11 @@ def _base_times(problem: BlendProblem) -> StretchTimes:
 
 
 def _reference_times(problem: BlendProblem) -> StretchTimes:
-    """The comparison reference's stretch times: the problem's, else PMAC's
-    path planned whole and cut at its stops, as the comparison plans it;
-    none known without a reference or where the planner refuses it."""
+    """The comparison's stretch times: the problem's (the reference's, and the
+    ``siemens`` row's when it has been timed: then the ``siemens`` path needs
+    no plan here), else PMAC's path planned whole and cut at its stops, as
+    the comparison plans it; none known without a reference or where the
+    planner refuses it."""
     if problem.stretch_times is not None:
         return problem.stretch_times
     if problem.reference is not None:

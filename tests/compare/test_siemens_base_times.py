@@ -61,6 +61,31 @@ def test_the_siemens_path_is_planned_once_for_all_families(monkeypatch):
     assert len([p for p in timed if p.segments == siemens.segments]) == 1
 
 
+def test_with_the_siemens_row_the_families_take_its_stretches(monkeypatch):
+    """With the ``siemens`` row in the comparison its stretches are planned
+    once, for the row, and the families read them from it (no plan of that
+    path more than without the row): the same figures as when they plan that
+    path themselves."""
+    prog, lim = _program_and_limits()
+    siemens = compensate(prog, "siemens")
+    planned = []
+    real_run = StretchTimes._plan_run
+
+    def counted_run(self, exact, run):
+        planned.append(exact.toolpath.segments == siemens.segments)
+        return real_run(self, exact, run)
+
+    monkeypatch.setattr(StretchTimes, "_plan_run", counted_run)
+    monkeypatch.setattr(siemens_leads, "_BASES", {})
+    alone = _members(compare(prog, ["pmac", *FAMILIES], limits=lim, workers=1))
+    n_alone, planned[:] = sum(planned), []
+    monkeypatch.setattr(siemens_leads, "_BASES", {})
+    with_row = _members(compare(prog, ["pmac", "siemens", *FAMILIES], limits=lim, workers=1))
+    assert n_alone > 0
+    assert sum(planned) == n_alone
+    assert with_row == alone
+
+
 @pytest.mark.parametrize("case, alike", [(CASE, 0), ("pocket", 2)])
 def test_a_family_row_shows_the_figure_its_member_was_chosen_by(case, alike):
     """The row's cycle time is the chosen member's figure (read off the stretch
