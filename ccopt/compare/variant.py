@@ -40,8 +40,10 @@ class VariantResult:
     figures: dict = field(default_factory=dict)
     info: dict = field(default_factory=dict)
     #: The stretch times planned for this row's cycle time and not the
-    #: reference's (:mod:`.timing`): the plug-in blends solved from this row's
-    #: path take them, so its stretches are planned once. Not reported.
+    #: reference's (:mod:`.timing`), or, for a row its blend timed
+    #: (:attr:`timed_by_blend`), those of every stretch of its path: the
+    #: plug-in blends solved from a controller row's path take them, so its
+    #: stretches are planned once. Not reported.
     stretch_times: dict = field(default_factory=dict, repr=False, compare=False)
     #: Whether :attr:`stretch_times` are its blend's figures of every stretch
     #: of its path (:attr:`~.contract.BlendOutcome.stretch_times`): its cycle
