@@ -4,6 +4,10 @@ sinumerik-sar-plate (tests/compare/test_siemens_base_times.py).
 
 For each program, under axis limits drawn from its seed:
 
+* a family's row shows the cycle time its chosen member was chosen by, and
+  the rows are the same in worker processes with the ``siemens`` row in the
+  comparison (the families then read that path's stretches off the row);
+
 * every member's figure (the cycle time it was chosen by) is its own path
   planned whole, within the 1e-9 relative with which a stretch planned alone
   may differ from the same stretch inside the whole path (ccopt.compare.timing);
@@ -47,8 +51,8 @@ def _program_and_limits(seed: int):
     return prog, AxisLimits((v, v), (a, a))
 
 
-def _rows(prog, lim, names):
-    return {r.name: r for r in compare(prog, ["pmac", *names], limits=lim, workers=1)
+def _rows(prog, lim, names, workers=1):
+    return {r.name: r for r in compare(prog, ["pmac", *names], limits=lim, workers=workers)
             if r.name in FAMILIES}
 
 
@@ -66,8 +70,18 @@ def _check(seed: int, monkeypatch) -> int:
     monkeypatch.setattr(siemens_leads, "_BASES", {})
     alone = _rows(prog, lim, [name])[name]
     assert _figures(alone) == _figures(together[name]), (seed, name)
+    # in worker processes, with the siemens row (whose stretches the families
+    # then read instead of planning that path): the same rows
+    monkeypatch.setattr(siemens_leads, "_BASES", {})
+    beside = _rows(prog, lim, ["siemens", *FAMILIES], workers=2)
+    assert {n: _figures(r) for n, r in beside.items()} == \
+        {n: _figures(r) for n, r in together.items()}, seed
     checked = 0
     for name in FAMILIES:
+        row = together[name]
+        if row.status == "ok":       # the row shows the figure its member was chosen by
+            assert row.figures["duration"] == row.info["members"][row.info["chosen"]], \
+                (seed, name)
         for member, figure in together[name].info.get("members", {}).items():
             if not isinstance(figure, float):
                 continue            # refused or not certified: no figure
