@@ -226,6 +226,25 @@ def grid_slice(g: JerkGrid, i0: int, i1: int) -> JerkGrid:
 
 def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float,
                  first: np.ndarray | None = None) -> list[tuple]:
+    """:func:`_solve_chain_in` in the chain's own scale: the largest finite
+    squared speed bound ``cap * scale`` on its gridpoints, its results
+    brought back to ``scale``. HiGHS's tolerances are absolute, so in the
+    whole path's scale (the fastest move anywhere, a rapid's) a chain's plan
+    depended on what else the path holds: a stretch planned alone, as
+    ``compare`` times a variant's, came out up to 6e-6 from the same stretch
+    in the whole path's plan (a generated CAM plate with a plunge, seed 38 of
+    tests/compare/test_stretch_axes.py); in its own scale, 1e-14."""
+    lo, hi = chain[0][0], chain[-1][1]
+    own = float(np.max(cap[lo:hi + 1][np.isfinite(cap[lo:hi + 1])] * scale, initial=0.0))
+    if not own > 0.0:
+        return _solve_chain_in(g, cap, chain, scale, first)
+    f = scale / own
+    out = _solve_chain_in(g, cap * f, chain, own, None if first is None else first * f)
+    return [r if r[3] is None else (*r[:3], r[3] / f, r[4] / f, r[5]) for r in out]
+
+
+def _solve_chain_in(g: JerkGrid, cap: np.ndarray, chain, scale: float,
+                    first: np.ndarray | None = None) -> list[tuple]:
     """Every window of a chain in turn, each starting from the last one's
     kept end: per window ``(i0, i1, keep, b, alpha, rounds)`` (``b, alpha``
     scaled, on ``i0..keep``), or ``(i0, i1, keep, None, rest_to_rest, 0)`` for
