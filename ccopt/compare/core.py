@@ -21,7 +21,8 @@ processes (:mod:`.schedule`); the rows are the same as a serial run's (each
 variant starts from the reference's stretch times alone), ``solve_time``
 aside. The controller styles run first; the built-in leads then run beside
 the plug-in blends, which start from the fastest certified controller
-variant's path (:mod:`.baseline`) and so wait for the controllers alone. A row is made in :mod:`.variant`; blends implement :mod:`.contract`.
+variant's path (:mod:`.baseline`) and so wait for the controllers alone.
+A row is made in :mod:`.variant`; blends implement :mod:`.contract`.
 """
 from __future__ import annotations
 

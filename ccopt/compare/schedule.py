@@ -121,9 +121,11 @@ def _run_in_processes(jobs, ref, reference_row, total: int, workers: int,
     if ref.limits is not None:
         load_planner(ref.limits)
     to_solve = deque(job for _, job in _longest_first(jobs))
-    to_time: deque = deque()                  # [path, limits, rows waiting for its time, by]
-    running: dict = {}                        # future -> (job, rows waiting for it, path, limits, by)
-    partial: list = []                        # (PartialTime, rows, path, limits, by): the reference's part to come
+    # ``by`` below: the reference a path is timed under (``refs``, else ``ref``)
+    to_time: deque = deque()          # [path, limits, rows waiting for its time, by]
+    running: dict = {}                # future -> (job, rows waiting for it, path, limits, by)
+    partial: list = []                # (PartialTime, rows, path, limits, by): the reference's
+                                      # part to come
     known: list = []                          # [the reference's stretch times], once planned
 
     def timed(by):
