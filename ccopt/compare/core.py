@@ -34,7 +34,8 @@ from ccopt.compare.baseline import apply_baseline, base_row, from_base
 from ccopt.compare.contract import BUILTIN_NAMES, CONTROLLER_NAMES, BlendProblem
 from ccopt.compare.registry import available, load
 from ccopt.compare.schedule import run_jobs, say
-from ccopt.compare.timing import StretchTimes, duration_figures, same_plan, stretch_keys
+from ccopt.compare.timing import (StretchTimes, duration_figures, reference_times, same_plan,
+                                  stretch_keys)
 from ccopt.compare.variant import VariantResult, measure
 from ccopt.compensate import compensate
 from ccopt.errors import CcoptError
@@ -240,7 +241,7 @@ class _Reference:
         return cls(path, error, time.perf_counter() - t0, limits, ts, None)
 
     def times(self) -> StretchTimes | None:
-        """:func:`_reference_times`, once; with no reference (refused) an empty
+        """:func:`.timing.reference_times`, once; with no reference (refused) an empty
         :class:`StretchTimes`, so each path is planned whole with ``ts``."""
         if not self._times:
             if self.path is None:
@@ -249,7 +250,7 @@ class _Reference:
             else:
                 planned = self.profile if same_plan(self.profile, self.path, self.limits,
                                                     self.ts) else None
-                self._times.append(_reference_times(self.path, self.limits, self.ts, planned))
+                self._times.append(reference_times(self.path, self.limits, self.ts, planned))
         return self._times[0]
 
     def planned(self) -> bool:
@@ -304,18 +305,3 @@ def _jobs(names: list[str], program: Program, problem: BlendProblem | None,
         else:
             jobs.append((i, name, problem))
     return rows, jobs, ref_index
-
-
-def _reference_times(reference: ToolPath, limits: AxisLimits | None, ts: float | None = None,
-                     profile: FeedProfile | None = None) -> StretchTimes | None:
-    """The reference planned whole (or its ``profile``) and cut at its stops
-    (``None`` without limits; none known when the planner refuses the
-    reference: each variant is then planned whole and says why)."""
-    if limits is None:
-        return None
-    try:
-        return StretchTimes.from_reference(reference, limits, ts, profile)[0]
-    except CcoptError:
-        return StretchTimes(limits, ts=ts)
-
-

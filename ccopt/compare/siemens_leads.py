@@ -31,7 +31,7 @@ import math
 from ccopt.compare.contract import (SIEMENS_NAMES, Blend, BlendOutcome, BlendProblem,
                                     BlendRejected, deepest)
 from ccopt.compare.leads import find_leads, outside_leads
-from ccopt.compare.timing import StretchTimes, duration_figures, stretch_keys
+from ccopt.compare.timing import StretchTimes, duration_figures, reference_times, stretch_keys
 from ccopt.compensate import compensate
 from ccopt.errors import CcoptError
 from ccopt.toolpath import ToolPath
@@ -70,10 +70,10 @@ def _base_times(problem: BlendProblem) -> StretchTimes:
         ref_keys = None if problem.reference is None else tuple(stretch_keys(problem.reference))
         key = (problem.limits, problem.ts, ref_keys, tuple(stretch_keys(path)))
     except CcoptError:
-        return _reference_times(problem).copy()
+        return _known_times(problem).copy()
     base = _BASES.get(key)
     if base is None:
-        base = _reference_times(problem).copy()
+        base = _known_times(problem).copy()
         try:
             base.time(path)
         except CcoptError:
@@ -84,7 +84,7 @@ def _base_times(problem: BlendProblem) -> StretchTimes:
     return base.copy()
 
 
-def _reference_times(problem: BlendProblem) -> StretchTimes:
+def _known_times(problem: BlendProblem) -> StretchTimes:
     """The comparison's stretch times: the problem's (the reference's, and the
     ``siemens`` row's when it has been timed: then the ``siemens`` path needs
     no plan here), else PMAC's path planned whole and cut at its stops, as
@@ -93,10 +93,7 @@ def _reference_times(problem: BlendProblem) -> StretchTimes:
     if problem.stretch_times is not None:
         return problem.stretch_times
     if problem.reference is not None:
-        try:
-            return StretchTimes.from_reference(problem.reference, problem.limits, problem.ts)[0]
-        except CcoptError:
-            pass
+        return reference_times(problem.reference, problem.limits, problem.ts)
     return StretchTimes(problem.limits, ts=problem.ts)
 
 

@@ -365,6 +365,19 @@ def same_plan(profile, reference: ToolPath, limits: AxisLimits, ts: float | None
     return profile.path.toolpath is reference
 
 
+def reference_times(reference: ToolPath, limits: AxisLimits | None, ts: float | None = None,
+                    profile: FeedProfile | None = None) -> StretchTimes | None:
+    """The reference planned whole (or its ``profile``) and cut at its stops
+    (``None`` without limits; none known when the planner refuses the
+    reference: each variant is then planned whole and says why)."""
+    if limits is None:
+        return None
+    try:
+        return StretchTimes.from_reference(reference, limits, ts, profile)[0]
+    except CcoptError:
+        return StretchTimes(limits, ts=ts)
+
+
 def partial_figures(path: ToolPath, limits: AxisLimits, ts: float | None, defer):
     """:func:`duration_figures` before the reference is planned: a
     :class:`PartialTime` whose stretches in ``defer`` (the reference's keys)

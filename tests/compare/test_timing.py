@@ -251,12 +251,12 @@ def test_workers_give_the_serial_rows_when_the_reference_plans_last(monkeypatch)
     limits = ccopt.AxisLimits(c.vmax, c.amax, j=tuple(10.0 * a for a in c.amax))
     names = ["pmac", "linuxcnc", "tangent-arc", "line-arc", "fagor-g138", "fagor-g139-g136"]
     serial = compare(prog, names, limits=limits, radius=c.radius)
-    real = core._reference_times
+    real = core.reference_times
 
     def late(*args, **kw):
         clock.sleep(3.0)
         return real(*args, **kw)
 
-    monkeypatch.setattr(core, "_reference_times", late)
+    monkeypatch.setattr(core, "reference_times", late)
     parallel = compare(prog, names, limits=limits, radius=c.radius, workers=2)
     assert _rows(parallel) == _rows(serial)
