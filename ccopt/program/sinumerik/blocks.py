@@ -21,7 +21,7 @@ from ccopt.program.gcode.execute import execute_words
 from ccopt.program.gcode.state import ProgramEnd
 from ccopt.program.gcode.units import feed_factor, input_factor
 from ccopt.program.model import PLANE_AXES, SmoothApproach
-from ccopt.program.sinumerik import arcs
+from ccopt.program.sinumerik import arcs, corners
 from ccopt.program.sinumerik.calls import passes_of
 from ccopt.program.sinumerik.lexer import Line
 from ccopt.program.sinumerik.state import SinumerikRun
@@ -40,12 +40,14 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
     bw = read_block(run, line)
     for code, col in bw.ignored:
         run.ignored.setdefault(code, state.where(state.line_no)[1])
+    first_new = len(state.blocks)
     if bw.call is not None or bw.passes is not None:
+        corners.after_block(run, {}, first_new)
         return _call(bw)
     if bw.frame is not None:
         _translate(run, bw)
-        return None
-    if bw.empty:
+    if bw.frame is not None or bw.empty:
+        corners.after_block(run, {}, first_new)
         return None
     bw = _pending_approach(run, bw)
     if bw is None:
@@ -53,12 +55,18 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
     _modes(run, bw)
     _tool(run, bw)
     _compensation(run, bw)
+    corners.read_modal(run, bw.values)
     letters = _core_letters(run, bw)
     g = list(bw.g)
     _circle_forms(run, bw, letters, g)
     sar = _smooth_approach(run, bw, letters, g)
-    execute_words(state, Words(g=[(t / 10.0, c) for t, c in g], m=bw.m, letters=letters,
-                               first=bw.first))
+    try:
+        execute_words(state, Words(g=[(t / 10.0, c) for t, c in g], m=bw.m, letters=letters,
+                                   first=bw.first))
+    except ProgramEnd:   # M2/M30 end the program after the block's move: its corner counts
+        corners.after_block(run, bw.values, first_new)
+        raise
+    corners.after_block(run, bw.values, first_new)
     if sar:
         _set_modes(run, replace(run.modes, sar=None))
     if bw.end:

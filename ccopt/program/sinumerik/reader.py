@@ -14,6 +14,7 @@ from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import output_units
 from ccopt.program.model import (INPUT_FILES, PLANE_CHANGES_CHECKED, TRAILING_WORDS,
                                  Program, SiemensModes)
+from ccopt.program.sinumerik import corners
 from ccopt.program.sinumerik.blocks import exec_block
 from ccopt.program.sinumerik.calls import CallFrame, load_sub
 from ccopt.program.sinumerik.flow import jump_target, match_structures
@@ -75,6 +76,8 @@ def read_sinumerik(text: str, file: str = "<string>", *,
         raise state.error("a smooth approach (G147/G247/G347) whose end point no later block "
                           "gives: write the contour's start in this block or a later one",
                           run.pending_sar.sar[1], run.pending_line)
+    corners.at_end(run)
+    state.meta[corners.NOT_INSERTED] = dict(run.not_inserted)
     state.meta[PLANE_CHANGES_CHECKED] = True
     state.meta[TRAILING_WORDS] = tuple(state.pending_words)
     state.meta[IGNORED_CODES] = dict(run.ignored)

@@ -41,5 +41,9 @@ class SinumerikRun:
     ignored: dict = field(default_factory=dict)   # code -> first line it was read and ignored
     pending_sar: object = None    # a SAR block waiting for its end point (blocks.py)
     pending_line: int = 0         # its 0-based line
+    rndm: float = 0.0             # RNDM: the modal rounding radius, 0 off (corners.py)
+    frcm: float | None = None     # FRCM: the modal feed of chamfers and roundings
+    corner: object = None         # a chamfer or rounding waiting for its next block
+    not_inserted: dict = field(default_factory=dict)  # corners.NOT_INSERTED
     offset: int = 0        # where the running text's lines start in state.lines
     loaded: dict = field(default_factory=dict)    # subprogram name -> (structure, offset)

@@ -37,6 +37,8 @@ SAR_INFEED_G = {340, 341}
 APPROACH_WORDS = {"NORM", "KONT", "KONTT", "KONTC"}
 BOTTLENECK_WORDS = {"CDON", "CDOF", "CDOF2"}
 VALUE_WORDS = {"CR", "AR", "TURN", "DISR", "DISCL", "FAD", "DISC", "OFFN"}
+#: Chamfer and rounding words (:mod:`.corners`): values as written.
+CORNER_VALUES = {"CHF", "CHR", "RND", "RNDM", "FRC", "FRCM"}
 AXES = "XYZABC"
 #: Keywords that set the control's dynamics, look-ahead or feed reference and
 #: leave the programmed path as it is in ccopt (read and noted, like G64):
@@ -143,6 +145,10 @@ def _word(run: SinumerikRun, bw: BlockWords, w: Word, code: str, p: int) -> int:
     elif name in VALUE_WORDS:
         value, mode, p = _value(run, w, code, p, ("AC", "IC", "PM", "PR"))
         bw.values[name] = (value, mode, w.col)
+    elif name in CORNER_VALUES:
+        value, mode, p = _value(run, w, code, p, ())
+        _once(bw.values, name, w.col)
+        bw.values[name] = (value, mode, w.col)
     else:
         return _other(run, bw, w, code, p)
     return p
@@ -221,14 +227,15 @@ def _unknown(name: str) -> str:
         return (f"{name}: rotating, scaling and mirroring frames and transformations are not "
                 "read by ccopt (TRANS and ATRANS are): program the contour in the "
                 "coordinates they give")
-    if name in ("CHF", "CHR", "RND", "RNDM", "ANG"):
-        return (f"{name}: chamfers, roundings and contour definitions are not read by ccopt: "
-                "program the chamfer or rounding as its own line or arc")
+    if name == "ANG":
+        return ("ANG: contour definitions by angle are not read by ccopt: program the end "
+                "points")
     if name in ("AP", "RP"):
         return f"{name}: polar coordinates are not read by ccopt: program X Y Z"
     return (f"{name} is not read by ccopt's SINUMERIK reader (G0-G3, CIP, CT, AR=, CR=, "
-            "TURN=, G17-G19, G40-G42, G450/G451, NORM/KONT, SAR G140-G348, R parameters and "
-            "DEF variables, IF/WHILE/REPEAT/LOOP/FOR, GOTOF/GOTOB and subprogram calls "
+            "TURN=, G17-G19, G40-G42, G450/G451, NORM/KONT, SAR G140-G348, CHF/CHR/RND/"
+            "RNDM, R parameters and DEF variables, IF/WHILE/REPEAT/LOOP/FOR, GOTOF/GOTOB and "
+            "subprogram calls "
             f"are): a command it does not know, or a call of a subprogram with no file "
             f"{name}.SPF beside the program")
 
@@ -314,7 +321,7 @@ def _define(run: SinumerikRun, code: str, p: int) -> int:
         name, p = next_name(code, q)
         if not name:
             raise ExprError("DEF needs a variable name", q)
-        if len(name) == 1 or name in VALUE_WORDS:
+        if len(name) == 1 or name in VALUE_WORDS or name in CORNER_VALUES:
             raise ExprError(f"{name} is an address, not a variable name", q)
         value = 0.0
         p = skip_blanks(code, p)
