@@ -36,7 +36,8 @@ INSERTS = ["G41", "G42", "G40", "G450", "G451", "DISC=50", "KONT", "KONTT", "G14
            "G348", "DISR=0", "CR=-3", "AR=90", "CIP", "CT", "I1=3", "R5=", "(", ")", "GOTOB",
            "ENDIF", "ELSE", "LOOP", "FOR R9=1 TO 3", "ENDFOR", ";", "=", "AC(", "IC(2)",
            "$TC_DP6[1,1]=", "L9", "P3", "X", "Y-", "Z=", " ", "\n", "D0", "OFFN=1", "TURN=2",
-           "G3", "G2", "G0", "G1", "F0", "1e999", "N5", "LBL:", "TRANS", "DEF REAL Q"]
+           "G3", "G2", "G0", "G1", "F0", "1e999", "N5", "LBL:", "TRANS", "DEF REAL Q",
+           "RND=2", "RND=50", "CHF=1", "CHR=1.5", "RNDM=3", "RNDM=0", "FRC=100", "FRCM=0"]
 REPLACES = ["0", "1", "-", ".", "X", "Y", "G", "=", "(", ")", " ", "R", "\n", "9"]
 
 
