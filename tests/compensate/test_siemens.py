@@ -257,6 +257,45 @@ def test_manual_example_end_point_in_the_next_block():
     assert "nothing may move" in str(info.value)
 
 
+def test_manual_example_w1_quadrant_with_offn():
+    # Function Manual Basic Functions W1 (6FC5397-0BP10-2BA0, 11/2006), 2.4,
+    # "Contour example 2" (Figure 2-26), the program as printed there. The
+    # manual's note: radius 10 + OFFN 5 = 15 effective, so the tool centre
+    # path's radius is DISR = 10 in the approach and 5 in the retraction.
+    # By hand: P4 = (30,-10) from N30, the contour leaves along +X, G41 puts
+    # the tool left, Q = P4 + 15*(0,1) = (30,5); the G247 quadrant ends at Q
+    # along +X: centre Q + 10*(0,1) = (30,15), start P3 = (20,15). G341: P0
+    # (0,0,20) -> (20,15,20) -> DISCL=AC(7) -> Z0 at FAD 200/min, rapids
+    # before (G0 in force), the quadrant at F1500. Retraction G248 G340 from
+    # Q' = (50,-10) + 15*(0,1) = (50,5): quadrant about (50,10) to (55,10),
+    # a helix up to DISCL=6 above the contour's Z2, then up to P0's Z20 and
+    # across to P0 = (70,0).
+    text = ("$TC_DP1[1,1]=120\n$TC_DP6[1,1]=10\nN10 G0 X0 Y0 Z20 G64 D1 T1 OFFN = 5\n"
+            "N20 G41 G247 G341 Z0 DISCL = AC(7) DISR = 10 F1500 FAD=200\n"
+            "N30 G1 X30 Y-10\nN40 X40 Z2\nN50 X50\n"
+            "N60 G248 G340 X70 Y0 Z20 DISCL = 6 DISR = 5 G40 F10000\nN70 X80 Y0\nN80 M 30\n")
+    segs = compensate(prog(text), style="siemens").segments
+    ap = [s for s in segs if s.block.source.line == 5]
+    assert [(s.kind, s.start, s.end, s.w0, s.w1) for s in ap] == [
+        ("line", (0, 0), pytest.approx((20, 15)), 20, 20),
+        ("line", pytest.approx((20, 15)), pytest.approx((20, 15)), 20, 7),
+        ("line", pytest.approx((20, 15)), pytest.approx((20, 15)), 7, 0),
+        ("arc", pytest.approx((20, 15)), pytest.approx((30, 5)), 0, 0)]
+    assert [s.feed for s in ap] == [None, None, pytest.approx(200 / 60), pytest.approx(25.0)]
+    assert ap[3].geom.radius == pytest.approx(10.0)
+    assert ap[3].geom.center == pytest.approx((30, 15))
+    contour = [(s.start, s.end, s.w1) for s in segs if s.block.source.line in (6, 7)]
+    assert contour == [((30, 5), (40, 5), 2), ((40, 5), (50, 5), 2)]
+    ret = [s for s in segs if s.block.source.line == 8]
+    assert [(s.kind, s.start, s.end, s.w0, s.w1) for s in ret] == [
+        ("arc", pytest.approx((50, 5)), pytest.approx((55, 10)), 2, pytest.approx(8)),
+        ("line", pytest.approx((55, 10)), pytest.approx((55, 10)), pytest.approx(8), 20),
+        ("line", pytest.approx((55, 10)), pytest.approx((70, 0)), 20, 20)]
+    assert ret[0].geom.radius == pytest.approx(5.0)
+    assert ret[0].geom.center == pytest.approx((50, 10))
+    assert ret[0].feed == pytest.approx(10000 / 60)
+
+
 def test_g341_infeed_at_fad_then_the_curve_in_the_plane():
     # P0 at Z10: P1 above P3 at Z10, P2 at DISCL=3, P3 at Z0 at FAD (300/min =
     # 5/s), then the quadrant in the plane
