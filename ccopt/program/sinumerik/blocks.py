@@ -21,7 +21,7 @@ from ccopt.program.gcode.execute import execute_words
 from ccopt.program.gcode.state import ProgramEnd
 from ccopt.program.gcode.units import feed_factor, input_factor
 from ccopt.program.model import PLANE_AXES, SmoothApproach
-from ccopt.program.sinumerik import arcs, corners
+from ccopt.program.sinumerik import arcs, corners, frames
 from ccopt.program.sinumerik.calls import passes_of
 from ccopt.program.sinumerik.lexer import Line
 from ccopt.program.sinumerik.state import SinumerikRun
@@ -45,7 +45,7 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
         corners.after_block(run, {}, first_new)
         return _call(bw)
     if bw.frame is not None:
-        _translate(run, bw)
+        frames.translate(run, bw)
     if bw.frame is not None or bw.empty:
         corners.after_block(run, {}, first_new)
         return None
@@ -146,26 +146,6 @@ def _sar_values(run: SinumerikRun, bw: BlockWords) -> None:
         if mode is not None:
             raise ExprError("OFFN takes a value", col)
         run.offn = value * factor
-
-
-def _translate(run: SinumerikRun, bw: BlockWords) -> None:
-    """``TRANS X Y Z``: the programmable frame is this translation (axes not
-    written: 0; ``TRANS`` alone: none); ``ATRANS``: added to the one in force.
-    Kept as the core's axis offset (``machine = work + offset + origin``)."""
-    state = run.state
-    name, col = bw.frame
-    if not replace(bw, frame=None, axes={}, ignored=[]).empty:
-        raise ExprError(f"{name} takes its block with X Y Z only", col)
-    if state.side != 0:
-        raise ExprError(f"cannot change frames ({name}) with tool radius compensation on: "
-                        "program G40 first", col)
-    offset = [0.0, 0.0, 0.0] if name == "TRANS" else list(state.axis_offset)
-    for a, (value, mode, acol) in bw.axes.items():
-        k = "XYZ".find(a)
-        if k < 0 or mode is not None:
-            raise ExprError(f"{name} translates X Y Z by values (not {a}, AC or IC)", acol)
-        offset[k] += value * input_factor(state)
-    state.axis_offset = (offset[0], offset[1], offset[2])
 
 
 def _tool(run: SinumerikRun, bw: BlockWords) -> None:
