@@ -146,7 +146,7 @@ def test_continuous_path_modes_are_read_and_noted():
 
 REFUSALS = {
     "subprogram without its file": ("G1 X1 F100\nL123\n", 2, 1, "no subprogram file L123"),
-    "frame": ("G1 X1 F100\nROT RPL=30\n", 2, 1, "rotating, scaling"),
+    "frame": ("G1 X1 F100\nMIRROR X0\n", 2, 1, "scaling and mirroring"),
     "TRANS with a move": ("TRANS X10 G1 F100\n", 1, 1, "X Y Z only"),
     "TRANS while on": ("G1 F100 G41 X1\nTRANS X10\n", 2, 1, "compensation on"),
     "rounding too large": ("G1 X1 F100 RND=2\nY5\n", 1, 12, "too large"),
@@ -178,7 +178,7 @@ def test_refusals_are_located(name):
 
 def test_cli_refusal_exit_2_one_line(tmp_path, capsys):
     f = tmp_path / "bad.mpf"
-    f.write_text("G1 X1 F100\nROT RPL=30\n")
+    f.write_text("G1 X1 F100\nSCALE X2\n")
     rc = cli.main(["compensate", str(f), "--radius", "1"])
     err = capsys.readouterr().err
     assert rc == 2 and err.count("\n") == 1 and err.startswith(f"{f}:2:1:"), err

@@ -45,13 +45,14 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
         corners.after_block(run, {}, first_new)
         return _call(bw)
     if bw.frame is not None:
-        frames.translate(run, bw)
+        frames.frame_block(run, bw)
     if bw.frame is not None or bw.empty:
         corners.after_block(run, {}, first_new)
         return None
     bw = _pending_approach(run, bw)
     if bw is None:
         return None
+    frames.check_block(run, bw)
     _modes(run, bw)
     _tool(run, bw)
     _compensation(run, bw)

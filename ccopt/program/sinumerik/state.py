@@ -41,6 +41,8 @@ class SinumerikRun:
     ignored: dict = field(default_factory=dict)   # code -> first line it was read and ignored
     pending_sar: object = None    # a SAR block waiting for its end point (blocks.py)
     pending_line: int = 0         # its 0-based line
+    frame_shift: tuple = (0.0, 0.0, 0.0)   # the programmable frame (frames.py)
+    frame_turn: float = 0.0                # its turn about Z, degrees
     rndm: float = 0.0             # RNDM: the modal rounding radius, 0 off (corners.py)
     frcm: float | None = None     # FRCM: the modal feed of chamfers and roundings
     corner: object = None         # a chamfer or rounding waiting for its next block

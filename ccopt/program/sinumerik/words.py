@@ -36,7 +36,7 @@ SAR_DIRECTION_G = {140, 141, 142, 143}
 SAR_INFEED_G = {340, 341}
 APPROACH_WORDS = {"NORM", "KONT", "KONTT", "KONTC"}
 BOTTLENECK_WORDS = {"CDON", "CDOF", "CDOF2"}
-VALUE_WORDS = {"CR", "AR", "TURN", "DISR", "DISCL", "FAD", "DISC", "OFFN"}
+VALUE_WORDS = {"CR", "AR", "TURN", "DISR", "DISCL", "FAD", "DISC", "OFFN", "RPL"}
 #: Chamfer and rounding words (:mod:`.corners`): values as written.
 CORNER_VALUES = {"CHF", "CHR", "RND", "RNDM", "FRC", "FRCM"}
 AXES = "XYZABC"
@@ -79,7 +79,7 @@ class BlockWords:
     dwell: bool = False
     end: bool = False                            # M17 or RET: end of the program
     call: tuple | None = None                    # (subprogram name, col)
-    frame: tuple | None = None                   # ("TRANS"|"ATRANS", col)
+    frame: tuple | None = None                   # (TRANS ATRANS ROT or AROT, col)
     tool_name: tuple | None = None               # T="name": (name, col)
     passes: tuple | None = None                  # P: (value, col)
     ignored: list = field(default_factory=list)  # (code, col) read and ignored
@@ -190,9 +190,9 @@ def _other(run: SinumerikRun, bw: BlockWords, w: Word, code: str, p: int) -> int
     elif name in NOTED_CALLS and w.expr is None:
         bw.ignored.append((name, w.col))
         return string_argument(code, p)
-    elif name in ("TRANS", "ATRANS") and w.expr is None:
+    elif name in ("TRANS", "ATRANS", "ROT", "AROT") and w.expr is None:
         if bw.frame is not None:
-            raise ExprError("one TRANS or ATRANS a block", w.col)
+            raise ExprError("one frame instruction (TRANS, ATRANS, ROT, AROT) a block", w.col)
         bw.frame = (name, w.col)
     elif name == "PROC":
         return _proc(code, p)
@@ -223,10 +223,11 @@ def _proc(code: str, p: int) -> int:
 
 
 def _unknown(name: str) -> str:
-    if name in ("ROT", "AROT", "SCALE", "ASCALE", "MIRROR", "AMIRROR", "TRAORI", "CYCLE800"):
-        return (f"{name}: rotating, scaling and mirroring frames and transformations are not "
-                "read by ccopt (TRANS and ATRANS are): program the contour in the "
-                "coordinates they give")
+    if name in ("SCALE", "ASCALE", "MIRROR", "AMIRROR", "ROTS", "AROTS", "CROTS", "TRAORI",
+                "CYCLE800"):
+        return (f"{name}: scaling and mirroring frames, rotations in space and "
+                "transformations are not read by ccopt (TRANS, ATRANS, ROT and AROT in G17 "
+                "are): program the contour in the coordinates they give")
     if name == "ANG":
         return ("ANG: contour definitions by angle are not read by ccopt: program the end "
                 "points")
