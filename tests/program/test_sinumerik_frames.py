@@ -76,6 +76,36 @@ def test_arcs_turn_with_the_frame():
     assert close(arc.center, (0, 0, 0))
 
 
+CIRCLE_FORMS = [
+    "G1 X10 Y0 F100\nCIP X0 Y10 I1=7.0710678 J1=7.0710678\n",
+    "G1 X10 Y0 F100\nX20 Y5\nCT X30 Y0\n",
+    "G1 X10 Y0 F100\nG3 AR=90 I-10 J0\n",
+    "G1 X10 Y0 F100\nG2 X20 Y0 AR=120\n",
+    "G1 X10 Y0 F100\nG3 X0 Y10 I=AC(0) J=AC(0)\n",
+    "G91 G1 X10 Y0 F100\nCIP X-10 Y10 I1=-2.9289322 J1=7.0710678\nCT X-5 Y-5\n",
+    "G1 X10 Y0 F100\nG2 X20 Y0 CR=-7 TURN=1 Z-3\n",
+]
+
+
+@pytest.mark.parametrize("form", range(len(CIRCLE_FORMS)))
+def test_circle_forms_turn_with_the_frame(form):
+    # every circle form read through TRANS X7 Y-3, AROT RPL=37 is the image
+    # of the same form read plain: p -> (7,-3) + R(37) p, centres alike
+    plain = read(CIRCLE_FORMS[form])
+    framed = read("TRANS X7 Y-3\nAROT RPL=37\nG0 X0 Y0\n" + CIRCLE_FORMS[form])
+    moves = framed.blocks[1:]
+    assert len(moves) == len(plain.blocks)
+
+    def image(p):
+        q = turned(p, 37)
+        return (7 + q[0], -3 + q[1], p[2])
+    for a, b in zip(moves, plain.blocks):
+        assert a.motion is b.motion and a.turns == b.turns
+        assert close(a.end, image(b.end), 1e-7)
+        if b.center is not None:
+            assert close(a.center[:2], image(b.center)[:2], 1e-7)
+
+
 REFUSALS = {
     "rotation in space": ("ROT X30\n", 1, 5, "about Z only"),
     "RPL outside G17": ("G18\nROT RPL=30\n", 2, 5, "G17 only"),

@@ -7,7 +7,8 @@ tangential transition (CT)").
 Each is turned into the ISO form the G-code core executes: ``G2``/``G3``
 with the end point and the centre as offsets from the start (``I J K``), so
 the arc itself is checked and stored as every other arc. Positions here
-are machine coordinates ``(x, y, z)``; ``u, v`` the plane's axes
+are machine coordinates ``(x, y, z)``; the words written are in the work
+frame, which a programmable rotation (:mod:`.frames`) turns; ``u, v`` the plane's axes
 (:data:`~ccopt.program.model.PLANE_AXES`); angles in degrees as written.
 """
 from __future__ import annotations
@@ -16,7 +17,7 @@ import math
 
 from ccopt.program.expr import ExprError
 from ccopt.program.gcode.arcs import CENTRE_WORDS
-from ccopt.program.gcode.coordinates import work_offset
+from ccopt.program.gcode.coordinates import rotate_xy, rotation, to_machine, to_work
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.model import PLANE_AXES, Motion
 from ccopt.tolerances import POINT_EPS
@@ -27,33 +28,47 @@ COLLINEAR_SINE = 1e-9
 
 def end_point(state: GCodeState, L: dict) -> tuple[float, float, float]:
     """Machine coordinates of the X Y Z words ``L`` (absolute in work
-    coordinates, or added under ``G91``)."""
-    off = work_offset(state)
-    end = list(state.pos)
+    coordinates, or added under ``G91``, along the work axes, which a
+    programmable rotation turns)."""
+    work = list(to_work(state, state.pos))
     for k, a in enumerate("XYZ"):
         if a in L:
             v = L[a][0]
-            end[k] = state.pos[k] + v if state.incremental else v + off[k]
-    return (end[0], end[1], end[2])
+            work[k] = work[k] + v if state.incremental else v
+    return to_machine(state, work)
 
 
 def set_end_words(state: GCodeState, L: dict, end, col: int) -> None:
     """Write machine point ``end``'s in-plane coordinates as X Y Z words in
     the distance mode in force."""
-    off = work_offset(state)
+    here, there = to_work(state, state.pos), to_work(state, end)
     iu, iv, _ = PLANE_AXES[state.plane]
     for k in (iu, iv):
         a = "XYZ"[k]
-        value = end[k] - state.pos[k] if state.incremental else end[k] - off[k]
+        value = there[k] - here[k] if state.incremental else there[k]
         L[a] = (value, L[a][1] if a in L else col)
 
 
 def set_centre_words(state: GCodeState, L: dict, centre_uv, col: int) -> None:
-    """The centre ``(u, v)`` as the plane's centre words, offsets from the start."""
+    """The centre ``(u, v)`` (machine) as the plane's centre words: offsets
+    from the start along the work axes (the core turns them with a rotated
+    system, whose arcs are in G17)."""
     iu, iv, _ = PLANE_AXES[state.plane]
     wu, wv = CENTRE_WORDS[state.plane]
-    L[wu] = (centre_uv[0] - state.pos[iu], col)
-    L[wv] = (centre_uv[1] - state.pos[iv], col)
+    du, dv = rotate_xy(centre_uv[0] - state.pos[iu], centre_uv[1] - state.pos[iv],
+                       -rotation(state))
+    L[wu] = (du, col)
+    L[wv] = (dv, col)
+
+
+def centre_of_words(state: GCodeState, L: dict) -> tuple[float, float]:
+    """The machine ``(u, v)`` of the centre the plane's centre words give
+    (offsets from the start along the work axes; a word not written: 0)."""
+    iu, iv, _ = PLANE_AXES[state.plane]
+    wu, wv = CENTRE_WORDS[state.plane]
+    du, dv = rotate_xy(L[wu][0] if wu in L else 0.0, L[wv][0] if wv in L else 0.0,
+                       rotation(state))
+    return (state.pos[iu] + du, state.pos[iv] + dv)
 
 
 def _uv(state: GCodeState, p) -> tuple[float, float]:
@@ -132,9 +147,7 @@ def opening_angle(state: GCodeState, L: dict, motion: int, ar: float, has_centre
     s = _uv(state, state.pos)
     sign = 1.0 if motion == 30 else -1.0
     if has_centre:
-        wu, wv = CENTRE_WORDS[state.plane]
-        cu = s[0] + (L[wu][0] if wu in L else 0.0)
-        cv = s[1] + (L[wv][0] if wv in L else 0.0)
+        cu, cv = centre_of_words(state, L)
         a = math.radians(sign * ar)
         du, dv = s[0] - cu, s[1] - cv
         eu = cu + du * math.cos(a) - dv * math.sin(a)

@@ -16,7 +16,7 @@ from dataclasses import replace
 
 from ccopt.program.expr import ExprError
 from ccopt.program.gcode.codes import G_GROUPS, Words
-from ccopt.program.gcode.coordinates import to_work, work_offset
+from ccopt.program.gcode.coordinates import to_machine, to_work, work_offset
 from ccopt.program.gcode.execute import execute_words
 from ccopt.program.gcode.state import ProgramEnd
 from ccopt.program.gcode.units import feed_factor, input_factor
@@ -246,9 +246,8 @@ def _core_letters(run: SinumerikRun, bw: BlockWords) -> dict:
             value += work[k]
         letters[a] = (value, col)
     for a, (value, mode, col) in bw.centre.items():
-        if mode == "AC":
-            k = "XYZ".find({"I": "X", "J": "Y", "K": "Z"}[a])
-            value = value + work_offset(state)[k] - state.pos[k]
+        if mode == "AC":      # the offset from the start along the work axes
+            value -= work["IJK".index(a)]
         letters[a] = (value, col)
     for name, letter in (("CR", "R"), ("TURN", "P")):
         if name in bw.values:
@@ -304,13 +303,13 @@ def _middle(run: SinumerikRun, bw: BlockWords, col: int):
     state = run.state
     if not bw.middle:
         raise ExprError("CIP needs the intermediate point I1= J1= K1=", col)
-    off = work_offset(state)
-    point = list(state.pos)
+    here = to_work(state, state.pos)
+    point = list(here)
     for letter, (value, mode, _) in bw.middle.items():
         k = "IJK".index(letter)
         relative = mode == "IC" or (mode is None and state.incremental)
-        point[k] = state.pos[k] + value if relative else value + off[k]
-    return tuple(point)
+        point[k] = here[k] + value if relative else value
+    return to_machine(state, point)
 
 
 def _smooth_approach(run: SinumerikRun, bw: BlockWords, letters: dict, g: list) -> bool:
