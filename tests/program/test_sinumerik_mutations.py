@@ -37,7 +37,9 @@ INSERTS = ["G41", "G42", "G40", "G450", "G451", "DISC=50", "KONT", "KONTT", "G14
            "ENDIF", "ELSE", "LOOP", "FOR R9=1 TO 3", "ENDFOR", ";", "=", "AC(", "IC(2)",
            "$TC_DP6[1,1]=", "L9", "P3", "X", "Y-", "Z=", " ", "\n", "D0", "OFFN=1", "TURN=2",
            "G3", "G2", "G0", "G1", "F0", "1e999", "N5", "LBL:", "TRANS", "DEF REAL Q",
-           "RND=2", "RND=50", "CHF=1", "CHR=1.5", "RNDM=3", "RNDM=0", "FRC=100", "FRCM=0"]
+           "RND=2", "RND=50", "CHF=1", "CHR=1.5", "RNDM=3", "RNDM=0", "FRC=100", "FRCM=0",
+           "\nG111 X5 Y5\n", "\nG110 AP=30 RP=4\n", "AP=30", "RP=5", "AP=IC(15)",
+           "\nROT RPL=30\n", "\nAROT RPL=-20\n", "\nATRANS X2 Y1\n"]
 REPLACES = ["0", "1", "-", ".", "X", "Y", "G", "=", "(", ")", " ", "R", "\n", "9"]
 
 

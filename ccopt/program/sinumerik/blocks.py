@@ -21,7 +21,7 @@ from ccopt.program.gcode.execute import execute_words
 from ccopt.program.gcode.state import ProgramEnd
 from ccopt.program.gcode.units import feed_factor, input_factor
 from ccopt.program.model import PLANE_AXES, SmoothApproach
-from ccopt.program.sinumerik import arcs, corners, frames
+from ccopt.program.sinumerik import arcs, corners, frames, polar
 from ccopt.program.sinumerik.calls import passes_of
 from ccopt.program.sinumerik.lexer import Line
 from ccopt.program.sinumerik.state import SinumerikRun
@@ -46,7 +46,9 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
         return _call(bw)
     if bw.frame is not None:
         frames.frame_block(run, bw)
-    if bw.frame is not None or bw.empty:
+    elif bw.pole is not None:
+        polar.pole_block(run, bw)
+    if bw.frame is not None or bw.pole is not None or bw.empty:
         corners.after_block(run, {}, first_new)
         return None
     bw = _pending_approach(run, bw)
@@ -59,6 +61,7 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
     corners.read_modal(run, bw.values)
     letters = _core_letters(run, bw)
     g = list(bw.g)
+    polar.polar_move(run, bw, letters, g)
     _circle_forms(run, bw, letters, g)
     sar = _smooth_approach(run, bw, letters, g)
     try:

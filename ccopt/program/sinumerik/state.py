@@ -43,6 +43,10 @@ class SinumerikRun:
     pending_line: int = 0         # its 0-based line
     frame_shift: tuple = (0.0, 0.0, 0.0)   # the programmable frame (frames.py)
     frame_turn: float = 0.0                # its turn about Z, degrees
+    pole: tuple | None = None     # the polar pole (u, v), work coordinates (polar.py)
+    pole_plane: str = "XY"        # the plane it was set in
+    ap: float | None = None       # the polar angle and radius kept from block to block
+    rp: float | None = None
     rndm: float = 0.0             # RNDM: the modal rounding radius, 0 off (corners.py)
     frcm: float | None = None     # FRCM: the modal feed of chamfers and roundings
     corner: object = None         # a chamfer or rounding waiting for its next block

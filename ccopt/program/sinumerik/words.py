@@ -36,7 +36,8 @@ SAR_DIRECTION_G = {140, 141, 142, 143}
 SAR_INFEED_G = {340, 341}
 APPROACH_WORDS = {"NORM", "KONT", "KONTT", "KONTC"}
 BOTTLENECK_WORDS = {"CDON", "CDOF", "CDOF2"}
-VALUE_WORDS = {"CR", "AR", "TURN", "DISR", "DISCL", "FAD", "DISC", "OFFN", "RPL"}
+VALUE_WORDS = {"CR", "AR", "TURN", "DISR", "DISCL", "FAD", "DISC", "OFFN", "RPL", "AP", "RP"}
+POLE_G = {110, 111, 112}
 #: Chamfer and rounding words (:mod:`.corners`): values as written.
 CORNER_VALUES = {"CHF", "CHR", "RND", "RNDM", "FRC", "FRCM"}
 AXES = "XYZABC"
@@ -80,6 +81,7 @@ class BlockWords:
     end: bool = False                            # M17 or RET: end of the program
     call: tuple | None = None                    # (subprogram name, col)
     frame: tuple | None = None                   # (TRANS ATRANS ROT or AROT, col)
+    pole: tuple | None = None                    # (110|111|112, col)
     tool_name: tuple | None = None               # T="name": (name, col)
     passes: tuple | None = None                  # P: (value, col)
     ignored: list = field(default_factory=list)  # (code, col) read and ignored
@@ -90,7 +92,7 @@ class BlockWords:
                     or self.values or self.comp or self.corner or self.sar
                     or self.sar_direction or self.sar_infeed or self.approach
                     or self.bottleneck or self.motion or self.edge or self.end
-                    or self.call or self.passes or self.frame or self.tool_name)
+                    or self.call or self.passes or self.frame or self.tool_name or self.pole)
 
 
 def read_block(run: SinumerikRun, line: Line) -> BlockWords:
@@ -231,12 +233,10 @@ def _unknown(name: str) -> str:
     if name == "ANG":
         return ("ANG: contour definitions by angle are not read by ccopt: program the end "
                 "points")
-    if name in ("AP", "RP"):
-        return f"{name}: polar coordinates are not read by ccopt: program X Y Z"
     return (f"{name} is not read by ccopt's SINUMERIK reader (G0-G3, CIP, CT, AR=, CR=, "
             "TURN=, G17-G19, G40-G42, G450/G451, NORM/KONT, SAR G140-G348, CHF/CHR/RND/"
-            "RNDM, R parameters and DEF variables, IF/WHILE/REPEAT/LOOP/FOR, GOTOF/GOTOB and "
-            "subprogram calls "
+            "RNDM, AP/RP with G110-G112, TRANS/ATRANS/ROT/AROT, R parameters and DEF "
+            "variables, IF/WHILE/REPEAT/LOOP/FOR, GOTOF/GOTOB and subprogram calls "
             f"are): a command it does not know, or a call of a subprogram with no file "
             f"{name}.SPF beside the program")
 
@@ -258,7 +258,7 @@ def _g(bw: BlockWords, value: float, col: int) -> None:
         raise ExprError(f"G{value:g} is not a SINUMERIK G-code (they are whole numbers)", col)
     slots = {**{g: "comp" for g in COMP_G}, **{g: "corner" for g in CORNER_G},
              **{g: "sar" for g in SAR_KIND_G}, **{g: "sar_direction" for g in SAR_DIRECTION_G},
-             **{g: "sar_infeed" for g in SAR_INFEED_G}}
+             **{g: "sar_infeed" for g in SAR_INFEED_G}, **{g: "pole" for g in POLE_G}}
     if n in slots:
         if getattr(bw, slots[n]) is not None:
             raise ExprError(f"G{n} and G{getattr(bw, slots[n])[0]} on one block belong to "
