@@ -2,13 +2,16 @@
 reads (issue 34: reading 100,000 lines <= 0.4 s).
 
 A straight move line (``[LINEAR|RAPID] [X..] [Y..] [Z..]``) is run by
-``Interpreter.straight_line``, a plain line (modes, ``CC0``-``CC2``, axis and
-``F`` words with literal numbers) by ``Interpreter.plain_line``, any other
+``ccopt.program.pmac.straight.run_straight`` (runs of them in one loop, the
+common spelling matched by ``AXES_LINE_RE`` first), a plain line (modes,
+``CC0``-``CC2``, axis and ``F`` words with literal numbers) by
+``Interpreter.plain_line``, any other
 line statement by statement. Switching the fast paths off, one after the
 other, must leave the Program unchanged: every block field, the meta and
 every error message with its file:line:col. The blocks of a move are built
-by ``ccopt.program.blocks.new_block`` without ``Block.__init__``: they must be the blocks
-``Block(...)`` makes.
+by ``ccopt.program.blocks.new_block``, and those of a run of straight moves
+field by field for the whole run, without ``Block.__init__``: they must be
+the blocks ``Block(...)`` makes.
 """
 from __future__ import annotations
 
@@ -39,9 +42,13 @@ def _outcome(text: str, start=(0.0, 0.0, 0.0)):
 
 
 def _outcomes(text: str, start=(0.0, 0.0, 0.0)):
-    """The outcome with every path, without the straight path, and statement by statement."""
+    """The outcome with every path, without the straight path, and statement by
+    statement; the first also without the axes-line pattern (its lines left
+    to ``STRAIGHT_LINE_RE``), which must give the same."""
     with pytest.MonkeyPatch.context() as mp:
         fast = _outcome(text, start)
+        mp.setattr(statements, "AXES_LINE_RE", NEVER)
+        assert _outcome(text, start) == fast
         mp.setattr(statements, "STRAIGHT_LINE_RE", NEVER)
         plain = _outcome(text, start)
         mp.setattr(statements, "PLAIN_LINE_RE", NEVER)
@@ -160,3 +167,23 @@ def test_split_lines_line_by_line(text):
             line = line[:-1]
         expected.append((n, line.split(";", 1)[0].upper()))
     assert split_lines(text, "f") == expected
+
+
+def test_straight_run_blocks_are_the_dataclass_blocks():
+    """The blocks of a run of straight lines (mode changes, markers, feed and
+    move time within it) have every field set, and are the blocks ``Block``
+    makes of those fields."""
+    text = ("F10 CCR1 CC1\nX1 Y2 ; ccopt: air\nRAPID Z3\nLINEAR X-0\nY-1.5 Z.5\n\n"
+            "TM20\nX2\n LINEAR Y 3\n")
+    prog = read_pmac(text, "s.pmc")
+    assert [b.source.line for b in prog.blocks] == [2, 3, 4, 5, 8, 9]
+    assert [b.source.col for b in prog.blocks] == [1, 7, 8, 1, 1, 9]
+    assert [b.surface for b in prog.blocks] == ["air", None, None, None, None, None]
+    assert [b.feed for b in prog.blocks] == [10.0, None, 10.0, 10.0, None, None]
+    assert [b.move_time for b in prog.blocks] == [None] * 4 + [0.02, 0.02]
+    for block in prog.blocks:
+        expected = Block(**{f.name: getattr(block, f.name) for f in fields(Block)})
+        assert type(block) is Block and type(block.source) is Source
+        assert block == expected and hash(block) == hash(expected)
+        assert repr(block) == repr(expected)
+    assert repr(prog.blocks[2].end) == "(-0.0, 2.0, 3.0)"

@@ -16,7 +16,8 @@ Modules: :mod:`.lexer` (lines, command words, constants), :mod:`.buffers`
 (``OPEN PROG``/``CLOSE``, on-line commands), :mod:`.variables` (P/Q/I/M
 variables, ``{data}`` and expressions), :mod:`.moves` (the move of a line,
 circle centres), :mod:`.blocks` (the block of a move, made quickly),
-:mod:`.statements` (modal state and statement execution),
+:mod:`.statements` (modal state and statement execution), :mod:`.straight`
+(runs of straight move lines, the bulk of a long program),
 :mod:`.reader` (:func:`read_pmac`).
 """
 from __future__ import annotations

@@ -98,6 +98,14 @@ PLAIN_LINE_RE = _plain_line_re(PLAIN_STATEMENTS)
 STRAIGHT_LINE_RE = re.compile(
     r"[ \t]*(?:(LINEAR|LIN|RAPID|RPD)[ \t]*)?"
     + "".join(rf"(?:({a})[ \t]*+([-+]?)[ \t]*+(\d++\.?\d*+|\.\d++)[ \t]*+)?" for a in AXES))
+#: A straight move line as CAM writes it, a subset of :data:`STRAIGHT_LINE_RE`
+#: with fewer groups and choices, tried first: ``X``, ``Y``, ``Z`` words from the first column,
+#: in this order, each at most once, the sign right before the digits, one
+#: blank or none after each word: groups the signed numbers of X, Y and Z
+#: (``None`` when not written). Possessive throughout: the blank after a
+#: number, if given back, could start nothing that follows.
+AXES_LINE_RE = re.compile("".join(
+    rf"(?:{a}([-+]?(?:\d++\.?\d*+|\.\d++)) ?+)?+" for a in AXES))
 HEX_RE = re.compile(r"\$([0-9A-F]+)")
 NUMBER_RE = re.compile(r"(\d+\.?\d*|\.\d+)")
 _WORD_RE = re.compile(r"[A-Z][A-Z0-9]*")

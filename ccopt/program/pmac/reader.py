@@ -87,10 +87,7 @@ def _read(text: str, file: str, start: Vec3, program: int | None) -> Program:
         meta["program"], body = buffers.select_program(download, lines, program, file)
     run.apply_coordinate_system_defaults()
     run.in_body = True
-    for lineno, line in body:
-        if run.finished:
-            break
-        run.program_line(lineno, line)
+    run.run_lines(body)
     return Program(blocks=tuple(run.blocks), file=file, dialect="pmac", units="mm",
                    start=start, meta=meta)
 

@@ -17,11 +17,12 @@ from ccopt.errors import ProgramError
 from ccopt.program.model import (MAX_PROGRAM_COORDINATE, Block, Modal, Motion, Source, Vec3,
                                  out_of_range)
 from ccopt.program.blocks import new_block
-from ccopt.program.pmac.lexer import (AXES, LETTERS_RE, MOVE_MODES, OTHER_AXES,
+from ccopt.program.pmac.lexer import (AXES, AXES_LINE_RE, LETTERS_RE, MOVE_MODES, OTHER_AXES,
                                       PLAIN_LINE_RE, STRAIGHT_LINE_RE, UNSUPPORTED,
                                       UNSUPPORTED_MODES, UNSUPPORTED_WHY, VECTORS, keyword_at,
                                       skip, word)
 from ccopt.program.pmac.moves import CircleMode, PendingMove, circle_centre, finite_point
+from ccopt.program.pmac.straight import run_straight
 from ccopt.program.pmac.variables import Variables
 
 _LABEL_RE = re.compile(r"[NO][ \t]*\d+")
@@ -142,15 +143,25 @@ class Interpreter:
             self.meta["break_cos"] = i[n]
 
     # -- program body -----------------------------------------------------------
-    def program_line(self, line: int, text: str) -> None:
-        """Execute one line of the program buffer: a straight move line
-        (:meth:`straight_line`), a plain one (:meth:`plain_line`), or any
-        other statement by statement, each path the same in effect as the next."""
+    def run_lines(self, body: list[tuple[int, str]]) -> None:
+        """Execute the ``(line number, text)`` lines of the program buffer
+        until the end or ``RETURN``: runs of straight move lines in one loop
+        (:func:`~ccopt.program.pmac.straight.run_straight`), every other line
+        by :meth:`other_line`, in order."""
+        k, count = 0, len(body)
+        while k < count and not self.finished:
+            k = run_straight(self, body, k, AXES_LINE_RE, STRAIGHT_LINE_RE)
+            if k < count:
+                self.other_line(*body[k])
+                k += 1
+
+    def other_line(self, line: int, text: str) -> None:
+        """Execute a line that is not a straight move line (or one whose
+        move raises an error): a plain one (:meth:`plain_line`), or any other
+        statement by statement, each path the same in effect as the next."""
         self.pending = None
         if self.line_mcodes:
             self.line_mcodes = []
-        if self.straight_line(line, text):
-            return
         plain = PLAIN_LINE_RE.fullmatch(text)
         if plain is not None:
             self.plain_line(line, plain)    # it runs its moves itself and writes no M-code
@@ -171,66 +182,10 @@ class Interpreter:
         """Execute a straight move line (:data:`~ccopt.program.pmac.lexer.STRAIGHT_LINE_RE`:
         ``[LINEAR|RAPID] [X..] [Y..] [Z..]``, most lines of a long program)
         whose move raises no error, and say ``True``; ``False``, with nothing
-        done, for any other line, which :meth:`plain_line` or :meth:`statement`
-        runs. They are the reference: this is :meth:`plain_line` and
-        :meth:`move` for the one case, everything checked before anything is
-        changed, at half their cost per line (issue 34)."""
-        m = STRAIGHT_LINE_RE.fullmatch(text)
-        if m is None:
-            return False
-        kw, _, x_sign, x, _, y_sign, y, _, z_sign, z = m.groups()
-        # the group of the first axis letter: where the move is written
-        first = 2 if x is not None else 5 if y is not None else 8 if z is not None else 0
-        mode = self.mode if kw is None else MOVE_MODES[kw]
-        if mode == "LINEAR":
-            if self.time_mode:
-                feed, move_time = None, self.move_time
-            elif self.feed is None:
-                return False
-            else:
-                feed, move_time = self.feed, None
-            motion = Motion.LINE
-        elif mode == "RAPID":
-            feed = move_time = None
-            motion = Motion.RAPID
-        else:
-            return False
-        if not first:
-            return False
-        # |value| <= bound (which inf is not), then the end point as finite_point wants it;
-        # written out per axis: this runs once per line of a long program, and a loop
-        # over the three axes measured slower (bench/io.py)
-        bound = MAX_PROGRAM_COORDINATE
-        start = self.pos
-        end_x, end_y, end_z = start
-        if x is not None:
-            value = float(x)
-            if not value <= bound:
-                return False
-            value = -value if x_sign == "-" else value
-            end_x = end_x + value if self.incremental["X"] else value
-        if y is not None:
-            value = float(y)
-            if not value <= bound:
-                return False
-            value = -value if y_sign == "-" else value
-            end_y = end_y + value if self.incremental["Y"] else value
-        if z is not None:
-            value = float(z)
-            if not value <= bound:
-                return False
-            value = -value if z_sign == "-" else value
-            end_z = end_z + value if self.incremental["Z"] else value
-        if not (-bound <= end_x <= bound and -bound <= end_y <= bound
-                and -bound <= end_z <= bound):
-            return False
-        self.mode = mode
-        end = (end_x, end_y, end_z)
-        self.blocks.append(new_block(
-            self.file, line, m.start(first) + 1, motion, start, end, self.modal(), None,
-            feed, move_time, (), self.markers.get(line) if self.markers else None))
-        self.pos = end
-        return True
+        done, for any other line (an empty one too), which :meth:`other_line`
+        runs (:func:`~ccopt.program.pmac.straight.run_straight` on the one line)."""
+        return bool(text) and run_straight(self, [(line, text)], 0, AXES_LINE_RE,
+                                           STRAIGHT_LINE_RE) == 1
 
     def plain_line(self, line: int, plain: re.Match) -> None:
         """Execute a line of move modes, ``CC0``/``CC1``/``CC2`` and axis and
