@@ -117,15 +117,18 @@ def _gouge_detail(pairs: PairDistances, q: int, clearance: float) -> dict:
 def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info):
     viol = []
     bad = pairs.margin < -eps
-    for q in np.flatnonzero(bad & pairs.counted):
-        i, j = int(pairs.tool[q]), int(pairs.elem[q])
+    sel = np.flatnonzero(bad & pairs.counted)
+    # the numbers as Python floats and ints in one pass each (tolist gives the
+    # values float() and int() give, element by element)
+    cols = (sel.tolist(), pairs.tool[sel].tolist(), pairs.elem[sel].tolist(),
+            (-pairs.margin[sel]).tolist(), pairs.wt[sel].tolist(), pairs.we[sel].tolist(),
+            pairs.exact[sel].tolist(), pairs.required[sel].tolist())
+    for q, i, j, depth, wt, we, exact, required in zip(*cols):
         line, role = info(i)
         viol.append(Violation(
-            "gouge", float(-pairs.margin[q]), i, line, role, j, contour.element_line(j),
-            (float(pairs.wt[q, 0]), float(pairs.wt[q, 1])),
-            (float(pairs.we[q, 0]), float(pairs.we[q, 1])),
-            EXACT if pairs.exact[q] else CERTIFIED,
-            _gouge_detail(pairs, q, float(pairs.required[q]))))
+            "gouge", depth, i, line, role, j, contour.element_line(j),
+            (wt[0], wt[1]), (we[0], we[1]), EXACT if exact else CERTIFIED,
+            _gouge_detail(pairs, q, required)))
     viol.sort(key=lambda v: -v.depth)
     approaches = []
     for q in np.flatnonzero(bad & ~pairs.counted)[:LISTED_APPROACHES]:

@@ -14,12 +14,12 @@ the verdict is "ok within tolerance"; deeper ones fail. The figures stay exact.
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from dataclasses import fields, replace
 
 from ccopt.errors import ProgramError
 from ccopt.tolerances import GOUGE_TOLERANCE, LINUXCNC_CONCAVE_CORNER
 from ccopt.toolpath import STRAIGHT_JOINS, ToolPath
-from ccopt.verify.certificate import Certificate
+from ccopt.verify.certificate import Certificate, Violation
 
 #: The checks whose violations are lengths a tolerance applies to (the
 #: violation kind of each check).
@@ -65,6 +65,23 @@ def cause_of(violation, toolpath: ToolPath) -> str:
     return CAUSE_WITHIN
 
 
+#: The fields :func:`_with_cause` copies, in order (checked here: a field
+#: added to :class:`Violation` must be copied there too).
+_VIOLATION_FIELDS = ("kind", "depth", "tool_segment", "tool_block", "tool_role", "element",
+                     "element_block", "witness_tool", "witness_contour", "basis", "detail")
+if tuple(f.name for f in fields(Violation)) != _VIOLATION_FIELDS:
+    raise ImportError("Violation's fields changed: update tolerance._with_cause")
+
+
+def _with_cause(v: Violation, cause: str) -> Violation:
+    """``v`` with ``cause`` in its detail: ``dataclasses.replace`` field by field,
+    called directly (a long path has tens of thousands of warnings, and
+    ``replace`` looks up the fields anew for each)."""
+    return Violation(v.kind, v.depth, v.tool_segment, v.tool_block, v.tool_role, v.element,
+                     v.element_block, v.witness_tool, v.witness_contour, v.basis,
+                     {**v.detail, "cause": cause})
+
+
 def apply_tolerance(cert: Certificate, tolerance: float, toolpath: ToolPath) -> Certificate:
     """``cert`` with its violations no deeper than ``tolerance`` moved to
     ``warnings`` (each with its ``cause`` in ``detail``) and each check's
@@ -72,7 +89,7 @@ def apply_tolerance(cert: Certificate, tolerance: float, toolpath: ToolPath) -> 
     warn, keep = [], []
     for v in cert.violations:
         if v.kind in TOLERATED.values() and math.isfinite(v.depth) and v.depth <= tolerance:
-            warn.append(replace(v, detail={**v.detail, "cause": cause_of(v, toolpath)}))
+            warn.append(_with_cause(v, cause_of(v, toolpath)))
         else:
             keep.append(v)
     checks = []

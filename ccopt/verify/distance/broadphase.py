@@ -91,34 +91,7 @@ def candidate_pairs(tool_box: np.ndarray, elem_box: np.ndarray, reach: np.ndarra
     ti = np.flatnonzero(~big_t)
     ei = np.flatnonzero(~big_e)
     if ti.size and ei.size:
-        ek, eid, _, _ = _expand(lo_e[ei], hi_e[ei], ei, ncol)
-        order = np.argsort(ek, kind="stable")
-        ek, eid = ek[order], eid[order]
-        tk, tid, tcx, tcy = _expand(lo_t[ti], hi_t[ti], ti, ncol)
-        first = np.searchsorted(ek, tk, side="left")
-        last = np.searchsorted(ek, tk, side="right")
-        cnt = last - first
-        keep = cnt > 0
-        tid, tcx, tcy, first, cnt = tid[keep], tcx[keep], tcy[keep], first[keep], cnt[keep]
-        csum = np.cumsum(cnt)
-        pos = 0
-        while pos < tid.size:                       # chunks of ~CHUNK candidate pairs
-            base = csum[pos - 1] if pos else 0
-            stop = max(int(np.searchsorted(csum, base + CHUNK, side="right")), pos + 1)
-            c = cnt[pos:stop]
-            rep = np.repeat(np.arange(pos, stop), c)
-            off = np.arange(int(c.sum())) - np.repeat(np.cumsum(c) - c, c)
-            pt = tid[rep]
-            pe = eid[first[rep] + off]
-            # Report each pair once, in the cell of the lower-left corner of the
-            # two boxes' overlap: cell (max of the lower cells), floor being monotone.
-            ok = (np.maximum(lo_t[pt, 0], lo_e[pe, 0]) == tcx[rep])
-            ok &= (np.maximum(lo_t[pt, 1], lo_e[pe, 1]) == tcy[rep])
-            pt, pe = pt[ok], pe[ok]
-            ok = _overlap(tool_box[pt], grown[pe])
-            out_t.append(pt[ok])
-            out_e.append(pe[ok])
-            pos = stop
+        _grid_join(tool_box, grown, (lo_t, hi_t, ti), (lo_e, hi_e, ei), ncol, (out_t, out_e))
 
     # Direct tests for big boxes (each against every box of the other side).
     for i in np.flatnonzero(big_t):
@@ -133,3 +106,51 @@ def candidate_pairs(tool_box: np.ndarray, elem_box: np.ndarray, reach: np.ndarra
     if not out_t:
         return empty
     return (np.concatenate(out_t).astype(np.intp), np.concatenate(out_e).astype(np.intp))
+
+
+def _grid_join(tool_box: np.ndarray, grown: np.ndarray, tools, elems, ncol: np.int64,
+               out) -> None:
+    """Append to ``out = (tool ids, element ids)`` the pairs of ordinary boxes
+    that overlap, in cell order: ``tools = (lo, hi, ids)`` the tool boxes'
+    lower and upper cells and the rows taking part, ``elems`` the same for the
+    grown element boxes."""
+    lo_t, hi_t, ti = tools
+    lo_e, hi_e, ei = elems
+    ek, eid, _, _ = _expand(lo_e[ei], hi_e[ei], ei, ncol)
+    order = np.argsort(ek, kind="stable")
+    ek, eid = ek[order], eid[order]
+    tk, tid, tcx, tcy = _expand(lo_t[ti], hi_t[ti], ti, ncol)
+    first = np.searchsorted(ek, tk, side="left")
+    last = np.searchsorted(ek, tk, side="right")
+    cnt = last - first
+    keep = cnt > 0
+    tid, tcx, tcy, first, cnt = tid[keep], tcx[keep], tcy[keep], first[keep], cnt[keep]
+    csum = np.cumsum(cnt)
+    # One contiguous column per coordinate: most candidates fail a test, and
+    # gathering single columns of the survivors only is cheaper than whole rows.
+    ltx, lty = np.ascontiguousarray(lo_t[:, 0]), np.ascontiguousarray(lo_t[:, 1])
+    lex, ley = np.ascontiguousarray(lo_e[:, 0]), np.ascontiguousarray(lo_e[:, 1])
+    tx0, ty0, tx1, ty1 = (np.ascontiguousarray(tool_box[:, k]) for k in range(4))
+    gx0, gy0, gx1, gy1 = (np.ascontiguousarray(grown[:, k]) for k in range(4))
+    pos = 0
+    while pos < tid.size:                       # chunks of ~CHUNK candidate pairs
+        base = csum[pos - 1] if pos else 0
+        stop = max(int(np.searchsorted(csum, base + CHUNK, side="right")), pos + 1)
+        c = cnt[pos:stop]
+        rep = np.repeat(np.arange(pos, stop), c)
+        off = np.arange(int(c.sum())) - np.repeat(np.cumsum(c) - c, c)
+        pt = tid[rep]
+        pe = eid[first[rep] + off]
+        # Report each pair once, in the cell of the lower-left corner of the
+        # two boxes' overlap: cell (max of the lower cells), floor being monotone.
+        ok = np.maximum(ltx[pt], lex[pe]) == tcx[rep]
+        ok &= np.maximum(lty[pt], ley[pe]) == tcy[rep]
+        k = np.flatnonzero(ok)
+        pt, pe = pt[k], pe[k]
+        # the boxes' overlap (as _overlap), x first, then y on the pairs left
+        k = np.flatnonzero((tx0[pt] <= gx1[pe]) & (gx0[pe] <= tx1[pt]))
+        pt, pe = pt[k], pe[k]
+        k = np.flatnonzero((ty0[pt] <= gy1[pe]) & (gy0[pe] <= ty1[pt]))
+        out[0].append(pt[k])
+        out[1].append(pe[k])
+        pos = stop

@@ -242,15 +242,23 @@ class _State:
         """One round of :func:`ccopt.verify.distance.certified.min_distance` for every pair;
         the pieces to halve."""
         P = self.P
-        # each pair's smallest genuine dq (its first in piece order on ties, as argmin)
+        # each pair's smallest genuine dq (its first in piece order on ties, as
+        # argmin), by scatter-reductions rather than a sort of all the pieces;
+        # fmin skips a NaN as argmin would, and a pair none of whose pieces has
+        # a smaller dq than inf is never better than its best anyway
         dqm = np.where(ok, dq, np.inf)
-        order = np.lexsort((dqm, pid))
-        first = order[np.r_[True, pid[order][1:] != pid[order][:-1]]]
+        low = np.full(P, np.inf)
+        np.fmin.at(low, pid, dqm)
+        hits = np.flatnonzero(dqm == low[pid])
+        first = np.full(P, pid.size, np.intp)
+        np.minimum.at(first, pid[hits], hits)
+        first = first[first < pid.size]
         better = dqm[first] < self.best[pid[first]]
         upd, at = pid[first][better], first[better]
         self.best[upd], self.wa[upd], self.wb[upd] = dq[at], qa[at], qb[at]
-        present = np.unique(pid)
-        self.npieces[present] = np.bincount(pid, minlength=P)[present]
+        counts = np.bincount(pid, minlength=P)
+        present = counts > 0
+        self.npieces[present] = counts[present]
         keep = live & (lb < self.best[pid] - tol) & (lb < caps[pid])
         gone = live & ~keep
         np.minimum.at(self.dropped, pid[gone], lb[gone])
