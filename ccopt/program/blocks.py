@@ -33,8 +33,13 @@ if [f.name for f in fields(Source)] != ["file", "line", "col"]:
     raise TypeError("Source has other fields than file, line, col")  # pragma: no cover
 (_set_source, _set_motion, _set_start, _set_end, _set_modal, _set_center, _set_feed,
  _set_move_time, _set_mcodes, _set_surface) = (_SET[name] for name in _GIVEN)
-_set_file, _set_line, _set_col = (getattr(Source, name).__set__
-                                  for name in ("file", "line", "col"))
+#: The setters of Source's file, line and col (shared with pmac/straight.py).
+SOURCE_SETTERS = tuple(getattr(Source, name).__set__ for name in ("file", "line", "col"))
+_set_file, _set_line, _set_col = SOURCE_SETTERS
+#: Each field's setter, and (setter, default) of the fields a PMAC move does
+#: not give, for makers of many blocks at once (pmac/straight.py).
+FIELD_SETTERS = _SET
+DEFAULT_SETTERS = _DEFAULTS
 _new = object.__new__
 #: (name, setter) of every field of Block.
 _ALL = tuple((f.name, _SET[f.name]) for f in fields(Block))

@@ -16,25 +16,14 @@ from __future__ import annotations
 
 import re
 from collections import deque
-from dataclasses import MISSING, fields
 from itertools import repeat
 
+from ccopt.program.blocks import DEFAULT_SETTERS, FIELD_SETTERS, SOURCE_SETTERS
 from ccopt.program.model import MAX_PROGRAM_COORDINATE, Block, Motion, Source
 from ccopt.program.pmac.lexer import MOVE_MODES
 
-#: The fields a straight move gives; every other field of Block takes its default.
-_GIVEN = ("source", "motion", "start", "end", "modal", "center", "feed", "move_time",
-          "mcodes", "surface")
-_SET = {f.name: getattr(Block, f.name).__set__ for f in fields(Block)}
-#: (setter, default) of every other field.
-_DEFAULTS = tuple((_SET[f.name], f.default) for f in fields(Block) if f.name not in _GIVEN)
-# what _make_blocks relies on in the model, checked once
-if any(default is MISSING for _, default in _DEFAULTS) or hasattr(Block, "__post_init__"):
-    raise TypeError("Block has a field without a plain default, "  # pragma: no cover
-                    "or a __post_init__, which _make_blocks does not know")
-if [f.name for f in fields(Source)] != ["file", "line", "col"]:
-    raise TypeError("Source has other fields than file, line, col")  # pragma: no cover
-_SOURCE_SET = tuple(getattr(Source, name).__set__ for name in ("file", "line", "col"))
+# the same setters as new_block's, and its import-time check of the model
+_SET, _DEFAULTS, _SOURCE_SET = FIELD_SETTERS, DEFAULT_SETTERS, SOURCE_SETTERS
 _new = object.__new__
 
 
