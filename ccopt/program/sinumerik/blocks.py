@@ -21,7 +21,7 @@ from ccopt.program.gcode.execute import execute_words
 from ccopt.program.gcode.state import ProgramEnd
 from ccopt.program.gcode.units import feed_factor, input_factor
 from ccopt.program.model import PLANE_AXES, SmoothApproach
-from ccopt.program.sinumerik import arcs, corners, frames, polar
+from ccopt.program.sinumerik import arcs, corners, cycles, frames, polar
 from ccopt.program.sinumerik.calls import passes_of
 from ccopt.program.sinumerik.lexer import Line
 from ccopt.program.sinumerik.state import SinumerikRun
@@ -48,7 +48,10 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
         frames.frame_block(run, bw)
     elif bw.pole is not None:
         polar.pole_block(run, bw)
-    if bw.frame is not None or bw.pole is not None or bw.empty:
+    elif bw.cycle is not None or bw.mcall is not None:
+        _cycle_block(run, bw)
+    if bw.frame is not None or bw.pole is not None or bw.cycle is not None \
+            or bw.mcall is not None or bw.empty:
         corners.after_block(run, {}, first_new)
         return None
     bw = _pending_approach(run, bw)
@@ -71,11 +74,28 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
         corners.after_block(run, bw.values, first_new)
         raise
     corners.after_block(run, bw.values, first_new)
+    if run.mcall is not None and any(b.motion.is_move for b in state.blocks[first_new:]):
+        corners.interrupt(run, "a drilling cycle (MCALL) follows")
+        cycles.run_cycle(run, run.mcall)
     if sar:
         _set_modes(run, replace(run.modes, sar=None))
     if bw.end:
         raise ProgramEnd()
     return None
+
+
+def _cycle_block(run: SinumerikRun, bw: BlockWords) -> None:
+    """A drilling cycle called once, or ``MCALL`` (with a cycle: modal, alone:
+    off); in a block of its own (:mod:`.cycles`)."""
+    if not replace(bw, cycle=None, mcall=None, ignored=[]).empty:
+        what = "MCALL" if bw.mcall is not None else bw.cycle.name
+        raise ExprError(f"{what} stands in a block of its own (move to the position in the "
+                        "block before)", bw.first)
+    if bw.mcall is not None:
+        run.mcall = bw.cycle
+        return
+    corners.interrupt(run, "a drilling cycle follows")
+    cycles.run_cycle(run, bw.cycle)
 
 
 def _call(bw: BlockWords) -> tuple[str, int, int]:

@@ -119,6 +119,14 @@ def after_block(run, values: dict, first_new: int) -> None:
     run.corner = PendingCorner(kind, size, feed, last, state.line_no, col)
 
 
+def interrupt(run, why: str) -> None:
+    """Moves not of the program's blocks follow (a drilling cycle): a
+    waiting element is not inserted."""
+    if run.corner is not None:
+        _drop(run, run.corner, why)
+        run.corner = None
+
+
 def at_end(run) -> None:
     """The program ended with an element waiting: none is inserted."""
     if run.corner is not None:

@@ -51,5 +51,6 @@ class SinumerikRun:
     frcm: float | None = None     # FRCM: the modal feed of chamfers and roundings
     corner: object = None         # a chamfer or rounding waiting for its next block
     not_inserted: dict = field(default_factory=dict)  # corners.NOT_INSERTED
+    mcall: object = None          # the drilling cycle MCALL runs after each move (cycles.py)
     offset: int = 0        # where the running text's lines start in state.lines
     loaded: dict = field(default_factory=dict)    # subprogram name -> (structure, offset)

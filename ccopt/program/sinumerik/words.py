@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from ccopt.program.expr import ExprError
+from ccopt.program.sinumerik import cycles
 from ccopt.program.sinumerik.calls import find_sub
 from ccopt.program.sinumerik.lexer import Line, Word, next_name, read_word, skip_blanks, \
     string_argument
@@ -82,6 +83,8 @@ class BlockWords:
     call: tuple | None = None                    # (subprogram name, col)
     frame: tuple | None = None                   # (TRANS ATRANS ROT or AROT, col)
     pole: tuple | None = None                    # (110|111|112, col)
+    cycle: object = None                         # a drilling cycle called (cycles.py)
+    mcall: int | None = None                     # MCALL: its column
     tool_name: tuple | None = None               # T="name": (name, col)
     passes: tuple | None = None                  # P: (value, col)
     ignored: list = field(default_factory=list)  # (code, col) read and ignored
@@ -92,7 +95,8 @@ class BlockWords:
                     or self.values or self.comp or self.corner or self.sar
                     or self.sar_direction or self.sar_infeed or self.approach
                     or self.bottleneck or self.motion or self.edge or self.end
-                    or self.call or self.passes or self.frame or self.tool_name or self.pole)
+                    or self.call or self.passes or self.frame or self.tool_name or self.pole
+                    or self.cycle is not None or self.mcall is not None)
 
 
 def read_block(run: SinumerikRun, line: Line) -> BlockWords:
@@ -198,6 +202,12 @@ def _other(run: SinumerikRun, bw: BlockWords, w: Word, code: str, p: int) -> int
         bw.frame = (name, w.col)
     elif name == "PROC":
         return _proc(code, p)
+    elif name == "MCALL" and w.expr is None:
+        bw.mcall = w.col
+    elif cycles.is_cycle(name) and w.expr is None and w.index is None:
+        if bw.cycle is not None:
+            raise ExprError("one cycle call a block", w.col)
+        bw.cycle, p = cycles.read_call(run, name, code, p, w.col)
     elif name == "L" and w.literal is not None:
         _call(bw, f"L{int(w.literal)}" if w.literal == int(w.literal) else "L?", w.col)
     elif w.expr is None and w.index is None and find_sub(run.state, name) is not None:
