@@ -3,7 +3,9 @@
 :func:`open_program` builds the state (lines, expression grammar, the span
 of lines ``%`` delimits); :func:`run` executes lines in order, handing
 O-word lines to :mod:`.oword` (which returns the next line) and ordinary
-lines to :mod:`.codes` and :mod:`.execute`, until the program ends.
+lines to :mod:`.codes` and :mod:`.execute`, until the program ends. Runs of
+plain straight move lines go to :mod:`.plain` first, which executes those
+it is sure to execute as this loop does and leaves it the rest.
 """
 from __future__ import annotations
 
@@ -19,6 +21,7 @@ from ccopt.program.gcode.fanuc import exec_fanuc, runs_as_fanuc
 from ccopt.program.gcode.oword import count_line, exec_oword, innermost_loop
 from ccopt.program.gcode.parameters import (MAX_PARAMETER, attach_grammar, message_text,
                                              restore_after_call, set_parameter)
+from ccopt.program.gcode.plain import run_plain
 from ccopt.program.gcode.state import GCodeState, ProgramEnd
 from ccopt.program.gcode.units import output_units
 from ccopt.program.gcode.words import Lexed, lex, olabel, program_span
@@ -119,6 +122,12 @@ def _run_lines(state: GCodeState) -> None:
     # the program's lines, or a sub file's while a call runs there
     while (pc < state.end_line and not state.in_sub_file(pc)) or (
             len(state.frames) > 1 and state.in_sub_file(pc)):
+        # a run of plain move lines in one loop (plain.py), which leaves any
+        # line it is not sure of to this loop
+        after = run_plain(state, pc)
+        if after != pc:
+            pc = after
+            continue
         count_line(state, pc)
         try:
             lx = lex(state, pc)

@@ -1,0 +1,201 @@
+"""Runs of plain straight move lines, the most common lines of a long program.
+
+A plain line is ``[N<n>] [G0|G1] [X<n>] [Y<n>] [Z<n>] [F<n>]`` (those words
+in that order, upper case, each a letter directly followed by a literal
+number, at least one axis word, blanks only between words;
+:data:`PLAIN_LINE`), as CAM programs and ccopt's exports write most lines.
+Consecutive ones change only the motion mode, the feed and the position:
+:func:`run_plain` executes them in one loop, with the modal state read
+once, and makes their blocks together at the end of the run
+(:func:`_make_blocks`).
+
+The line-by-line path (:func:`~ccopt.program.gcode.reader._run_lines`, with
+:func:`~ccopt.program.gcode.execute.execute_words`) is the reference: a run
+starts only in a state where such a line does nothing but move (no lathe
+diameter mode, no unit conversion, feed per minute, no rotated system, no
+extra axis moved, no words waiting for a block, no permuted cycle end), and
+a line it is not sure of (any other spelling, a value past the bound, a feed
+move without a positive feed, the runaway guards' last lines) ends the run
+with nothing done for it: that path then runs it, and reports any error.
+Lengths are program units, feeds units per minute (``state.feed``) or per
+second (blocks).
+"""
+from __future__ import annotations
+
+import re
+from collections import deque
+from itertools import repeat
+
+from ccopt.program.blocks import DEFAULT_SETTERS, FIELD_SETTERS, SOURCE_SETTERS
+from ccopt.program.gcode.coordinates import rotation, work_offset
+from ccopt.program.gcode.machine_words import frame_of
+from ccopt.program.gcode.state import GCodeState
+from ccopt.program.gcode.units import input_factor
+from ccopt.program.model import MAX_PROGRAM_COORDINATE, Block, Motion, Source
+
+# A literal number as words._NUMBER reads it; the pattern's blanks and
+# letters after it keep that pattern's look-ahead (no point, no digit after
+# blanks) true wherever the whole line matches.
+_NUM = r"([+-]?(?:\d+\.?\d*|\.\d+))"
+#: A plain line: groups G digit (0 or 1), X, Y, Z and F numbers (None: absent).
+PLAIN_LINE = re.compile(rf"(?:N\d+[ \t]*)?(?:G0?([01])[ \t]*)?(?:X{_NUM}[ \t]*)?"
+                        rf"(?:Y{_NUM}[ \t]*)?(?:Z{_NUM}[ \t]*)?(?:F{_NUM}[ \t]*)?")
+#: ``G1 X.. Y.. Z..``, an export's every feed move (a plain line too), tried
+#: first: a lighter pattern, with nothing to decide but the numbers.
+FEED_XYZ_LINE = re.compile(rf"G1 X{_NUM} Y{_NUM} Z{_NUM}")
+
+_new = object.__new__
+#: (setter, default) of the fields a block of a plain move leaves at their
+#: defaults (frame and axes are set, the reference's with_words sets them).
+_DEFAULTS = tuple((setter, default) for setter, default in DEFAULT_SETTERS
+                  if setter not in (FIELD_SETTERS["frame"], FIELD_SETTERS["axes"]))
+
+
+def _each(setter, objects: list, values) -> None:
+    """``setter(obj, value)`` for each pair, the loop in C (a map drained by a deque)."""
+    deque(map(setter, objects, values), 0)
+
+
+def _ready(state: GCodeState) -> bool:
+    """A plain line would only move (and set the feed and motion mode): the
+    state's modes that change what it does are all at their plain values."""
+    return (state.siemens is None and not state.diameter_mode and state.extra is None
+            and state.cycle.tool_at is None and not state.pending_words
+            and state.feed_mode == "per_minute" and input_factor(state) == 1.0
+            and rotation(state) == 0.0)
+
+
+def _budget(state: GCodeState) -> int:
+    """Lines that may still execute before a runaway guard raises (the
+    guard's line itself is left to the line-by-line path)."""
+    n = state.max_executed_lines - state.executed
+    if state.in_loop:
+        n = min(n, state.max_loop_lines - state.loop_lines)
+    return n
+
+
+def run_plain(state: GCodeState, pc: int) -> int:
+    """Execute the plain lines (and empty lines) from ``pc`` (0-based) on, up
+    to the first that is not one, or that this loop is not sure to execute
+    as the line-by-line path does; the index of that line (``pc``: none)."""
+    lines = state.lines
+    match, xyz_match = PLAIN_LINE.fullmatch, FEED_XYZ_LINE.fullmatch
+    if match(lines[pc]) is None or not _ready(state):
+        return pc
+    bound = MAX_PROGRAM_COORDINATE
+    start = state.pos
+    if not all(-bound <= v <= bound for v in start):
+        return pc                   # the first block's start: the reference's error
+    stop = min(state.region_end(pc), pc + _budget(state))
+    inc = state.incremental
+    off_x, off_y, off_z = work_offset(state)
+    mode, feed = state.motion_mode, state.feed
+    end_x, end_y, end_z = start
+    # line indexes, motions, feeds (units/s) and end points of the run's moves
+    at, motions, feeds, ends = [], [], [], []
+    add_at, add_motion, add_feed, add_end = at.append, motions.append, feeds.append, ends.append
+    line_motion, rapid_motion = Motion.LINE, Motion.RAPID
+    for k in range(pc, stop):
+        text = lines[k]
+        m = xyz_match(text)
+        if m is not None:
+            x, y, z = m.groups()
+            line_mode, line_feed = 10, feed
+        elif not text:
+            continue                # an empty line does nothing
+        else:
+            m = match(text)
+            if m is None:
+                break
+            g, x, y, z, f = m.groups()
+            if x is None and y is None and z is None:
+                break               # no move: a mode or a feed alone
+            line_mode = mode if g is None else 10 if g == "1" else 0
+            line_feed = feed
+            if f is not None:
+                value = float(f)
+                if not 0.0 <= value <= bound:   # a negative F, past the bound (or inf)
+                    break
+                line_feed = value * 1.0     # times feed_factor, which _ready made 1
+        if line_mode == 10:
+            if line_feed is None or not 0.0 < line_feed / 60.0 <= bound:
+                break
+            motion = line_motion
+        elif line_mode == 0:
+            motion = rapid_motion
+        else:
+            break                   # an arc, a cycle or G80 in force
+        new_x, new_y, new_z = end_x, end_y, end_z
+        # written out per axis, as this runs once per line: a loop is slower
+        if x is not None:
+            value = float(x)
+            new_x = end_x + value if inc else value + off_x
+            if not (-bound <= value <= bound and -bound <= new_x <= bound):
+                break
+        if y is not None:
+            value = float(y)
+            new_y = end_y + value if inc else value + off_y
+            if not (-bound <= value <= bound and -bound <= new_y <= bound):
+                break
+        if z is not None:
+            value = float(z)
+            new_z = end_z + value if inc else value + off_z
+            if not (-bound <= value <= bound and -bound <= new_z <= bound):
+                break
+        mode, feed = line_mode, line_feed
+        end_x, end_y, end_z = new_x, new_y, new_z
+        add_at(k)
+        add_motion(motion)
+        add_feed(None if motion is rapid_motion else feed / 60.0)
+        add_end((new_x, new_y, new_z))
+    if not at:
+        return pc                   # empty lines alone: the reference counts them
+    _finish(state, pc, at[-1] + 1, mode, feed)
+    _make_blocks(state, at, motions, feeds, ends)
+    return at[-1] + 1
+
+
+def _finish(state: GCodeState, pc: int, end: int, mode: int, feed: float | None) -> None:
+    """The state after lines ``[pc, end)`` ran as the reference leaves it:
+    the guards' counts, the line being executed, the modes a move sets."""
+    count = end - pc
+    state.executed += count
+    if state.in_loop:
+        state.loop_lines += count
+    state.line_no = end - 1
+    state.motion_mode, state.feed = mode, feed
+    state.moved = True
+    state.cycle.level = None        # a move that is not a cycle ends a series of cycles
+
+
+def _make_blocks(state: GCodeState, at: list[int], motions: list[Motion], feeds: list,
+                 ends: list) -> None:
+    """Append the blocks of a run of plain moves: the moves on lines ``at``
+    (0-based, in the region of ``at[0]``) with ``motions``, ``feeds`` (units
+    per second) and end points ``ends``, from the state's position, under the
+    modal state and frame in force. Each is the ``Block`` the reference makes
+    (``Block(...)``, then :func:`~.machine_words.with_words`'s copy with the
+    frame): every field set, field by field for the whole run; each start is
+    the previous end's tuple, as the reference's ``state.pos``."""
+    count = len(at)
+    file, line1 = state.where(at[0])
+    shift = line1 - at[0]
+    sources = list(map(_new, repeat(Source, count)))
+    set_file, set_line, set_col = SOURCE_SETTERS
+    _each(set_file, sources, repeat(file))
+    _each(set_line, sources, [k + shift for k in at])
+    _each(set_col, sources, repeat(1))     # the first word starts the line
+    blocks = list(map(_new, repeat(Block, count)))
+    starts = [state.pos]
+    starts += ends[:-1]
+    for setter, default in _DEFAULTS:
+        _each(setter, blocks, repeat(default))
+    for name, values in (("source", sources), ("motion", motions), ("start", starts),
+                         ("end", ends), ("modal", repeat(state.modal())),
+                         ("center", repeat(None)), ("feed", feeds),
+                         ("move_time", repeat(None)), ("mcodes", repeat(())),
+                         ("surface", repeat(None)), ("frame", repeat(frame_of(state))),
+                         ("axes", repeat(None))):
+        _each(FIELD_SETTERS[name], blocks, values)
+    state.blocks += blocks
+    state.pos = ends[-1]
