@@ -103,7 +103,7 @@ class Contour:
         by value for a tool path whose blocks are equal copies."""
         by_id = self.__dict__.get("_by_id")
         if by_id is None:
-            by_id = {id(b): q for q, b in enumerate(self.moves)}
+            by_id = dict(zip(map(id, self.moves), range(len(self.moves))))
             object.__setattr__(self, "_by_id", by_id)
         blocks = list(blocks)
         out = np.fromiter(map(by_id.get, map(id, blocks), repeat(-1)), np.intp, len(blocks))
@@ -235,7 +235,8 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
         open_start, open_end = ~prev_in[sel], ~next_in[sel]
     else:
         open_start, open_end = np.zeros(sel.size, bool), np.zeros(sel.size, bool)
-    cblocks = tuple(mv.moves[q] for q in sel) if sel.size < n else tuple(mv.moves)
+    cblocks = tuple(map(mv.moves.__getitem__, sel.tolist())) if sel.size < n \
+        else tuple(mv.moves)
     elements = mv.elements(sel, cblocks)
     if decisions.OPEN_END_EXEMPTION:
         _close_joined_ends(elements, open_start, open_end, np.cumsum(~prev_in[sel]), eps)

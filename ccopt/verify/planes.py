@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from operator import attrgetter
 
 from ccopt.program.model import Program
 from ccopt.toolpath import FITTED_PIECES, ToolPath
@@ -28,12 +29,19 @@ from ccopt.verify.limits import check_limits
 #: How a check's figure joins over the runs: the worst is the smallest
 #: margin (gouge, side) or the largest excess (contact, jump).
 WORST = {"gouge": min, "side": min, "contact": max, "continuity": max}
+_MODAL = attrgetter("modal")
 
 
 def plane_runs(toolpath: ToolPath, program: Program):
     """``[(tool path, program, segment indices)]`` per run of program blocks
     in one plane, or ``None`` when the program and the path lie in one plane
     (the plain route)."""
+    # one plane in every block (the common case) is seen on the blocks' few
+    # distinct modal objects, without walking the blocks in Python
+    modals = list(map(_MODAL, program.blocks))
+    distinct = dict(zip(map(id, modals), modals)).values()
+    if len({m.plane for m in distinct}) <= 1 and len(toolpath.planes) <= 1:
+        return None
     runs: list[list] = []
     for blk in program.blocks:
         if not runs or blk.modal.plane != runs[-1][0]:

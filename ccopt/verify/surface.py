@@ -105,22 +105,22 @@ class Surface:
         lines as ranges, and runs of consecutive moves with the same verdict and
         reason: the fully compensated moves, and the ``approaches`` (move index ->
         why: lead-ins, lead-outs, side-change transitions), which are air."""
-        q = sorted(set(np.flatnonzero(compensated).tolist()) | set(approaches))
-        runs: list[dict] = []
-        for k in q:
-            line = moves[k].source.line
-            part = bool(compensated[k] and self.part[k])
-            surf = SURFACE_PART if part else SURFACE_AIR
-            why = approaches.get(k, self.why[k])
-            last = runs[-1] if runs else None
-            if last is not None and last["surface"] == surf and last["why"] == why \
-                    and last["_next"] == k:
-                last["lines"][1] = line
-                last["_next"] = k + 1
-                continue
-            runs.append({"lines": [line, line], "surface": surf, "why": why, "_next": k + 1})
-        for r in runs:
-            del r["_next"]
+        # runs found on arrays: a certificate of 100,000 moves has a few runs,
+        # so only their ends are looked up in the blocks
+        sel = np.asarray(compensated, bool).copy()
+        keys = np.fromiter(approaches, np.intp, len(approaches))
+        sel[keys] = True
+        q = np.flatnonzero(sel)
+        part = np.asarray(compensated, bool)[q] & self.part[q]
+        why = np.array(self.why, dtype=object)[q]
+        why[np.searchsorted(q, keys)] = list(approaches.values())
+        new_run = np.ones(q.size, bool)
+        new_run[1:] = (np.diff(q) != 1) | (part[1:] != part[:-1]) | (why[1:] != why[:-1])
+        first = np.flatnonzero(new_run)
+        last = np.r_[first[1:], q.size] - 1
+        runs = [{"lines": [moves[q[a]].source.line, moves[q[b]].source.line],
+                 "surface": SURFACE_PART if part[a] else SURFACE_AIR, "why": why[a]}
+                for a, b in zip(first.tolist(), last.tolist())]
         return {"rule": self.rule,
                 "part_lines": [r["lines"] for r in runs if r["surface"] == SURFACE_PART],
                 "air_lines": [r["lines"] for r in runs if r["surface"] == SURFACE_AIR],
