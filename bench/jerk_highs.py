@@ -4,7 +4,12 @@
 dual simplex prices the window LPs: 1 (Devex, ccopt's setting) or 2
 (steepest edge, HiGHS's default). ``--setting scaling``:
 ``ccopt.feed.jerk.lp.SIMPLEX_SCALE``, how HiGHS scales them: 4 (max value,
-ccopt's setting) or 2 (equilibration, HiGHS's default). This plans the same
+ccopt's setting) or 2 (equilibration, HiGHS's default). ``--setting start``:
+``ccopt.feed.jerk.lp.CRASH``, the basis a window's first solve starts from:
+ccopt's crash basis (``WindowLP._crash``) or HiGHS's slack basis.
+``--setting perturbation``: ``ccopt.feed.jerk.lp.WARM_PERTURBATION``, HiGHS's
+cost perturbation in the re-solves from the last round's basis: none
+(ccopt's setting) or HiGHS's default. This plans the same
 paths with the jerk planner under each value, alternating, and prints per
 path the median CPU time of each, their ratio and the cycle times (the LP is
 the same; the figures agree to the LP's tolerances):
@@ -19,7 +24,7 @@ every path): worker processes start afresh from the files and would not see
 the setting (the 1,000-block pocket has about 66,000 gridpoints, past the
 default).
 
-    python bench/jerk_highs.py [--setting pricing|scaling] [--repeat 3]
+    python bench/jerk_highs.py [--setting pricing|scaling|start|perturbation] [--repeat 3]
                                [--cases fagor-g136-g138,pocket]
 """
 from __future__ import annotations
@@ -46,7 +51,9 @@ from ccopt.pipeline import pipeline  # noqa: E402
 #: Per setting: the attribute of ``ccopt.feed.jerk.lp`` and its two values,
 #: ccopt's first.
 SETTINGS = {"pricing": ("DUAL_EDGE_WEIGHTS", {"devex": 1, "steepest edge": 2}),
-            "scaling": ("SIMPLEX_SCALE", {"max value": 4, "equilibration": 2})}
+            "scaling": ("SIMPLEX_SCALE", {"max value": 4, "equilibration": 2}),
+            "start": ("CRASH", {"crash basis": True, "slack basis": False}),
+            "perturbation": ("WARM_PERTURBATION", {"none": 0.0, "HiGHS's": 1.0})}
 CASES = ("fagor-g136-g138", "fagor-seed-arc-cancel", "sinumerik-sar-plate", "pocket",
          "pocket-chords", "profile", "freeform-hsm")
 

@@ -354,6 +354,7 @@ class WindowLP:
             lb[nb - 1] = ub[nb - 1] = self.bmax[nb - 1] = end[0]
             lb[-1] = ub[-1] = end[1]
         self.b_low = lb[:nb].copy()
+        self.fixed = lb == ub                  # columns (see _crash)
         # each b column in units of its own first bound (B_UNIT_FLOOR at
         # least): HiGHS's feasibility tolerance is absolute, and near a stop,
         # where b is orders of magnitude below the scale, it let b pass its
@@ -378,6 +379,7 @@ class WindowLP:
         lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = (A.indptr, A.indices,
                                                                           A.data)
         self.highs.passModel(lp)
+        self.warm = False
 
     def solve(self, bhat: np.ndarray, cap: np.ndarray, max_iterations: int | None = None):
         """``(b, alpha)`` (scaled) maximising the linearised time gain under the
@@ -385,9 +387,9 @@ class WindowLP:
         or when HiGHS's simplex would take more than ``max_iterations``
         (then the next call starts from where it stopped). Without
         ``max_iterations`` a run past :data:`RUNAWAY_ITERATIONS` per gridpoint
-        (or one in numerical trouble) is solved once more from scratch under
-        the same bound by the interior-point method (at most
-        :data:`IPM_ITERATIONS`), then None."""
+        (or one in numerical trouble) is solved once more under the same bound
+        from the crash basis (:meth:`_crash`), then from scratch by the
+        interior-point method (at most :data:`IPM_ITERATIONS`), then None."""
         h, nb = self.highs, self.nb
         b_at = np.maximum(bhat[self.jerk_at0], bhat[self.jerk_at1])
         v_at = np.maximum(self.vref[self.jerk_at0], self.vref[self.jerk_at1])
@@ -405,11 +407,25 @@ class WindowLP:
         runaway = int(RUNAWAY_ITERATIONS * nb)
         h.setOptionValue("simplex_iteration_limit",
                          int(max_iterations) if max_iterations is not None else runaway)
+        warm = self.warm
+        if not warm and CRASH:
+            self._crash(ub / self.b_unit)
         h.run()
+        if not warm:
+            h.setOptionValue("dual_simplex_cost_perturbation_multiplier", WARM_PERTURBATION)
+            self.warm = True
         h.setOptionValue("simplex_iteration_limit", highspy.kHighsIInf)
         limited = h.getModelStatus() == highspy.HighsModelStatus.kIterationLimit
         if max_iterations is not None and limited:
             return None
+        if h.getModelStatus() != highspy.HighsModelStatus.kOptimal and warm and CRASH:
+            # a re-solve that ran away from the last round's basis: first once
+            # more from the crash basis, as the window's first solve started
+            h.clearSolver()
+            self._crash(ub / self.b_unit)
+            h.setOptionValue("simplex_iteration_limit", runaway)
+            h.run()
+            h.setOptionValue("simplex_iteration_limit", highspy.kHighsIInf)
         if h.getModelStatus() != highspy.HighsModelStatus.kOptimal:
             # rare numerical trouble, or a simplex that ran away from the last
             # basis: once more, from scratch, by the interior-point method, whose
@@ -427,6 +443,39 @@ class WindowLP:
             return None
         x = np.asarray(h.getSolution().col_value, dtype=float)
         return np.maximum(x[:nb] * self.b_unit, 0.0), x[nb:]
+
+    def _crash(self, b_upper: np.ndarray) -> None:
+        """Set the basis the next run starts from: every ``b`` nonbasic at its
+        upper bound ``b_upper`` (scaled), every free ``alpha`` basic, the
+        equality rows nonbasic and every other row basic; not HiGHS's slack
+        basis, from which its dual simplex takes two to three iterations per
+        gridpoint.
+
+        Only the ``b`` columns have costs (negative, at their upper bounds), so
+        the basic variables' costs are 0, so are the duals, and the basis is
+        dual feasible: the dual simplex only mends the rows that ``b`` at its
+        cap breaks. Between two gridpoints whose ``alpha`` is fixed (stops, a
+        held start or end) the equality rows outnumber the free ``alpha`` by
+        one: the ``b`` just before the later one is basic too (or, with no
+        free point between them, the row)."""
+        nb = self.nb
+        col = np.where(np.isfinite(b_upper) & ~self.fixed[:nb], _UPPER, _LOWER)
+        col = np.concatenate([col, np.where(self.fixed[nb:], _LOWER, _BASIC)])
+        row = np.full(self.highs.getNumRow(), _BASIC)
+        row[:nb - 1] = _LOWER                      # the equality rows (see _assemble)
+        held = np.flatnonzero(self.fixed[nb:])
+        for p, q in zip(held[:-1].tolist(), held[1:].tolist()):
+            if q - 1 > p and not self.fixed[q - 1]:
+                col[q - 1] = _BASIC
+            else:
+                row[p] = _BASIC
+        if np.count_nonzero(col == _BASIC) + np.count_nonzero(row == _BASIC) != row.size:
+            return                                 # not a basis: HiGHS's slack basis
+        basis = highspy.HighsBasis()
+        basis.col_status = [_STATUS[c] for c in col.tolist()]
+        basis.row_status = [_STATUS[r] for r in row.tolist()]
+        basis.valid = True
+        self.highs.setBasis(basis)
 
     def peaks_over(self, b: np.ndarray, alpha: np.ndarray) -> np.ndarray:
         """The straight intervals' jerk rows to tighten for the speed's peak
@@ -464,6 +513,19 @@ PEAK_TOL = 1e-6
 _BANNER_SHOWN = []
 
 
+#: Whether a window's first solve starts from :meth:`WindowLP._crash`'s basis
+#: (and a re-solve that runs away from the last round's basis tries it again
+#: before the interior-point method). The optimum is the same LP's: the
+#: cycle times agree to the LP's tolerances.
+CRASH = True
+_LOWER, _BASIC, _UPPER = 0, 1, 2
+_STATUS = [highspy.HighsBasisStatus.kLower, highspy.HighsBasisStatus.kBasic,
+           highspy.HighsBasisStatus.kUpper]
+#: HiGHS's cost perturbation (its multiplier) in the re-solves from the last
+#: round's basis: none. Perturbed costs carry the cold start through
+#: degenerate vertices; from a basis that is nearly optimal already they
+#: only add a dual phase 1 and a clean-up of the perturbation to each round.
+WARM_PERTURBATION = 0.0
 #: HiGHS's dual simplex pricing on the window LPs: Devex (1). Its default,
 #: steepest edge (2), takes fewer iterations on a cold start but costs more
 #: per iteration on these banded LPs, more than it saves
