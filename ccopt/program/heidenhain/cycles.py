@@ -1,12 +1,13 @@
-"""``CYCL DEF``: tolerance (32), datum shift (7), dwell (9), datum setting
+"""``CYCL DEF``: tolerance (32), datum shift (7), rotation (10), dwell (9), datum setting
 (247: one preset per program) and the drilling
 cycles of the 200 series, run as moves at ``CYCL CALL`` / ``M99`` / ``M89``.
 
 Every other cycle is refused where it is defined, as a located
 :class:`~ccopt.errors.ProgramError`: contour (SL: 14, 20-25, 27-29, 270-276)
 and pocket cycles (4, 5, 251-258) would need the TNC's own machining
-strategy, the coordinate transformations (8, 10, 11, 19, 26) a frame ccopt
-does not model.
+strategy, the coordinate transformations (8, 11, 19, 26) a frame ccopt
+does not model. The rotation (10) turns the working plane about the tool
+axis, after the datum shift (:meth:`Machine.to_machine`).
 
 The drilling moves (TNC 640 User's Manual, Cycles Programming, "Fixed
 cycles: drilling"): rapid along the tool axis to the set-up clearance
@@ -74,6 +75,8 @@ class Cycles:
             self._tolerance(st, sub, rest)
         elif major == 7:
             self._datum(st, sub, rest)
+        elif major == 10:
+            self._rotation(st, sub, rest)
         elif major == 9:
             self._dwell(st, sub, rest)
         elif major == 247:
@@ -89,8 +92,8 @@ class Cycles:
             raise self.err(f"CYCL DEF {num_text}: pocket and stud milling cycles are not read "
                            "by ccopt (the TNC computes their paths itself)", st, words[2].col)
         else:
-            raise self.err(f"CYCL DEF {num_text}: this cycle is not read by ccopt (7, 9, 32, "
-                           f"247 and the drilling cycles {sorted(DRILLING)} are)", st,
+            raise self.err(f"CYCL DEF {num_text}: this cycle is not read by ccopt (7, 9, 10, "
+                           f"32, 247 and the drilling cycles {sorted(DRILLING)} are)", st,
                            words[2].col)
 
     def _qvalues(self, st: Statement, rest) -> dict:
@@ -133,6 +136,10 @@ class Cycles:
         self.m.meta[TOLERANCES].append({"line": st.line, "tolerance": tol})
 
     def _datum(self, st: Statement, sub: int, rest) -> None:
+        if self.m.rot != 0.0 and sub > 0:
+            raise self.err("CYCL DEF 7 while the working plane is turned (CYCL DEF 10): "
+                           "ccopt reads the datum shift before the rotation only (shift "
+                           "first, then turn)", st)
         for w in rest:
             t = w.text
             inc = t.startswith("I")
@@ -145,6 +152,23 @@ class Cycles:
             i = "XYZ".index(axis)
             v = self.m.q.number(t[2 if inc else 1:], st.line, w.col, axis)
             self.m.datum[i] = self.m.datum[i] + v if inc else v
+
+    def _rotation(self, st: Statement, sub: int, rest) -> None:
+        """``CYCL DEF 10.0 ROTATION`` / ``CYCL DEF 10.1 ROT+a`` (or ``IROT+a``,
+        added): the working plane turned about the tool axis by ``a`` degrees
+        about the datum, counter-clockwise from its first axis; ``ROT+0`` ends it."""
+        if sub == 0:
+            return
+        for w in rest:
+            t = w.text
+            if t.startswith(("ROT", "IROT")) and len(t) > (4 if t[0] == "I" else 3):
+                inc = t.startswith("I")
+                v = self.m.q.number(t[4 if inc else 3:], st.line, w.col, "ROT")
+                self.m.rot = self.m.rot + v if inc else v
+                return
+            raise self.err(f"CYCL DEF 10.1: expected ROT+<degrees> or IROT+<degrees>, not "
+                           f"{t}", st, w.col)
+        raise self.err("CYCL DEF 10.1: give the angle, ROT+30", st)
 
     def _preset(self, st: Statement, rest) -> None:
         """``CYCL DEF 247 DATUM SETTING Q339=n``: activate row ``n`` of the

@@ -49,6 +49,9 @@ class Machine:
         self.speed: float | None = None     # spindle speed S of TOOL CALL, rev/min
         self.last_rapid = True
         self.datum = [0.0, 0.0, 0.0]
+        #: CYCL DEF 10: the turn of the working plane about the tool axis,
+        #: degrees counter-clockwise from its first axis (0: none)
+        self.rot = 0.0
         self.last_piece = None              # the contour element last made, and its block
         self.last_block_index = -1
         self.meta: dict = {LEADS: {}}
@@ -57,12 +60,39 @@ class Machine:
     # -- coordinates ------------------------------------------------------------------
     def target(self, coords: dict) -> list[float]:
         """The end point the coordinate words give (absolute, incremental, or
-        the current position for an axis not written)."""
+        the current position for an axis not written), in machine coordinates:
+        the datum shift added, and under a rotation (CYCL DEF 10) the words
+        read along the turned axes of the working plane."""
+        i, j, k = PLANE_AXES[self.plane]
+        if self.rot != 0.0 and any(_AXIS_INDEX[a] in (i, j) for a in coords):
+            work = self.to_work(self.pos)
+            for axis, (value, inc) in coords.items():
+                n = _AXIS_INDEX[axis]
+                work[n] = work[n] + value if inc else value
+            out = self.to_machine(work)
+            out[k] = work[k] + self.datum[k] if "XYZ"[k] in coords else self.pos[k]
+            return out
+        # no word in the turned plane: its two axes stay exactly where they are
         out = list(self.pos)
         for axis, (value, inc) in coords.items():
             i = _AXIS_INDEX[axis]
             out[i] = self.pos[i] + value if inc else value + self.datum[i]
         return out
+
+    def to_machine(self, work) -> list[float]:
+        """Machine coordinates of the program point ``work``: turned by
+        :attr:`rot` in the working plane, then shifted by the datum."""
+        i, j, _ = PLANE_AXES[self.plane]
+        p = list(work)
+        p[i], p[j] = contour.rotate_about((p[i], p[j]), (0.0, 0.0), math.radians(self.rot))
+        return [p[k] + self.datum[k] for k in range(3)]
+
+    def to_work(self, machine) -> list[float]:
+        """The program point of the machine point ``machine`` (inverse of :meth:`to_machine`)."""
+        i, j, _ = PLANE_AXES[self.plane]
+        p = [machine[k] - self.datum[k] for k in range(3)]
+        p[i], p[j] = contour.rotate_about((p[i], p[j]), (0.0, 0.0), -math.radians(self.rot))
+        return p
 
     def uv(self, p, plane: str) -> contour.Pt:
         i, j, _ = PLANE_AXES[plane]

@@ -157,10 +157,14 @@ class Moves:
 
     def _polar_end(self, src: Source, a: Args, plane: str) -> contour.Pt:
         cc = self._pole(src)
+        if self.m.rot != 0.0 and plane != self.m.plane:
+            raise self.err("polar coordinates in another plane than the working plane while "
+                           "it is turned (CYCL DEF 10) are not read by ccopt", src)
         here = contour.sub(self.m.uv(self.m.pos, plane), cc)
         pr0, pa0 = contour.norm(here), math.degrees(math.atan2(here[1], here[0]))
         pr = a.pr if a.pr is not None else pr0 + (a.ipr or 0.0)
-        pa = a.pa if a.pa is not None else pa0 + (a.ipa or 0.0)
+        # PA is measured in the program's axes: a rotation (CYCL DEF 10) turns it
+        pa = a.pa + self.m.rot if a.pa is not None else pa0 + (a.ipa or 0.0)
         return contour.polar(cc, pr, pa)
 
     def pole(self, src: Source, a: Args) -> None:
@@ -173,11 +177,10 @@ class Moves:
             plane = m.plane
         else:
             raise self.err("CC: give the two coordinates of the pole in one plane", src)
-        p = list(m.pos)
-        for axis, (value, inc) in a.coords.items():
-            i = "XYZ".index(axis)
-            p[i] = m.pos[i] + value if inc else value + m.datum[i]
-        m.pole, m.pole_plane = tuple(p), plane
+        if m.rot != 0.0 and plane != m.plane:
+            raise self.err("CC in another plane than the working plane while it is turned "
+                           "(CYCL DEF 10) is not read by ccopt", src)
+        m.pole, m.pole_plane = tuple(m.target(a.coords)), plane
 
     def arc(self, src: Source, head: str, a: Args) -> None:
         """``C``, ``CP``, ``CR``, ``CT``."""

@@ -256,6 +256,10 @@ class _Run:
         sets the working plane), then S, F, DL, DR (DR2 is read past), M;
         sets the spindle speed and the feed, returns the arguments."""
         if rest and rest[0].text in PLANE_OF_AXIS:
+            if self.m.rot != 0.0 and PLANE_OF_AXIS[rest[0].text] != self.m.plane:
+                raise ProgramError("TOOL CALL with another tool axis while the working plane "
+                                   "is turned (CYCL DEF 10): end the rotation (ROT+0) first",
+                                   self.file, st.line, rest[0].col)
             self.m.plane = PLANE_OF_AXIS[rest[0].text]
             rest = rest[1:]
         a = read_args(st, [w for w in rest if not w.text.startswith("DR2")], self.q, self.file)
