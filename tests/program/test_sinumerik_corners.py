@@ -12,10 +12,10 @@ import math
 
 import pytest
 
-from ccopt.errors import ProgramError
 from ccopt.program.model import Motion
 from ccopt.program.sinumerik import read_sinumerik
 from ccopt.program.sinumerik.corners import NOT_INSERTED
+from located import assert_refused_at
 
 TOL = 1e-9
 
@@ -159,8 +159,4 @@ REFUSALS = {
 @pytest.mark.parametrize("name", list(REFUSALS))
 def test_refusals_are_located_at_the_word(name):
     text, line, col, words = REFUSALS[name]
-    with pytest.raises(ProgramError) as info:
-        read(text, tool_table={1: 4.0})
-    exc = info.value
-    assert (exc.file, exc.line, exc.col) == ("p.mpf", line, col), str(exc)
-    assert words in str(exc)
+    assert_refused_at(read, text, ("p.mpf", line, col), words, tool_table={1: 4.0})

@@ -13,9 +13,9 @@ import random
 import pytest
 
 from ccopt import compensate, verify
-from ccopt.errors import ProgramError
 from ccopt.program.model import Motion
 from ccopt.program.sinumerik import read_sinumerik
+from located import assert_refused_at
 
 
 def read(text: str, **kw):
@@ -82,11 +82,7 @@ REFUSALS = {
 @pytest.mark.parametrize("name", list(REFUSALS))
 def test_refusals_are_located(name):
     text, line, col, words = REFUSALS[name]
-    with pytest.raises(ProgramError) as info:
-        read(text, tool_table={1: 2.0})
-    exc = info.value
-    assert (exc.file, exc.line, exc.col) == ("d.mpf", line, col), str(exc)
-    assert words in str(exc)
+    assert_refused_at(read, text, ("d.mpf", line, col), words, tool_table={1: 2.0})
 
 
 def test_drilling_then_a_contour_compensates_and_verifies():

@@ -17,8 +17,8 @@ import random
 import pytest
 
 from ccopt import compensate, verify
-from ccopt.errors import ProgramError
 from ccopt.program.sinumerik import read_sinumerik
+from located import assert_refused_at
 from sinumerik_plates import generated_plate
 
 TOL = 1e-9
@@ -121,11 +121,7 @@ REFUSALS = {
 @pytest.mark.parametrize("name", list(REFUSALS))
 def test_refusals_are_located(name):
     text, line, col, words = REFUSALS[name]
-    with pytest.raises(ProgramError) as info:
-        read(text, tool_table={1: 2.0})
-    exc = info.value
-    assert (exc.file, exc.line, exc.col) == ("f.mpf", line, col), str(exc)
-    assert words in str(exc)
+    assert_refused_at(read, text, ("f.mpf", line, col), words, tool_table={1: 2.0})
 
 
 # -- generated: a contour through a random chain of frames ---------------------------

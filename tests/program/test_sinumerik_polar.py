@@ -15,9 +15,9 @@ import random
 import pytest
 
 from ccopt import compensate, verify
-from ccopt.errors import ProgramError
 from ccopt.program.model import Motion
 from ccopt.program.sinumerik import read_sinumerik
+from located import assert_refused_at
 
 TOL = 1e-9
 
@@ -82,11 +82,7 @@ REFUSALS = {
 @pytest.mark.parametrize("name", list(REFUSALS))
 def test_refusals_are_located(name):
     text, line, col, words = REFUSALS[name]
-    with pytest.raises(ProgramError) as info:
-        read(text)
-    exc = info.value
-    assert (exc.file, exc.line, exc.col) == ("p.mpf", line, col), str(exc)
-    assert words in str(exc)
+    assert_refused_at(read, text, ("p.mpf", line, col), words)
 
 
 # -- generated: a contour in polar words and in X Y -----------------------------------
