@@ -150,7 +150,7 @@ REFUSALS = {
     "TRANS with a move": ("TRANS X10 G1 F100\n", 1, 1, "X Y Z only"),
     "TRANS while on": ("G1 F100 G41 X1\nTRANS X10\n", 2, 1, "compensation on"),
     "rounding too large": ("G1 X1 F100 RND=2\nY5\n", 1, 12, "too large"),
-    "contour angle": ("G1 X1 F100 ANG=30\n", 1, 12, "ANG"),
+    "contour over two blocks": ("G1 X1 F100 ANG=30 Y3\n", 1, 12, "two or three blocks"),
     "unknown G": ("G1 X1 F100\nG333 X2\n", 2, 1, "G333"),
     "unmatched ENDIF": ("G1 X1 F100\nENDIF\n", 2, 1, "ENDIF without its IF"),
     "unclosed WHILE": ("WHILE R1<1\nG1 X1 F100\n", 1, 1, "never closed"),

@@ -21,7 +21,7 @@ from ccopt.program.gcode.execute import execute_words
 from ccopt.program.gcode.state import ProgramEnd
 from ccopt.program.gcode.units import feed_factor, input_factor
 from ccopt.program.model import PLANE_AXES, SmoothApproach
-from ccopt.program.sinumerik import arcs, corners, cycles, frames, polar
+from ccopt.program.sinumerik import angle, arcs, corners, cycles, frames, polar
 from ccopt.program.sinumerik.calls import passes_of
 from ccopt.program.sinumerik.lexer import Line
 from ccopt.program.sinumerik.state import SinumerikRun
@@ -64,6 +64,7 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
     corners.read_modal(run, bw.values)
     letters = _core_letters(run, bw)
     g = list(bw.g)
+    angle.angle_line(run, bw, letters, g)
     polar.polar_move(run, bw, letters, g)
     _circle_forms(run, bw, letters, g)
     sar = _smooth_approach(run, bw, letters, g)

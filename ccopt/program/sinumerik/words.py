@@ -37,7 +37,8 @@ SAR_DIRECTION_G = {140, 141, 142, 143}
 SAR_INFEED_G = {340, 341}
 APPROACH_WORDS = {"NORM", "KONT", "KONTT", "KONTC"}
 BOTTLENECK_WORDS = {"CDON", "CDOF", "CDOF2"}
-VALUE_WORDS = {"CR", "AR", "TURN", "DISR", "DISCL", "FAD", "DISC", "OFFN", "RPL", "AP", "RP"}
+VALUE_WORDS = {"CR", "AR", "TURN", "DISR", "DISCL", "FAD", "DISC", "OFFN", "RPL", "AP", "RP",
+               "ANG"}
 POLE_G = {110, 111, 112}
 #: Chamfer and rounding words (:mod:`.corners`): values as written.
 CORNER_VALUES = {"CHF", "CHR", "RND", "RNDM", "FRC", "FRCM"}
@@ -240,12 +241,9 @@ def _unknown(name: str) -> str:
         return (f"{name}: scaling and mirroring frames, rotations in space and "
                 "transformations are not read by ccopt (TRANS, ATRANS, ROT and AROT in G17 "
                 "are): program the contour in the coordinates they give")
-    if name == "ANG":
-        return ("ANG: contour definitions by angle are not read by ccopt: program the end "
-                "points")
     return (f"{name} is not read by ccopt's SINUMERIK reader (G0-G3, CIP, CT, AR=, CR=, "
             "TURN=, G17-G19, G40-G42, G450/G451, NORM/KONT, SAR G140-G348, CHF/CHR/RND/"
-            "RNDM, AP/RP with G110-G112, TRANS/ATRANS/ROT/AROT, R parameters and DEF "
+            "RNDM, ANG, AP/RP with G110-G112, TRANS/ATRANS/ROT/AROT, R parameters and DEF "
             "variables, IF/WHILE/REPEAT/LOOP/FOR, GOTOF/GOTOB and subprogram calls "
             f"are): a command it does not know, or a call of a subprogram with no file "
             f"{name}.SPF beside the program")
