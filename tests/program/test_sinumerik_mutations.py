@@ -41,7 +41,7 @@ INSERTS = ["G41", "G42", "G40", "G450", "G451", "DISC=50", "KONT", "KONTT", "G14
            "\nG111 X5 Y5\n", "\nG110 AP=30 RP=4\n", "AP=30", "RP=5", "AP=IC(15)",
            "\nROT RPL=30\n", "\nAROT RPL=-20\n", "\nATRANS X2 Y1\n",
            "\nCYCLE81(10, 0, 2, -5)\n", "\nMCALL CYCLE82(10, 0, 1, -3, , 0.2)\n", "\nMCALL\n",
-           "ANG=30", "\nX20 ANG=-60\n"]
+           "ANG=30", "\nX20 ANG=-60\n", "\nANG=45\nX30 Y5 ANG=-30\n"]
 REPLACES = ["0", "1", "-", ".", "X", "Y", "G", "=", "(", ")", " ", "R", "\n", "9"]
 
 

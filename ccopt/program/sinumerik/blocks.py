@@ -41,6 +41,7 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
     for code, col in bw.ignored:
         run.ignored.setdefault(code, state.where(state.line_no)[1])
     first_new = len(state.blocks)
+    angle.check_between(run, bw)
     if bw.call is not None or bw.passes is not None:
         corners.after_block(run, {}, first_new)
         return _call(bw)
@@ -57,6 +58,18 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
     bw = _pending_approach(run, bw)
     if bw is None:
         return None
+    here = state.line_no
+    for block, line_no in angle.contour_definition(run, bw):
+        state.line_no = line_no
+        _run_words(run, block)
+    state.line_no = here
+    return None
+
+
+def _run_words(run: SinumerikRun, bw: BlockWords) -> None:
+    """Execute the sorted words of one ordinary block on the G-code core."""
+    state = run.state
+    first_new = len(state.blocks)
     frames.check_block(run, bw)
     _modes(run, bw)
     _tool(run, bw)
@@ -82,7 +95,6 @@ def exec_block(run: SinumerikRun, line: Line) -> tuple[str, int, int] | None:
         _set_modes(run, replace(run.modes, sar=None))
     if bw.end:
         raise ProgramEnd()
-    return None
 
 
 def _cycle_block(run: SinumerikRun, bw: BlockWords) -> None:

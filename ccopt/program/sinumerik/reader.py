@@ -76,6 +76,10 @@ def read_sinumerik(text: str, file: str = "<string>", *,
         raise state.error("a smooth approach (G147/G247/G347) whose end point no later block "
                           "gives: write the contour's start in this block or a later one",
                           run.pending_sar.sar[1], run.pending_line)
+    if run.pending_angle is not None:
+        raise state.error("a contour definition (a line with ANG and no end point) whose "
+                          "second block never comes", run.pending_angle[0].values["ANG"][2],
+                          run.pending_angle[1])
     corners.at_end(run)
     state.meta[corners.NOT_INSERTED] = dict(run.not_inserted)
     state.meta[PLANE_CHANGES_CHECKED] = True

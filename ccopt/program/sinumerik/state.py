@@ -52,5 +52,6 @@ class SinumerikRun:
     corner: object = None         # a chamfer or rounding waiting for its next block
     not_inserted: dict = field(default_factory=dict)  # corners.NOT_INSERTED
     mcall: object = None          # the drilling cycle MCALL runs after each move (cycles.py)
+    pending_angle: object = None  # a contour definition's first block and line (angle.py)
     offset: int = 0        # where the running text's lines start in state.lines
     loaded: dict = field(default_factory=dict)    # subprogram name -> (structure, offset)
