@@ -62,27 +62,21 @@ def angle_line(run, bw, letters: dict, g: list) -> None:
     incremental = any(t == 910 for t, _ in g) or (state.incremental
                                                  and not any(t == 900 for t, _ in g))
     here = to_work(state, state.pos)
-    u0, v0 = here[iu], here[iv]
     t = math.radians(value)
-    c, s = math.cos(t), math.sin(t)
-    a = given[0]
-    written = letters[a][0]
-    if a == au:
-        du = written if incremental else written - u0
-        if abs(c) <= PARALLEL:
-            raise ExprError(f"ANG={value:g} runs along {av}: it never reaches the {au} "
-                            "written", col)
-        along = du / c
-        dv = along * s
-        letters[av] = (dv if incremental else v0 + dv, col)
+    # the axis written and the other one, their start coordinates and the
+    # line's direction along each
+    if given[0] == au:
+        a, b, a0, b0, ca, cb = au, av, here[iu], here[iv], math.cos(t), math.sin(t)
     else:
-        dv = written if incremental else written - v0
-        if abs(s) <= PARALLEL:
-            raise ExprError(f"ANG={value:g} runs along {au}: it never reaches the {av} "
-                            "written", col)
-        along = dv / s
-        du = along * c
-        letters[au] = (du if incremental else u0 + du, col)
+        a, b, a0, b0, ca, cb = av, au, here[iv], here[iu], math.sin(t), math.cos(t)
+    written = letters[a][0]
+    da = written if incremental else written - a0
+    if abs(ca) <= PARALLEL:
+        raise ExprError(f"ANG={value:g} runs along {b}: it never reaches the {a} written",
+                        col)
+    along = da / ca
+    db = along * cb
+    letters[b] = (db if incremental else b0 + db, col)
     if along < -POINT_EPS:
         raise ExprError(f"the {a} written lies behind the start along ANG={value:g}: the "
                         "line would run against its angle", col)
