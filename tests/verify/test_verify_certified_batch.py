@@ -241,3 +241,70 @@ def test_first_pieces_of_every_pair_at_once_are_the_one_at_a_time_cuts(seed):
                 assert np.array_equal(ua1[mine], np.repeat(a1, b0.size))
                 assert np.array_equal(ub0[mine], np.tile(b0, a0.size))
                 assert np.array_equal(ub1[mine], np.tile(b1, a0.size))
+
+
+def dist_to_element(q, g) -> float:
+    """Exact distance of a point to a line segment or an arc, worked out here."""
+    q = np.asarray(q, float)
+    if isinstance(g, Line):
+        p0, p1 = np.asarray(g.p0, float), np.asarray(g.p1, float)
+        d = p1 - p0
+        t = np.clip(np.dot(q - p0, d) / np.dot(d, d), 0.0, 1.0)
+        return float(np.hypot(*(q - (p0 + t * d))))
+    c = np.asarray(g.center, float)
+    ang = math.atan2(q[1] - c[1], q[0] - c[0])
+    rel = (ang - g.theta0) * math.copysign(1.0, g.sweep) % (2 * math.pi)
+    ends = [c + g.radius * np.array([math.cos(a), math.sin(a)])
+            for a in (g.theta0, g.theta0 + g.sweep)]
+    best = min(float(np.hypot(*(q - e))) for e in ends)
+    if rel <= abs(g.sweep):
+        best = min(best, abs(float(np.hypot(*(q - c))) - g.radius))
+    return best
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_mid_arc_bound_is_below_every_point_of_the_piece(seed):
+    # random spiral pieces against lines and arcs: the bound is at most the
+    # distance of each of 2,001 points of the piece, measured here point by point
+    rng = np.random.default_rng(90 + seed)
+    for _ in range(25):
+        c = tuple(rng.uniform(-2, 2, 2))
+        sp = Spiral(c, rng.uniform(1, 4), rng.uniform(1, 4), rng.uniform(-3, 3),
+                    rng.choice([-1, 1]) * rng.uniform(0.05, 4))
+        other = (Line(tuple(rng.uniform(-6, 6, 2)), tuple(rng.uniform(-6, 6, 2)))
+                 if rng.random() < 0.5 else
+                 Arc(tuple(rng.uniform(-2, 2, 2)), rng.uniform(0.5, 6), rng.uniform(-3, 3),
+                     rng.choice([-1, 1]) * rng.uniform(0.2, 5)))
+        pa = certified.param_of(sp)
+        u0 = rng.uniform(0, pa.U, 6)
+        u1 = np.minimum(u0 + rng.uniform(0, pa.U, 6), pa.U)
+        lb = certified._mid_arc(pa, other, u0, u1)
+        for k in range(6):
+            pts = pa.eval(np.linspace(u0[k], u1[k], 2001))
+            assert lb[k] <= min(dist_to_element(q, other) for q in pts) + 1e-12
+
+
+@pytest.mark.parametrize("rho1", [2.0 + 3e-7, 2.0 - 8e-7, 2.0 + 1.2e-6])
+def test_a_rounded_corner_arc_against_the_edge_ending_at_its_centre_settles_at_once(rho1):
+    # A tool's corner arc about the part's vertex V = (0, 0), r = 2, its end
+    # rounded by an export so that it is a spiral 1e-7 off its radius; the
+    # part's edge ends at V and runs along -x. Every spiral point projects past
+    # V, so its distance to the edge is its polar radius: the minimum is
+    # min(rho0, rho1), at an end.
+    sp = Spiral((0.0, 0.0), 2.0, rho1, 0.5 * math.pi, -0.21)
+    edge = Line((-0.07, 0.0), (0.0, 0.0))
+    true = min(2.0, rho1)
+    cap = 2.0 + 1e-5
+    b = certified.min_distance(sp, edge, 1e-7, cap=cap)
+    assert b.converged and b.lb <= true <= b.ub and b.ub - b.lb <= 1e-7
+    assert b.pieces <= 64              # the chords alone cut it into hundreds of pieces
+    assert min_distances([(sp, edge)], 1e-7, [cap]) == [b]
+
+
+def test_a_spiral_wholly_beyond_its_cap_is_not_cut():
+    # 3 from the edge at its nearest (the arc's end straight above the edge's end)
+    sp = Spiral((0.0, 5.0), 2.0, 2.0000004, -0.5 * math.pi, 1.0)
+    edge = Line((-4.0, 0.0), (0.0, 0.0))
+    b = certified.min_distance(sp, edge, 1e-7, cap=2.5)
+    assert b.pieces == 0 and 2.5 <= b.lb <= 3.0
+    assert min_distances([(sp, edge)], 1e-7, [2.5]) == [b]

@@ -38,7 +38,7 @@ from ccopt.geometry import Arc, Line, SegmentArray, Spiral
 from ccopt.geometry.angles import sweep_sign
 from ccopt.geometry.bezier_arclength import bernstein_basis, bezier_points
 from ccopt.geometry.distance import (
-    point_arc, point_segment, segment_arc, segment_segment,
+    arc_arc, point_arc, point_segment, segment_arc, segment_segment,
 )
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
 from ccopt.verify.distance.concentric import farthest_concentric, polar_gap, same_angle
@@ -197,6 +197,37 @@ def _chords_to(g, c0, c1):
     return segment_arc(c0, c1, np.asarray(g.center), g.radius, g.theta0, g.sweep)
 
 
+def _arcs_to(g, c, R, theta0, sweep):
+    """Distances from arcs ``(c, R, theta0, sweep)`` (row-wise) to an exact primitive ``g``."""
+    if isinstance(g, Line):
+        return segment_arc(np.asarray(g.p0), np.asarray(g.p1), c, R, theta0, sweep)[0]
+    return arc_arc(c, R, theta0, sweep, np.asarray(g.center), g.radius, g.theta0, g.sweep)[0]
+
+
+def mid_arc_bound(c, rho0, b, th0, sg, u0, u1, arcs_to):
+    """A certified lower bound of the distance from spiral pieces ``[u0, u1]``
+    (centre ``c``, polar radius ``rho0 + b u``, angle ``th0 + sg u``) to an
+    exact element, from the arc about the same centre at the piece's middle
+    radius ``rm``: a piece point and the arc point at its angle are
+    ``|rho(u) - rm| <= |rho(u1) - rho(u0)| / 2`` apart, so the piece is no
+    nearer than the arc's exact distance (``arcs_to(c, R, theta0, sweep)``)
+    less that.
+
+    The chords' bound alone cannot settle a spiral that is nearly at one
+    distance from the element all along (a tool's corner arc about the part's
+    vertex, its end rounded by an export to a spiral 1e-7 off its radius, is
+    at the cutter radius from the edge ending there at every angle): every
+    piece stays within ``tol`` of the best and is halved down to a chord
+    deviation below ``tol``. This bound is that distance to within the
+    piece's radius change (nothing where the distance is the same all
+    along), so only the pieces where the spiral is nearest are refined.
+    NaN-free: a NaN distance gives no bound (use with ``np.fmax``).
+    """
+    r0 = rho0 + b * u0
+    r1 = rho0 + b * u1
+    return arcs_to(c, 0.5 * (r0 + r1), th0 + sg * u0, sg * (u1 - u0)) - 0.5 * np.abs(r1 - r0)
+
+
 def _points_to(g, q):
     if isinstance(g, Line):
         return point_segment(q, np.asarray(g.p0), np.asarray(g.p1))
@@ -259,6 +290,12 @@ def min_distance(a, b, tol: float, cap: float = math.inf, exempt=None,
         return Bound(r.lb, r.ub, r.wb, r.wa, r.converged, r.pieces)
     pa = param_of(a)
     pb = None if is_exact(b) else param_of(b)
+    if pb is None and isinstance(pa, SpiralParam) and cap < math.inf:
+        # the whole spiral beyond the cap: nothing to refine (pairs a broad
+        # phase found by their boxes, most of them a tool's neighbours)
+        whole = float(_mid_arc(pa, b, np.zeros(1), np.full(1, pa.U))[0])
+        if whole >= cap:
+            return Bound(whole, math.inf, None, None, True, 0)
     pieces = _first_piece_pairs(pa, pb)
     best = math.inf
     wa = wb = None
@@ -325,6 +362,8 @@ def _bound_pieces(pa: Param, b, pb: Param | None, pieces, exempt):
     # the chords alone would refine down to ``tol`` all along (a spiral on
     # itself, or against its concentric offset).
     lb = np.maximum(d - da - db, _radial_gap(pa, ua0, ua1, b, pb, ub0, ub1))
+    if pb is None and isinstance(pa, SpiralParam):
+        lb = np.fmax(lb, _mid_arc(pa, b, ua0, ua1))
     skip = np.zeros(ua0.size, bool)
     if exempt is not None:
         inside_by, _ = exempt
@@ -346,6 +385,13 @@ def _bound_pieces(pa: Param, b, pb: Param | None, pieces, exempt):
     if exempt is not None:
         ok_ub &= ~exempt[1](qa)
     return lb, ~skip, dq, qa, qb, ok_ub
+
+
+def _mid_arc(pa: SpiralParam, b, u0, u1):
+    """:func:`mid_arc_bound` of the pieces ``[u0, u1]`` of ``pa`` against the exact ``b``."""
+    n = np.size(u0)
+    return mid_arc_bound(np.broadcast_to(pa.c, (n, 2)), pa.rho0, pa.b, pa.th0, pa.sg, u0, u1,
+                         lambda c, R, t, w: _arcs_to(b, c, R, t, w))
 
 
 def _radius_range(p: "SpiralParam", u0, u1):

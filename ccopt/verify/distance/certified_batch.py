@@ -25,13 +25,15 @@ import math
 import numpy as np
 
 from ccopt.geometry import Arc, Line, Spiral
-from ccopt.geometry.distance import point_arc, point_segment, segment_arc, segment_segment
+from ccopt.geometry.distance import (
+    arc_arc, point_arc, point_segment, segment_arc, segment_segment,
+)
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
 from ccopt.verify.distance.concentric import polar_gap, same_angle
 from ccopt.geometry.bezier_arclength import bernstein_basis, bezier_points
 from ccopt.verify.distance.certified import (
     FIRST_PIECE_ANGLE, FIRST_PIECES, MAX_PIECES, BezierParam, Bound, SpiralParam, _fraction,
-    is_bezier, is_exact,
+    is_bezier, is_exact, mid_arc_bound,
 )
 
 
@@ -147,6 +149,15 @@ class _Exact:
                                         self.sw[kk]), (0, 2, 2))
         return d, wa, wb
 
+    def arcs_to(self, k, c, R, th0, sw):
+        """Distances from arcs ``(c, R, th0, sw)`` (row-wise) to elements ``k``."""
+        d, = self._each_kind(
+            k, lambda sel, kk: segment_arc(self.p0[kk], self.p1[kk], c[sel], R[sel], th0[sel],
+                                           sw[sel])[:1],
+            lambda sel, kk: arc_arc(c[sel], R[sel], th0[sel], sw[sel], self.c[kk], self.R[kk],
+                                    self.th0[kk], self.sw[kk])[:1], (0,))
+        return d
+
     def points_to(self, k, q):
         """``(distance, nearest point on the element)`` of points ``q`` to elements ``k``."""
         d, wb = self._each_kind(
@@ -212,6 +223,27 @@ def _run(A: _Spirals | _Beziers, bs, sel, curved: bool, tol: float, caps, max_ro
          exempts) -> list[Bound]:
     """The branch and bound of the pairs ``(A[sel[m]], bs[m])``, all ``b`` exact or all curved."""
     B = _Spirals(bs) if curved else _Exact(bs)
+    sel = np.asarray(sel)
+    go = np.arange(len(bs))
+    out: list[Bound | None] = [None] * len(bs)
+    if not curved and A.concentric:
+        # a whole spiral beyond its cap: nothing to refine (as min_distance)
+        whole = _mid_arc(A, sel, B, go, np.zeros(go.size), A.U[sel])
+        for i in np.flatnonzero(whole >= caps):
+            out[i] = Bound(float(whole[i]), math.inf, None, None, True, 0)
+        go = np.flatnonzero(~(whole >= caps))
+    if go.size:
+        bs_go = [bs[i] for i in go]
+        B_go = B if go.size == len(bs) else (_Spirals if curved else _Exact)(bs_go)
+        for i, r in zip(go, _branch_and_bound(A, B_go, bs_go, sel[go], curved, tol, caps[go],
+                                              max_rounds, [exempts[i] for i in go])):
+            out[i] = r
+    return out
+
+
+def _branch_and_bound(A: _Spirals | _Beziers, B, bs, sel, curved: bool, tol: float, caps,
+                      max_rounds: int, exempts) -> list[Bound]:
+    """Rounds of bounding and halving the pieces of every pair at once."""
     geo = (A, B, sel, curved) + _concentric_b(A, sel, bs, curved)
     pieces = _first(A, B, sel, curved)
     state = _State(len(bs))
@@ -299,6 +331,8 @@ def _round(geo, pieces, exempts):
         d, w_a, w_b = B.chords_to(pid, c0, c1)
     lb = np.maximum(d - da - db, _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb,
                                              curved))
+    if not curved and A.concentric:
+        lb = np.fmax(lb, _mid_arc(A, ka, B, pid, ua0, ua1))
     ta = _fraction(w_a, c0, c1)
     qa = A.eval(ka, ua0 + ta * (ua1 - ua0))
     if curved:
@@ -315,6 +349,13 @@ def _round(geo, pieces, exempts):
         dq, qb = B.points_to(pid, qa)
     live, ok = _exempt(pid, c0, c1, da, qa, exempts)
     return lb, dq, qa, qb, live, ok
+
+
+def _mid_arc(A: _Spirals, ka, B: _Exact, pid, ua0, ua1):
+    """:func:`~ccopt.verify.distance.certified.mid_arc_bound` of spiral pieces
+    ``[ua0, ua1]`` of ``A``'s curves ``ka`` against ``B``'s elements ``pid``."""
+    return mid_arc_bound(A.c[ka], A.rho0[ka], A.b[ka], A.th0[ka], A.sg[ka], ua0, ua1,
+                         lambda c, R, t, w: B.arcs_to(pid, c, R, t, w))
 
 
 def _exempt(pid, c0, c1, da, qa, exempts):
