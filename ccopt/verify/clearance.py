@@ -32,8 +32,8 @@ from ccopt.geometry import Arc, Line, distance, pair_distance
 from ccopt.geometry.angles import TWO_PI, angle_along, sweep_sign
 from ccopt.tolerances import VERIFY_CERTIFIED_GAP
 from ccopt.verify import decisions
-from ccopt.verify.distance import (batchable, candidate_pairs, is_exact, min_distance,
-                                   min_distances)
+from ccopt.verify.distance import candidate_pairs, min_distance, min_distances
+from ccopt.verify.distance.certified_batch import ARC, BEZIER, SPIRAL, batchable_class
 from ccopt.verify.contour import Contour
 
 #: Units of clearance given up per unit past an open end
@@ -469,32 +469,55 @@ def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: 
     time); other curves one by one."""
     d, ub, wt, we = out
     E = contour.elements
-    open_elem = contour.open_start | contour.open_end
-    one_by_one, batch = [], []          # batch: (q, curved, other, swapped, exemption)
-    for q in pairs:
-        j = int(je[q])
-        tg, eg = tool.geom(it[q]), E.geom(j)
-        regions = exempt_regions(contour, j) if open_elem[j] and is_exact(eg) else []
-        ex = None
-        if regions:
-            ex = (lambda pts, m, R=regions: in_regions(R, pts, m),
-                  lambda pts, R=regions: in_regions(R, pts))
-        # the curved one first (an exact element only ever has the exemption)
-        swapped = is_exact(tg) and not is_exact(eg)
-        a, b = (eg, tg) if swapped else (tg, eg)
-        if batchable(a, b):
-            batch.append((q, a, b, swapped, ex))
-        else:
-            one_by_one.append((q, a, b, swapped, ex))
+    pairs = np.asarray(pairs, np.intp)
+    if not pairs.size:
+        return
+    # each tool segment and element once, though it is in many pairs
+    ti, tinv = np.unique(it[pairs], return_inverse=True)
+    ej, einv = np.unique(je[pairs], return_inverse=True)
+    tgs = [tool.geom(i) for i in ti]
+    egs = [E.geom(j) for j in ej]
+    # the curved one first (an exact element only ever has the exemption)
+    swapped = tool.exact[ti][tinv] & ~E.exact[ej][einv]
+    exemption = _exemptions(contour, ej)
+    a_of = [egs[e] if s else tgs[t] for t, e, s in zip(tinv, einv, swapped)]
+    b_of = [tgs[t] if s else egs[e] for t, e, s in zip(tinv, einv, swapped)]
+    ok = _batchable_pairs(tgs, egs, tinv, einv, swapped)
+    ex_of = [exemption.get(e) for e in einv]
+    caps = reach[je[pairs]]
+    batch, one = np.flatnonzero(ok), np.flatnonzero(~ok)
     # every pair of spirals, arcs and lines in one vectorised branch and bound
-    bounds = min_distances([(a, b) for _, a, b, _, _ in batch], tol,
-                           [float(reach[je[q]]) for q, *_ in batch],
-                           [ex for *_, ex in batch])
-    results = list(zip(batch, bounds))
-    results += [((q, a, b, swapped, ex),
-                 min_distance(a, b, tol, cap=float(reach[je[q]]), exempt=ex))
-                for q, a, b, swapped, ex in one_by_one]
-    for (q, _, _, swapped, _), b in results:
+    bounds = min_distances([(a_of[m], b_of[m]) for m in batch], tol, caps[batch],
+                           [ex_of[m] for m in batch])
+    bounds += [min_distance(a_of[m], b_of[m], tol, cap=float(caps[m]), exempt=ex_of[m])
+               for m in one]
+    for m, b in zip(np.concatenate((batch, one)), bounds):
+        q = pairs[m]
         d[q], ub[q] = b.lb, b.ub
         if b.wa is not None:
-            wt[q], we[q] = (b.wb, b.wa) if swapped else (b.wa, b.wb)
+            wt[q], we[q] = (b.wb, b.wa) if swapped[m] else (b.wa, b.wb)
+
+
+def _exemptions(contour: Contour, ej) -> dict:
+    """Per element (by its place in ``ej``): the open-end exemption of a line or
+    arc element with open ends, as :func:`min_distance` takes it."""
+    E = contour.elements
+    open_elem = contour.open_start | contour.open_end
+    out = {}
+    for k in np.flatnonzero(open_elem[ej] & E.exact[ej]):
+        regions = exempt_regions(contour, int(ej[k]))
+        if regions:
+            out[k] = (lambda pts, m, R=regions: in_regions(R, pts, m),
+                      lambda pts, R=regions: in_regions(R, pts))
+    return out
+
+
+def _batchable_pairs(tgs, egs, tinv, einv, swapped) -> np.ndarray:
+    """:func:`~ccopt.verify.distance.batchable` of each pair ``(a, b)`` (``a`` the curved one), from
+    each distinct tool segment's and element's kind."""
+    def classes(gs):
+        return np.array([batchable_class(g) for g in gs], np.int8).reshape(len(gs))
+    tc, ec = classes(tgs)[tinv], classes(egs)[einv]
+    ac, bc = np.where(swapped, ec, tc), np.where(swapped, tc, ec)
+    # a spiral against a line, arc or spiral; a Bezier curve against a line or arc
+    return (((ac == SPIRAL) & (bc <= SPIRAL)) | ((ac == BEZIER) & (bc <= ARC)))

@@ -37,11 +37,27 @@ from ccopt.verify.distance.certified import (
 )
 
 
+#: :func:`batchable_class` of a line, an arc, a spiral, a Bezier curve and any other curve.
+LINE, ARC, SPIRAL, BEZIER, OTHER = range(5)
+
+
+def batchable_class(g) -> int:
+    """What :func:`batchable` asks of a primitive: :data:`LINE`, :data:`ARC`,
+    :data:`SPIRAL`, :data:`BEZIER` (measured by its Bezier parameter) or :data:`OTHER`."""
+    if isinstance(g, Line):
+        return LINE
+    if isinstance(g, Arc):
+        return ARC
+    if isinstance(g, Spiral):
+        return SPIRAL
+    return BEZIER if is_bezier(g) else OTHER
+
+
 def batchable(a, b) -> bool:
-    """True when :func:`min_distances` handles ``(a, b)`` (``a`` curved)."""
-    if isinstance(a, (Arc, Spiral)) and not is_exact(a):
-        return isinstance(b, (Line, Arc, Spiral))
-    return not isinstance(a, Line) and is_bezier(a) and isinstance(b, (Line, Arc))
+    """True when :func:`min_distances` handles ``(a, b)`` (``a`` curved): a spiral
+    against a line, arc or spiral, a Bezier curve against a line or arc."""
+    ca, cb = batchable_class(a), batchable_class(b)
+    return (ca == SPIRAL and cb <= SPIRAL) or (ca == BEZIER and cb <= ARC)
 
 
 def _family(g):
@@ -50,20 +66,32 @@ def _family(g):
     return ("bezier", len(g.control_points) - 1) if is_bezier(g) else ("spiral",)
 
 
+def _distinct(geoms):
+    """``(objects, inverse)``: each object of ``geoms`` once (by identity, in
+    order of first appearance) and, per entry, its index among them; a curve
+    is in as many pairs as elements near it, and its parameters are made once."""
+    first: dict = {}
+    inv = np.fromiter((first.setdefault(id(g), len(first)) for g in geoms), np.intp, len(geoms))
+    objs = [None] * len(first)
+    for g, k in zip(geoms, inv):
+        objs[k] = g
+    return objs, inv
+
+
 class _Spirals:
     """The :class:`SpiralParam` of many curves as arrays, evaluated per piece's pair."""
 
     concentric = True            # the polar radius bounds about a common centre apply
 
     def __init__(self, geoms):
-        ps = [SpiralParam(g) for g in geoms]
-        self.c = np.array([p.c for p in ps], float).reshape(-1, 2)
-        self.rho0 = np.array([p.rho0 for p in ps], float)
-        self.b = np.array([p.b for p in ps], float)
-        self.th0 = np.array([p.th0 for p in ps], float)
-        self.sg = np.array([p.sg for p in ps], float)
-        self.U = np.array([p.U for p in ps], float)
-        self.params = ps
+        objs, inv = _distinct(geoms)
+        ps = [SpiralParam(g) for g in objs]
+        self.c = np.array([p.c for p in ps], float).reshape(-1, 2)[inv]
+        self.rho0 = np.array([p.rho0 for p in ps], float)[inv]
+        self.b = np.array([p.b for p in ps], float)[inv]
+        self.th0 = np.array([p.th0 for p in ps], float)[inv]
+        self.sg = np.array([p.sg for p in ps], float)[inv]
+        self.U = np.array([p.U for p in ps], float)[inv]
 
     def eval(self, k, u):
         rho = self.rho0[k] + self.b[k] * u
@@ -112,20 +140,22 @@ class _Exact:
     """Lines and arcs ``b`` as arrays (a line's arc fields unused and vice versa)."""
 
     def __init__(self, geoms):
-        n = len(geoms)
-        self.line = np.array([isinstance(g, Line) for g in geoms], bool)
-        self.p0 = np.zeros((n, 2))
-        self.p1 = np.zeros((n, 2))
-        self.c = np.zeros((n, 2))
-        self.R = np.ones(n)
-        self.th0 = np.zeros(n)
-        self.sw = np.zeros(n)
-        for i, g in enumerate(geoms):
-            if self.line[i]:
-                self.p0[i], self.p1[i] = g.p0, g.p1
+        objs, inv = _distinct(geoms)
+        n = len(objs)
+        line = np.array([isinstance(g, Line) for g in objs], bool).reshape(n)
+        p0 = np.zeros((n, 2))
+        p1 = np.zeros((n, 2))
+        c = np.zeros((n, 2))
+        R = np.ones(n)
+        th0 = np.zeros(n)
+        sw = np.zeros(n)
+        for i, g in enumerate(objs):
+            if line[i]:
+                p0[i], p1[i] = g.p0, g.p1
             else:
-                self.c[i], self.R[i], self.th0[i], self.sw[i] = (g.center, g.radius, g.theta0,
-                                                                 g.sweep)
+                c[i], R[i], th0[i], sw[i] = g.center, g.radius, g.theta0, g.sweep
+        self.line, self.p0, self.p1 = line[inv], p0[inv], p1[inv]
+        self.c, self.R, self.th0, self.sw = c[inv], R[inv], th0[inv], sw[inv]
 
     def _each_kind(self, k, on_lines, on_arcs, widths):
         """``on_lines(sel, kk)`` on the rows ``sel`` of ``k`` whose element is a
@@ -202,21 +232,18 @@ def min_distances(pairs, tol: float, caps, exempts=None,
     return out
 
 
-def _concentric_b(A: _Spirals | _Beziers, sel, bs, curved: bool):
-    """Per pair: whether ``b`` shares ``a``'s centre (a polar radius gap is then a
-    lower bound, :func:`ccopt.verify.distance.certified._radial_gap`), and for an arc ``b``
-    its radius."""
-    conc = np.zeros(len(bs), bool)
-    Rb = np.zeros(len(bs))
+def _concentric_b(A: _Spirals | _Beziers, B, sel, curved: bool):
+    """Per pair: whether ``b`` (of ``B``) shares ``a``'s centre (a polar radius gap
+    is then a lower bound, :func:`ccopt.verify.distance.certified._radial_gap`), and
+    for an arc ``b`` its radius."""
+    n = len(sel)
     if not A.concentric:
-        return conc, Rb
-    for m, (i, b) in enumerate(zip(sel, bs)):
-        if curved:
-            conc[m] = np.array_equal(A.c[i], SpiralParam(b).c)
-        elif isinstance(b, Arc):
-            conc[m] = tuple(A.c[i]) == tuple(map(float, b.center))
-            Rb[m] = float(b.radius)
-    return conc, Rb
+        return np.zeros(n, bool), np.zeros(n)
+    same = (A.c[sel] == B.c).all(axis=1)
+    if curved:
+        return same, np.zeros(n)
+    arc = ~B.line
+    return same & arc, np.where(arc, B.R, 0.0)
 
 
 def _run(A: _Spirals | _Beziers, bs, sel, curved: bool, tol: float, caps, max_rounds: int,
@@ -244,7 +271,7 @@ def _run(A: _Spirals | _Beziers, bs, sel, curved: bool, tol: float, caps, max_ro
 def _branch_and_bound(A: _Spirals | _Beziers, B, bs, sel, curved: bool, tol: float, caps,
                       max_rounds: int, exempts) -> list[Bound]:
     """Rounds of bounding and halving the pieces of every pair at once."""
-    geo = (A, B, sel, curved) + _concentric_b(A, sel, bs, curved)
+    geo = (A, B, sel, curved) + _concentric_b(A, B, sel, curved)
     pieces = _first(A, B, sel, curved)
     state = _State(len(bs))
     rounds = 0
