@@ -308,3 +308,22 @@ def test_a_spiral_wholly_beyond_its_cap_is_not_cut():
     b = certified.min_distance(sp, edge, 1e-7, cap=2.5)
     assert b.pieces == 0 and 2.5 <= b.lb <= 3.0
     assert min_distances([(sp, edge)], 1e-7, [2.5]) == [b]
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_mid_arc_bound_of_two_spirals_is_below_every_pair_of_their_points(seed):
+    rng = np.random.default_rng(120 + seed)
+    for _ in range(20):
+        a, b = (Spiral(tuple(rng.uniform(-3, 3, 2)), rng.uniform(1, 4), rng.uniform(1, 4),
+                       rng.uniform(-3, 3), rng.choice([-1, 1]) * rng.uniform(0.05, 4))
+                for _ in range(2))
+        pa, pb = certified.param_of(a), certified.param_of(b)
+        u0, v0 = rng.uniform(0, pa.U, 4), rng.uniform(0, pb.U, 4)
+        u1 = np.minimum(u0 + rng.uniform(0, pa.U, 4), pa.U)
+        v1 = np.minimum(v0 + rng.uniform(0, pb.U, 4), pb.U)
+        lb = certified._mid_arc(pa, None, u0, u1, pb, v0, v1)
+        for k in range(4):
+            P = pa.eval(np.linspace(u0[k], u1[k], 801))
+            Q = pb.eval(np.linspace(v0[k], v1[k], 801))
+            d = np.hypot(P[:, None, 0] - Q[None, :, 0], P[:, None, 1] - Q[None, :, 1]).min()
+            assert lb[k] <= d + 1e-12

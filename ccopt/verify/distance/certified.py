@@ -204,28 +204,38 @@ def _arcs_to(g, c, R, theta0, sweep):
     return arc_arc(c, R, theta0, sweep, np.asarray(g.center), g.radius, g.theta0, g.sweep)[0]
 
 
-def mid_arc_bound(c, rho0, b, th0, sg, u0, u1, arcs_to):
-    """A certified lower bound of the distance from spiral pieces ``[u0, u1]``
-    (centre ``c``, polar radius ``rho0 + b u``, angle ``th0 + sg u``) to an
-    exact element, from the arc about the same centre at the piece's middle
-    radius ``rm``: a piece point and the arc point at its angle are
-    ``|rho(u) - rm| <= |rho(u1) - rho(u0)| / 2`` apart, so the piece is no
-    nearer than the arc's exact distance (``arcs_to(c, R, theta0, sweep)``)
-    less that.
+def mid_arc(c, rho0, b, th0, sg, u0, u1):
+    """The arc about a spiral's centre ``c`` at the middle polar radius of each
+    piece ``[u0, u1]`` (polar radius ``rho0 + b u``, angle ``th0 + sg u``), over
+    the piece's angles: ``(c, R, theta0, sweep, half)``, ``half`` the largest
+    distance of a piece point from the arc point at its angle
+    (``|rho(u) - R| <= |rho(u1) - rho(u0)| / 2``)."""
+    r0 = rho0 + b * u0
+    r1 = rho0 + b * u1
+    return c, 0.5 * (r0 + r1), th0 + sg * u0, sg * (u1 - u0), 0.5 * np.abs(r1 - r0)
+
+
+def mid_arc_bound(arc_a, arc_b=None, element_to=None):
+    """A certified lower bound of the distance of spiral pieces, each within
+    ``half`` of its :func:`mid_arc` ``arc_a``, to an exact element
+    (``element_to(c, R, theta0, sweep)``: its exact distance to arcs) or to
+    the pieces of another spiral (``arc_b``): the exact distance of the arcs
+    less the halves.
 
     The chords' bound alone cannot settle a spiral that is nearly at one
-    distance from the element all along (a tool's corner arc about the part's
+    distance from the other all along (a tool's corner arc about the part's
     vertex, its end rounded by an export to a spiral 1e-7 off its radius, is
     at the cutter radius from the edge ending there at every angle): every
     piece stays within ``tol`` of the best and is halved down to a chord
     deviation below ``tol``. This bound is that distance to within the
-    piece's radius change (nothing where the distance is the same all
-    along), so only the pieces where the spiral is nearest are refined.
-    NaN-free: a NaN distance gives no bound (use with ``np.fmax``).
+    pieces' radius change, so only the pieces where they are nearest are
+    refined. A NaN distance gives no bound (combine with ``np.fmax``).
     """
-    r0 = rho0 + b * u0
-    r1 = rho0 + b * u1
-    return arcs_to(c, 0.5 * (r0 + r1), th0 + sg * u0, sg * (u1 - u0)) - 0.5 * np.abs(r1 - r0)
+    c, R, th, sw, half = arc_a
+    if arc_b is None:
+        return element_to(c, R, th, sw) - half
+    cb, Rb, thb, swb, half_b = arc_b
+    return arc_arc(c, R, th, sw, cb, Rb, thb, swb)[0] - half - half_b
 
 
 def _points_to(g, q):
@@ -290,10 +300,12 @@ def min_distance(a, b, tol: float, cap: float = math.inf, exempt=None,
         return Bound(r.lb, r.ub, r.wb, r.wa, r.converged, r.pieces)
     pa = param_of(a)
     pb = None if is_exact(b) else param_of(b)
-    if pb is None and isinstance(pa, SpiralParam) and cap < math.inf:
+    if isinstance(pa, SpiralParam) and (pb is None or isinstance(pb, SpiralParam)) \
+            and cap < math.inf:
         # the whole spiral beyond the cap: nothing to refine (pairs a broad
         # phase found by their boxes, most of them a tool's neighbours)
-        whole = float(_mid_arc(pa, b, np.zeros(1), np.full(1, pa.U))[0])
+        whole = float(_mid_arc(pa, b, np.zeros(1), np.full(1, pa.U), pb, np.zeros(1),
+                               None if pb is None else np.full(1, pb.U))[0])
         if whole >= cap:
             return Bound(whole, math.inf, None, None, True, 0)
     pieces = _first_piece_pairs(pa, pb)
@@ -362,8 +374,8 @@ def _bound_pieces(pa: Param, b, pb: Param | None, pieces, exempt):
     # the chords alone would refine down to ``tol`` all along (a spiral on
     # itself, or against its concentric offset).
     lb = np.maximum(d - da - db, _radial_gap(pa, ua0, ua1, b, pb, ub0, ub1))
-    if pb is None and isinstance(pa, SpiralParam):
-        lb = np.fmax(lb, _mid_arc(pa, b, ua0, ua1))
+    if isinstance(pa, SpiralParam) and (pb is None or isinstance(pb, SpiralParam)):
+        lb = np.fmax(lb, _mid_arc(pa, b, ua0, ua1, pb, ub0, ub1))
     skip = np.zeros(ua0.size, bool)
     if exempt is not None:
         inside_by, _ = exempt
@@ -387,11 +399,15 @@ def _bound_pieces(pa: Param, b, pb: Param | None, pieces, exempt):
     return lb, ~skip, dq, qa, qb, ok_ub
 
 
-def _mid_arc(pa: SpiralParam, b, u0, u1):
-    """:func:`mid_arc_bound` of the pieces ``[u0, u1]`` of ``pa`` against the exact ``b``."""
+def _mid_arc(pa: SpiralParam, b, u0, u1, pb: SpiralParam | None = None, v0=None, v1=None):
+    """:func:`mid_arc_bound` of the pieces ``[u0, u1]`` of ``pa`` against the exact
+    ``b``, or against the pieces ``[v0, v1]`` of ``pb``."""
     n = np.size(u0)
-    return mid_arc_bound(np.broadcast_to(pa.c, (n, 2)), pa.rho0, pa.b, pa.th0, pa.sg, u0, u1,
-                         lambda c, R, t, w: _arcs_to(b, c, R, t, w))
+    arc_a = mid_arc(np.broadcast_to(pa.c, (n, 2)), pa.rho0, pa.b, pa.th0, pa.sg, u0, u1)
+    if pb is None:
+        return mid_arc_bound(arc_a, element_to=lambda c, R, t, w: _arcs_to(b, c, R, t, w))
+    return mid_arc_bound(arc_a, mid_arc(np.broadcast_to(pb.c, (n, 2)), pb.rho0, pb.b, pb.th0,
+                                        pb.sg, v0, v1))
 
 
 def _radius_range(p: "SpiralParam", u0, u1):

@@ -33,7 +33,7 @@ from ccopt.verify.distance.concentric import polar_gap, same_angle
 from ccopt.geometry.bezier_arclength import bernstein_basis, bezier_points
 from ccopt.verify.distance.certified import (
     FIRST_PIECE_ANGLE, FIRST_PIECES, MAX_PIECES, BezierParam, Bound, SpiralParam, _fraction,
-    is_bezier, is_exact, mid_arc_bound,
+    is_bezier, is_exact, mid_arc, mid_arc_bound,
 )
 
 
@@ -253,9 +253,10 @@ def _run(A: _Spirals | _Beziers, bs, sel, curved: bool, tol: float, caps, max_ro
     sel = np.asarray(sel)
     go = np.arange(len(bs))
     out: list[Bound | None] = [None] * len(bs)
-    if not curved and A.concentric:
+    if A.concentric:
         # a whole spiral beyond its cap: nothing to refine (as min_distance)
-        whole = _mid_arc(A, sel, B, go, np.zeros(go.size), A.U[sel])
+        whole = _mid_arc(A, sel, B, go, np.zeros(go.size), A.U[sel], np.zeros(go.size),
+                         B.U if curved else None)
         for i in np.flatnonzero(whole >= caps):
             out[i] = Bound(float(whole[i]), math.inf, None, None, True, 0)
         go = np.flatnonzero(~(whole >= caps))
@@ -358,8 +359,8 @@ def _round(geo, pieces, exempts):
         d, w_a, w_b = B.chords_to(pid, c0, c1)
     lb = np.maximum(d - da - db, _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb,
                                              curved))
-    if not curved and A.concentric:
-        lb = np.fmax(lb, _mid_arc(A, ka, B, pid, ua0, ua1))
+    if A.concentric:
+        lb = np.fmax(lb, _mid_arc(A, ka, B, pid, ua0, ua1, ub0, ub1))
     ta = _fraction(w_a, c0, c1)
     qa = A.eval(ka, ua0 + ta * (ua1 - ua0))
     if curved:
@@ -378,11 +379,15 @@ def _round(geo, pieces, exempts):
     return lb, dq, qa, qb, live, ok
 
 
-def _mid_arc(A: _Spirals, ka, B: _Exact, pid, ua0, ua1):
+def _mid_arc(A: _Spirals, ka, B: _Exact | _Spirals, pid, ua0, ua1, ub0=None, ub1=None):
     """:func:`~ccopt.verify.distance.certified.mid_arc_bound` of spiral pieces
-    ``[ua0, ua1]`` of ``A``'s curves ``ka`` against ``B``'s elements ``pid``."""
-    return mid_arc_bound(A.c[ka], A.rho0[ka], A.b[ka], A.th0[ka], A.sg[ka], ua0, ua1,
-                         lambda c, R, t, w: B.arcs_to(pid, c, R, t, w))
+    ``[ua0, ua1]`` of ``A``'s curves ``ka`` against ``B``'s elements ``pid``, or
+    against their pieces ``[ub0, ub1]`` when ``B`` holds spirals."""
+    arc_a = mid_arc(A.c[ka], A.rho0[ka], A.b[ka], A.th0[ka], A.sg[ka], ua0, ua1)
+    if isinstance(B, _Exact):
+        return mid_arc_bound(arc_a, element_to=lambda c, R, t, w: B.arcs_to(pid, c, R, t, w))
+    return mid_arc_bound(arc_a, mid_arc(B.c[pid], B.rho0[pid], B.b[pid], B.th0[pid], B.sg[pid],
+                                        ub0, ub1))
 
 
 def _exempt(pid, c0, c1, da, qa, exempts):
