@@ -242,13 +242,15 @@ class _Distances:
             d[sel] = self.to_curves(pts[at])[np.searchsorted(at, pi[sel])]
         return d
 
-    def upper(self, pts: np.ndarray, owner: np.ndarray, local) -> np.ndarray:
-        """``(N,)``: an upper bound of the distance from each point to the primitives
-        near its own (``local = (ptr, idx)``: the targets near source primitive
-        ``o`` are ``idx[ptr[o]:ptr[o + 1]]``); points by blocks of about
-        :data:`CHUNK_CELLS` pairs."""
+    def upper(self, pts: np.ndarray, owner: np.ndarray, local):
+        """``(d, line)``: per point, an upper bound of its distance to the
+        primitives near its own (``local = (ptr, idx)``: the targets near source
+        primitive ``o`` are ``idx[ptr[o]:ptr[o + 1]]``), and the target line it
+        is the exact distance to (``-1`` where the least is not a line's);
+        points by blocks of about :data:`CHUNK_CELLS` pairs."""
         deg = local[0][owner + 1] - local[0][owner]
         d = np.full(len(pts), math.inf)
+        line = np.full(len(pts), -1, np.intp)
         ends = np.cumsum(deg)
         i0 = 0
         while i0 < len(pts):
@@ -259,9 +261,16 @@ class _Distances:
             if pi.size:
                 dd = self.pairs(pts, pi + i0, pj)
                 has = np.flatnonzero(n > 0)
-                d[i0 + has] = np.minimum.reduceat(dd, first[has])
+                least = np.minimum.reduceat(dd, first[has])
+                d[i0 + has] = least
+                # each point's first pair at its least value, if that is a line's
+                at = np.where(dd == np.repeat(least, n[has]), np.arange(dd.size), dd.size)
+                at = np.minimum.reduceat(at, first[has])
+                found = at < dd.size
+                j = pj[np.minimum(at, dd.size - 1)]
+                line[i0 + has] = np.where(found & (self.t.kind[j] == _LINE), j, -1)
             i0 = i1
-        return d
+        return d, line
 
     def line_bounds(self, src: "_Primitives", local) -> np.ndarray:
         """Per source primitive, an upper bound of its distance to the targets
@@ -313,6 +322,40 @@ class _Distances:
                  + np.maximum(B[pj, 2], B[pj, 3]) * np.maximum(np.abs(d0), np.abs(d1)))
         at = np.flatnonzero(np.r_[True, k[1:] != k[:-1]])
         out[k[at]] = np.minimum.reduceat(bound, at)
+        return out
+
+    def circular_steps(self, src: "_Primitives", k, pa, pb, local) -> np.ndarray:
+        """Per step of a source arc or spiral ``k`` from ``pa`` to ``pb`` (less
+        than a quarter turn about its centre ``c``): an upper bound of the
+        distance of each point of the step to the targets near ``k``, ``inf``
+        where none gives one. For an arc or spiral target ``j`` (centre
+        ``c_j``) whose angles hold both ends' polar angles about ``c``: a
+        step point at angle ``theta`` is within ``|c - c_j| + |rho(theta) -
+        rho_j(theta)|`` of the target's point at that angle about ``c_j``, and
+        both polar radii are linear in the angle, so that is largest at an
+        end. A corner arc or a rounded-end spiral beside the reference's that
+        turns a little more or less (its whole-arc bound,
+        :meth:`circular_bounds`, then counts the end's overhang everywhere)
+        is held by it instead of being sampled every few ``h``."""
+        out = np.full(k.size, math.inf)
+        pi, pj, _, _ = _expand(k, local)
+        keep = self.t.circular[pj]
+        pi, pj = pi[keep], pj[keep]
+        if not pi.size:
+            return out
+        A, B = src.circ[k[pi]], self.t.circ[pj]
+        sw = np.abs(B[:, 5])
+        ends = []
+        for p in (pa, pb):
+            vx, vy = p[pi, 0] - A[:, 0], p[pi, 1] - A[:, 1]
+            u = np.remainder((np.arctan2(vy, vx) - B[:, 4]) * np.sign(B[:, 5]), 2.0 * math.pi)
+            rho_j = B[:, 2] + (B[:, 3] - B[:, 2]) * (u / np.where(sw > 0.0, sw, 1.0))
+            ends.append((u, np.abs(np.hypot(vx, vy) - rho_j)))
+        (ua, ra), (ub, rb) = ends
+        held = (ua <= sw) & (ub <= sw) & (np.abs(ub - ua) < 0.5 * math.pi)
+        bound = np.where(held, np.hypot(A[:, 0] - B[:, 0], A[:, 1] - B[:, 1])
+                         + np.maximum(ra, rb), math.inf)
+        np.minimum.at(out, pi, bound)
         return out
 
     def exact(self, p: np.ndarray, near: np.ndarray, reach: float) -> float:
@@ -415,10 +458,14 @@ def _along(src: _Primitives, local, dist: _Distances, h: float, coarse_h: float)
     """
     owner, s = _equal_steps(src.length, coarse_h)
     pts = src.points(owner, s)
-    d = dist.upper(pts, owner, local)
+    d, w = dist.upper(pts, owner, local)
     inner = np.flatnonzero(owner[1:] == owner[:-1])       # consecutive samples on one primitive
     a, b, da, db, k = s[inner], s[inner + 1], d[inner], d[inner + 1], owner[inner]
+    wa, wb = w[inner], w[inner + 1]
     slack = 2.0 * ARC_LENGTH_REL_TOL * src.length
+    on_line = src.kind == _LINE
+    on_circle = src.circular
+    least_rho = np.fmin(src.circ[:, 2], src.circ[:, 3])
     all_owner, all_pts, all_d = [owner], [pts], [d]
     top = float(d.max(initial=0.0))
     bound = 0.0
@@ -429,25 +476,41 @@ def _along(src: _Primitives, local, dist: _Distances, h: float, coarse_h: float)
     if held.any():
         bound = float(whole[held].max())
         live = ~held[k]
-        a, b, da, db, k = a[live], b[live], da[live], db[live], k[live]
+        a, b, da, db, k, wa, wb = (v[live] for v in (a, b, da, db, k, wa, wb))
     while a.size:
         step = 0.5 * (da + db + (b - a) + slack[k])
+        # on a line, both ends nearest the same target line: no farther from it
+        # between them than at an end (the distance to a segment, a convex
+        # set, is convex along a line), where the Lipschitz bound would halve
+        # a line lying beside its target down to steps of about h
+        # (both bounds below carry ``slack`` too: above the rounding of the
+        # distances they rest on)
+        same = on_line[k] & (wa == wb) & (wa >= 0)
+        step = np.where(same, np.minimum(step, np.maximum(da, db) + slack[k]), step)
+        # on an arc or spiral, a step of less than a quarter turn beside a
+        # target arc or spiral (:meth:`_Distances.circular_steps`)
+        turn = np.flatnonzero(on_circle[k] & (b - a < 0.5 * math.pi * least_rho[k]))
+        if turn.size:
+            kt = k[turn]
+            step[turn] = np.minimum(step[turn], slack[kt] + dist.circular_steps(
+                src, kt, src.points(kt, a[turn]), src.points(kt, b[turn]), local))
         mid = 0.5 * (a + b)
         done = (step <= top + BOUND_SLACK_SHARE * h) | (mid <= a) | (mid >= b)
         if done.any():
             bound = max(bound, float(step[done].max()))
         live = ~done
-        a, b, da, db, k, mid = a[live], b[live], da[live], db[live], k[live], mid[live]
+        a, b, da, db, k, mid, wa, wb = (v[live] for v in (a, b, da, db, k, mid, wa, wb))
         if not a.size:
             break
         pm = src.points(k, mid)
-        dm = dist.upper(pm, k, local)
+        dm, wm = dist.upper(pm, k, local)
         all_owner.append(k)
         all_pts.append(pm)
         all_d.append(dm)
         top = max(top, float(dm.max()))
         a, b = np.concatenate((a, mid)), np.concatenate((mid, b))
         da, db = np.concatenate((da, dm)), np.concatenate((dm, db))
+        wa, wb = np.concatenate((wa, wm)), np.concatenate((wm, wb))
         k = np.concatenate((k, k))
     return bound, np.concatenate(all_owner), np.vstack(all_pts), np.concatenate(all_d)
 

@@ -166,3 +166,87 @@ def test_deviation_of_an_arc_or_spiral_beside_the_reference_arc(kind):
         est, bound = max_deviation(a, b, h)
         assert est == pytest.approx(e, abs=1e-9)
         assert e - 1e-9 <= bound <= e + 1e-12
+
+
+def _samples_of(monkeypatch):
+    """Wrap the deviation's sampling: the number of samples of each side."""
+    from ccopt.compare import deviation
+    counts = []
+    along = deviation._along
+
+    def counted(*args):
+        out = along(*args)
+        counts.append(len(out[1]))
+        return out
+    monkeypatch.setattr(deviation, "_along", counted)
+    return counts
+
+
+def _brute_deviation(src, dst, n=20_001):
+    """The largest distance from ``n`` points of each of ``src``'s primitives to
+    ``dst``'s lines and arcs, each measured here (foot of the perpendicular on a
+    line; radial gap on an arc where the angle is on it, else the nearer end)."""
+    def to_line(q, g):
+        p0, p1 = g.p0, g.p1
+        dx, dy = p1[0] - p0[0], p1[1] - p0[1]
+        t = min(1.0, max(0.0, ((q[0] - p0[0]) * dx + (q[1] - p0[1]) * dy) / (dx * dx + dy * dy)))
+        return math.hypot(q[0] - p0[0] - t * dx, q[1] - p0[1] - t * dy)
+
+    def to_arc(q, g):
+        ang = math.atan2(q[1] - g.center[1], q[0] - g.center[0])
+        rel = ((ang - g.theta0) * math.copysign(1.0, g.sweep)) % (2 * math.pi)
+        ends = min(math.hypot(q[0] - e[0], q[1] - e[1]) for e in (g.start, g.end))
+        if rel <= abs(g.sweep):
+            return min(ends, abs(math.hypot(q[0] - g.center[0], q[1] - g.center[1]) - g.radius))
+        return ends
+    worst = 0.0
+    for s in src.segments:
+        g = s.geom
+        for f in (i / (n - 1) for i in range(n)):
+            q = g.point(f * g.length)
+            q = (float(q[0]), float(q[1]))
+            worst = max(worst, min(to_line(q, t.geom) if isinstance(t.geom, Line)
+                                   else to_arc(q, t.geom) for t in dst.segments))
+    return worst
+
+
+def test_deviation_of_a_line_beside_a_shorter_reference_line_and_its_corner(monkeypatch):
+    # the reference: a line y = 0 from x = 0 to 30, then its corner arc of radius
+    # 2 about (30, 2); the variant: the line 1e-6 higher running on to x = 30.002,
+    # past the reference line's end and beside the arc, then the arc e inside.
+    # No single reference line holds the variant's line by its ends, but each
+    # step whose ends are nearest the reference line is held by them
+    # (convexity), so only the steps near the corner are halved: not the whole
+    # line down to steps of about h / 4.
+    e, h = 1e-6, 1e-3
+    ref = ToolPath((seg(Line((0.0, 0.0), (30.0, 0.0))),
+                    seg(Arc((30.0, 2.0), 2.0, -math.pi / 2, math.pi / 2))))
+    start = math.atan2(e - 2.0, 0.002)          # the arc's angle at the line's end
+    var = ToolPath((seg(Line((0.0, e), (30.002, e))),
+                    seg(Arc((30.0, 2.0), 2.0 - e, start, -start))))
+    counts = _samples_of(monkeypatch)
+    est, bound = max_deviation(var, ref, h)
+    truth = max(_brute_deviation(var, ref), _brute_deviation(ref, var))
+    assert truth - 1e-12 <= est <= bound <= truth + h / 8 + 1e-9
+    coarse = 30.002 / (50 * h) + 1
+    assert counts[0] < 2 * coarse + 2 * math.pi / (50 * h) + 2    # the Lipschitz steps alone:
+    # 30 / (h / 4) samples on the line
+
+
+def test_deviation_of_a_corner_arc_turning_on_past_the_reference_arc(monkeypatch):
+    # the reference: an arc of radius 5.85 about the origin over 2.3 rad, then the
+    # line tangent at its end; the variant: the same arc turning 5.8e-5 rad further
+    # (another style's corner arc, ending where its own next element begins), so
+    # its whole-arc bound counts 5.85 * 5.8e-5 = 3.4e-4 > h / 8 everywhere. The
+    # steps within the reference arc's angles are held by the radii at their ends.
+    h, rho, th0, sw, extra = 1e-3, 5.85, -2.16, 2.3, 5.8e-5
+    end = (rho * math.cos(th0 + sw), rho * math.sin(th0 + sw))
+    tangent = (-math.sin(th0 + sw), math.cos(th0 + sw))
+    ref = ToolPath((seg(Arc((0.0, 0.0), rho, th0, sw)),
+                    seg(Line(end, (end[0] + 3 * tangent[0], end[1] + 3 * tangent[1])))))
+    var = ToolPath((seg(Arc((0.0, 0.0), rho, th0, sw + extra)),))
+    counts = _samples_of(monkeypatch)
+    est, bound = max_deviation(var, ref, h)
+    truth = max(_brute_deviation(var, ref), _brute_deviation(ref, var))
+    assert truth - 1e-12 <= est <= bound <= truth + h / 8 + 1e-9
+    assert counts[0] < 2 * (rho * (sw + extra) / (50 * h) + 1)
