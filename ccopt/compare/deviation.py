@@ -12,7 +12,10 @@ largest sampled distance, so only the stretches near the maximum are
 sampled finely; a line beside a target line, or an arc or spiral beside a
 target arc or spiral turning the same way (another controller's corner, a
 CAM arc read as a spiral of rounded ends), is bounded in closed form and not
-sampled at all. The largest samples are then measured exactly (curves as
+sampled at all; nor is a step of a line whose two ends are nearest one
+target line, or a step of an arc or spiral within a target arc's or spiral's
+angles (a line running on past the reference's, a corner arc turning a
+little further). The largest samples are then measured exactly (curves as
 fine chords) for the estimate.
 """
 from __future__ import annotations

@@ -20,6 +20,14 @@ is already above ``best - tol`` (or above a caller's ``cap``) are dropped.
 The answer is ``[lb, ub]`` with ``ub - lb <= tol`` unless the round limit
 stopped it, and then the gap says how far it got.
 
+A spiral piece also lies within half its polar radius change of the arc about
+its centre at its middle radius, so that arc's exact distance less the half
+is a lower bound too (:func:`mid_arc_bound`): it settles the pieces of a
+rounded arc (an export's read-back, a CAM arc of rounded ends) that lie at
+one distance from the other object all along, which the chords alone would
+halve down to ``tol`` everywhere; over a whole spiral it drops a pair that is
+beyond its cap before any piece is cut.
+
 Parameters: a spiral by its swept angle ``phi`` (``|p''| = sqrt(rho^2 +
 4 b^2)``, exact and monotone in ``rho``), an arc by its swept angle
 (``|p''| = R``), a line by its fraction (``p'' = 0``) and any other curve
