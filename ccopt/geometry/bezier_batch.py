@@ -87,6 +87,21 @@ class BezierBatch:
         x = half[:, None] * _GL_X[None, :] + (0.5 * (a + b))[:, None]
         return half * (self._speed(cx, cy, x) @ _GL_W)
 
+    def _knots_at_or_below(self, c, s) -> np.ndarray:
+        """How many knots of curve ``c[i]`` are at or below ``s[i]``, each: a
+        binary search over every row at once (each row ascending, padded with
+        +inf), gathering one knot per point and round instead of a whole row."""
+        lo = np.zeros(c.size, np.intp)                  # knots[:lo] <= s
+        hi = np.full(c.size, self.knots_s.shape[1], np.intp)   # knots[hi:] > s
+        while True:
+            open_ = np.flatnonzero(lo < hi)
+            if not open_.size:
+                return lo
+            mid = (lo[open_] + hi[open_]) // 2
+            at_or_below = self.knots_s[c[open_], mid] <= s[open_]
+            lo[open_] = np.where(at_or_below, mid + 1, lo[open_])
+            hi[open_] = np.where(at_or_below, hi[open_], mid)
+
     def t_of_s(self, c, s) -> np.ndarray:
         """Bezier parameter of each point: ``|s(t) - s| <= tol`` of its curve
         (see the module docstring); ``0`` and ``length`` give ``t = 0`` and ``1``."""
@@ -99,17 +114,14 @@ class BezierBatch:
             return t
         ca, sa = c[active], s[active]
         # each point's piece: its curve's knots at or below s, less one (padding is +inf)
-        j = np.minimum(np.count_nonzero(self.knots_s[ca] <= sa[:, None], axis=1) - 1,
-                       self.last_piece[ca])
+        j = np.minimum(self._knots_at_or_below(ca, sa) - 1, self.last_piece[ca])
         j = np.maximum(j, 0)
-        kt, ks, kv = self.knots_t[ca], self.knots_s[ca], self.knots_speed[ca]
-        rows = np.arange(active.size)
-        t0, t1 = kt[rows, j], kt[rows, j + 1]
-        s0, h = ks[rows, j], ks[rows, j + 1] - ks[rows, j]
+        t0, t1 = self.knots_t[ca, j], self.knots_t[ca, j + 1]
+        s0, h = self.knots_s[ca, j], self.knots_s[ca, j + 1] - self.knots_s[ca, j]
         # cubic Hermite guess of t(s) on the piece (slopes 1/|r'| at its knots)
         safe = np.where(h > 0.0, h, 1.0)
         x = np.where(h > 0.0, (sa - s0) / safe, 0.0)
-        m0, m1 = h / kv[rows, j], h / kv[rows, j + 1]
+        m0, m1 = h / self.knots_speed[ca, j], h / self.knots_speed[ca, j + 1]
         x2, x3 = x * x, x * x * x
         guess = ((2 * x3 - 3 * x2 + 1) * t0 + (x3 - 2 * x2 + x) * m0
                  + (-2 * x3 + 3 * x2) * t1 + (x3 - x2) * m1)
