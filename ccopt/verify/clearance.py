@@ -33,7 +33,7 @@ from ccopt.geometry.angles import TWO_PI, angle_along, sweep_sign
 from ccopt.tolerances import VERIFY_CERTIFIED_GAP
 from ccopt.verify import decisions
 from ccopt.verify.distance import candidate_pairs, min_distance, min_distances
-from ccopt.verify.distance.certified_batch import ARC, BEZIER, SPIRAL, batchable_class
+from ccopt.verify.distance.certified_batch import batchable_by_class, batchable_class
 from ccopt.verify.contour import Contour
 
 #: Units of clearance given up per unit past an open end
@@ -513,11 +513,9 @@ def _exemptions(contour: Contour, ej) -> dict:
 
 
 def _batchable_pairs(tgs, egs, tinv, einv, swapped) -> np.ndarray:
-    """:func:`~ccopt.verify.distance.batchable` of each pair ``(a, b)`` (``a`` the curved one), from
-    each distinct tool segment's and element's kind."""
+    """:func:`~ccopt.verify.distance.batchable` of each pair ``(a, b)`` (``a`` the
+    curved one), from each distinct tool segment's and element's kind."""
     def classes(gs):
         return np.array([batchable_class(g) for g in gs], np.int8).reshape(len(gs))
     tc, ec = classes(tgs)[tinv], classes(egs)[einv]
-    ac, bc = np.where(swapped, ec, tc), np.where(swapped, tc, ec)
-    # a spiral against a line, arc or spiral; a Bezier curve against a line or arc
-    return (((ac == SPIRAL) & (bc <= SPIRAL)) | ((ac == BEZIER) & (bc <= ARC)))
+    return batchable_by_class(np.where(swapped, ec, tc), np.where(swapped, tc, ec))

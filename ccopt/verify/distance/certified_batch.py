@@ -53,11 +53,16 @@ def batchable_class(g) -> int:
     return BEZIER if is_bezier(g) else OTHER
 
 
+def batchable_by_class(ca, cb):
+    """:func:`batchable` from the :func:`batchable_class` of ``a`` and ``b`` (numbers
+    or arrays of them): a spiral against a line, arc or spiral, a Bezier curve
+    against a line or arc."""
+    return ((ca == SPIRAL) & (cb <= SPIRAL)) | ((ca == BEZIER) & (cb <= ARC))
+
+
 def batchable(a, b) -> bool:
-    """True when :func:`min_distances` handles ``(a, b)`` (``a`` curved): a spiral
-    against a line, arc or spiral, a Bezier curve against a line or arc."""
-    ca, cb = batchable_class(a), batchable_class(b)
-    return (ca == SPIRAL and cb <= SPIRAL) or (ca == BEZIER and cb <= ARC)
+    """True when :func:`min_distances` handles ``(a, b)`` (``a`` curved)."""
+    return bool(batchable_by_class(batchable_class(a), batchable_class(b)))
 
 
 def _family(g):
