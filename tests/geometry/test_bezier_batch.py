@@ -89,3 +89,24 @@ def test_exact_path_evaluates_its_bezier_segments_as_the_curves_do():
             if isinstance(g, BezierCurve) and m.any():
                 ref = getattr(g, method)(s[m] - path.offsets[i])
                 assert np.allclose(q[m], ref, rtol=1e-12, atol=1e-12), (order, i)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_each_point_finds_its_arc_length_piece(seed):
+    # plain curves and a wiggly one with more arc-length knots, so rows of
+    # different knot counts (padded with +inf); points on knots exactly, just
+    # below them, at both ends and between: the count of a row's knots at or
+    # below s, by definition
+    cs = curves(30 + seed, 9, 7)
+    cs += [BezierCurve(((0, 0), (1, 0), (2, 3), (3, -3), (4, 5), (5, 0.001), (1, 1), (0, 9)))]
+    batch = BezierBatch(cs)
+    assert len(set(batch.last_piece.tolist())) > 1          # rows padded differently
+    rng = np.random.default_rng(seed)
+    c = rng.integers(0, len(cs), 3000)
+    width = batch.knots_s.shape[1]
+    k = rng.integers(0, width, c.size)
+    s = np.where(np.isfinite(batch.knots_s[c, k]), batch.knots_s[c, k], batch.length[c])
+    s[::3] = rng.uniform(0.0, 1.0, s[::3].size) * batch.length[c[::3]]
+    s[1::7] = np.nextafter(s[1::7], -np.inf)
+    want = np.count_nonzero(batch.knots_s[c] <= s[:, None], axis=1)
+    assert np.array_equal(batch._knots_at_or_below(c, s), want)
