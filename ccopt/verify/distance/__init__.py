@@ -12,7 +12,8 @@ verifier's one entry to its distance machinery.
   contact check), and :func:`max_distance_bound` (:mod:`.certified`) its
   certified upper bound where a spiral or curve is involved;
 - :mod:`.concentric`: the bounds of arcs and spirals about one centre that
-  the branch and bound uses.
+  the branch and bound uses, and :mod:`.mid_arc`: the bound of a spiral piece
+  by the arc at its middle radius.
 
 Exact line and arc distances are geometry's (:mod:`ccopt.geometry.distance`).
 """

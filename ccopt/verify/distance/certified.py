@@ -22,11 +22,11 @@ stopped it, and then the gap says how far it got.
 
 A spiral piece also lies within half its polar radius change of the arc about
 its centre at its middle radius, so that arc's exact distance less the half
-is a lower bound too (:func:`mid_arc_bound`): it settles the pieces of a
-rounded arc (an export's read-back, a CAM arc of rounded ends) that lie at
-one distance from the other object all along, which the chords alone would
-halve down to ``tol`` everywhere; over a whole spiral it drops a pair that is
-beyond its cap before any piece is cut.
+is a lower bound too (:func:`~ccopt.verify.distance.mid_arc.mid_arc_bound`):
+it settles the pieces of a rounded arc (an export's read-back, a CAM arc of
+rounded ends) that lie at one distance from the other object all along,
+which the chords alone would halve down to ``tol`` everywhere; over a whole
+spiral it drops a pair that is beyond its cap before any piece is cut.
 
 Parameters: a spiral by its swept angle ``phi`` (``|p''| = sqrt(rho^2 +
 4 b^2)``, exact and monotone in ``rho``), an arc by its swept angle
@@ -45,12 +45,11 @@ import numpy as np
 from ccopt.geometry import Arc, Line, SegmentArray, Spiral
 from ccopt.geometry.angles import sweep_sign
 from ccopt.geometry.bezier_arclength import bernstein_basis, bezier_points
-from ccopt.geometry.distance import (
-    arc_arc, point_arc, point_segment, segment_arc, segment_segment,
-)
+from ccopt.geometry.distance import point_arc, point_segment, segment_arc, segment_segment
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
 from ccopt.verify.distance.concentric import farthest_concentric, polar_gap, same_angle
 from ccopt.verify.distance.maxdist import max_distance as exact_max_distance
+from ccopt.verify.distance.mid_arc import arcs_to, mid_arc, mid_arc_bound
 
 #: Pieces per pair are never more than this (the bound is then reported with its gap).
 MAX_PIECES = 1 << 18
@@ -203,47 +202,6 @@ def _chords_to(g, c0, c1):
     if isinstance(g, Line):
         return segment_segment(c0, c1, np.asarray(g.p0), np.asarray(g.p1))
     return segment_arc(c0, c1, np.asarray(g.center), g.radius, g.theta0, g.sweep)
-
-
-def _arcs_to(g, c, R, theta0, sweep):
-    """Distances from arcs ``(c, R, theta0, sweep)`` (row-wise) to an exact primitive ``g``."""
-    if isinstance(g, Line):
-        return segment_arc(np.asarray(g.p0), np.asarray(g.p1), c, R, theta0, sweep)[0]
-    return arc_arc(c, R, theta0, sweep, np.asarray(g.center), g.radius, g.theta0, g.sweep)[0]
-
-
-def mid_arc(c, rho0, b, th0, sg, u0, u1):
-    """The arc about a spiral's centre ``c`` at the middle polar radius of each
-    piece ``[u0, u1]`` (polar radius ``rho0 + b u``, angle ``th0 + sg u``), over
-    the piece's angles: ``(c, R, theta0, sweep, half)``, ``half`` the largest
-    distance of a piece point from the arc point at its angle
-    (``|rho(u) - R| <= |rho(u1) - rho(u0)| / 2``)."""
-    r0 = rho0 + b * u0
-    r1 = rho0 + b * u1
-    return c, 0.5 * (r0 + r1), th0 + sg * u0, sg * (u1 - u0), 0.5 * np.abs(r1 - r0)
-
-
-def mid_arc_bound(arc_a, arc_b=None, element_to=None):
-    """A certified lower bound of the distance of spiral pieces, each within
-    ``half`` of its :func:`mid_arc` ``arc_a``, to an exact element
-    (``element_to(c, R, theta0, sweep)``: its exact distance to arcs) or to
-    the pieces of another spiral (``arc_b``): the exact distance of the arcs
-    less the halves.
-
-    The chords' bound alone cannot settle a spiral that is nearly at one
-    distance from the other all along (a tool's corner arc about the part's
-    vertex, its end rounded by an export to a spiral 1e-7 off its radius, is
-    at the cutter radius from the edge ending there at every angle): every
-    piece stays within ``tol`` of the best and is halved down to a chord
-    deviation below ``tol``. This bound is that distance to within the
-    pieces' radius change, so only the pieces where they are nearest are
-    refined. A NaN distance gives no bound (combine with ``np.fmax``).
-    """
-    c, R, th, sw, half = arc_a
-    if arc_b is None:
-        return element_to(c, R, th, sw) - half
-    cb, Rb, thb, swb, half_b = arc_b
-    return arc_arc(c, R, th, sw, cb, Rb, thb, swb)[0] - half - half_b
 
 
 def _points_to(g, q):
@@ -408,12 +366,12 @@ def _bound_pieces(pa: Param, b, pb: Param | None, pieces, exempt):
 
 
 def _mid_arc(pa: SpiralParam, b, u0, u1, pb: SpiralParam | None = None, v0=None, v1=None):
-    """:func:`mid_arc_bound` of the pieces ``[u0, u1]`` of ``pa`` against the exact
-    ``b``, or against the pieces ``[v0, v1]`` of ``pb``."""
+    """:func:`~ccopt.verify.distance.mid_arc.mid_arc_bound` of the pieces ``[u0, u1]``
+    of ``pa`` against the exact ``b``, or against the pieces ``[v0, v1]`` of ``pb``."""
     n = np.size(u0)
     arc_a = mid_arc(np.broadcast_to(pa.c, (n, 2)), pa.rho0, pa.b, pa.th0, pa.sg, u0, u1)
     if pb is None:
-        return mid_arc_bound(arc_a, element_to=lambda c, R, t, w: _arcs_to(b, c, R, t, w))
+        return mid_arc_bound(arc_a, element_to=lambda c, R, t, w: arcs_to(b, c, R, t, w))
     return mid_arc_bound(arc_a, mid_arc(np.broadcast_to(pb.c, (n, 2)), pb.rho0, pb.b, pb.th0,
                                         pb.sg, v0, v1))
 

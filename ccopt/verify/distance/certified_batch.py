@@ -30,10 +30,11 @@ from ccopt.geometry.distance import (
 )
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
 from ccopt.verify.distance.concentric import polar_gap, same_angle
+from ccopt.verify.distance.mid_arc import mid_arc, mid_arc_bound
 from ccopt.geometry.bezier_arclength import bernstein_basis, bezier_points
 from ccopt.verify.distance.certified import (
     FIRST_PIECE_ANGLE, FIRST_PIECES, MAX_PIECES, BezierParam, Bound, SpiralParam, _fraction,
-    is_bezier, is_exact, mid_arc, mid_arc_bound,
+    is_bezier, is_exact,
 )
 
 
@@ -385,7 +386,7 @@ def _round(geo, pieces, exempts):
 
 
 def _mid_arc(A: _Spirals, ka, B: _Exact | _Spirals, pid, ua0, ua1, ub0=None, ub1=None):
-    """:func:`~ccopt.verify.distance.certified.mid_arc_bound` of spiral pieces
+    """:func:`~ccopt.verify.distance.mid_arc.mid_arc_bound` of spiral pieces
     ``[ua0, ua1]`` of ``A``'s curves ``ka`` against ``B``'s elements ``pid``, or
     against their pieces ``[ub0, ub1]`` when ``B`` holds spirals."""
     arc_a = mid_arc(A.c[ka], A.rho0[ka], A.b[ka], A.th0[ka], A.sg[ka], ua0, ua1)
