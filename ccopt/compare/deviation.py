@@ -465,6 +465,7 @@ def _along(src: _Primitives, local, dist: _Distances, h: float, coarse_h: float)
     inner = np.flatnonzero(owner[1:] == owner[:-1])       # consecutive samples on one primitive
     a, b, da, db, k = s[inner], s[inner + 1], d[inner], d[inner + 1], owner[inner]
     wa, wb = w[inner], w[inner + 1]
+    pa, pb = pts[inner], pts[inner + 1]           # each step's end points
     slack = 2.0 * ARC_LENGTH_REL_TOL * src.length
     on_line = src.kind == _LINE
     on_circle = src.circular
@@ -479,7 +480,7 @@ def _along(src: _Primitives, local, dist: _Distances, h: float, coarse_h: float)
     if held.any():
         bound = float(whole[held].max())
         live = ~held[k]
-        a, b, da, db, k, wa, wb = (v[live] for v in (a, b, da, db, k, wa, wb))
+        a, b, da, db, k, wa, wb, pa, pb = (v[live] for v in (a, b, da, db, k, wa, wb, pa, pb))
     while a.size:
         step = 0.5 * (da + db + (b - a) + slack[k])
         # on a line, both ends nearest the same target line: no farther from it
@@ -496,13 +497,14 @@ def _along(src: _Primitives, local, dist: _Distances, h: float, coarse_h: float)
         if turn.size:
             kt = k[turn]
             step[turn] = np.minimum(step[turn], slack[kt] + dist.circular_steps(
-                src, kt, src.points(kt, a[turn]), src.points(kt, b[turn]), local))
+                src, kt, pa[turn], pb[turn], local))
         mid = 0.5 * (a + b)
         done = (step <= top + BOUND_SLACK_SHARE * h) | (mid <= a) | (mid >= b)
         if done.any():
             bound = max(bound, float(step[done].max()))
         live = ~done
-        a, b, da, db, k, mid, wa, wb = (v[live] for v in (a, b, da, db, k, mid, wa, wb))
+        a, b, da, db, k, mid, wa, wb, pa, pb = (v[live] for v in
+                                                (a, b, da, db, k, mid, wa, wb, pa, pb))
         if not a.size:
             break
         pm = src.points(k, mid)
@@ -514,6 +516,7 @@ def _along(src: _Primitives, local, dist: _Distances, h: float, coarse_h: float)
         a, b = np.concatenate((a, mid)), np.concatenate((mid, b))
         da, db = np.concatenate((da, dm)), np.concatenate((dm, db))
         wa, wb = np.concatenate((wa, wm)), np.concatenate((wm, wb))
+        pa, pb = np.concatenate((pa, pm)), np.concatenate((pm, pb))
         k = np.concatenate((k, k))
     return bound, np.concatenate(all_owner), np.vstack(all_pts), np.concatenate(all_d)
 

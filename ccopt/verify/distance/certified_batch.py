@@ -267,20 +267,26 @@ def _run(A: _Spirals | _Beziers, bs, sel, curved: bool, tol: float, caps, max_ro
             out[i] = Bound(float(whole[i]), math.inf, None, None, True, 0)
         go = np.flatnonzero(~(whole >= caps))
     if go.size:
-        bs_go = [bs[i] for i in go]
-        B_go = B if go.size == len(bs) else (_Spirals if curved else _Exact)(bs_go)
-        for i, r in zip(go, _branch_and_bound(A, B_go, bs_go, sel[go], curved, tol, caps[go],
+        B_go = B if go.size == len(bs) else _rows(B, go)
+        for i, r in zip(go, _branch_and_bound(A, B_go, sel[go], curved, tol, caps[go],
                                               max_rounds, [exempts[i] for i in go])):
             out[i] = r
     return out
 
 
-def _branch_and_bound(A: _Spirals | _Beziers, B, bs, sel, curved: bool, tol: float, caps,
+def _rows(C: _Spirals | _Exact, idx):
+    """The rows ``idx`` of ``C`` (every attribute of an instance is a per-row array)."""
+    sub = object.__new__(type(C))
+    sub.__dict__.update({name: value[idx] for name, value in vars(C).items()})
+    return sub
+
+
+def _branch_and_bound(A: _Spirals | _Beziers, B, sel, curved: bool, tol: float, caps,
                       max_rounds: int, exempts) -> list[Bound]:
     """Rounds of bounding and halving the pieces of every pair at once."""
     geo = (A, B, sel, curved) + _concentric_b(A, B, sel, curved)
     pieces = _first(A, B, sel, curved)
-    state = _State(len(bs))
+    state = _State(len(sel))
     rounds = 0
     while pieces[0].size:
         rounds += 1
