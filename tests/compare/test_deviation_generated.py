@@ -15,9 +15,9 @@ from __future__ import annotations
 import math
 import random
 
-import numpy as np
 import pytest
 
+from brute_distance import one_sided_deviation
 from ccopt.compare.figures import max_deviation
 from ccopt.geometry import Arc, Line
 from ccopt.toolpath import PathSegment, Role, ToolPath
@@ -83,35 +83,11 @@ def _reference(contour):
     return [Line(*d) if kind == "line" else Arc(*d) for kind, d in contour]
 
 
-def _distances(q: np.ndarray, g) -> np.ndarray:
-    """Exact distances of points ``q`` to a line segment or an arc."""
-    if isinstance(g, Line):
-        p0, p1 = np.asarray(g.p0), np.asarray(g.p1)
-        d = p1 - p0
-        t = np.clip(((q - p0) @ d) / (d @ d), 0.0, 1.0)
-        return np.hypot(*(q - (p0 + t[:, None] * d)).T)
-    c = np.asarray(g.center)
-    v = q - c
-    rel = np.remainder((np.arctan2(v[:, 1], v[:, 0]) - g.theta0) * math.copysign(1.0, g.sweep),
-                       2.0 * math.pi)
-    ends = np.minimum(np.hypot(*(q - np.asarray(g.start)).T), np.hypot(*(q - np.asarray(g.end)).T))
-    return np.where(rel <= abs(g.sweep), np.minimum(ends, np.abs(np.hypot(*v.T) - g.radius)), ends)
-
-
-def _one_side(src, dst) -> float:
-    worst = 0.0
-    for g in src:
-        n = max(2, int(math.ceil(g.length / SPACING)) + 1)
-        q = np.asarray(g.point(np.linspace(0.0, g.length, n)), float).reshape(-1, 2)
-        worst = max(worst, float(np.min([_distances(q, t) for t in dst], axis=0).max()))
-    return worst
-
-
 def _check(seed: int) -> None:
     rng = random.Random(seed)
     contour = _contour(rng)
     ref, var = _reference(contour), _variant(contour, rng)
-    truth = max(_one_side(var, ref), _one_side(ref, var))   # sampled: within SPACING below
+    truth = max(one_sided_deviation(var, ref, SPACING), one_sided_deviation(ref, var, SPACING))   # sampled: within SPACING below
     est, bound = max_deviation(ToolPath(tuple(map(_seg, var))), ToolPath(tuple(map(_seg, ref))),
                                H)
     assert est <= truth + SPACING + 1e-12, (seed, est, truth)

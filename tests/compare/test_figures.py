@@ -5,6 +5,7 @@ import math
 
 import pytest
 
+from brute_distance import one_sided_deviation
 from ccopt.compare.figures import join_class, max_deviation, path_figures
 from ccopt.geometry import Arc, Line
 from ccopt.toolpath import PathSegment, Role, ToolPath
@@ -184,30 +185,9 @@ def _samples_of(monkeypatch):
 
 def _brute_deviation(src, dst, n=20_001):
     """The largest distance from ``n`` points of each of ``src``'s primitives to
-    ``dst``'s lines and arcs, each measured here (foot of the perpendicular on a
-    line; radial gap on an arc where the angle is on it, else the nearer end)."""
-    def to_line(q, g):
-        p0, p1 = g.p0, g.p1
-        dx, dy = p1[0] - p0[0], p1[1] - p0[1]
-        t = min(1.0, max(0.0, ((q[0] - p0[0]) * dx + (q[1] - p0[1]) * dy) / (dx * dx + dy * dy)))
-        return math.hypot(q[0] - p0[0] - t * dx, q[1] - p0[1] - t * dy)
-
-    def to_arc(q, g):
-        ang = math.atan2(q[1] - g.center[1], q[0] - g.center[0])
-        rel = ((ang - g.theta0) * math.copysign(1.0, g.sweep)) % (2 * math.pi)
-        ends = min(math.hypot(q[0] - e[0], q[1] - e[1]) for e in (g.start, g.end))
-        if rel <= abs(g.sweep):
-            return min(ends, abs(math.hypot(q[0] - g.center[0], q[1] - g.center[1]) - g.radius))
-        return ends
-    worst = 0.0
-    for s in src.segments:
-        g = s.geom
-        for f in (i / (n - 1) for i in range(n)):
-            q = g.point(f * g.length)
-            q = (float(q[0]), float(q[1]))
-            worst = max(worst, min(to_line(q, t.geom) if isinstance(t.geom, Line)
-                                   else to_arc(q, t.geom) for t in dst.segments))
-    return worst
+    ``dst``'s lines and arcs, each measured by its formula (tests/brute_distance.py)."""
+    return one_sided_deviation([s.geom for s in src.segments], [s.geom for s in dst.segments],
+                               points=n)
 
 
 def test_deviation_of_a_line_beside_a_shorter_reference_line_and_its_corner(monkeypatch):

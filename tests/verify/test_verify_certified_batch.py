@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 
+from brute_distance import point_distances
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.curve import BezierCurve
 from ccopt.verify.distance import certified
@@ -243,25 +244,6 @@ def test_first_pieces_of_every_pair_at_once_are_the_one_at_a_time_cuts(seed):
                 assert np.array_equal(ub1[mine], np.tile(b1, a0.size))
 
 
-def dist_to_element(q, g) -> float:
-    """Exact distance of a point to a line segment or an arc, worked out here."""
-    q = np.asarray(q, float)
-    if isinstance(g, Line):
-        p0, p1 = np.asarray(g.p0, float), np.asarray(g.p1, float)
-        d = p1 - p0
-        t = np.clip(np.dot(q - p0, d) / np.dot(d, d), 0.0, 1.0)
-        return float(np.hypot(*(q - (p0 + t * d))))
-    c = np.asarray(g.center, float)
-    ang = math.atan2(q[1] - c[1], q[0] - c[0])
-    rel = (ang - g.theta0) * math.copysign(1.0, g.sweep) % (2 * math.pi)
-    ends = [c + g.radius * np.array([math.cos(a), math.sin(a)])
-            for a in (g.theta0, g.theta0 + g.sweep)]
-    best = min(float(np.hypot(*(q - e))) for e in ends)
-    if rel <= abs(g.sweep):
-        best = min(best, abs(float(np.hypot(*(q - c))) - g.radius))
-    return best
-
-
 @pytest.mark.parametrize("seed", range(4))
 def test_mid_arc_bound_is_below_every_point_of_the_piece(seed):
     # random spiral pieces against lines and arcs: the bound is at most the
@@ -281,7 +263,7 @@ def test_mid_arc_bound_is_below_every_point_of_the_piece(seed):
         lb = certified._mid_arc(pa, other, u0, u1)
         for k in range(6):
             pts = pa.eval(np.linspace(u0[k], u1[k], 2001))
-            assert lb[k] <= min(dist_to_element(q, other) for q in pts) + 1e-12
+            assert lb[k] <= point_distances(pts, other).min() + 1e-12
 
 
 @pytest.mark.parametrize("rho1", [2.0 + 3e-7, 2.0 - 8e-7, 2.0 + 1.2e-6])
