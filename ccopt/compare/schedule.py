@@ -206,7 +206,9 @@ def _finish_partial(partial: list, known: list, to_time) -> list:
     limits)`` of ``partial`` (emptied of them) whose figures are ``(duration,
     max_acc_ratio, message)`` or, once the reference is planned (``known``), a
     :class:`~.timing.PartialTime` finished with its stretch times; a path the
-    reference's times cannot finish is queued to be timed with them."""
+    reference's times cannot finish is queued to be timed with them, and so
+    is a twin's row whose path the planner's message would not name
+    (:func:`_shares`)."""
     ready, waiting = [], []
     for fig, rows, path, limits, by in partial:
         if isinstance(fig, PartialTime):
@@ -218,9 +220,22 @@ def _finish_partial(partial: list, known: list, to_time) -> list:
                 to_time.append((path, limits, rows, by))
                 continue
             fig = (*whole, None, fig.learned)
-        ready.extend((i, name, with_duration(row, fig)) for i, name, row in rows)
+        for entry in rows:
+            if _shares(fig, path, entry[2].toolpath):
+                ready.append((entry[0], entry[1], with_duration(entry[2], fig)))
+            else:
+                to_time.append((entry[2].toolpath, limits, [entry], by))
     partial[:] = waiting
     return ready
+
+
+def _shares(fig, path: ToolPath, twin: ToolPath) -> bool:
+    """Whether the cycle-time figures ``fig`` (``(duration, max_acc_ratio,
+    message, ...)``) of ``path`` are also those of ``twin``, a path the
+    planners time alike (:func:`_of_path`): always but for a planner's
+    refusal, whose message names program lines
+    (:func:`~.timing.same_timing_message`)."""
+    return twin == path or not fig[2] or same_timing_message(path, twin)
 
 
 def _timed_or_queued(job, row: VariantResult, timed, to_time, running, partial,
@@ -249,7 +264,8 @@ def _timed_or_queued(job, row: VariantResult, timed, to_time, running, partial,
                 return []
             whole = fig.finish(known[0]) if known else None
             fig = None if whole is None else (*whole, None, fig.learned)
-        if fig is not None:
+        timed_path = next(p for p, f in timed if f is twin)
+        if fig is not None and _shares(fig, timed_path, row.toolpath):
             return [(i, name, with_duration(row, fig))]
     waiting = _of_path(((w[0], w) for w in to_time if w[3] is by), row.toolpath)
     if waiting is not None:
@@ -260,11 +276,16 @@ def _timed_or_queued(job, row: VariantResult, timed, to_time, running, partial,
 
 
 def _of_path(pairs, path: ToolPath):
-    """The value paired with a tool path equal to ``path`` in ``(path, value)``
-    ``pairs``, or None (the figures of a path timed in a worker arrive later,
-    its message with them, so only an equal path, whose lines are the same,
-    shares them)."""
-    return next((value for p, value in pairs if p == path), None)
+    """The value paired in ``(path, value)`` ``pairs`` with a tool path equal
+    to ``path``, else with one the planners time alike
+    (:func:`~.timing.timed_alike`: another style's path of the same
+    geometry, as the serial run's :func:`_timed_twin` finds), or None. The
+    figures of a path timed in a worker arrive later, a planner's refusal
+    with them, so a twin that is not equal takes them only where that
+    refusal would read the same for it (:func:`_shares`, when they arrive)."""
+    pairs = list(pairs)
+    return next((value for p, value in pairs if p == path),
+                next((value for p, value in pairs if timed_alike(p, path)), None))
 
 
 def _timed_twin(timed, path: ToolPath):

@@ -260,3 +260,33 @@ def test_workers_give_the_serial_rows_when_the_reference_plans_last(monkeypatch)
     monkeypatch.setattr(core, "reference_times", late)
     parallel = compare(prog, names, limits=limits, radius=c.radius, workers=2)
     assert _rows(parallel) == _rows(serial)
+
+
+def test_workers_take_the_cycle_time_of_another_styles_path_of_the_same_geometry():
+    # on freeform-hsm Fagor's G138 and SINUMERIK's style leave the same
+    # geometry from other blocks (checked here): in workers, as in the serial
+    # run, the later of the two takes the cycle time planned for the first,
+    # but not a planner's refusal naming the first one's lines
+    from ccopt.compare.schedule import _of_path, _shares
+    c, prog = _case("freeform-hsm")
+    fagor = ccopt.compensate(prog, "fagor", radius=c.radius)
+    siemens = ccopt.compensate(prog, "siemens", radius=c.radius)
+    linuxcnc = ccopt.compensate(prog, "linuxcnc", radius=c.radius)
+    assert fagor != siemens
+    assert [s.geom for s in fagor.segments] == [s.geom for s in siemens.segments]
+    assert [s.block for s in fagor.segments] != [s.block for s in siemens.segments]
+    assert _of_path([(linuxcnc, "l"), (fagor, "f")], siemens) == "f"
+    assert _of_path([(fagor, "f"), (siemens, "s")], siemens) == "s"     # equal first
+    assert _of_path([(linuxcnc, "l")], siemens) is None
+    assert _shares((27.0, 1.0, None, {}), fagor, siemens)
+    assert not _shares((None, None, "feed: line 12: refused", {}), fagor, siemens)
+    assert _shares((None, None, "feed: line 12: refused", {}), siemens, siemens)
+    limits = ccopt.AxisLimits(c.vmax, c.amax, j=c.jmax)
+    names = ["pmac", "fagor-g138", "siemens"]
+    serial = compare(prog, names, limits=limits, radius=c.radius)
+    parallel = compare(prog, names, limits=limits, radius=c.radius, workers=2)
+    assert _rows(parallel) == _rows(serial)
+    assert (parallel["siemens"].figures["duration"]
+            == parallel["fagor-g138"].figures["duration"]
+            == pytest.approx(ccopt.plan_feed(siemens, limits, planner="jerk").duration,
+                             rel=1e-6))
