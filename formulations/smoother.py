@@ -45,7 +45,9 @@ How a join is blended (:func:`solve_join`), cheapest first:
 1. Before any blend, :func:`ccopt_formulations.smoother_chain.chain_path`
    absorbs PMAC's short corner arcs between chords, so a chorded program is a
    chain of line-line corners (the convex ones blended by an outward closed
-   form that keeps outside both lines).
+   form that keeps outside both lines), and the tiny corner arcs a rounded
+   fillet leaves beside a line, whose line then ends at the fillet (no blend
+   ending on such an arc can keep the clearance).
 2. The closed-form blend (:func:`ccopt_formulations.smoother_joins.initial`):
    at a line-line corner its size is the one whose cut uses the band
    (``(5/16) l sin(theta/2) = delta'``, capped by what the segments leave), and
@@ -82,8 +84,9 @@ from ccopt.geometry.bezier import DIVISION_FLOOR, energy_root
 from ccopt.geometry.curve import bernstein, derivative_matrix
 from ccopt.stand_ins import import_cvxpy
 from ccopt.toolpath import Role, ToolPath
+from ccopt.verify.tolerance import default_tolerance
 from ccopt_formulations.clearance import Element, linear_rows, near
-from ccopt_formulations.smoother_chain import chain_path
+from ccopt_formulations.smoother_chain import APPROACH_SHARE, chain_path
 from ccopt_formulations.smoother_deviation import windowed_deviation
 from ccopt_formulations.smoother_joins import (  # noqa: F401  (the smoother's vocabulary)
     CHECK_SAMPLES, DEGREE, LIFTS, BlendFrame, ElementIndex, Join, assemble, closed_blend, exact_ok,
@@ -340,7 +343,9 @@ class Smoother:
     def __init__(self, problem: BlendProblem, delta: float, solver: str = "CLARABEL"):
         self.problem, self.delta, self.solver = problem, delta, solver
         self.ref = problem.reference
-        self.chain = chain_path(self.ref, BAND_FRACTION * delta)
+        gouge = problem.tolerance if problem.tolerance is not None \
+            else default_tolerance(self.ref.units)
+        self.chain = chain_path(self.ref, BAND_FRACTION * delta, APPROACH_SHARE * gouge)
         self.path = self.chain.path
         self.index = ElementIndex(problem.contour)
         self._model = None
@@ -365,7 +370,8 @@ class Smoother:
         if hi == lo + 1:
             return geoms, np.asarray(segs[hi].start, float)[None, :], False
         arc = segs[lo + 1].geom
-        return geoms, np.asarray(arc.point(np.linspace(0.0, arc.length, 5)), float), True
+        return (geoms, np.asarray(arc.point(np.linspace(0.0, arc.length, 5)), float),
+                lo + 1 not in self.chain.beside_curve)
 
     def solve_join(self, jn: Join, delta: float) -> Join:
         """The largest blend at ``jn`` that passes the checks: the closed form, else

@@ -1,0 +1,149 @@
+"""The smoother at the tiny corner arcs CAM fillets leave beside lines.
+
+A CAM program writes a fillet tangent to its lines with a few decimals, so the
+line meets the fillet with a turn of a few microradians; on the convex side the
+controller adds a corner arc of the cutter radius ``r`` there, a tenth of a
+micrometre long. A G2 blend that ends on that arc with its curvature ``1/r``
+bends toward the part alongside the line by ``x^2 / (2 r)`` at ``x`` before the
+join (the line lies at exactly ``r`` from its edge), so none passes the checks;
+the smoother ends the line at the arc's far end instead and blends the line
+into the fillet. Checked here with figures measured in the test: the
+controller's path has such arcs (found here by their length and neighbours),
+the smoothed path has no join left without curvature continuity near them, it
+stays within the band of the path it smooths (dense samples of both), is
+certified, and is faster under jerk limits; over generated plates (slow tier)
+the comparison's smoother row is certified and never slower than the fastest
+controller variant it starts from.
+"""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.spatial import cKDTree
+
+import ccopt
+from ccopt.compare import BlendProblem, compare
+from ccopt.compare.baseline import SAME_TIME_REL
+from ccopt.compare.contract import CONTROLLER_NAMES
+from ccopt.compare.figures import joins
+from ccopt.geometry import Arc, Line
+from ccopt.program import read_text
+from ccopt.toolpath import Role
+from ccopt_formulations.smoother import smooth
+
+from cam_programs import cam_program
+
+#: Limits (b) of issue 30: mm/s, mm/s^2, mm/s^3 per axis.
+LIMITS = ccopt.AxisLimits((200.0, 200.0, 100.0), (2000.0, 2000.0, 1000.0),
+                          j=(20000.0, 20000.0, 10000.0))
+#: A corner arc this many times shorter than the cutter radius is "tiny" here
+#: (a rounding's turn of 1e-4 rad at most; the arcs of the plates below are
+#: 1e-7 long on radii 0.4-5).
+TINY = 1e-4
+#: Spacing (mm) of the samples for the band check (a sampled distance is at
+#: most half a spacing above the true one).
+SPACING = 2e-4
+
+
+def _turn(a, b) -> float:
+    """The angle (rad) between the end tangent of segment ``a`` and the start
+    tangent of ``b``."""
+    t0 = np.asarray(a.geom.tangent(a.length), float)
+    t1 = np.asarray(b.geom.tangent(0.0), float)
+    return float(np.arctan2(abs(t0[0] * t1[1] - t0[1] * t1[0]), float(t0 @ t1)))
+
+
+def _tiny_arcs_beside_curves(path) -> list[tuple[float, float]]:
+    """The start points of the corner arcs of ``path`` shorter than ``TINY * r``
+    between a line and a curve, tangent to both (found from the segments, not
+    from the smoother)."""
+    segs = path.segments
+    out = []
+    for i in range(1, len(segs) - 1):
+        s = segs[i]
+        if s.role is not Role.CORNER or not isinstance(s.geom, Arc) \
+                or not s.length < TINY * s.geom.radius:
+            continue
+        if max(_turn(segs[i - 1], s), _turn(s, segs[i + 1])) > 1e-6:      # G1 both ends
+            continue
+        lines = [isinstance(segs[k].geom, Line) for k in (i - 1, i + 1)]
+        if lines.count(True) == 1:
+            out.append(tuple(s.start))
+    return out
+
+
+def _samples(path, spacing: float) -> np.ndarray:
+    feed = (Role.LEAD_IN, Role.COMPENSATED, Role.CORNER, Role.LEAD_OUT)
+    pts = []
+    for s in path.segments:
+        if s.role in feed and s.length > 0:
+            n = max(2, int(np.ceil(s.length / spacing)) + 1)
+            pts.append(np.asarray(s.geom.point(np.linspace(0.0, s.length, n)), float)
+                       .reshape(-1, 2))
+    return np.vstack(pts)
+
+
+def _unsmooth_joins_near(path, points, within: float = 1e-3) -> list:
+    """Joins of ``path`` that are not curvature continuous (G0 or G1) within
+    ``within`` of any of ``points``."""
+    if not points:
+        return []
+    tree = cKDTree(np.asarray(points, float))
+    bad = []
+    for i, cls, _gap, _ang, _jump in joins(path):
+        if cls in ("G0", "G1") and tree.query(path.segments[i].start)[0] <= within:
+            bad.append((i, cls))
+    return bad
+
+
+def _program(seed: int):
+    cp = cam_program(seed)
+    return cp, read_text(cp.text, cp.file, cp.dialect, tool_table=cp.tool_table)
+
+
+def test_tiny_corner_arcs_beside_fillets_are_smoothed_through():
+    # seed 400: a 9-gon with fillets, 6 decimals, r 0.449; Fagor's path (G138,
+    # the program's own modes), the fastest controller's there, as compare starts from
+    cp, prog = _program(400)
+    ref = ccopt.compensate(prog, "fagor", radius=cp.radius)
+    tiny = _tiny_arcs_beside_curves(ref)
+    assert len(tiny) >= 4, cp.description                 # the premise
+    delta = 0.01 * cp.radius
+    path, info = smooth(BlendProblem(prog, ref, LIMITS), delta)
+    assert all(j["status"] == "blended" for j in info["joins"]), info["joins"]
+    assert _unsmooth_joins_near(path, tiny) == []
+    assert info["certificate"].ok
+    # within the band of PMAC's path, both ways, on dense samples of both
+    a, b = _samples(path, SPACING), _samples(ref, SPACING)
+    assert cKDTree(b).query(a)[0].max() <= delta + SPACING
+    assert cKDTree(a).query(b)[0].max() <= delta + SPACING
+    t_ref = ccopt.plan_feed(ref, LIMITS, planner="jerk").duration      # Fagor's
+    t_smooth = ccopt.plan_feed(path, LIMITS, planner="jerk").duration
+    assert t_smooth < t_ref
+
+
+def _smooth_row_holds(seed: int) -> None:
+    cp, prog = _program(seed)
+    cmp = compare(prog, list(CONTROLLER_NAMES) + ["smooth"], limits=LIMITS,
+                  radius=cp.radius, workers=2)
+    timed = [r for r in cmp if r.name in CONTROLLER_NAMES and r.status == "ok"]
+    best = min(timed, key=lambda r: r.figures["duration"])
+    row = cmp["smooth"]
+    assert row.status == "ok" and row.certificate.ok, (cp.description, row.message)
+    assert row.figures["duration"] <= best.figures["duration"] * (1 + SAME_TIME_REL), \
+        cp.description
+    if row.info.get("optimised") is None:                 # the smoother's own path
+        base = cmp[row.info.get("base", "pmac")].toolpath
+        assert _unsmooth_joins_near(row.toolpath, _tiny_arcs_beside_curves(base)) == [], \
+            cp.description
+
+
+@pytest.mark.parametrize("seed", [0, 14])
+def test_generated_plates_smooth_row_quick(seed):
+    _smooth_row_holds(seed)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(500, 560))
+def test_generated_plates_smooth_row(seed):
+    _smooth_row_holds(seed)
