@@ -158,6 +158,11 @@ class GridOptions:
 #: Curves: a piece shorter than this fraction of its segment is not halved again
 #: (about 2^-36 of it: well past any feature a regular curve can hide).
 _MIN_PIECE = 1e-11
+#: ... nor one shorter than this many units in the last place of its path
+#: positions: below that a piece's midpoint rounds to one of its ends, and
+#: the halving would never end (a smoothed plate's blend 2.7e-8 long, 100 mm
+#: along its path, had pieces one ulp long that kept being halved).
+_MIN_PIECE_ULPS = 64
 
 
 def _spacing(path: ExactPath, v_axis: np.ndarray, a_axis: np.ndarray,
@@ -246,7 +251,8 @@ def _curve_samples(path: ExactPath, ks: np.ndarray, kappa_f: np.ndarray,
     f = options.sample_fraction
     limits = (f * options.max_angle, f * options.max_curvature_change,
               f * options.max_curvature_bend)
-    min_piece = _MIN_PIECE * path.lengths
+    min_piece = np.maximum(_MIN_PIECE * path.lengths,
+                           _MIN_PIECE_ULPS * np.spacing(np.abs(path.offsets[1:])))
 
     def evaluate(kk, ss):
         t = path.eval_in_plane(kk, ss, 1)

@@ -189,3 +189,40 @@ def test_lines_and_arcs_grid_as_before():
                        math.ceil(math.pi / GRID.max_angle))
     gp = gridpoints(path, v, a, GRID)
     assert np.allclose(np.diff(gp[gp <= 10.0]), 10.0 / n[0])
+
+
+_TINY_CURVE = """
+import sys, numpy as np
+from ccopt.feed import AxisLimits, ExactPath
+from ccopt.feed.grid import gridpoints
+from ccopt.toolpath_json import read_toolpath_json
+ex = ExactPath(read_toolpath_json(sys.argv[1]))
+v, a = AxisLimits((200.0, 200.0), (2000.0, 2000.0)).in_plane(ex.frame, ex.dof)
+g = gridpoints(ex, v, a)
+k = 24
+s0, s1 = ex.offsets[k], ex.offsets[k + 1]
+inside = g[(g >= s0) & (g <= s1)]
+print(g.size, ex.lengths[k], s0, np.diff(inside).min(), inside.size,
+      int(np.isin([s0, s1], g).all()), int(np.all(np.diff(g) > 0)))
+"""
+
+
+def test_a_curve_a_few_hundredths_of_a_micrometre_long_far_along_the_path_is_gridded():
+    # tests/feed/data/tiny-blend-path.json: the smoother's path of a generated
+    # plate (tests/cam_programs.py seed 163, blocks dropped) with a blend curve
+    # 2.7e-8 mm long 245.7 mm along it. The curve sampling halved its pieces
+    # down to one unit in the last place of the path position, where a piece's
+    # midpoint is its end, and went on halving for ever; a piece is now not
+    # halved below 64 such units. Run apart, so that a hang fails the test
+    # instead of the suite.
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    data = Path(__file__).parent / "data" / "tiny-blend-path.json"
+    out = subprocess.run([sys.executable, "-c", _TINY_CURVE, str(data)], capture_output=True,
+                         text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    n, length, s0, least, on_curve, ends, increasing = (float(x) for x in out.stdout.split())
+    assert length == pytest.approx(2.728e-8, rel=1e-3) and s0 > 245.0      # the premise
+    assert ends == 1 and increasing == 1 and on_curve >= 2 and least > 0.0
