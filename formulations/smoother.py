@@ -83,6 +83,7 @@ from ccopt.geometry import BezierCurve, Line
 from ccopt.geometry.bezier import DIVISION_FLOOR, energy_root
 from ccopt.geometry.curve import bernstein, derivative_matrix
 from ccopt.stand_ins import import_cvxpy
+from ccopt.tolerances import VERIFY_EPS
 from ccopt.toolpath import Role, ToolPath
 from ccopt.verify.tolerance import default_tolerance
 from ccopt_formulations.clearance import Element, linear_rows, near
@@ -116,6 +117,9 @@ BISECTIONS = 2
 #: only (program units). A blend accepted inside the clearance would use up
 #: the verifier's tolerance and leave nothing for its export's arc fit.
 CHECK_TOL = 1e-12
+#: The shortest blend taken (program units): the verifier's point tolerance
+#: (:data:`ccopt.tolerances.VERIFY_EPS`), below which two points are one.
+MIN_BLEND = VERIFY_EPS
 #: Shares of the blend size on the incoming and outgoing side, tried in turn.
 SHARES = ((1.0, 1.0), (1.0, 0.0), (0.0, 1.0))
 #: Central-difference step (in the scaled decision variables, O(1)) of the map
@@ -375,7 +379,20 @@ class Smoother:
 
     def solve_join(self, jn: Join, delta: float) -> Join:
         """The largest blend at ``jn`` that passes the checks: the closed form, else
-        the convex model (module docstring). Sets ``jn.curve``, ``l_in``, ``l_out``."""
+        the convex model (module docstring). Sets ``jn.curve``, ``l_in``, ``l_out``;
+        a blend shorter than :data:`MIN_BLEND` is not taken (status ``"too
+        small"``): the verifier cannot tell its ends apart, and it would leave
+        the joins beside it a few hundredths of a micrometre apart, where the
+        feed planners find no room between two stops (a generated plate's
+        lead-out, next to a corner arc 6e-8 long)."""
+        self._solve_join(jn, delta)
+        if jn.status == "blended" and not jn.curve.length >= MIN_BLEND:
+            jn.info["too_small"] = jn.curve.length
+            jn.curve, jn.l_in, jn.l_out, jn.status = None, 0.0, 0.0, "too small"
+        return jn
+
+    def _solve_join(self, jn: Join, delta: float) -> Join:
+        """:meth:`solve_join` before the size rule."""
         path = self.path
         seg_in, seg_out = path.segments[jn.index - 1], path.segments[jn.index]
         lmax = min(jn.lim_in, jn.lim_out)

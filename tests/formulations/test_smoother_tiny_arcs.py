@@ -147,3 +147,20 @@ def test_generated_plates_smooth_row_quick(seed):
 @pytest.mark.parametrize("seed", range(500, 560))
 def test_generated_plates_smooth_row(seed):
     _smooth_row_holds(seed)
+
+
+def test_no_blend_shorter_than_a_micrometre_leaves_stops_the_planners_cannot_part():
+    # seed 163 (a rectangle, 6 decimals, r 2.771): beside the lead-out a corner
+    # arc 6e-8 long left room for a blend 2.7e-8 long between two stops, which
+    # neither feed planner can plan (the row fell back to the controller's
+    # path for want of a cycle time); such a join is now left as it is
+    from ccopt.geometry import BezierCurve
+    cp, prog = _program(163)
+    cmp = compare(prog, list(CONTROLLER_NAMES) + ["smooth"], limits=LIMITS, radius=cp.radius)
+    row = cmp["smooth"]
+    assert row.status == "ok" and row.certificate.ok and row.info.get("optimised") is None, \
+        row.message
+    curves = [s.length for s in row.toolpath.segments if isinstance(s.geom, BezierCurve)]
+    assert curves and min(curves) >= 1e-6
+    best = min(cmp[n].figures["duration"] for n in CONTROLLER_NAMES if cmp[n].status == "ok")
+    assert row.figures["duration"] < best
