@@ -160,7 +160,7 @@ class GridOptions:
 _MIN_PIECE = 1e-11
 #: ... nor one shorter than this many units in the last place of its path
 #: positions: below that a piece's midpoint rounds to one of its ends, and
-#: the halving would never end (a smoothed plate's blend 2.7e-8 long, 100 mm
+#: the halving would never end (a smoothed plate's blend 2.7e-8 long, 245.7 mm
 #: along its path, had pieces one ulp long that kept being halved).
 _MIN_PIECE_ULPS = 64
 
