@@ -16,8 +16,9 @@ which the smoother blends as a whole with the outward closed form of
 outside both lines alongside their chords, hence outside the arc's circle,
 which lies inside both). A corner arc far shorter still, between a line and
 a curve (:func:`_beside_curve`: where a CAM fillet written with a few decimals
-meets its line), goes too, the line ending at the curve's start (or starting
-at its end). Nothing else changes: the lines stay on PMAC's path
+meets its line; or two lines too nearly parallel to intersect), goes too,
+the line ending at the next segment's start (or starting at the last one's
+end). Nothing else changes: the lines stay on PMAC's path
 (the verifier's contact rule wants every chord's tool segment within ``r`` of
 it), and every blend is checked against PMAC's path itself.
 """
@@ -93,7 +94,8 @@ def _absorbable(segs, joins, i, band) -> bool:
 
 def _beside_curve(segs, joins, i, band, approach) -> int | None:
     """Whether segment ``i`` is a corner arc so short, between a line and a
-    curve (G1 both ends), that the line may end (or start) at the arc's far
+    curve (or two lines too nearly parallel for :func:`_intersect`: the
+    first), G1 both ends, that the line may end (or start) at the arc's far
     end instead: its chord ``2 r sin(theta/2)`` at most :data:`APEX_SHARE` of
     the band, ``r (1 - cos theta)``, the most the line then comes closer to
     the part (at that end), at most ``approach``, and the line long enough
@@ -118,8 +120,8 @@ def _beside_curve(segs, joins, i, band, approach) -> int | None:
             or r * (1.0 - math.cos(min(th, math.pi))) > approach:
         return None
     before, after = _is_line(segs[i - 1]), _is_line(segs[i + 1])
-    if before == after:
-        return None
+    if not (before or after) or (before and after and math.sin(th) >= MIN_SIN_TURN):
+        return None                 # two curves; two lines that meet (_absorbable)
     # the line turns by about r (1 - cos theta) / its length: no more than the
     # arc did, so its other join gets no sharper turn than the one removed
     line = segs[i - 1] if before else segs[i + 1]

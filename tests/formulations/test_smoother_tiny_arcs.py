@@ -164,3 +164,26 @@ def test_no_blend_shorter_than_a_micrometre_leaves_stops_the_planners_cannot_par
     assert curves and min(curves) >= 1e-6
     best = min(cmp[n].figures["duration"] for n in CONTROLLER_NAMES if cmp[n].status == "ok")
     assert row.figures["duration"] < best
+
+
+def test_a_tiny_corner_arc_between_two_nearly_parallel_lines_is_smoothed_through():
+    # seed 37 (an 8-gon, 6 decimals, r 0.639): a corner arc 6.7e-8 long between
+    # two lines turning by 1e-7 rad, too nearly parallel to intersect, so the
+    # line-line absorption left it; the first line now ends where the second
+    # starts, and no join is left there
+    cp, prog = _program(37)
+    ref = ccopt.compensate(prog, "fagor", radius=cp.radius)
+    segs = ref.segments
+    tiny = [tuple(segs[i].start) for i in range(1, len(segs) - 1)
+            if segs[i].role is Role.CORNER and isinstance(segs[i].geom, Arc)
+            and segs[i].length < TINY * segs[i].geom.radius
+            and all(isinstance(segs[k].geom, Line) for k in (i - 1, i + 1))
+            and max(_turn(segs[i - 1], segs[i]), _turn(segs[i], segs[i + 1])) <= 1e-6]
+    assert tiny, cp.description                                   # the premise
+    delta = 0.01 * cp.radius
+    path, info = smooth(BlendProblem(prog, ref, LIMITS), delta)
+    assert _unsmooth_joins_near(path, tiny) == []
+    assert info["certificate"].ok
+    a, b = _samples(path, SPACING), _samples(ref, SPACING)
+    assert cKDTree(b).query(a)[0].max() <= delta + SPACING
+    assert cKDTree(a).query(b)[0].max() <= delta + SPACING
