@@ -85,7 +85,7 @@ from ccopt.geometry.curve import bernstein, derivative_matrix
 from ccopt.stand_ins import import_cvxpy
 from ccopt.tolerances import VERIFY_EPS
 from ccopt.toolpath import Role, ToolPath
-from ccopt.verify.tolerance import default_tolerance
+from ccopt.verify.tolerance import resolve_tolerance
 from ccopt_formulations.clearance import Element, linear_rows, near
 from ccopt_formulations.smoother_chain import APPROACH_SHARE, chain_path
 from ccopt_formulations.smoother_deviation import windowed_deviation
@@ -347,8 +347,7 @@ class Smoother:
     def __init__(self, problem: BlendProblem, delta: float, solver: str = "CLARABEL"):
         self.problem, self.delta, self.solver = problem, delta, solver
         self.ref = problem.reference
-        gouge = problem.tolerance if problem.tolerance is not None \
-            else default_tolerance(self.ref.units)
+        gouge = resolve_tolerance(problem.tolerance, self.ref.units)
         self.chain = chain_path(self.ref, BAND_FRACTION * delta, APPROACH_SHARE * gouge)
         self.path = self.chain.path
         self.index = ElementIndex(problem.contour)

@@ -294,7 +294,7 @@ def _timed_twin(timed, path: ToolPath):
     not when they carry a refusal naming other lines than ``path``'s would
     (:func:`~.timing.same_timing_message`)."""
     for p, got in timed:
-        if timed_alike(p, path) and (not got[2] or same_timing_message(p, path)):
+        if timed_alike(p, path) and _shares(got, p, path):
             return got
     return None
 

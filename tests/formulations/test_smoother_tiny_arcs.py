@@ -53,10 +53,10 @@ def _turn(a, b) -> float:
     return float(np.arctan2(abs(t0[0] * t1[1] - t0[1] * t1[0]), float(t0 @ t1)))
 
 
-def _tiny_arcs_beside_curves(path) -> list[tuple[float, float]]:
-    """The start points of the corner arcs of ``path`` shorter than ``TINY * r``
-    between a line and a curve, tangent to both (found from the segments, not
-    from the smoother)."""
+def _tiny_corner_arcs(path, lines: int = 1) -> list[tuple[float, float]]:
+    """The start points of the corner arcs of ``path`` shorter than ``TINY * r``,
+    tangent to both neighbours, ``lines`` of which are lines (1: beside a
+    curve; found from the segments, not from the smoother)."""
     segs = path.segments
     out = []
     for i in range(1, len(segs) - 1):
@@ -66,8 +66,7 @@ def _tiny_arcs_beside_curves(path) -> list[tuple[float, float]]:
             continue
         if max(_turn(segs[i - 1], s), _turn(s, segs[i + 1])) > 1e-6:      # G1 both ends
             continue
-        lines = [isinstance(segs[k].geom, Line) for k in (i - 1, i + 1)]
-        if lines.count(True) == 1:
+        if [isinstance(segs[k].geom, Line) for k in (i - 1, i + 1)].count(True) == lines:
             out.append(tuple(s.start))
     return out
 
@@ -81,6 +80,13 @@ def _samples(path, spacing: float) -> np.ndarray:
             pts.append(np.asarray(s.geom.point(np.linspace(0.0, s.length, n)), float)
                        .reshape(-1, 2))
     return np.vstack(pts)
+
+
+def _within_band(path, ref, delta: float) -> bool:
+    """Each path within ``delta`` of the other, on dense samples of both."""
+    a, b = _samples(path, SPACING), _samples(ref, SPACING)
+    return bool(cKDTree(b).query(a)[0].max() <= delta + SPACING
+                and cKDTree(a).query(b)[0].max() <= delta + SPACING)
 
 
 def _unsmooth_joins_near(path, points, within: float = 1e-3) -> list:
@@ -106,7 +112,7 @@ def test_tiny_corner_arcs_beside_fillets_are_smoothed_through():
     # the program's own modes), the fastest controller's there, as compare starts from
     cp, prog = _program(400)
     ref = ccopt.compensate(prog, "fagor", radius=cp.radius)
-    tiny = _tiny_arcs_beside_curves(ref)
+    tiny = _tiny_corner_arcs(ref)
     assert len(tiny) >= 4, cp.description                 # the premise
     delta = 0.01 * cp.radius
     path, info = smooth(BlendProblem(prog, ref, LIMITS), delta)
@@ -114,9 +120,7 @@ def test_tiny_corner_arcs_beside_fillets_are_smoothed_through():
     assert _unsmooth_joins_near(path, tiny) == []
     assert info["certificate"].ok
     # within the band of PMAC's path, both ways, on dense samples of both
-    a, b = _samples(path, SPACING), _samples(ref, SPACING)
-    assert cKDTree(b).query(a)[0].max() <= delta + SPACING
-    assert cKDTree(a).query(b)[0].max() <= delta + SPACING
+    assert _within_band(path, ref, delta)
     t_ref = ccopt.plan_feed(ref, LIMITS, planner="jerk").duration      # Fagor's
     t_smooth = ccopt.plan_feed(path, LIMITS, planner="jerk").duration
     assert t_smooth < t_ref
@@ -134,7 +138,7 @@ def _smooth_row_holds(seed: int) -> None:
         cp.description
     if row.info.get("optimised") is None:                 # the smoother's own path
         base = cmp[row.info.get("base", "pmac")].toolpath
-        assert _unsmooth_joins_near(row.toolpath, _tiny_arcs_beside_curves(base)) == [], \
+        assert _unsmooth_joins_near(row.toolpath, _tiny_corner_arcs(base)) == [], \
             cp.description
 
 
@@ -173,17 +177,10 @@ def test_a_tiny_corner_arc_between_two_nearly_parallel_lines_is_smoothed_through
     # starts, and no join is left there
     cp, prog = _program(37)
     ref = ccopt.compensate(prog, "fagor", radius=cp.radius)
-    segs = ref.segments
-    tiny = [tuple(segs[i].start) for i in range(1, len(segs) - 1)
-            if segs[i].role is Role.CORNER and isinstance(segs[i].geom, Arc)
-            and segs[i].length < TINY * segs[i].geom.radius
-            and all(isinstance(segs[k].geom, Line) for k in (i - 1, i + 1))
-            and max(_turn(segs[i - 1], segs[i]), _turn(segs[i], segs[i + 1])) <= 1e-6]
+    tiny = _tiny_corner_arcs(ref, lines=2)
     assert tiny, cp.description                                   # the premise
     delta = 0.01 * cp.radius
     path, info = smooth(BlendProblem(prog, ref, LIMITS), delta)
     assert _unsmooth_joins_near(path, tiny) == []
     assert info["certificate"].ok
-    a, b = _samples(path, SPACING), _samples(ref, SPACING)
-    assert cKDTree(b).query(a)[0].max() <= delta + SPACING
-    assert cKDTree(a).query(b)[0].max() <= delta + SPACING
+    assert _within_band(path, ref, delta)
