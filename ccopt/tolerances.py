@@ -20,6 +20,10 @@ ARC_RADIUS_REL_TOL = 0.001
 #: shorter still is an error. Both readers' R arcs use it.
 R_CHORD_REL_TOL = 1e-9
 
+#: A curvature jump (1/units) at most this times max(1, |kappa|) on either
+#: side counts as none: rounding of a G2 join (a blend's end curvature).
+CURVATURE_TOL = 1e-6
+
 #: PMAC break point (Isx99): cos of the turn above which an outside corner is
 #: "shallow" and the offsets are extended instead of adding an arc.
 PMAC_BREAK_COS = 0.9998

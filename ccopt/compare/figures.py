@@ -6,7 +6,7 @@ Continuity classes at a join between consecutive in-plane segments:
 tangent), ``"G0"`` (position only), ``"gap"``. Tolerances: positions
 :data:`ccopt.tolerances.VERIFY_EPS`, tangents
 :data:`ccopt.tolerances.VERIFY_TANGENT_BREAK` (radians), curvature
-:data:`CURVATURE_TOL` (1/units, relative to ``max(1, |kappa|)``).
+:data:`ccopt.tolerances.CURVATURE_TOL` (1/units, relative to ``max(1, |kappa|)``).
 
 Curvature of lines and arcs is exact; spirals and Bezier curves are sampled
 (:data:`~ccopt.compare.parts.CURVE_SAMPLES` points, end points included),
@@ -24,11 +24,9 @@ import numpy as np
 from ccopt.compare.deviation import _shared, max_deviation  # noqa: F401
 from ccopt.compare.parts import FEED_ROLES, curvature_samples, end_curvatures
 from ccopt.compare.parts import in_plane as _in_plane
-from ccopt.tolerances import VERIFY_EPS, VERIFY_TANGENT_BREAK
+from ccopt.tolerances import CURVATURE_TOL, VERIFY_EPS, VERIFY_TANGENT_BREAK
 from ccopt.toolpath import ToolPath
 
-#: Curvature jumps below this (1/units, times max(1, |kappa|)) count as none.
-CURVATURE_TOL = 1e-6
 
 _ORDER = {"gap": 0, "G0": 1, "G1": 2, "G2": 3}
 

@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -226,3 +227,42 @@ def test_a_curve_a_few_hundredths_of_a_micrometre_long_far_along_the_path_is_gri
     n, length, s0, least, on_curve, ends, increasing = (float(x) for x in out.stdout.split())
     assert length == pytest.approx(2.728e-8, rel=1e-3) and s0 > 245.0      # the premise
     assert ends == 1 and increasing == 1 and on_curve >= 2 and least > 0.0
+
+
+def test_stretch_lines_space_g2_lines_by_their_stretch():
+    """With ``stretch_lines`` a line whose joins keep the curvature takes its
+    stretch's length (stop to stop) for the braking part, so it gets
+    ``min_intervals`` where its own length gave ``density``; a line beside a
+    curvature jump (where the jerk planner caps the speed), a move that is a
+    stretch alone, arcs and curves keep their own length.
+
+    The path, worked out here: a 0.2 mm line, a quintic whose three first and
+    three last control points are collinear (curvature 0 at both ends: G2
+    with both lines), a 0.3 mm line; a 90 degree corner (a stop); a 0.5 mm
+    line, a tangent quarter arc of radius 0.1 (a curvature jump of 10/mm at
+    both ends), a 0.3 mm line. F50 and 1000 mm/s^2 make the braking length
+    2.5 mm, longer than either stretch."""
+    v, a = (100.0, 100.0), (1000.0, 1000.0)
+    quintic = BezierCurve([(0.0, 0.0), (0.1, 0.0), (0.2, 0.0), (0.3, 0.2), (0.3, 0.3),
+                           (0.3, 0.4)])
+    tp = ToolPath((seg(Line((-0.2, 0.0), (0.0, 0.0)), 50.0),
+                   seg(quintic, 50.0),
+                   seg(Line((0.3, 0.4), (0.3, 0.7)), 50.0),
+                   seg(Line((0.3, 0.7), (-0.2, 0.7)), 50.0),
+                   seg(Arc((-0.2, 0.6), 0.1, math.pi / 2, math.pi / 2), 50.0),
+                   seg(Line((-0.3, 0.6), (-0.3, 0.3)), 50.0)))
+    path = ExactPath(tp)
+    assert np.flatnonzero(path.tangent_break).tolist() == [3]        # the corner alone
+    own = intervals_per_segment(path, v, a, GRID)
+    by_stretch = intervals_per_segment(path, v, a, replace(GRID, stretch_lines=True))
+    braking = 50.0 ** 2 / 1000.0
+    span = 0.2 + float(path.lengths[1]) + 0.3              # the first stretch, stop to stop
+    assert braking > span
+    assert own[0] == own[2] == own[3] == own[5] == GRID.density     # S / (S / density)
+    ds = span / GRID.density
+    assert by_stretch[0] == max(GRID.min_intervals, math.ceil(0.2 / ds)) == GRID.min_intervals
+    assert by_stretch[2] == max(GRID.min_intervals, math.ceil(0.3 / ds))
+    assert by_stretch[2] < own[2]
+    # beside the arc's curvature jumps, the arc itself, the quintic: their own length
+    assert by_stretch[3] == own[3] and by_stretch[5] == own[5]
+    assert by_stretch[4] == own[4] and by_stretch[1] == own[1]

@@ -153,7 +153,10 @@ from ccopt.geometry import Line
 #: (:class:`~ccopt.feed.grid.GridOptions`) with 8x its budgets of curvature
 #: change and bend, so blend curves and spirals get far fewer gridpoints
 #: (lines and arcs, spaced by braking distance and turning angle, keep
-#: theirs); the jerk inside their intervals is imposed at three inner points
+#: theirs, but that a line with no curvature jump at its ends takes its
+#: stretch's length for its braking spacing:
+#: :attr:`~ccopt.feed.grid.GridOptions.stretch_lines`); the jerk inside their
+#: intervals is imposed at three inner points
 #: instead (:data:`~ccopt.feed.jerk.lp.INNER_POINTS`). On freeform-hsm's
 #: smoothed path (302 blend curves, one stretch with no stop) TOPPRA's default
 #: grid, 4x and 8x its budgets planned 11.1491, 11.1601 and 11.1723 s with
@@ -165,7 +168,7 @@ from ccopt.geometry import Line
 #: and pocket (jmax 10000, 10000, 3000) planned 10.6628 and 10.1858 s with
 #: 4x, 10.6682 and 10.1908 s (+0.05 %) with 8x, jerk within 1.00024; with the
 #: middle point alone and budgets 2x TOPPRA's the jerk reached 1.0023.
-JERK_GRID = GridOptions(max_curvature_change=0.4, max_curvature_bend=0.4)
+JERK_GRID = GridOptions(max_curvature_change=0.4, max_curvature_bend=0.4, stretch_lines=True)
 #: Whether lines and arcs are graded as TOPPRA grades them
 #: (:func:`ccopt.feed.grid.gridpoints` with :class:`~ccopt.feed.grading.Ramps`,
 #: their ramp zones S-curves', :func:`~ccopt.feed.grading.scurve_ramp` and
