@@ -20,30 +20,23 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scipy.spatial import cKDTree
 
 import ccopt
 from ccopt.compare import BlendProblem, compare
 from ccopt.compare.baseline import SAME_TIME_REL
 from ccopt.compare.contract import CONTROLLER_NAMES
-from ccopt.compare.figures import joins
 from ccopt.geometry import Arc, Line
 from ccopt.program import read_text
 from ccopt.toolpath import Role
 from ccopt_formulations.smoother import smooth
 
 from cam_programs import cam_program
+from smoother_checks import LIMITS, unsmooth_joins_near, within_band
 
-#: Limits (b) of issue 30: mm/s, mm/s^2, mm/s^3 per axis.
-LIMITS = ccopt.AxisLimits((200.0, 200.0, 100.0), (2000.0, 2000.0, 1000.0),
-                          j=(20000.0, 20000.0, 10000.0))
 #: A corner arc this many times shorter than the cutter radius is "tiny" here
 #: (a rounding's turn of 1e-4 rad at most; the arcs of the plates below are
 #: 1e-7 long on radii 0.4-5).
 TINY = 1e-4
-#: Spacing (mm) of the samples for the band check (a sampled distance is at
-#: most half a spacing above the true one).
-SPACING = 2e-4
 
 
 def _turn(a, b) -> float:
@@ -72,37 +65,6 @@ def _tiny_corner_arcs(path, lines: int = 1) -> list[tuple[float, float]]:
     return out
 
 
-def _samples(path, spacing: float) -> np.ndarray:
-    feed = (Role.LEAD_IN, Role.COMPENSATED, Role.CORNER, Role.LEAD_OUT)
-    pts = []
-    for s in path.segments:
-        if s.role in feed and s.length > 0:
-            n = max(2, int(np.ceil(s.length / spacing)) + 1)
-            pts.append(np.asarray(s.geom.point(np.linspace(0.0, s.length, n)), float)
-                       .reshape(-1, 2))
-    return np.vstack(pts)
-
-
-def _within_band(path, ref, delta: float) -> bool:
-    """Each path within ``delta`` of the other, on dense samples of both."""
-    a, b = _samples(path, SPACING), _samples(ref, SPACING)
-    return bool(cKDTree(b).query(a)[0].max() <= delta + SPACING
-                and cKDTree(a).query(b)[0].max() <= delta + SPACING)
-
-
-def _unsmooth_joins_near(path, points, within: float = 1e-3) -> list:
-    """Joins of ``path`` that are not curvature continuous (G0 or G1) within
-    ``within`` of any of ``points``."""
-    if not points:
-        return []
-    tree = cKDTree(np.asarray(points, float))
-    bad = []
-    for i, cls, _gap, _ang, _jump in joins(path):
-        if cls in ("G0", "G1") and tree.query(path.segments[i].start)[0] <= within:
-            bad.append((i, cls))
-    return bad
-
-
 def _program(seed: int):
     cp = cam_program(seed)
     return cp, read_text(cp.text, cp.file, cp.dialect, tool_table=cp.tool_table)
@@ -118,10 +80,10 @@ def test_tiny_corner_arcs_beside_fillets_are_smoothed_through():
     delta = 0.01 * cp.radius
     path, info = smooth(BlendProblem(prog, ref, LIMITS), delta)
     assert all(j["status"] == "blended" for j in info["joins"]), info["joins"]
-    assert _unsmooth_joins_near(path, tiny) == []
+    assert unsmooth_joins_near(path, tiny) == []
     assert info["certificate"].ok
     # within the band of PMAC's path, both ways, on dense samples of both
-    assert _within_band(path, ref, delta)
+    assert within_band(path, ref, delta)
     t_ref = ccopt.plan_feed(ref, LIMITS, planner="jerk").duration      # Fagor's
     t_smooth = ccopt.plan_feed(path, LIMITS, planner="jerk").duration
     assert t_smooth < t_ref
@@ -140,7 +102,7 @@ def _smooth_row_holds(seed: int) -> None:
     if row.info.get("optimised") is None:                 # the smoother's own path
         base = cmp[row.info.get("base", "pmac")].toolpath
         tiny = _tiny_corner_arcs(base) + _tiny_corner_arcs(base, lines=2)
-        assert _unsmooth_joins_near(row.toolpath, tiny) == [], \
+        assert unsmooth_joins_near(row.toolpath, tiny) == [], \
             cp.description
 
 
@@ -183,6 +145,6 @@ def test_a_tiny_corner_arc_between_two_nearly_parallel_lines_is_smoothed_through
     assert tiny, cp.description                                   # the premise
     delta = 0.01 * cp.radius
     path, info = smooth(BlendProblem(prog, ref, LIMITS), delta)
-    assert _unsmooth_joins_near(path, tiny) == []
+    assert unsmooth_joins_near(path, tiny) == []
     assert info["certificate"].ok
-    assert _within_band(path, ref, delta)
+    assert within_band(path, ref, delta)

@@ -1,0 +1,49 @@
+"""Checks of a smoothed path shared by the smoother's tests: the limits they
+time under, whether two paths lie within a band of each other (dense samples),
+and the joins left without curvature continuity near given points."""
+from __future__ import annotations
+
+import numpy as np
+from scipy.spatial import cKDTree
+
+import ccopt
+from ccopt.compare.figures import joins
+from ccopt.toolpath import Role
+
+#: Limits (b) of issue 30: mm/s, mm/s^2, mm/s^3 per axis.
+LIMITS = ccopt.AxisLimits((200.0, 200.0, 100.0), (2000.0, 2000.0, 1000.0),
+                          j=(20000.0, 20000.0, 10000.0))
+#: Spacing (mm) of the samples for the band check (a sampled distance is at
+#: most half a spacing above the true one).
+SPACING = 2e-4
+
+
+def _samples(path, spacing: float) -> np.ndarray:
+    feed = (Role.LEAD_IN, Role.COMPENSATED, Role.CORNER, Role.LEAD_OUT)
+    pts = []
+    for s in path.segments:
+        if s.role in feed and s.length > 0:
+            n = max(2, int(np.ceil(s.length / spacing)) + 1)
+            pts.append(np.asarray(s.geom.point(np.linspace(0.0, s.length, n)), float)
+                       .reshape(-1, 2))
+    return np.vstack(pts)
+
+
+def within_band(path, ref, delta: float) -> bool:
+    """Each path within ``delta`` of the other, on dense samples of both."""
+    a, b = _samples(path, SPACING), _samples(ref, SPACING)
+    return bool(cKDTree(b).query(a)[0].max() <= delta + SPACING
+                and cKDTree(a).query(b)[0].max() <= delta + SPACING)
+
+
+def unsmooth_joins_near(path, points, within: float = 1e-3) -> list:
+    """Joins of ``path`` that are not curvature continuous (G0 or G1) within
+    ``within`` of any of ``points``."""
+    if not points:
+        return []
+    tree = cKDTree(np.asarray(points, float))
+    bad = []
+    for i, cls, _gap, _ang, _jump in joins(path):
+        if cls in ("G0", "G1") and tree.query(path.segments[i].start)[0] <= within:
+            bad.append((i, cls))
+    return bad
