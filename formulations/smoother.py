@@ -62,6 +62,9 @@ How a join is blended (:func:`solve_join`), cheapest first:
    convex model above,
    re-linearised up to :data:`SCP_ITERATIONS` times, at sizes halving from the
    estimate and then bisected (:func:`largest_feasible`).
+4. Where that fails too at a tiny kink, the closed form once more, allowed to
+   come a thousandth of the gouge tolerance nearer the part
+   (:meth:`Smoother._kink_tol`).
 
 Every accepted blend keeps its curvature within the bound of
 :mod:`ccopt_formulations.smoother_joins` (:data:`~ccopt_formulations.smoother_joins.CURVATURE_FACTOR`
@@ -91,7 +94,8 @@ from ccopt_formulations.smoother_chain import APPROACH_SHARE, chain_path
 from ccopt_formulations.smoother_deviation import windowed_deviation
 from ccopt_formulations.smoother_joins import (  # noqa: F401  (the smoother's vocabulary)
     CHECK_SAMPLES, DEGREE, LIFTS, BlendFrame, ElementIndex, Join, assemble, closed_blend, exact_ok,
-    contour_inside, find_joins, frame, initial, largest_closed, lasting_gouge, size_estimate,
+    closed_search, contour_inside, find_joins, frame, initial, kink_size, largest_closed,
+    lasting_gouge, size_estimate,
 )
 
 #: Samples of the blend constrained in each model.
@@ -348,7 +352,10 @@ class Smoother:
         self.problem, self.delta, self.solver = problem, delta, solver
         self.ref = problem.reference
         gouge = resolve_tolerance(problem.tolerance, self.ref.units)
-        self.chain = chain_path(self.ref, BAND_FRACTION * delta, APPROACH_SHARE * gouge)
+        #: how much closer to the part than the controller's path a change may come where
+        #: none keeps away: a tiny corner arc's line, a blend at a tiny kink (:meth:`_kink_tol`)
+        self.approach = APPROACH_SHARE * gouge
+        self.chain = chain_path(self.ref, BAND_FRACTION * delta, self.approach)
         self.path = self.chain.path
         self.index = ElementIndex(problem.contour)
         self._model = None
@@ -408,13 +415,13 @@ class Smoother:
             ctx = (ctx[0], ctx[1], True)        # a shallow outside corner: outward too
         target = BAND_FRACTION * delta
 
-        def closed(l: float, share):
+        def closed(l: float, share, tol: float):
             l_in, l_out = min(l, jn.lim_in) * share[0], min(l, jn.lim_out) * share[1]
             if ctx[2]:
                 # outward: symmetric legs (the closed form's proof is for those)
                 l_in = l_out = min(l_in, l_out)
             fr = frame(seg_in, seg_out, l_in, l_out, ctx)
-            P = closed_blend(fr, elements, delta, CHECK_TOL,
+            P = closed_blend(fr, elements, delta, tol,
                              LIFTS if jn.kind == "curvature-jump" else (0.0,))
             return None if P is None else (P, l_in, l_out)
 
@@ -422,21 +429,36 @@ class Smoother:
         start = math.inf if ctx[2] else size_estimate(jn, target)
         # at a line-line corner the closed-form size is exact (a guess elsewhere)
         exact = isinstance(seg_in.geom, Line) and isinstance(seg_out.geom, Line)
-        lmax = max(jn.lim_in, jn.lim_out)
-        for share in SHARES[:1] if ctx[2] else SHARES:
-            res = largest_closed(lambda l, share=share: closed(l, share), min(start, lmax), lmax,
-                                 exact)
-            if res is None:
-                continue
-            try:
-                jn.curve = BezierCurve(res[0])
-            except ValueError:  # not regular to BezierCurve's finer test: the model decides
-                break
-            jn.l_in, jn.l_out = res[1], res[2]
-            jn.status, jn.info["method"] = "blended", "closed form"
-            jn.info["share"] = list(share)
+        shares = SHARES[:1] if ctx[2] else SHARES
+        if closed_search(jn, closed, shares, start, exact, CHECK_TOL):
             return jn
-        return self._convex(jn, delta, seg_in, seg_out, min(jn.lim_in, jn.lim_out), ctx)
+        self._convex(jn, delta, seg_in, seg_out, min(jn.lim_in, jn.lim_out), ctx)
+        kink = self._kink_tol(jn)
+        if jn.status != "blended" and kink is not None and \
+                closed_search(jn, closed, shares, kink_size(jn, min(target, kink)),
+                                    exact, kink):
+            jn.info["method"] = "closed form at a tiny kink"
+            jn.info["clearance_allowance"] = kink
+        return jn
+
+    def _kink_tol(self, jn: Join) -> float | None:
+        """The clearance a blend at ``jn`` may give up when ``jn`` is a tiny
+        kink (:attr:`approach`), else None.
+
+        A CAM program writes a fillet tangent to its line with a few decimals,
+        so the line can meet it with a turn of a few microradians. Where that
+        corner is concave the tool path has a kink, and every blend of it cuts
+        towards the part: by ``(5/16) l sin(theta/2)`` at legs ``l``, so with
+        :data:`CHECK_TOL` alone none is longer than a few nanometres and the
+        planners stop there. A kink counts as tiny when a corner arc of the
+        cutter radius ``r`` over its turn, ``r (1 - cos theta)``, stays within
+        :attr:`approach`, the same share of the gouge tolerance a tiny corner
+        arc's line may use (:func:`chain_path`): there blends of about the
+        cutter's size give up no more than that."""
+        r = self.problem.cutter_radius
+        if jn.kind != "tangent-break" or not r > 0.0:
+            return None
+        return self.approach if r * (1.0 - math.cos(jn.angle)) <= self.approach else None
 
     def _convex(self, jn, delta, seg_in, seg_out, lmax, ctx) -> Join:
         V = np.asarray(seg_out.start, float)

@@ -152,6 +152,16 @@ def size_estimate(jn: Join, delta: float) -> float:
     return math.sqrt(3.0 * delta / max(jn.jump, MIN_JUMP))
 
 
+def kink_size(jn: Join, depth: float) -> float:
+    """A first blend size (legs, program units) at a tiny kink whose blend may
+    move ``depth`` towards the part: the smaller of the size whose cut
+    ``(5/16) l sin(theta/2)`` is ``depth`` and the one whose curvature change
+    ``|Delta kappa|`` moves it ``l^2 |Delta kappa| / 3`` (a line meeting a
+    fillet; :func:`size_estimate` gives each)."""
+    cut = size_estimate(jn, depth)
+    return min(cut, math.sqrt(3.0 * depth / jn.jump)) if jn.jump > 0.0 else cut
+
+
 # --------------------------------------------------------------------------- frames
 
 
@@ -388,6 +398,27 @@ def largest_closed(attempt, start: float, lmax: float, exact_size: bool):
                 break
             best = res
     return best
+
+
+def closed_search(jn: Join, closed, shares, start: float, exact: bool, tol: float) -> bool:
+    """The largest closed-form blend ``closed(l, share, tol)`` passes, for the
+    first of ``shares`` that has one (:func:`largest_closed` from ``start``):
+    set on ``jn``, True; else False."""
+    lmax = max(jn.lim_in, jn.lim_out)
+    for share in shares:
+        res = largest_closed(lambda l, share=share: closed(l, share, tol), min(start, lmax),
+                             lmax, exact)
+        if res is None:
+            continue
+        try:
+            jn.curve = BezierCurve(res[0])
+        except ValueError:  # not regular to BezierCurve's finer test: the model decides
+            return False
+        jn.l_in, jn.l_out = res[1], res[2]
+        jn.status, jn.info["method"] = "blended", "closed form"
+        jn.info["share"] = list(share)
+        return True
+    return False
 
 
 # --------------------------------------------------------------------------- the path
