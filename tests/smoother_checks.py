@@ -1,14 +1,22 @@
 """Checks of a smoothed path shared by the smoother's tests: the limits they
-time under, whether two paths lie within a band of each other (dense samples),
-and the joins left without curvature continuity near given points."""
+time under, a generated plate's comparison with its smoother row held to the
+comparison's promise, whether two paths lie within a band of each other
+(dense samples), and the joins left without curvature continuity near given
+points."""
 from __future__ import annotations
 
 import numpy as np
 from scipy.spatial import cKDTree
 
 import ccopt
+from ccopt.compare import compare
+from ccopt.compare.baseline import SAME_TIME_REL
+from ccopt.compare.contract import CONTROLLER_NAMES
 from ccopt.compare.figures import joins
+from ccopt.program import read_text
 from ccopt.toolpath import Role
+
+from cam_programs import cam_program
 
 #: Limits (b) of issue 30: mm/s, mm/s^2, mm/s^3 per axis.
 LIMITS = ccopt.AxisLimits((200.0, 200.0, 100.0), (2000.0, 2000.0, 1000.0),
@@ -16,6 +24,30 @@ LIMITS = ccopt.AxisLimits((200.0, 200.0, 100.0), (2000.0, 2000.0, 1000.0),
 #: Spacing (mm) of the samples for the band check (a sampled distance is at
 #: most half a spacing above the true one).
 SPACING = 2e-4
+
+
+
+def program(seed: int):
+    """``(cam_program(seed), the program read)``."""
+    cp = cam_program(seed)
+    return cp, read_text(cp.text, cp.file, cp.dialect, tool_table=cp.tool_table)
+
+
+def smooth_row(seed: int):
+    """``(cp, comparison, smooth row)`` of the generated plate ``seed``: the
+    controller variants and the smoother under :data:`LIMITS` in 2 workers,
+    the smoother row asserted certified and no slower than the fastest
+    certified controller variant (relative ``SAME_TIME_REL``)."""
+    cp, prog = program(seed)
+    cmp = compare(prog, list(CONTROLLER_NAMES) + ["smooth"], limits=LIMITS,
+                  radius=cp.radius, workers=2)
+    timed = [r for r in cmp if r.name in CONTROLLER_NAMES and r.status == "ok"]
+    best = min(timed, key=lambda r: r.figures["duration"])
+    row = cmp["smooth"]
+    assert row.status == "ok" and row.certificate.ok, (cp.description, row.message)
+    assert row.figures["duration"] <= best.figures["duration"] * (1 + SAME_TIME_REL), \
+        cp.description
+    return cp, cmp, row
 
 
 def _samples(path, spacing: float) -> np.ndarray:

@@ -28,14 +28,11 @@ import math
 import pytest
 
 import ccopt
-from ccopt.compare import BlendProblem, compare
-from ccopt.compare.baseline import SAME_TIME_REL
-from ccopt.compare.contract import CONTROLLER_NAMES
+from ccopt.compare import BlendProblem
 from ccopt.compare.figures import joins
 from ccopt_formulations.smoother import smooth
 
-from cam_programs import cam_program
-from smoother_checks import LIMITS, unsmooth_joins_near, within_band
+from smoother_checks import LIMITS, program, smooth_row, unsmooth_joins_near, within_band
 
 #: The clearance a blend at a tiny kink may give up: a thousandth of the
 #: verifier's default gouge tolerance for mm programs (1e-3 mm).
@@ -52,16 +49,11 @@ def _tiny_kinks(path, radius: float) -> list[tuple[float, float]]:
             if cls == "G0" and radius * (1.0 - math.cos(ang)) <= ALLOWANCE]
 
 
-def _program(seed: int):
-    cp = cam_program(seed)
-    return cp, ccopt.read_text(cp.text, cp.file, cp.dialect, tool_table=cp.tool_table)
-
-
 def test_a_tiny_concave_kink_beside_a_fillet_is_blended():
     # seed 7 (a rectangle, 4 decimals, r 0.255): Fagor's path (G138, the
     # program's own modes, the fastest controller's there) stops at a kink of
     # 1.6e-3 rad where a line meets a fillet on the concave side
-    cp, prog = _program(7)
+    cp, prog = program(7)
     ref = ccopt.compensate(prog, "fagor", radius=cp.radius)
     kinks = _tiny_kinks(ref, cp.radius)
     assert kinks, cp.description                                  # the premise
@@ -82,7 +74,7 @@ def test_a_plate_without_tiny_kinks_gives_up_no_clearance():
     # leads' joins, turn by far more than the allowance admits (90 degrees: r
     # (1 - cos theta) = r), so every blend keeps the ordinary checks, kept to
     # rounding: the smoothed path comes no closer to the part than PMAC's does
-    cp, prog = _program(8)
+    cp, prog = program(8)
     ref = ccopt.compensate(prog, "pmac", radius=cp.radius)
     assert _tiny_kinks(ref, cp.radius) == [] and any(
         cls == "G0" for _i, cls, *_ in joins(ref)), cp.description      # the premise
@@ -93,15 +85,7 @@ def test_a_plate_without_tiny_kinks_gives_up_no_clearance():
 
 
 def _smooth_row_holds(seed: int) -> None:
-    cp, prog = _program(seed)
-    cmp = compare(prog, list(CONTROLLER_NAMES) + ["smooth"], limits=LIMITS,
-                  radius=cp.radius, workers=2)
-    timed = [r for r in cmp if r.name in CONTROLLER_NAMES and r.status == "ok"]
-    best = min(timed, key=lambda r: r.figures["duration"])
-    row = cmp["smooth"]
-    assert row.status == "ok" and row.certificate.ok, (cp.description, row.message)
-    assert row.figures["duration"] <= best.figures["duration"] * (1 + SAME_TIME_REL), \
-        cp.description
+    cp, cmp, row = smooth_row(seed)
     if row.info.get("optimised") is not None:             # the base path kept
         return
     base = cmp[row.info.get("base", "pmac")]

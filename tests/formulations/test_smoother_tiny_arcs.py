@@ -23,15 +23,12 @@ import pytest
 
 import ccopt
 from ccopt.compare import BlendProblem, compare
-from ccopt.compare.baseline import SAME_TIME_REL
 from ccopt.compare.contract import CONTROLLER_NAMES
 from ccopt.geometry import Arc, Line
-from ccopt.program import read_text
 from ccopt.toolpath import Role
 from ccopt_formulations.smoother import smooth
 
-from cam_programs import cam_program
-from smoother_checks import LIMITS, unsmooth_joins_near, within_band
+from smoother_checks import LIMITS, program, smooth_row, unsmooth_joins_near, within_band
 
 #: A corner arc this many times shorter than the cutter radius is "tiny" here
 #: (a rounding's turn of 1e-4 rad at most; the arcs of the plates below are
@@ -65,15 +62,10 @@ def _tiny_corner_arcs(path, lines: int = 1) -> list[tuple[float, float]]:
     return out
 
 
-def _program(seed: int):
-    cp = cam_program(seed)
-    return cp, read_text(cp.text, cp.file, cp.dialect, tool_table=cp.tool_table)
-
-
 def test_tiny_corner_arcs_beside_fillets_are_smoothed_through():
     # seed 400: a 9-gon with fillets, 6 decimals, r 0.449; Fagor's path (G138,
     # the program's own modes), the fastest controller's there, as compare starts from
-    cp, prog = _program(400)
+    cp, prog = program(400)
     ref = ccopt.compensate(prog, "fagor", radius=cp.radius)
     tiny = _tiny_corner_arcs(ref)
     assert len(tiny) >= 4, cp.description                 # the premise
@@ -90,15 +82,7 @@ def test_tiny_corner_arcs_beside_fillets_are_smoothed_through():
 
 
 def _smooth_row_holds(seed: int) -> None:
-    cp, prog = _program(seed)
-    cmp = compare(prog, list(CONTROLLER_NAMES) + ["smooth"], limits=LIMITS,
-                  radius=cp.radius, workers=2)
-    timed = [r for r in cmp if r.name in CONTROLLER_NAMES and r.status == "ok"]
-    best = min(timed, key=lambda r: r.figures["duration"])
-    row = cmp["smooth"]
-    assert row.status == "ok" and row.certificate.ok, (cp.description, row.message)
-    assert row.figures["duration"] <= best.figures["duration"] * (1 + SAME_TIME_REL), \
-        cp.description
+    cp, cmp, row = smooth_row(seed)
     if row.info.get("optimised") is None:                 # the smoother's own path
         base = cmp[row.info.get("base", "pmac")].toolpath
         tiny = _tiny_corner_arcs(base) + _tiny_corner_arcs(base, lines=2)
@@ -123,7 +107,7 @@ def test_no_blend_shorter_than_a_micrometre_leaves_stops_the_planners_cannot_par
     # neither feed planner can plan (the row fell back to the controller's
     # path for want of a cycle time); such a join is now left as it is
     from ccopt.geometry import BezierCurve
-    cp, prog = _program(163)
+    cp, prog = program(163)
     cmp = compare(prog, list(CONTROLLER_NAMES) + ["smooth"], limits=LIMITS, radius=cp.radius)
     row = cmp["smooth"]
     assert row.status == "ok" and row.certificate.ok and row.info.get("optimised") is None, \
@@ -139,7 +123,7 @@ def test_a_tiny_corner_arc_between_two_nearly_parallel_lines_is_smoothed_through
     # two lines turning by 1e-7 rad, too nearly parallel to intersect, so the
     # line-line absorption left it; the first line now ends where the second
     # starts, and no join is left there
-    cp, prog = _program(37)
+    cp, prog = program(37)
     ref = ccopt.compensate(prog, "fagor", radius=cp.radius)
     tiny = _tiny_corner_arcs(ref, lines=2)
     assert tiny, cp.description                                   # the premise
