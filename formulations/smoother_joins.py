@@ -143,23 +143,34 @@ def _share(segs, idx, k) -> float:
     return ALONE
 
 
+def _cut_size(angle: float, depth: float) -> float:
+    """Legs whose line-line closed form cuts the corner of turn ``angle`` by
+    ``depth``: ``(5/16) l sin(theta/2) = depth``."""
+    return depth / (5.0 / 16.0 * math.sin(max(angle, MIN_TURN) / 2.0))
+
+
+def _jump_size(jump: float, depth: float) -> float:
+    """Legs whose transition into a curvature ``jump`` moves by ``depth``:
+    ``l^2 jump / 3 = depth``."""
+    return math.sqrt(3.0 * depth / jump)
+
+
 def size_estimate(jn: Join, delta: float) -> float:
     """A first blend size (legs, program units): at a line-line corner the closed
     form's cut ``(5/16) l sin(theta/2)`` equals ``delta``; a transition into
     curvature ``kappa`` moves by about ``l^2 kappa / 3``."""
     if jn.kind == "tangent-break":
-        return delta / (5.0 / 16.0 * math.sin(max(jn.angle, MIN_TURN) / 2.0))
-    return math.sqrt(3.0 * delta / max(jn.jump, MIN_JUMP))
+        return _cut_size(jn.angle, delta)
+    return _jump_size(max(jn.jump, MIN_JUMP), delta)
 
 
 def kink_size(jn: Join, depth: float) -> float:
     """A first blend size (legs, program units) at a tiny kink whose blend may
-    move ``depth`` towards the part: the smaller of the size whose cut
-    ``(5/16) l sin(theta/2)`` is ``depth`` and the one whose curvature change
-    ``|Delta kappa|`` moves it ``l^2 |Delta kappa| / 3`` (a line meeting a
-    fillet; :func:`size_estimate` gives each)."""
-    cut = size_estimate(jn, depth)
-    return min(cut, math.sqrt(3.0 * depth / jn.jump)) if jn.jump > 0.0 else cut
+    move ``depth`` towards the part: the smaller of the size whose cut is
+    ``depth`` and, where the curvature jumps too (a line meeting a fillet),
+    the one whose curvature change moves it ``depth``."""
+    cut = _cut_size(jn.angle, depth)
+    return min(cut, _jump_size(jn.jump, depth)) if jn.jump > 0.0 else cut
 
 
 # --------------------------------------------------------------------------- frames
@@ -412,7 +423,7 @@ def closed_search(jn: Join, closed, shares, start: float, exact: bool, tol: floa
             continue
         try:
             jn.curve = BezierCurve(res[0])
-        except ValueError:  # not regular to BezierCurve's finer test: the model decides
+        except ValueError:  # not regular to BezierCurve's finer test: no closed form
             return False
         jn.l_in, jn.l_out = res[1], res[2]
         jn.status, jn.info["method"] = "blended", "closed form"
