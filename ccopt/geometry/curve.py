@@ -345,9 +345,7 @@ class BezierCurve:
             raise ValueError("control points must be finite")
         object.__setattr__(self, "control_points", tuple(map(tuple, P.tolist())))
         object.__setattr__(self, "_P", P)
-        D1 = hodograph(P)
-        D2 = hodograph(D1) if len(D1) > 1 else np.zeros((1, 2))
-        D3 = hodograph(D2) if len(D2) > 1 else np.zeros((1, 2))
+        D1, D2, D3 = _hodographs(P)
         object.__setattr__(self, "_D1", D1)
         object.__setattr__(self, "_D2", D2)
         object.__setattr__(self, "_D3", D3)
@@ -360,8 +358,9 @@ class BezierCurve:
         object.__setattr__(self, "_box", None)
 
     def __reduce__(self):
-        # only the control points travel (to worker processes): the rest is rebuilt
-        return (BezierCurve, (self.control_points,))
+        # the control points and the arc-length table travel (to and from worker
+        # processes): the table is most of the construction's cost, paid once
+        return (_restored, (self.control_points, self._table))
 
     # -- parameter t --------------------------------------------------------------
     @property
@@ -484,3 +483,26 @@ class BezierCurve:
 
     def reversed(self) -> "BezierCurve":
         return BezierCurve(self._P[::-1].copy())
+
+
+def _restored(control_points: tuple, table: ArcLengthTable) -> BezierCurve:
+    """A pickled :class:`BezierCurve` as it was made: its control points (checked
+    then) and its arc-length table; the hodographs are derived again (exactly:
+    differences of the same floats)."""
+    curve = object.__new__(BezierCurve)
+    P = np.asarray(control_points, dtype=float)
+    D1, D2, D3 = _hodographs(P)
+    for name, value in (("control_points", control_points), ("_P", P), ("_D1", D1),
+                        ("_D2", D2), ("_D3", D3), ("_table", table), ("_recent", {}),
+                        ("_box", None)):
+        object.__setattr__(curve, name, value)
+    return curve
+
+
+def _hodographs(P: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Control points of the first three derivatives of the Bezier curve ``P``
+    (``[[0, 0]]`` past its degree)."""
+    D1 = hodograph(P)
+    D2 = hodograph(D1) if len(D1) > 1 else np.zeros((1, 2))
+    D3 = hodograph(D2) if len(D2) > 1 else np.zeros((1, 2))
+    return D1, D2, D3

@@ -127,3 +127,28 @@ def test_pickle_carries_the_control_points():
     assert d.control_points == c.control_points and d.length == c.length
     assert np.array_equal(d.point(np.linspace(0, c.length, 9)),
                           c.point(np.linspace(0, c.length, 9)))
+
+
+def test_pickle_keeps_the_arc_length_table_and_every_figure(monkeypatch):
+    """A curve sent to a worker is the curve made here: its arc-length table
+    travels (none is built again on arrival) and every figure of it is the
+    same as a curve built anew from its control points, bit for bit."""
+    import ccopt.geometry.curve as curve_module
+    P = [(0, 0), (1.5, 2.0), (4.0, -1.0), (6.0, 0.5), (7.0, 3.0)]
+    c = BezierCurve(P)
+    blob = pickle.dumps(c)
+    built = []
+    real = curve_module.ArcLengthTable
+    monkeypatch.setattr(curve_module, "ArcLengthTable",
+                        lambda D1: built.append(1) or real(D1))
+    d = pickle.loads(blob)
+    assert built == []
+    fresh = BezierCurve(P)
+    assert built == [1]
+    s = np.linspace(0.0, fresh.length, 41)
+    assert d.length == fresh.length and d.control_points == fresh.control_points
+    for figure in ("point", "tangent", "normal", "curvature", "d2", "d3", "t_of_s"):
+        assert np.array_equal(getattr(d, figure)(s), getattr(fresh, figure)(s)), figure
+    assert d.bbox() == fresh.bbox() if callable(fresh.bbox) else d.bbox == fresh.bbox
+    assert d.start_tangent == fresh.start_tangent and d.end_tangent == fresh.end_tangent
+    assert d is not c and d != c          # equality is identity, as for any curve
