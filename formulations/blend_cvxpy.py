@@ -70,6 +70,7 @@ import time
 import numpy as np
 
 from ccopt.compare.contract import BlendProblem
+from ccopt.stand_ins import import_cvxpy
 from ccopt_formulations.cvxpy_lead_model import (  # noqa: F401  (re-exported)
     M_SAMPLES, ConvexLeadModel, control_jacobian, solve_subproblem)
 from ccopt_formulations.lead_setup import (LeadSetup, blend_geometry, near_cusp, run_leads,
@@ -208,3 +209,7 @@ def opt_cvxpy(problem: BlendProblem):
     solver = str(problem.options.get("conic_solver", "CLARABEL"))
     return run_leads(problem, lambda setup: solve_lead(setup, problem, solver), "opt-cvxpy",
                      attempts=ATTEMPTS)
+
+
+#: what the blend imports only when it runs (:data:`ccopt.compare.contract.Blend`)
+opt_cvxpy.imports = import_cvxpy

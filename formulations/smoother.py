@@ -580,3 +580,7 @@ def smooth_variant(problem: BlendProblem) -> BlendOutcome:
     if info["joins_found"] and not info["joins_blended"]:
         raise BlendRejected("no join could be blended within the band")
     return BlendOutcome(path, info)
+
+
+#: what the blend imports only when it runs (:data:`ccopt.compare.contract.Blend`)
+smooth_variant.imports = import_cvxpy

@@ -208,7 +208,14 @@ DEFAULT_ACC = 1000.0
 
 
 #: What a plug-in implements: the whole tool path of its variant, or it with a report.
+#: A blend may carry an attribute ``imports``: a callable (no arguments) that
+#: imports what the blend imports only when it runs (a solver library its
+#: module defers, such as cvxpy, half a second). A parallel comparison calls
+#: it in its own process while the controller variants run, before it forks
+#: the workers that solve the blends (:func:`ccopt.compare.registry.preload`),
+#: so that no worker imports the library again.
 Blend = Callable[[BlendProblem], "ToolPath | BlendOutcome"]
+
 
 # --------------------------------------------------------------------------- registration
 

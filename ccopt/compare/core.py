@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING, Callable
 
 from ccopt.compare.baseline import apply_baseline, base_row, from_base
 from ccopt.compare.contract import BUILTIN_NAMES, CONTROLLER_NAMES, BlendProblem
-from ccopt.compare.registry import available, load
+from ccopt.compare.registry import available, load, preload
 from ccopt.compare.schedule import run_jobs, say
 from ccopt.compare.timing import (StretchTimes, duration_figures, reference_times, same_plan,
                                   stretch_keys)
@@ -144,13 +144,14 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     # certified controller variant's path (issue 30), beside the built-in leads
     memo: dict = {"jobs": len(jobs)}
     first = [job for job in jobs if job[1] in CONTROLLER_NAMES]
+    later = [job for job in jobs if job[1] not in BUILTIN_NAMES]
+    plugin_names = tuple(job[1] for job in later)
     for i, row in run_jobs(first, ref, reference_row, len(names), workers, progress,
-                           memo=memo):
+                           memo=memo, prepare=lambda: preload(plugin_names)):
         rows[i] = row
     leads = _with_stretch_times(
         [job for job in jobs if job[1] in BUILTIN_NAMES and job[1] not in CONTROLLER_NAMES],
         ref, memo, rows)
-    later = [job for job in jobs if job[1] not in BUILTIN_NAMES]
     base = base_row(rows, REFERENCE) if limits is not None and problem is not None else None
     later, later_ref = _from_base(later, base, problem, ref,
                                   rows[ref_index] if ref_index is not None else None)

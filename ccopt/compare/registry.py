@@ -128,6 +128,22 @@ def require_known(names, source: str) -> None:
                            f"{', '.join(known)}", source)
 
 
+def preload(names) -> None:
+    """Call the ``imports`` (:data:`~.contract.Blend`) of the blends ``names``,
+    each once. A blend that cannot be loaded, or whose imports fail, is left as
+    it is: it meets the same error when it runs, and its row says so
+    (:func:`.variant.solve`)."""
+    done = []
+    for name in names:
+        try:
+            imports = getattr(load(name), "imports", None)
+            if imports is not None and imports not in done:
+                done.append(imports)
+                imports()
+        except Exception:   # noqa: BLE001  (a plug-in's bug shows in its own row)
+            continue
+
+
 def load(name: str) -> Blend:
     """The blend callable registered as ``name`` (``KeyError`` if none)."""
     if name in BUILTIN_NAMES:

@@ -17,6 +17,7 @@ from __future__ import annotations
 from collections import deque
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 from contextlib import contextmanager
+from typing import Callable
 from dataclasses import replace
 
 from ccopt.compare.contract import BUILTIN_NAMES
@@ -58,7 +59,7 @@ def say(progress, line: str) -> None:
 
 
 def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress, refs=None,
-             memo: dict | None = None):
+             memo: dict | None = None, prepare: Callable[[], None] | None = None):
     """``(row index, VariantResult)`` of the reference (``reference_row(times)``)
     and of every job ``(index, name, problem)``: here, one after the other, or
     in ``workers`` processes (:func:`_run_in_processes`).
@@ -76,12 +77,16 @@ def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress, refs=
     blends' base path, :func:`.core.compare`); twins share a cycle time only
     under one reference. ``memo``: the paths timed so far, kept across calls
     (a comparison's later jobs take an earlier one's twin), and the count of
-    jobs done (``"done"``) of all of them (``"jobs"``), for the progress lines."""
+    jobs done (``"done"``) of all of them (``"jobs"``), for the progress lines.
+    ``prepare``: work for this process, done when this returns (while
+    workers run the jobs: in the thread that plans the reference, after it;
+    else after the jobs): the imports the next call's jobs declare
+    (:func:`.registry.preload`), so that its workers start with them."""
     refs = {} if refs is None else refs
     memo = {} if memo is None else memo
     if workers > 1 and len(jobs) > 1:
         yield from _run_in_processes(jobs, ref, reference_row, total, workers, progress, refs,
-                                     memo)
+                                     memo, prepare)
         return
     yield from reference_row(ref.times())
     for i, name, problem in jobs:
@@ -103,10 +108,12 @@ def run_jobs(jobs, ref, reference_row, total: int, workers: int, progress, refs=
             row = with_duration(row, got)
         memo["done"] = memo.get("done", 0) + 1
         yield i, row
+    if prepare is not None:
+        prepare()
 
 
 def _run_in_processes(jobs, ref, reference_row, total: int, workers: int,
-                      progress, refs: dict, memo: dict):
+                      progress, refs: dict, memo: dict, prepare=None):
     """:func:`run_jobs` in ``workers`` processes: at most one task per worker,
     a cycle time before a blend (a long blend's plan, the smoother's, starts
     as soon as its path is there), the blends in :func:`_longest_first`
@@ -159,6 +166,8 @@ def _run_in_processes(jobs, ref, reference_row, total: int, workers: int,
             yield from reference_row(known[0])
         else:
             reference = planner.submit(ref.times)
+        if prepare is not None:     # the workers are forked by now (the first refill)
+            planner.submit(prepare)
         while running or not known:
             finished, _ = wait(set(running) | ({reference} if not known else set()),
                                return_when=FIRST_COMPLETED)
