@@ -3,10 +3,11 @@
 ``heidenhain-lt``, ``heidenhain-ln``, ``heidenhain-ct`` and ``heidenhain-lct``
 replace every lead-in and lead-out of PMAC's path (:mod:`.leads`) by the
 TNC's ``APPR``/``DEP`` path of that kind (docs/compensation.md, HEIDENHAIN
-rule 5), built on the tool centre by
-:func:`ccopt.program.heidenhain.contour.approach` from the approach point to
-the host's start ``J`` on the free side (a lead-out as the mirrored lead-in,
-which is the ``DEP`` path of the same kind).
+rule 5), built on the tool centre from the approach point to the host's
+start ``J`` on the free side (a lead-out as the mirrored lead-in, which is
+the ``DEP`` path of the same kind): LT and LN by
+:func:`ccopt.program.heidenhain.contour.approach`, the Klartext reader's
+construction; CT and LCT by the geometric leads' (:func:`build`).
 
 Each kind has one parameter (``LEN`` for LT and LN, ``R`` for CT, with
 ``CCA`` 90 degrees, and LCT), tried at :data:`PARAMETER_FACTORS` times the
@@ -19,42 +20,38 @@ reported (``info["parameters"]``).
 """
 from __future__ import annotations
 
-import math
-
 from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
+from ccopt.compare.geometric import ConstructionError, line_arc, tangent_arc
 from ccopt.compare.leads import Lead, LeadGeometry, find_leads, splice, straight_line
 from ccopt.compare.timing import plan_whole
 from ccopt.errors import CcoptError
-from ccopt.geometry import Arc, Line
+from ccopt.geometry import Line
 from ccopt.program.heidenhain import contour
 from ccopt.toolpath import ToolPath
 
 #: The members of each kind's parameter set, as multiples of the cutter radius.
 PARAMETER_FACTORS = (1.0, 2.0, 4.0)
-#: The angle of the CT arc (degrees): a quarter circle, the manuals' example.
-CT_ANGLE = 90.0
 KINDS = {"heidenhain-lt": "LT", "heidenhain-ln": "LN", "heidenhain-ct": "CT",
          "heidenhain-lct": "LCT"}
 
 
-def _geometry(piece):
-    if piece[0] == "line":
-        return Line(piece[1], piece[2])
-    _, s, _, c, sweep = piece
-    radius = math.hypot(s[0] - c[0], s[1] - c[1])
-    return Arc(c, radius, math.atan2(s[1] - c[1], s[0] - c[0]), sweep)
-
-
 def build(kind: str, lg: LeadGeometry, value: float) -> list:
-    """The APPR path of ``kind`` with parameter ``value`` onto ``lg``'s host."""
+    """The APPR path of ``kind`` with parameter ``value`` onto ``lg``'s host.
+
+    CT (with CCA 90 degrees: a quarter circle, the manuals' example) and LCT are the constructions of the geometric
+    leads ``tangent-arc`` and ``line-arc`` (:mod:`.geometric`) at radius
+    ``R``, made by them: the same path to the last bit where the members'
+    radius is theirs, so a comparison times it once (the tests hold both to
+    the TNC's own construction)."""
+    if kind == "CT":
+        return tangent_arc(lg, value)
+    if kind == "LCT":
+        return line_arc(lg, value)
     J = tuple(float(v) for v in lg.host.start)
     t = tuple(float(v) for v in lg.host.start_tangent)
     ps = (float(lg.approach[0]), float(lg.approach[1]))
-    length = value if kind in ("LT", "LN") else None
-    radius = value if kind in ("CT", "LCT") else None
-    ph, pieces = contour.approach(kind, ps, J, t, lg.side, 0.0, length, radius,
-                                  CT_ANGLE if kind == "CT" else None)
-    return [straight_line(ps, ph)] + [_geometry(p) for p in pieces]
+    ph, pieces = contour.approach(kind, ps, J, t, lg.side, 0.0, value, None, None)
+    return [straight_line(ps, ph)] + [Line(p[1], p[2]) for p in pieces]   # lines only
 
 
 def _made(lead: Lead, path: ToolPath, new: ToolPath) -> list[int]:
@@ -87,7 +84,7 @@ def _best(kind: str, name: str, lead: Lead, path: ToolPath, problem: BlendProble
             made = _made(lead, path, new)
             problem.check(new, made)
             t = _lead_time(new, made, problem)
-        except (contour.GeometryError, BlendRejected, CcoptError) as exc:
+        except (contour.GeometryError, ConstructionError, BlendRejected, CcoptError) as exc:
             why.append(f"{value:g}: {exc}")
             continue
         if best is None or t < best[0]:

@@ -107,3 +107,66 @@ def test_compare_rows_on_a_klartext_plate():
         assert rows[name].status in ("ok", "rejected", "uncertified")
         assert rows[name].status == "ok" or rows[name].message
     assert rows["heidenhain"].status == "ok"
+
+
+def _apps(seed: int):
+    """Random lead geometries (the host's start ``J``, its tangent, the free
+    side, the approach point outside the lead circle) and a radius."""
+    from ccopt.compare.leads import LeadGeometry
+    rng = np.random.default_rng(seed)
+    J = rng.uniform(-50, 50, 2)
+    phi = rng.uniform(-math.pi, math.pi)
+    t = np.array([math.cos(phi), math.sin(phi)])
+    side = int(rng.choice([-1, 1]))
+    R = float(rng.uniform(0.3, 8.0))
+    n = side * np.array([-t[1], t[0]])
+    # the approach point somewhere on the free side, outside the circle about J + R n
+    while True:
+        A = J + rng.uniform(-4, 4) * R * t + rng.uniform(0.2, 6) * R * n
+        if np.linalg.norm(A - (J + R * n)) > 1.05 * R:
+            break
+    host = Line(tuple(J), tuple(J + 10 * t))
+    return LeadGeometry((float(A[0]), float(A[1])), host, side, 600.0, "in"), R
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_ct_and_lct_are_the_tncs_appr_paths(seed):
+    """The CT (CCA 90 degrees) and LCT members are the geometric leads'
+    constructions at radius R (tangent-arc, line-arc), which a comparison times
+    once; here against the TNC's own APPR construction, as the Klartext reader
+    builds it (:func:`ccopt.program.heidenhain.contour.approach`), to 1e-9."""
+    from ccopt.compare.tnc_leads import build
+    from ccopt.program.heidenhain import contour
+    lg, R = _apps(seed)
+    J = tuple(lg.host.start)
+    for kind in ("CT", "LCT"):
+        ph, pieces = contour.approach(kind, lg.approach, J, tuple(lg.host.start_tangent),
+                                      lg.side, 0.0, None, R, 90.0 if kind == "CT" else None)
+        geoms = build(kind, lg, R)
+        assert len(geoms) == 1 + len(pieces), kind
+        assert geoms[0].start == pytest.approx(lg.approach, abs=1e-9)
+        assert geoms[0].end == pytest.approx(ph, abs=1e-9)
+        for g, (_, s, e, c, sweep) in zip(geoms[1:], pieces):
+            assert isinstance(g, Arc) and g.center == pytest.approx(c, abs=1e-9)
+            assert g.radius == pytest.approx(R, abs=1e-9)
+            assert g.start == pytest.approx(s, abs=1e-9) and g.end == pytest.approx(e, abs=1e-9)
+            assert g.sweep == pytest.approx(sweep, abs=1e-9)
+
+
+def test_ct_and_lct_at_the_cutter_radius_are_the_geometric_leads_paths(pocket):
+    """Where CT and LCT keep R = the cutter radius (the geometric leads' default
+    radius) their paths are tangent-arc's and line-arc's, segment for segment,
+    so the comparison times each once; a parallel comparison's rows agree."""
+    from ccopt.compare.timing import timed_alike
+    prog, _ = pocket
+    names = ["pmac", "tangent-arc", "line-arc", "heidenhain-ct", "heidenhain-lct"]
+    cmp = compare(prog, names, limits=LIMITS, workers=2)
+    r = cmp["pmac"].toolpath.radius
+    for geometric_name, tnc_name in (("tangent-arc", "heidenhain-ct"),
+                                     ("line-arc", "heidenhain-lct")):
+        tnc, geo = cmp[tnc_name], cmp[geometric_name]
+        assert tnc.status == geo.status == "ok"
+        # the pocket's leads keep R = r (the premise of this test)
+        assert [p["parameter"] for p in tnc.info["parameters"]] == [r, r], tnc_name
+        assert timed_alike(tnc.toolpath, geo.toolpath), tnc_name
+        assert tnc.figures["duration"] == geo.figures["duration"]
