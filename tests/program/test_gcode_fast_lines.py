@@ -12,6 +12,7 @@ meta, and every error with its file:line:col and the blocks read before it.
 """
 from __future__ import annotations
 
+import math
 import pickle
 import random
 from dataclasses import fields
@@ -94,12 +95,51 @@ def plain_line(draw) -> str:
     return text.rstrip(" ") if draw(st.booleans()) else text
 
 
+ARC_NUMBERS = st.one_of(NUMBERS, st.floats(-60, 60, allow_nan=False).map(lambda v: f"{v:.4f}"))
+
+
+@st.composite
+def arc_line(draw) -> str:
+    """An arc line the plain path takes when its centre checks pass (and
+    lines it must leave to the line loop: no centre word, K or R, lower
+    case, words out of order, a centre off the arc)."""
+    head = draw(st.sampled_from(["G2", "G3", "G02", "G03", "N20 G3", "", "", "g2", "G2 G91",
+                                 "G1", "G0"]))
+    words = [head] if head else []
+    for letter in draw(st.sampled_from(["XYIJ", "XYIJ", "XYZIJF", "XI", "YJ", "XYJ", "XYI",
+                                        "XY", "IJ", "XYKJ", "XYR", "XYJI", "XYIJF"])):
+        words.append(letter + draw(ARC_NUMBERS))
+    text = ""
+    for word in words:
+        text += word + draw(SPACE)
+    return text.rstrip(" ") if draw(st.booleans()) else text
+
+
+@st.composite
+def circle_arcs(draw) -> str:
+    """Arcs whose centre checks pass: ``G2``/``G3`` about a centre at
+    incremental ``I J`` from the current point, ending on the same circle
+    (written with 4 decimals, as CAM writes them), from ``X0 Y0``."""
+    out, x, y = ["G0 X0 Y0", "G1 F300"], 0.0, 0.0
+    for _ in range(draw(st.integers(1, 6))):
+        r = draw(st.floats(0.05, 50))
+        a0 = draw(st.floats(-3.2, 3.2))
+        sweep = draw(st.floats(-6.2, 6.2).filter(lambda v: abs(v) > 1e-3))
+        cx, cy = x - r * math.cos(a0), y - r * math.sin(a0)
+        ex, ey = round(cx + r * math.cos(a0 + sweep), 4), round(cy + r * math.sin(a0 + sweep), 4)
+        z = draw(st.sampled_from(["", " Z-1", " Z0.5"]))
+        out.append(f"G{3 if sweep > 0 else 2} X{ex:.4f} Y{ey:.4f}{z} I{cx - x:.4f} "
+                   f"J{cy - y:.4f}")
+        x, y = ex, ey
+    return "\n".join(out)
+
+
 #: Lines that change what a plain line does, or that it must leave alone.
 OTHER_LINES = st.sampled_from([
     "G91", "G90", "G20", "G21", "G93", "G94", "G95 S100 M3", "G7", "G8", "G18", "G17",
     "G92 X1 Y2", "G92.1", "G52 X3", "G10 L2 P1 R30", "G10 L2 P1 X5 Y5", "G55", "G54",
     "G41 D1", "G40", "T2 M6", "M8", "#1=5", "G1 X#1", "F0", "F500", "G80", "G2 X1 Y0 I1",
-    "G0 A5", "G53 G0 X0", "(msg, hi)", "G1 X1 (ccopt: air)", "G4 P1", "", "G81 X1 Y1 Z-1 R1",
+    "G0 A5", "G53 G0 X0", "(msg, hi)", "G90.1", "G91.1", "G19", "G2 X1 Y0 R1", "G1 X1 (ccopt: air)", "G4 P1", "", "G81 X1 Y1 Z-1 R1",
     "G1 X1 Y1 F-1", "G1 X1 F0", "M0", "G1 X1 Y1 Z1 A1", "X1 Y1", "G1 X1e3", "G28"])
 
 
@@ -107,8 +147,8 @@ OTHER_LINES = st.sampled_from([
 def programs(draw) -> str:
     head = draw(st.sampled_from(["G21 G90 G94 F100\n", "G20 F10\n", "", "G91 F10\n",
                                  "G54\nG1 F600\n", "T1 M6\nG41 D1 F100\n", "G18 F100\n"]))
-    lines = draw(st.lists(st.one_of(plain_line(), plain_line(), OTHER_LINES),
-                          min_size=1, max_size=12))
+    lines = draw(st.lists(st.one_of(plain_line(), plain_line(), arc_line(), circle_arcs(),
+                                    OTHER_LINES), min_size=1, max_size=12))
     end = draw(st.sampled_from(["", "M2\n", "%\n"]))
     return head + "\n".join(lines) + "\n" + end
 
@@ -152,6 +192,46 @@ def test_plain_path_reads_as_line_by_line(text, kw):
 def test_plain_path_at_its_limits(text, kw):
     fast, slow = _both(text, **kw)
     assert fast == slow
+
+
+@pytest.mark.parametrize("text, kw", [
+    # arcs: a centre off the arc (radii disagree past the tolerance), on an end,
+    # on the bound; modal arc lines; one centre word; a helix; incremental ends
+    ("G1 F100\nG2 X2 Y0 I1 J0\nG2 X4 Y0 I1.1 J0\nG1 X5\n", {}),
+    ("G1 F100\nG3 X2 Y0 I0 J0\nG1 X3\n", {}),
+    ("G1 F100\nG2 X2 Y0 I1\nX4 Y0 I1\nG3 X2 J0 I-1\nX6 Y2 Z-1 J2\nY0 I2 J-1\n", {}),
+    ("G1 F100\nG2 X999999 Y0 I499999.5 J0\nG3 X-999999 Y0 I-999999 J0\n", {}),
+    ("G91 G1 F100\nG2 X2 Y0 I1 J0\nG3 X2 Y0 I1 J0\nG0 X1\n", {}),
+    ("G54\nG1 F100\nG2 X2 Y0 I1 J0\nG3 X0 Y0 I-1 J0\n", {"parameters": {5221: 2.5}}),
+    # what the arc path leaves alone: other planes, absolute centres, R, P, K,
+    # inverse time, inch input, a rotated system, compensation changes
+    ("G18 G1 F100\nG2 X2 Z0 I1 K0\nG17\nG2 X4 Y0 I1 J0\n", {}),
+    ("G90.1 G1 F100\nG2 X2 Y0 I1 J0\nG91.1\nG2 X4 Y0 I1 J0\n", {}),
+    ("G1 F100\nG2 X2 Y0 R1\nG2 X4 Y0 I1 J0 P2\nG2 X6 Y0 I1 J0 K0\n", {}),
+    ("G93\nG2 X2 Y0 I1 J0 F10\n", {}), ("G20\nG1 F10\nG2 X2 Y0 I1 J0\n", {"units": "mm"}),
+    ("G10 L2 P1 R30\nG1 F100\nG2 X2 Y0 I1 J0\n", {}),
+    ("T1 M6\nG41 D1 G1 X1 Y1 F100\nG2 X3 Y1 I1 J0\nG40 G1 X9\n", {"tool_table": {1: 1.0}}),
+    ("G1 F100\nG1 X1 I1 J0\nG2 X1 Y1\nG2 I1 J0\n", {"keep_going": True}),
+])
+def test_arc_path_at_its_limits(text, kw):
+    fast, slow = _both(text, **kw)
+    assert fast == slow
+
+
+def test_arc_lines_are_taken():
+    """Arcs as ccopt's exports and CAM write them go the plain path, with the
+    line loop's centres, bit for bit."""
+    text = "G21 G90 G94\nG1 X0 Y0 Z0 F600\n" + "".join(
+        f"G{2 + k % 2} X{k + 1}.0000 Y0.0000 Z0.0000 I0.5000 J0.0000\n" for k in range(20))
+    assert _taken(text) == 21
+    assert _taken("G1 F100\nN10 G02 X2 Y0 I1 J0\nN20 X4 Y0 I1\nG03 X2 Y0 I-1 J0\n") == 3
+    assert _taken("G1 F100\nG03 X2 Y0 J0 I-1\n") == 0       # words out of order
+    assert _taken("G18 G1 F100\nG2 X2 Z0 I1 K0\n") == 0
+    fast, slow = _both(text)
+    assert fast == slow
+    prog = read_gcode(text, "a.ngc")
+    assert [b.motion for b in prog.blocks[1:3]] == [Motion.ARC_CW, Motion.ARC_CCW]
+    assert prog.blocks[1].center == (0.5, 0.0, 0.0) and prog.blocks[2].center == (1.5, 0.0, 0.0)
 
 
 def test_runaway_guard_counts_plain_lines(monkeypatch):

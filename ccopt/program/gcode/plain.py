@@ -1,9 +1,14 @@
-"""Runs of plain straight move lines, the most common lines of a long program.
+"""Runs of plain move lines, the most common lines of a long program.
 
 A plain line is ``[N<n>] [G0|G1] [X<n>] [Y<n>] [Z<n>] [F<n>]`` (those words
 in that order, upper case, each a letter directly followed by a literal
 number, at least one axis word, blanks only between words;
-:data:`PLAIN_LINE`), as CAM programs and ccopt's exports write most lines.
+:data:`PLAIN_LINE`), as CAM programs and ccopt's exports write most lines;
+a plain arc line is ``[N<n>] [G2|G3] [X<n>] [Y<n>] [Z<n>] [I<n>] [J<n>]
+[F<n>]`` with ``I`` or ``J`` (:data:`ARC_LINE`), taken in the XY plane
+(G17) with incremental centres (G91.1, the default), its centre, turns and
+checks those of :func:`~ccopt.program.gcode.arcs.arc_geometry`, the line
+loop's own function.
 Consecutive ones change only the motion mode, the feed and the position:
 :func:`run_plain` executes them in one loop, with the modal state read
 once, and makes their blocks together at the end of the run
@@ -27,6 +32,8 @@ from collections import deque
 from itertools import repeat
 
 from ccopt.program.blocks import DEFAULT_SETTERS, FIELD_SETTERS, SOURCE_SETTERS
+from ccopt.errors import ProgramError
+from ccopt.program.gcode.arcs import arc_geometry
 from ccopt.program.gcode.coordinates import rotation, work_offset
 from ccopt.program.gcode.machine_words import frame_of
 from ccopt.program.gcode.state import GCodeState
@@ -43,6 +50,11 @@ PLAIN_LINE = re.compile(rf"(?:N\d+[ \t]*)?(?:G0?([01])[ \t]*)?(?:X{_NUM}[ \t]*)?
 #: ``G1 X.. Y.. Z..``, an export's every feed move (a plain line too), tried
 #: first: a lighter pattern, with nothing to decide but the numbers.
 FEED_XYZ_LINE = re.compile(rf"G1 X{_NUM} Y{_NUM} Z{_NUM}")
+#: A plain arc line: groups G digit (0 to 3), X, Y, Z, I, J and F numbers
+#: (None: absent); taken as an arc only with I or J, in an arc mode.
+ARC_LINE = re.compile(rf"(?:N\d+[ \t]*)?(?:G0?([0-3])[ \t]*)?(?:X{_NUM}[ \t]*)?"
+                      rf"(?:Y{_NUM}[ \t]*)?(?:Z{_NUM}[ \t]*)?(?:I{_NUM}[ \t]*)?"
+                      rf"(?:J{_NUM}[ \t]*)?(?:F{_NUM}[ \t]*)?")
 
 _new = object.__new__
 #: (setter, default) of the fields a block of a plain move leaves at their
@@ -78,26 +90,39 @@ def run_plain(state: GCodeState, pc: int) -> int:
     """Execute the plain lines (and empty lines) from ``pc`` (0-based) on, up
     to the first that is not one, or that this loop is not sure to execute
     as the line-by-line path does; the index of that line (``pc``: none)."""
-    lines = state.lines
-    match, xyz_match = PLAIN_LINE.fullmatch, FEED_XYZ_LINE.fullmatch
-    if match(lines[pc]) is None or not _ready(state):
+    first = state.lines[pc]
+    # arcs as the line loop makes them in G17 with incremental centres
+    arc_match = ARC_LINE.fullmatch if state.plane == "XY" and state.arc_incremental else None
+    if (PLAIN_LINE.fullmatch(first) is None
+            and (arc_match is None or arc_match(first) is None)) or not _ready(state):
         return pc
     bound = MAX_PROGRAM_COORDINATE
-    start = state.pos
-    if not all(-bound <= v <= bound for v in start):
+    if not all(-bound <= v <= bound for v in state.pos):
         return pc                   # the first block's start: the reference's error
     stop = min(state.region_end(pc), pc + _budget(state))
-    inc = state.incremental
+    run, mode, feed = _moves(state, pc, stop, arc_match)
+    if not run[0]:
+        return pc                   # empty lines alone: the reference counts them
+    at = run[0]
+    _finish(state, pc, at[-1] + 1, mode, feed)
+    _make_blocks(state, *run)
+    return at[-1] + 1
+
+
+def _moves(state: GCodeState, pc: int, stop: int, arc_match):
+    """``((line indexes, motions, feeds (units/s), ends, arc centres), mode, feed)``
+    of the plain lines from ``pc`` to ``stop`` or to one left to the line loop."""
+    lines, bound, inc = state.lines, MAX_PROGRAM_COORDINATE, state.incremental
+    match, xyz_match = PLAIN_LINE.fullmatch, FEED_XYZ_LINE.fullmatch
     off_x, off_y, off_z = work_offset(state)
     mode, feed = state.motion_mode, state.feed
-    end_x, end_y, end_z = start
-    # line indexes, motions, feeds (units/s) and end points of the run's moves
-    at, motions, feeds, ends = [], [], [], []
-    add_at, add_motion, add_feed, add_end = at.append, motions.append, feeds.append, ends.append
+    end_x, end_y, end_z = state.pos
+    at, motions, feeds, ends, centres = [], [], [], [], []
     line_motion, rapid_motion = Motion.LINE, Motion.RAPID
     for k in range(pc, stop):
         text = lines[k]
         m = xyz_match(text)
+        i = j = None
         if m is not None:
             x, y, z = m.groups()
             line_mode, line_feed = 10, feed
@@ -105,26 +130,34 @@ def run_plain(state: GCodeState, pc: int) -> int:
             continue                # an empty line does nothing
         else:
             m = match(text)
-            if m is None:
+            if m is not None:
+                g, x, y, z, f = m.groups()
+            elif arc_match is not None and (m := arc_match(text)) is not None:
+                g, x, y, z, i, j, f = m.groups()
+            else:
                 break
-            g, x, y, z, f = m.groups()
             if x is None and y is None and z is None:
-                break               # no move: a mode or a feed alone
-            line_mode = mode if g is None else 10 if g == "1" else 0
+                break               # no move: a mode or a feed alone (or a full circle)
+            line_mode = mode if g is None else 10 * int(g)
             line_feed = feed
             if f is not None:
                 value = float(f)
                 if not 0.0 <= value <= bound:   # a negative F, past the bound (or inf)
                     break
                 line_feed = value * 1.0     # times feed_factor, which _ready made 1
-        if line_mode == 10:
-            if line_feed is None or not 0.0 < line_feed / 60.0 <= bound:
-                break
+        if i is not None or j is not None:
+            if line_mode not in (20, 30):
+                break               # centre words on a straight move: the line loop's
+            motion = Motion.ARC_CCW if line_mode == 30 else Motion.ARC_CW
+        elif line_mode == 10:
             motion = line_motion
         elif line_mode == 0:
             motion = rapid_motion
         else:
-            break                   # an arc, a cycle or G80 in force
+            break                   # an arc without centre words, a cycle or G80 in force
+        if motion is not rapid_motion and (line_feed is None
+                                           or not 0.0 < line_feed / 60.0 <= bound):
+            break
         new_x, new_y, new_z = end_x, end_y, end_z
         # written out per axis, as this runs once per line: a loop is slower
         if x is not None:
@@ -142,17 +175,44 @@ def run_plain(state: GCodeState, pc: int) -> int:
             new_z = end_z + value if inc else value + off_z
             if not (-bound <= value <= bound and -bound <= new_z <= bound):
                 break
+        centre = None
+        if motion is not line_motion and motion is not rapid_motion:
+            centre = _arc_centre(state, line_mode, i, j, (end_x, end_y, end_z),
+                                 (new_x, new_y, new_z))
+            if centre is None:
+                break
         mode, feed = line_mode, line_feed
         end_x, end_y, end_z = new_x, new_y, new_z
-        add_at(k)
-        add_motion(motion)
-        add_feed(None if motion is rapid_motion else feed / 60.0)
-        add_end((new_x, new_y, new_z))
-    if not at:
-        return pc                   # empty lines alone: the reference counts them
-    _finish(state, pc, at[-1] + 1, mode, feed)
-    _make_blocks(state, at, motions, feeds, ends)
-    return at[-1] + 1
+        at.append(k)
+        motions.append(motion)
+        feeds.append(None if motion is rapid_motion else feed / 60.0)
+        ends.append((new_x, new_y, new_z))
+        centres.append(centre)
+    return (at, motions, feeds, ends, centres), mode, feed
+
+
+def _arc_centre(state: GCodeState, motion: int, i: str | None, j: str | None, start,
+                end) -> tuple[float, float, float] | None:
+    """The centre of the plain arc line (``motion`` 20 or 30, centre words
+    ``I`` and ``J`` as written) from ``start`` to ``end``, as
+    :func:`~ccopt.program.gcode.arcs.arc_geometry` gives it; None where the
+    line loop would refuse the arc (its radii disagree, the centre is on an
+    end, a value past the bound): that loop then reads it and says why."""
+    bound = MAX_PROGRAM_COORDINATE
+    words = {}
+    for letter, text in (("I", i), ("J", j)):
+        if text is not None:
+            value = float(text)
+            if not -bound <= value <= bound:
+                return None
+            words[letter] = (value, 0)
+    try:
+        centre, _, _ = arc_geometry(state, motion, words, start, end, 0)
+    except ProgramError:
+        return None
+    if not all(-bound <= c <= bound for c in centre):   # NaN compares False
+        return None
+    return centre
 
 
 def _finish(state: GCodeState, pc: int, end: int, mode: int, feed: float | None) -> None:
@@ -169,10 +229,11 @@ def _finish(state: GCodeState, pc: int, end: int, mode: int, feed: float | None)
 
 
 def _make_blocks(state: GCodeState, at: list[int], motions: list[Motion], feeds: list,
-                 ends: list) -> None:
+                 ends: list, centres: list) -> None:
     """Append the blocks of a run of plain moves: the moves on lines ``at``
     (0-based, in the region of ``at[0]``) with ``motions``, ``feeds`` (units
-    per second) and end points ``ends``, from the state's position, under the
+    per second), end points ``ends`` and arc ``centres`` (None for a straight
+    move), from the state's position, under the
     modal state and frame in force. Each is the ``Block`` the reference makes
     (``Block(...)``, then :func:`~.machine_words.with_words`'s copy with the
     frame): every field set, field by field for the whole run; each start is
@@ -192,7 +253,7 @@ def _make_blocks(state: GCodeState, at: list[int], motions: list[Motion], feeds:
         _each(setter, blocks, repeat(default))
     for name, values in (("source", sources), ("motion", motions), ("start", starts),
                          ("end", ends), ("modal", repeat(state.modal())),
-                         ("center", repeat(None)), ("feed", feeds),
+                         ("center", centres), ("feed", feeds),
                          ("move_time", repeat(None)), ("mcodes", repeat(())),
                          ("surface", repeat(None)), ("frame", repeat(frame_of(state))),
                          ("axes", repeat(None))):
