@@ -260,3 +260,24 @@ def test_polar_approach_and_departure_and_cycl_call_pos():
     cyc = [b for b in prog.blocks if b.cycle == "CYCL 200"]
     # at (50, 50): the surface is Z-4 instead of Q203: clearance -2, depth -7
     assert close(cyc[0].start, (50, 50, 20)) and [b.end[2] for b in cyc] == [-2, -7, -2, 6]
+
+
+@pytest.mark.parametrize("off, refused", [(1e-3, False), (2e-4, False), (4e-5, True),
+                                          (1e-5, True)])
+def test_a_ct_nearly_along_the_tangent_is_refused_past_the_coordinate_bound(off, refused):
+    """``CT`` from (10, 0) leaving along +X to (20, off): the centre is
+    (10, R) with R = |d|^2 / (2 off) (d = (10, off)): 5e4, 2.5e5, 1.25e6 and
+    5e6. Past +-1e6, as the other readers bound a centre, the block is
+    refused where it is written; within it, the arc is read."""
+    text = ("BEGIN PGM C MM\nTOOL DEF 1 L+0 R+2\nTOOL CALL 1 Z S1000\nL X+0 Y+0 R0 FMAX\n"
+            f"L X+10 Y+0 F100\nCT X+20 Y+{off:.6f}\nEND PGM C MM\n")
+    R = (100.0 + off * off) / (2.0 * off)
+    assert refused == (R > 1e6)
+    if refused:
+        with pytest.raises(ProgramError) as info:
+            read_text(text, "c.h", "heidenhain")
+        assert (info.value.line, info.value.col) == (6, 1) and "centre" in str(info.value)
+        return
+    arc = read_text(text, "c.h", "heidenhain").blocks[-1]
+    assert arc.motion is Motion.ARC_CCW
+    assert arc.center[:2] == pytest.approx((10.0, R), rel=1e-12, abs=1e-9)

@@ -14,7 +14,8 @@ from dataclasses import replace
 from ccopt.errors import ProgramError
 from ccopt.program.heidenhain import contour
 from ccopt.program.heidenhain.values import Parameters
-from ccopt.program.model import PLANE_AXES, Block, Modal, Motion, Source, Vec3, out_of_range
+from ccopt.program.model import (MAX_PROGRAM_COORDINATE, PLANE_AXES, Block, Modal, Motion,
+                                 Source, Vec3, out_of_range)
 
 #: Tool axis of ``TOOL CALL`` -> working plane.
 PLANE_OF_AXIS = {"Z": "XY", "Y": "ZX", "X": "YZ"}
@@ -141,6 +142,13 @@ class Machine:
             if not math.isfinite(v) or out_of_range(v):
                 raise ProgramError("a coordinate of this block is out of range", src.file,
                                    src.line, src.col)
+        if center is not None and any(out_of_range(v) for v in center):
+            # as the G-code and PMAC readers bound a centre: an arc whose end
+            # lies a micrometre off the tangent (a CT) has a radius of 1e9
+            raise ProgramError(f"the centre of this arc lies beyond +-"
+                               f"{MAX_PROGRAM_COORDINATE:g} program units: the arc is a "
+                               "straight line to the machine's precision; program it with L",
+                               src.file, src.line, src.col)
         if motion.is_move and not rapid and (feed or self.feed) is None:
             raise ProgramError("a feed move before any feed rate: program F (or FMAX)",
                                src.file, src.line, src.col)
