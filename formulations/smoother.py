@@ -81,7 +81,7 @@ import warnings
 
 import numpy as np
 
-from ccopt.compare.contract import BlendOutcome, BlendProblem, BlendRejected
+from ccopt.compare.contract import BlendProblem, BlendRejected
 from ccopt.geometry import BezierCurve, Line
 from ccopt.geometry.bezier import DIVISION_FLOOR, energy_root
 from ccopt.geometry.curve import bernstein, derivative_matrix
@@ -494,8 +494,8 @@ def smooth(problem: BlendProblem, delta: float | None = None, solver: str = "CLA
     (``segment``: the index in PMAC's path of the segment that starts at the join,
     or of the corner arc an absorbed corner replaced). ``deviation``: also measure
     the Hausdorff distance to PMAC's path (``info["max_deviation"]`` and its bound;
-    :func:`smooth_variant` leaves it to :func:`ccopt.compare.variant.measure`, which
-    measures every variant so). ``certifiable``: raise :class:`BlendRejected`
+    :func:`~ccopt_formulations.smoother_variant.smooth_variant` leaves it to
+    :func:`ccopt.compare.variant.measure`, which measures every variant so). ``certifiable``: raise :class:`BlendRejected`
     before any join is solved when the reference gouges where no blend reaches
     (:func:`~ccopt_formulations.smoother_joins.lasting_gouge`): the result
     could not be certified.
@@ -568,19 +568,3 @@ def _segment_of(path: ToolPath, curve) -> int | None:
         if s.geom is curve:
             return i
     return None
-
-
-def smooth_variant(problem: BlendProblem) -> BlendOutcome:
-    """Entry point ``smooth`` (group ``ccopt.blends``): the smoother at ``problem.band``.
-    Option ``conic_solver``: the CVXPY solver name (default ``"CLARABEL"``)."""
-    path, info = smooth(problem, solver=str(problem.options.get("conic_solver", "CLARABEL")),
-                        deviation=False, certifiable=True)
-    for key in ("max_deviation", "max_deviation_bound"):
-        info.pop(key)
-    if info["joins_found"] and not info["joins_blended"]:
-        raise BlendRejected("no join could be blended within the band")
-    return BlendOutcome(path, info)
-
-
-#: what the blend imports only when it runs (:data:`ccopt.compare.contract.Blend`)
-smooth_variant.imports = import_cvxpy

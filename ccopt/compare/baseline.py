@@ -51,8 +51,14 @@ def from_base(row, base: str):
     """A plug-in ``row`` solved from controller ``base``'s path, saying where it
     started (``info["base"]``; its deviation is measured from the reference
     path as every row's, :attr:`~ccopt.compare.contract.BlendProblem.deviation_from`)."""
-    row.info["base"] = base
-    note = f"started from {base}'s path (the fastest certified controller variant)"
+    own = row.info.get("started_from")
+    if own is not None and own != base:     # the blend started from another one
+        row.info["base"] = own
+        note = (f"started from {own}'s path (a certified controller variant; the fastest "
+                f"is {base}'s)")
+    else:
+        row.info["base"] = base
+        note = f"started from {base}'s path (the fastest certified controller variant)"
     row.message = note if row.message is None else f"{note}; {row.message}"
     return row
 

@@ -89,6 +89,11 @@ class BlendProblem:
         own paths as it times them (so far the ``siemens`` row's), for a blend
         that times its candidates by stretches as the comparison times its
         rows; ``None``: not planned.
+    alternatives: the other certified controller variants a blend may start
+        from instead of ``reference``: ``(name, path, certificate)`` each, of
+        the paths the planners do not time alike with ``reference`` (the
+        smoother starts from LinuxCNC's too, :mod:`ccopt_formulations.smoother`);
+        a blend that does says so (``info["started_from"]``).
     """
 
     program: Program
@@ -104,6 +109,7 @@ class BlendProblem:
     deviation_from: ToolPath | None = None
     reference_certificate: Certificate | None = None
     stretch_times: Any = None
+    alternatives: tuple = ()
 
     def report(self, line: str) -> None:
         """Pass ``line`` (e.g. "blend 2/6") to :attr:`progress`, if any."""

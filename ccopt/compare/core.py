@@ -35,7 +35,7 @@ from ccopt.compare.contract import BUILTIN_NAMES, CONTROLLER_NAMES, BlendProblem
 from ccopt.compare.registry import available, load, preload
 from ccopt.compare.schedule import run_jobs, say
 from ccopt.compare.timing import (StretchTimes, duration_figures, reference_times, same_plan,
-                                  stretch_keys)
+                                  stretch_keys, timed_alike)
 from ccopt.compare.variant import VariantResult, measure
 from ccopt.compensate import compensate
 from ccopt.errors import CcoptError
@@ -155,10 +155,13 @@ def compare(program: Program, variants=None, *, limits: AxisLimits | None = None
     base = base_row(rows, REFERENCE) if limits is not None and problem is not None else None
     later, later_ref = _from_base(later, base, problem, ref,
                                   rows[ref_index] if ref_index is not None else None)
+    later = _with_alternatives(later, rows, later_ref.times())
     plugins = {i for i, _, _ in later}
     for i, row in run_jobs(leads + later, ref, lambda _: [], len(names), workers, progress,
                            refs={i: later_ref for i in plugins}, memo=memo):
-        rows[i] = row if base is None or i not in plugins else from_base(row, base.name)
+        started = base is not None or row.info.get("started_from") is not None
+        rows[i] = from_base(row, base.name if base is not None else REFERENCE) \
+            if i in plugins and started else row
     ref_duration = rows[ref_index].figures.get("duration") if ref_index is not None else None
     if ref_duration is None and problem is not None and limits is not None:
         ref_duration = duration_figures(ref.path, limits, ref.times())[0]
@@ -191,6 +194,31 @@ def _with_stretch_times(jobs, ref: "_Reference", memo: dict, rows):
             memo[("measured", id(made[id(problem)]))] = memo.setdefault(
                 ("measured", id(problem)), [])
         out.append((i, name, made[id(problem)]))
+    return out
+
+
+def _with_alternatives(later, rows, times: StretchTimes | None):
+    """The plug-in jobs ``later`` with the other certified, timed controller
+    variants their blends may start from
+    (:attr:`~.contract.BlendProblem.alternatives`: one of each path the
+    planners time alike, none timed alike with the job's own start) and the
+    stretch times the comparison times them with (``times``)."""
+    out = []
+    for i, name, problem in later:
+        if problem is None:
+            out.append((i, name, problem))
+            continue
+        seen = [problem.reference]
+        alternatives = []
+        for row in rows:
+            if row is None or row.name not in CONTROLLER_NAMES or row.status != "ok" \
+                    or row.figures.get("duration") is None or row.toolpath is None \
+                    or any(timed_alike(row.toolpath, p) for p in seen):
+                continue
+            seen.append(row.toolpath)
+            alternatives.append((row.name, row.toolpath, row.certificate))
+        out.append((i, name, replace(problem, alternatives=tuple(alternatives),
+                                     stretch_times=times)))
     return out
 
 
