@@ -8,11 +8,12 @@ its corners: it cannot move a lead's join along the contour by more than the
 band. The controller styles meet it two ways. PMAC, Fagor, HEIDENHAIN and
 SINUMERIK reach the offset of the contour's first element at its start (at
 right angles for a perpendicular lead) and leave the last one at its end;
-LinuxCNC ends the entry move where its offset line meets the first
-element's (docs/compensation.md, LinuxCNC), as at a corner between them,
-and leaves likewise, so its path runs up to a cutter radius less of the
-contour at each end (a closed contour is cut there on the way round) and
-turns through less where the lead meets it. Smoothed, that path is often
+LinuxCNC ends the entry move beside the programmed point, offset at right
+angles to the entry move, and joins the contour as at any corner, at a
+concave turn where the offsets meet (docs/compensation.md, LinuxCNC rules 1
+and 2), and leaves likewise, so its path can run up to a cutter radius less
+of the contour at each end (a closed contour is cut there on the way round)
+and turn through less where the lead meets it. Smoothed, that path is often
 the faster although its own cycle time is not (docs/benchmarks.md, blend
 gains). So this variant smooths the path it is given and, where the
 comparison offers it (:attr:`~ccopt.compare.contract.BlendProblem.alternatives`),
