@@ -95,7 +95,7 @@ from ccopt_formulations.smoother_deviation import windowed_deviation
 from ccopt_formulations.smoother_joins import (  # noqa: F401  (the smoother's vocabulary)
     CHECK_SAMPLES, DEGREE, LIFTS, BlendFrame, ElementIndex, Join, assemble, closed_blend, exact_ok,
     closed_search, contour_inside, find_joins, frame, initial, kink_size, largest_closed,
-    lasting_gouge, size_estimate,
+    grow_one_leg, lasting_gouge, size_estimate,
 )
 
 #: Samples of the blend constrained in each model.
@@ -415,15 +415,18 @@ class Smoother:
             ctx = (ctx[0], ctx[1], True)        # a shallow outside corner: outward too
         target = BAND_FRACTION * delta
 
+        def at_legs(l_in: float, l_out: float, tol: float):
+            fr = frame(seg_in, seg_out, l_in, l_out, ctx)
+            P = closed_blend(fr, elements, delta, tol,
+                             LIFTS if jn.kind == "curvature-jump" else (0.0,))
+            return None if P is None else (P, l_in, l_out)
+
         def closed(l: float, share, tol: float):
             l_in, l_out = min(l, jn.lim_in) * share[0], min(l, jn.lim_out) * share[1]
             if ctx[2]:
                 # outward: symmetric legs (the closed form's proof is for those)
                 l_in = l_out = min(l_in, l_out)
-            fr = frame(seg_in, seg_out, l_in, l_out, ctx)
-            P = closed_blend(fr, elements, delta, tol,
-                             LIFTS if jn.kind == "curvature-jump" else (0.0,))
-            return None if P is None else (P, l_in, l_out)
+            return at_legs(l_in, l_out, tol)
 
         # outward: the blend does not cut the corner, so its size is what the chords leave
         start = math.inf if ctx[2] else size_estimate(jn, target)
@@ -431,6 +434,8 @@ class Smoother:
         exact = isinstance(seg_in.geom, Line) and isinstance(seg_out.geom, Line)
         shares = SHARES[:1] if ctx[2] else SHARES
         if closed_search(jn, closed, shares, start, exact, CHECK_TOL):
+            if jn.kind == "tangent-break" and not ctx[2]:
+                grow_one_leg(jn, at_legs, CHECK_TOL)
             return jn
         self._convex(jn, delta, seg_in, seg_out, min(jn.lim_in, jn.lim_out), ctx)
         kink = self._kink_tol(jn)

@@ -432,6 +432,45 @@ def closed_search(jn: Join, closed, shares, start: float, exact: bool, tol: floa
     return False
 
 
+#: Factors one leg of a symmetric closed-form blend at a tangent break is
+#: grown by, the other kept, largest first (:func:`grow_one_leg`).
+LEG_GROWTH = (1.5, 1.25)
+
+
+def grow_one_leg(jn: Join, at_legs, tol: float) -> None:
+    """Grow one leg of ``jn``'s symmetric closed-form blend, the other kept at
+    its size, by the largest factor of :data:`LEG_GROWTH` at which
+    ``at_legs(l_in, l_out, tol)`` passes (``(control points, l_in, l_out)``
+    or None), on the side that gives the longer blend; set on ``jn`` when
+    one does. The symmetric search stops where the tighter side of the band
+    stops both legs (at a lead's join, the lead's side or the contour's):
+    the other leg may still have room, and a longer blend turns through the
+    same angle with less curvature."""
+    if jn.info.get("share") != [1.0, 1.0] or jn.curve is None:
+        return
+    best = None
+    for side in (0, 1):
+        lim = (jn.lim_in, jn.lim_out)[side]
+        for factor in LEG_GROWTH:
+            legs = [jn.l_in, jn.l_out]
+            legs[side] = min(legs[side] * factor, lim)
+            if not legs[side] > (jn.l_in, jn.l_out)[side]:
+                break                   # no room on this side
+            res = at_legs(legs[0], legs[1], tol)
+            if res is not None:
+                if best is None or sum(legs) > best[1] + best[2]:
+                    best = (res[0], legs[0], legs[1], side, factor)
+                break
+    if best is None:
+        return
+    try:
+        curve = BezierCurve(best[0])
+    except ValueError:      # not regular to BezierCurve's finer test: the symmetric one stays
+        return
+    jn.curve, jn.l_in, jn.l_out = curve, best[1], best[2]
+    jn.info["share"] = [best[4], 1.0] if best[3] == 0 else [1.0, best[4]]
+
+
 # --------------------------------------------------------------------------- the path
 
 
