@@ -224,7 +224,8 @@ LIMITS_WORDS = {"a": "(a) v/a limits", "b": "(b) v/a/j limits",
 def _spread(values) -> str:
     """Median and quartiles of ``values`` (shares), in percent."""
     v = sorted(values)
-    return (f"{100 * statistics.median(v):+.2f} % (quartiles {100 * v[len(v) // 4]:+.2f} to "
+    # the median to a thousandth of a point: the acceptance bar is a round 1 %
+    return (f"{100 * statistics.median(v):+.3f} % (quartiles {100 * v[len(v) // 4]:+.2f} to "
             f"{100 * v[3 * len(v) // 4]:+.2f} %, {len(v)} programs)")
 
 
@@ -253,7 +254,7 @@ def _write_docs(args, summary: list[str], broken: list[str], medians: dict) -> N
     n = len(m.get("smooth", ()))
     med = {k: 100 * statistics.median(v) for k, v in m.items() if v}
     readme = (f"Under jerk limits, median gain over the fastest certified controller on {n} "
-              f"generated CAM plates: smoother {med.get('smooth', 0):+.2f} %, opt-cvxpy "
+              f"generated CAM plates: smoother {med.get('smooth', 0):+.3f} %, opt-cvxpy "
               f"{med.get('opt-cvxpy', 0):+.2f} %, opt-casadi {med.get('opt-casadi', 0):+.2f} %; "
               f"no lead blend could gain more than {med.get('window', 0):+.2f} % (median window "
               f"bound). Distribution and bounds: [docs/benchmarks.md](docs/benchmarks.md#"
