@@ -399,7 +399,7 @@ class ToolPath:
         """The segments' planes in the order they first appear (``(plane,)``
         for a path without segments)."""
         columns = self.__dict__.get("_columns")
-        if columns is not None and "segments" not in self.__dict__:
+        if columns is not None:         # the segments' planes are their rows' blocks'
             return columns.planes() or (self.plane,)
         return tuple(dict.fromkeys(s.plane for s in self.segments)) or (self.plane,)
 

@@ -38,7 +38,7 @@ import math
 
 import numpy as np
 
-from ccopt.geometry import Arc, distance
+from ccopt.geometry import distance
 from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import PLANE_AXES
 from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
@@ -50,7 +50,7 @@ from ccopt.verify.distance import max_distance, max_distance_bound, max_distance
 from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed, pack
 
 
-def corner_points(toolpath, contour: Contour, table, ci: np.ndarray):
+def corner_points(rows, contour: Contour, table, ci: np.ndarray):
     """The programmed corner of each corner arc ``ci`` (tool segment indices).
 
     (A verifier decision, docs/compensation.md section 8.3.) A corner
@@ -98,8 +98,8 @@ def corner_points(toolpath, contour: Contour, table, ci: np.ndarray):
         else:
             # the carrier's own move has no tool segment of its own: its end
             # nearer the arc's centre (the two are a whole move apart)
-            blk = toolpath.segments[int(ci[q])].block
-            centre = np.asarray(toolpath.segments[int(ci[q])].geom.center, float)
+            blk = rows.block(int(ci[q]))
+            centre = rows.tool.arr.center[int(ci[q])]
             ends = np.array([[blk.start[i0], blk.start[j0]], [blk.end[i0], blk.end[j0]]])
             at_end = bool(np.hypot(*(ends[1] - centre)) <= np.hypot(*(ends[0] - centre)))
             P[q] = ends[1] if at_end else ends[0]
@@ -112,22 +112,21 @@ def corner_points(toolpath, contour: Contour, table, ci: np.ndarray):
     return P, q_in, q_out
 
 
-def contact_pairs(toolpath, contour: Contour, lengths: np.ndarray, table):
+def contact_pairs(rows, meta: dict, contour: Contour, lengths: np.ndarray, table):
     """``(steady tool segments, their elements, corner arcs, corner points, corner radii,
     moves ending at the corners, moves starting there)``."""
     steady = _runs_along(table) & table.steady & (table.element >= 0) & (lengths > POINT_EPS)
     si = np.flatnonzero(steady)
     ej = table.element[si]
     cand = np.flatnonzero(table.is_role(Role.CORNER) & (table.r > 0.0))
-    segs = toolpath.segments
     # Only the arcs a controller adds are held to the corner rule: arcs fitted
     # to a blend curve or a spiral by an export keep the role of the curve they
     # replace (checked for gouge and continuity like it, not for touching the
     # corner; a verifier decision, docs/compensation.md section 8.3)
-    fitted = set(toolpath.meta.get(FITTED_PIECES, ()))
-    ci = np.asarray([i for i in cand if segs[i].block is not None
-                     and isinstance(segs[i].geom, Arc) and int(i) not in fitted], np.intp)
-    corner_p, q_in, q_out = corner_points(toolpath, contour, table, ci)
+    fitted = set(meta.get(FITTED_PIECES, ()))
+    ci = np.asarray([i for i in cand if rows.block_index[i] >= 0 and rows.is_arc[i]
+                     and int(i) not in fitted], np.intp)
+    corner_p, q_in, q_out = corner_points(rows, contour, table, ci)
     return si, ej, ci, corner_p, table.r[ci], q_in, q_out
 
 
@@ -227,10 +226,13 @@ def _general(tg, eg, E: Packed, j):
     return float(dm[k]), (float(q[k, 0]), float(q[k, 1]))
 
 
-def check_contact(tool: Packed, toolpath, contour: Contour, eps: float, lengths, info, table):
-    """``(Check, [Violation])``; ``info(i)`` gives ``(block line, role)`` of tool segment
-    ``i``; ``table`` is the run's :class:`~ccopt.verify.run.SegmentTable`."""
-    si, ej, ci, cp, cr, c_in, c_out = contact_pairs(toolpath, contour, lengths, table)
+def check_contact(rows, toolpath, contour: Contour, eps: float, lengths, info, table):
+    """``(Check, [Violation])``; ``rows`` are the tool segments
+    (:class:`~ccopt.verify.rows.SegmentRows`) of ``toolpath``; ``info(i)`` gives
+    ``(block line, role)`` of tool segment ``i``; ``table`` is the run's
+    :class:`~ccopt.verify.run.SegmentTable`."""
+    tool = rows.tool
+    si, ej, ci, cp, cr, c_in, c_out = contact_pairs(rows, toolpath.meta, contour, lengths, table)
     n = si.size
     dmax, wq, exact = farthest_alongside(tool, contour, si, ej, eps)
     gap = dmax - contour.radius[ej]

@@ -3,7 +3,6 @@ from __future__ import annotations
 
 import gc
 from dataclasses import dataclass
-from operator import attrgetter
 
 import numpy as np
 
@@ -20,14 +19,13 @@ from ccopt.verify.continuity import check_continuity
 from ccopt.verify.contour import STATUS_NAMES, STATUS_STEADY, Contour, contour_of
 from ccopt.verify.limits import LIMITS_TOL, check_limits
 from ccopt.verify.planes import join_certificates, plane_runs
-from ccopt.verify.segments import Packed, lengths, pack
+from ccopt.verify.rows import ROLE_CODES, SegmentRows
+from ccopt.verify.segments import Packed, lengths
 from ccopt.verify.side import check_side
 from ccopt.verify.tolerance import apply_tolerance, resolve_tolerance
 
 
 
-ROLE_CODES = {r: q for q, r in enumerate(Role)}
-_LINE = attrgetter("source.line")
 
 
 @dataclass(frozen=True, eq=False)
@@ -50,16 +48,19 @@ class SegmentTable:
     tool_r: np.ndarray
 
     @classmethod
-    def build(cls, roles, blocks, contour: Contour) -> "SegmentTable":
-        """From the tool segments' roles and blocks."""
-        n = len(roles)
-        codes = ROLE_CODES
-        role = np.fromiter(map(codes.__getitem__, roles), np.int8, n)
-        try:
-            line = np.fromiter(map(_LINE, blocks), np.int64, n)
-        except AttributeError:                       # a segment without a block
-            line = np.fromiter((-1 if b is None else b.source.line for b in blocks), np.int64, n)
-        q = contour.move_indices(blocks)
+    def build(cls, rows: SegmentRows, contour: Contour) -> "SegmentTable":
+        """From the tool segments' rows (their roles and blocks)."""
+        n = len(rows)
+        role = rows.role
+        # each distinct block once (a path read from columns indexes the
+        # program's blocks; one read from its segments has a block per row)
+        line_of = np.fromiter((-1 if b is None else b.source.line for b in rows.blocks),
+                              np.int64, len(rows.blocks))
+        has = rows.block_index >= 0
+        at = np.where(has, rows.block_index, 0)
+        line = np.where(has, line_of[at], -1) if n else np.zeros(0, np.int64)
+        q = np.where(has, contour.move_indices(rows.blocks)[at], -1) if n \
+            else np.zeros(0, np.intp)
         hit = q >= 0
         qq = np.where(hit, q, 0)
         if len(contour.moves):
@@ -229,29 +230,23 @@ def _verify(toolpath, program, profile, eps, radius, side, limits_tol,
     contour = contour_of(program, radius=radius, side=side,
                          toolpath_radius=toolpath.radius if radius is None else None,
                          part_lines=part_lines, eps=eps)
-    segs = toolpath.segments
-    geoms, roles, blocks = (list(map(attrgetter(a), segs)) for a in ("geom", "role", "block"))
-    w0 = np.fromiter(map(attrgetter("w0"), segs), float, len(segs))
-    w1 = np.fromiter(map(attrgetter("w1"), segs), float, len(segs))
-    tool = pack(geoms)
+    rows = SegmentRows.of(toolpath)
+    tool = rows.tool
     seg_len = lengths(tool)
-    table = SegmentTable.build(roles, blocks, contour)
-
-    def info(i: int):
-        s = segs[i]
-        return (s.block.source.line if s.block is not None else None), s.role.value
+    table = SegmentTable.build(rows, contour)
+    info = rows.info
 
     if decisions.GOUGE_ONLY_WHILE_COMPENSATED:
         # rapids and uncompensated moves run at the programmer's own points:
         # listed in the gouge check's detail, not counted
         counted = ~(table.is_role(Role.RAPID) | table.is_role(Role.UNCOMPENSATED))
     else:
-        counted = np.ones(len(segs), bool)
+        counted = np.ones(len(rows), bool)
     pairs = pair_distances(tool, contour, eps, counted, table.tool_r)
     results = [check_gouge(pairs, contour, eps, info),
-               check_contact(tool, toolpath, contour, eps, seg_len, info, table),
+               check_contact(rows, toolpath, contour, eps, seg_len, info, table),
                check_side(tool, contour, eps, seg_len, info, table),
-               check_continuity(tool, w0, w1, eps, seg_len, info),
+               check_continuity(tool, rows.w0, rows.w1, eps, seg_len, info),
                check_limits(profile, limits_tol)]
     checks = tuple(c for c, _ in results)
     violations = tuple(v for _, vs in results for v in vs)

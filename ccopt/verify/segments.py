@@ -24,6 +24,7 @@ import numpy as np
 
 from ccopt.geometry import KIND_ARC, KIND_LINE, KIND_SPIRAL, Arc, Line, SegmentArray, Spiral
 from ccopt.geometry.angles import angle_in_sweep
+from ccopt.toolpath import ARC_ROW, LINE_ROW
 
 #: Row kind of a parametric curve (no closed form; certified bounds only).
 KIND_CURVE = 3
@@ -95,14 +96,64 @@ def _curve_bbox(g) -> tuple[float, float, float, float]:
 def pack(geoms) -> Packed:
     """Pack primitives (Line, Arc, Spiral or curve objects) into a :class:`Packed`."""
     geoms = list(geoms)
-    n = len(geoms)
-    kind = np.empty(n, dtype=np.int8)
     types = list(map(type, geoms))
     lines_i = [i for i, t in enumerate(types) if t is Line]
     arcs_i = [i for i, t in enumerate(types) if t is Arc]
     curved: dict[int, object] = {}
-    if len(lines_i) + len(arcs_i) < n:
+    if len(lines_i) + len(arcs_i) < len(geoms):
         curved = {i: g for i, (g, t) in enumerate(zip(geoms, types)) if t is not Line and t is not Arc}
+    return _packed(len(geoms), np.asarray(lines_i, np.intp), _line_points([geoms[i] for i in lines_i]),
+                   np.asarray(arcs_i, np.intp), _arc_numbers([geoms[i] for i in arcs_i]), curved)
+
+
+def pack_columns(columns) -> Packed:
+    """:func:`pack` of the segments' geometry of ``columns``
+    (:class:`~ccopt.toolpath.SegmentColumns`) read from its arrays: the same
+    :class:`Packed`, bit for bit, as ``pack`` of the geometry objects its
+    :meth:`~ccopt.toolpath.SegmentColumns.materialise` makes, without making them."""
+    lines_i = np.flatnonzero(columns.kind == LINE_ROW)
+    arcs_i = np.flatnonzero(columns.kind == ARC_ROW)
+    pts = columns.geom[lines_i, :4]
+    g = columns.geom[arcs_i]
+    arcs = (g[:, :2], g[:, 2], g[:, 3], g[:, 4])
+    curved = dict(columns.objects)
+    if curved:
+        # object rows that hold a line or an arc are packed as pack packs them
+        objects_i = sorted(curved)
+        extra_lines = [i for i in objects_i if type(curved[i]) is Line]
+        extra_arcs = [i for i in objects_i if type(curved[i]) is Arc]
+        if extra_lines:
+            lines_i = np.concatenate([lines_i, extra_lines])
+            pts = np.concatenate([pts, _line_points([curved.pop(i) for i in extra_lines])])
+        if extra_arcs:
+            arcs_i = np.concatenate([arcs_i, extra_arcs])
+            more = _arc_numbers([curved.pop(i) for i in extra_arcs])
+            arcs = tuple(np.concatenate([a, b]) for a, b in zip(arcs, more))
+    return _packed(len(columns), lines_i, pts, arcs_i, arcs, curved)
+
+
+def _line_points(lines) -> np.ndarray:
+    """``(m, 4)``: ``x0, y0, x1, y1`` of each line."""
+    m = len(lines)
+    pts = np.empty((m, 4))
+    pts[:, :2] = np.fromiter(chain.from_iterable(map(_P0, lines)), float, 2 * m).reshape(m, 2)
+    pts[:, 2:] = np.fromiter(chain.from_iterable(map(_P1, lines)), float, 2 * m).reshape(m, 2)
+    return pts
+
+
+def _arc_numbers(arcs):
+    """``(centres (m, 2), radii, start angles, sweeps)`` of the arcs."""
+    m = len(arcs)
+    return (np.fromiter(chain.from_iterable(map(_CENTER, arcs)), float, 2 * m).reshape(m, 2),
+            np.fromiter(map(_RADIUS, arcs), float, m), np.fromiter(map(_THETA0, arcs), float, m),
+            np.fromiter(map(_SWEEP, arcs), float, m))
+
+
+def _packed(n: int, li: np.ndarray, pts: np.ndarray, ai: np.ndarray, arcs, curved: dict) -> Packed:
+    """The :class:`Packed` of ``n`` rows: lines at rows ``li`` (``pts``, see
+    :func:`_line_points`), arcs at rows ``ai`` (``arcs``, see
+    :func:`_arc_numbers`) and the ``curved`` objects at theirs."""
+    kind = np.empty(n, dtype=np.int8)
     p0 = np.full((n, 2), np.nan)
     p1 = np.full((n, 2), np.nan)
     center = np.full((n, 2), np.nan)
@@ -111,13 +162,7 @@ def pack(geoms) -> Packed:
     theta0 = np.full(n, np.nan)
     sweep = np.full(n, np.nan)
     bbox = np.empty((n, 4))
-    if lines_i:
-        li = np.asarray(lines_i)
-        lines = [geoms[i] for i in lines_i]
-        m = len(lines)
-        pts = np.empty((m, 4))
-        pts[:, :2] = np.fromiter(chain.from_iterable(map(_P0, lines)), float, 2 * m).reshape(m, 2)
-        pts[:, 2:] = np.fromiter(chain.from_iterable(map(_P1, lines)), float, 2 * m).reshape(m, 2)
+    if li.size:
         kind[li] = KIND_LINE
         p0[li] = pts[:, :2]
         p1[li] = pts[:, 2:]
@@ -125,14 +170,8 @@ def pack(geoms) -> Packed:
         bbox[li, 1] = np.minimum(pts[:, 1], pts[:, 3])
         bbox[li, 2] = np.maximum(pts[:, 0], pts[:, 2])
         bbox[li, 3] = np.maximum(pts[:, 1], pts[:, 3])
-    if arcs_i:
-        ai = np.asarray(arcs_i)
-        arcs = [geoms[i] for i in arcs_i]
-        m = len(arcs)
-        c = np.fromiter(chain.from_iterable(map(_CENTER, arcs)), float, 2 * m).reshape(m, 2)
-        R = np.fromiter(map(_RADIUS, arcs), float, m)
-        th0 = np.fromiter(map(_THETA0, arcs), float, m)
-        sw = np.fromiter(map(_SWEEP, arcs), float, m)
+    if ai.size:
+        c, R, th0, sw = arcs
         th1 = th0 + sw
         # Same formula as Arc.start / Arc.end, so end points agree bit for bit.
         a0 = np.c_[c[:, 0] + R * np.cos(th0), c[:, 1] + R * np.sin(th0)]
