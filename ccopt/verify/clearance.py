@@ -342,29 +342,32 @@ def _tapered_arc(piece: Arc, taper: EndTaper):
     end values minus (1 + slope) l / 2."""
     lip = 1.0 + OPEN_END_TAPER_SLOPE
     c, R = np.asarray(piece.center, float), float(piece.radius)
+    theta0, sweep = piece.theta0, piece.sweep
 
     def at(th):
-        return c + R * np.c_[np.cos(th), np.sin(th)]
+        return c + R * np.stack((np.cos(th), np.sin(th)), axis=1)
 
     u0 = np.linspace(0.0, 1.0, _TAPER_ARC_PIECES + 1)
     a, b = u0[:-1], u0[1:]
     best, wit = math.inf, None
     lb_out = math.inf
     for _ in range(_TAPER_ARC_ROUNDS):
-        ta, tb = piece.theta0 + piece.sweep * a, piece.theta0 + piece.sweep * b
+        ta, tb = theta0 + sweep * a, theta0 + sweep * b
         fa, fb = _taper_f(at(ta), taper), _taper_f(at(tb), taper)
-        k = int(np.argmin(np.r_[fa, fb]))
-        if min(fa.min(), fb.min()) < best:
-            best = float(min(fa.min(), fb.min()))
-            th = (np.r_[ta, tb])[k]
+        low = min(fa.min(), fb.min())
+        if low < best:
+            best = float(low)
+            # the first smallest of the starts, then of the ends
+            k = int(np.argmin(fa)) if fa.min() <= fb.min() else int(np.argmin(fb)) + fa.size
+            th = ta[k] if k < fa.size else tb[k - fa.size]
             wit = tuple(map(float, at(np.array([th]))[0]))
-        lb = 0.5 * (fa + fb) - 0.5 * lip * R * np.abs(piece.sweep) * (b - a)
+        lb = 0.5 * (fa + fb) - 0.5 * lip * R * np.abs(sweep) * (b - a)
         keep = lb < best - TAPER_ARC_TOL
         if not keep.any():
             break
         a, b = a[keep], b[keep]
         mid = 0.5 * (a + b)
-        a, b = np.r_[a, mid], np.r_[mid, b]
+        a, b = np.concatenate((a, mid)), np.concatenate((mid, b))
     else:
         lb_out = float(lb[keep].min())
     return min(best, lb_out), wit
