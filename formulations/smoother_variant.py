@@ -47,6 +47,8 @@ def smooth_variant(problem: BlendProblem) -> BlendOutcome:
     if problem.limits is not None and problem.stretch_times is not None:
         starts += [(name, replace(problem, reference=path, reference_certificate=cert))
                    for name, path, cert in problem.alternatives if name == OTHER_START]
+    if len(starts) == 1:
+        return BlendOutcome(*_smoothed(problem))
     best, why, tried = None, [], {}
     for name, start in starts:
         try:
@@ -54,12 +56,11 @@ def smooth_variant(problem: BlendProblem) -> BlendOutcome:
         except BlendRejected as exc:
             why.append(str(exc) if name is None else f"from {name}'s path: {exc}")
             continue
-        if len(starts) == 1:
-            return BlendOutcome(path, info)
         duration, own = _timed(path, problem)
         tried["given" if name is None else name] = duration
         if not info["certificate"].ok or duration is None:
-            why.append(f"from {name or 'the given'} path: not certified or not timed")
+            whose = "the given" if name is None else f"{name}'s"
+            why.append(f"from {whose} path: not certified or not timed")
             continue
         if best is None or duration < best[0]:
             best = (duration, name, path, info, own)
