@@ -229,7 +229,7 @@ _set_geom, _set_role, _set_block, _set_w0, _set_w1, _set_feed, _set_plane = (
     PathSegment.__dict__[name].__set__
     for name in ("geom", "role", "block", "w0", "w1", "feed", "plane"))
 
-_FEED, _PLANE = attrgetter("feed"), attrgetter("modal.plane")
+_FEED, _PLANE, _MODAL = attrgetter("feed"), attrgetter("modal.plane"), attrgetter("modal")
 #: Row kinds of :class:`SegmentColumns`.
 LINE_ROW, ARC_ROW, OBJECT_ROW = 0, 1, 2
 #: Role codes of :class:`SegmentColumns` (index into this tuple).
@@ -303,7 +303,10 @@ class SegmentColumns:
         """The rows' planes (their blocks') in the order they first appear."""
         _, first = np.unique(self.block, return_index=True)
         used = self.block[np.sort(first)].tolist()
-        return tuple(dict.fromkeys(self.blocks[i].modal.plane for i in used))
+        # the blocks' few distinct modal states, then their planes (map: loops in C)
+        modals = list(map(_MODAL, map(self.blocks.__getitem__, used)))
+        distinct = dict(zip(map(id, modals), modals)).values()
+        return tuple(dict.fromkeys(m.plane for m in distinct))
 
 
 @dataclass(frozen=True)

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import gc
 from dataclasses import dataclass
+from operator import attrgetter
 
 import numpy as np
 
@@ -26,6 +27,7 @@ from ccopt.verify.tolerance import apply_tolerance, resolve_tolerance
 
 
 
+_LINE = attrgetter("source.line")
 
 
 @dataclass(frozen=True, eq=False)
@@ -54,8 +56,11 @@ class SegmentTable:
         role = rows.role
         # each distinct block once (a path read from columns indexes the
         # program's blocks; one read from its segments has a block per row)
-        line_of = np.fromiter((-1 if b is None else b.source.line for b in rows.blocks),
-                              np.int64, len(rows.blocks))
+        try:
+            line_of = np.fromiter(map(_LINE, rows.blocks), np.int64, len(rows.blocks))
+        except AttributeError:                       # a segment without a block
+            line_of = np.fromiter((-1 if b is None else b.source.line for b in rows.blocks),
+                                  np.int64, len(rows.blocks))
         has = rows.block_index >= 0
         at = np.where(has, rows.block_index, 0)
         line = np.where(has, line_of[at], -1) if n else np.zeros(0, np.int64)
