@@ -99,9 +99,8 @@ def segment_jerk_budgets(path: ExactPath, limits: AxisLimits):
     v, a = segment_budgets(path, limits)
     k, s = _budget_samples(path)
     starts = np.flatnonzero(np.r_[True, np.diff(k) != 0])
-    T = np.maximum.reduceat(np.abs(path.eval_segments(k, s, 1)), starts, axis=0)
-    N = np.maximum.reduceat(np.abs(path.eval_segments(k, s, 2)), starts, axis=0)
-    M = np.maximum.reduceat(np.abs(path.eval_segments(k, s, 3)), starts, axis=0)
+    T, N, M = (np.maximum.reduceat(np.abs(q), starts, axis=0)
+               for q in path.eval_orders(k, s, (1, 2, 3)))
     with np.errstate(divide="ignore", invalid="ignore"):
         v = np.minimum(v, np.where(M > 0, np.cbrt(jlim / (3.0 * np.where(M > 0, M, 1.0))),
                                    np.inf).min(axis=1))
@@ -118,8 +117,8 @@ def segment_budgets(path: ExactPath, limits: AxisLimits) -> tuple[np.ndarray, np
     K = len(path.segments)
     k, s = _budget_samples(path)
     starts = np.flatnonzero(np.r_[True, np.diff(k) != 0])
-    q1 = np.abs(path.eval_segments(k, s, 1))
-    q2 = path.eval_segments(k, s, 2)
+    q1, q2 = path.eval_orders(k, s, (1, 2))
+    q1 = np.abs(q1)
     T = np.maximum.reduceat(q1, starts, axis=0)             # (K, dof)
     N = np.maximum.reduceat(np.abs(q2), starts, axis=0)
     kappa = np.maximum.reduceat(np.linalg.norm(q2, axis=1), starts)

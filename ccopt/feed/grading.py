@@ -199,8 +199,9 @@ def ramp_lengths(path: ExactPath, ks: np.ndarray, v_axis, a_axis, tangential_acc
     (:data:`ccopt.feed.jerk.planner.GRADED` uses these zones).
     """
     mid = path.offsets[ks] + 0.5 * path.lengths[ks]
-    q1 = np.abs(path.eval_segments(ks, mid, 1))
-    c = np.linalg.norm(path.eval_segments(ks, mid, 2), axis=1)
+    q1, q2 = path.eval_orders(ks, mid, (1, 2))
+    q1 = np.abs(q1)
+    c = np.linalg.norm(q2, axis=1)
     feed = path.feeds[ks]
     a_t = np.inf if tangential_acc is None else float(tangential_acc)
     with np.errstate(divide="ignore", invalid="ignore"):

@@ -492,8 +492,7 @@ def interval_samples(path: ExactPath, gridpoints: np.ndarray) -> IntervalSamples
     d = np.diff(gp)
     k = np.repeat(path.locate(gp[:-1], "right"), m)
     s = (gp[:-1, None] + d[:, None] * tau[None, :]).ravel()
-    q1 = path.eval_segments(k, s, 1).reshape(n, m, -1)
-    q2 = path.eval_segments(k, s, 2).reshape(n, m, -1)
+    q1, q2 = (q.reshape(n, m, -1) for q in path.eval_orders(k, s, (1, 2)))
     return IntervalSamples(tau, np.searchsorted(tau, checks), d, q1, q2)
 
 

@@ -217,39 +217,60 @@ class ExactPath(AbstractGeometricPath):
 
     def eval_sided(self, s, order: int = 0, side: str = "right") -> np.ndarray:
         """Like ``__call__`` but choosing the ``left`` or ``right`` limit at boundaries."""
+        return self.eval_sided_orders(s, (order,), side)[0]
+
+    def eval_sided_orders(self, s, orders, side: str = "right") -> list[np.ndarray]:
+        """:meth:`eval_sided` of each of ``orders`` at the same positions, the
+        positions located once (:meth:`eval_orders`)."""
         if not self.segments:
             raise ValueError("the path has no motion")
         scalar = np.ndim(s) == 0
         s1 = np.atleast_1d(np.asarray(s, dtype=float))
-        out = self.eval_segments(self.locate(s1, side), s1, order)
-        return out[0] if scalar else out
+        outs = self.eval_orders(self.locate(s1, side), s1, orders)
+        return [out[0] for out in outs] if scalar else outs
 
     def eval_segments(self, k, s, order: int = 0) -> np.ndarray:
-        """``q``, ``q'`` or ``q''`` at path positions ``s`` taken on segments ``k``.
+        """The position or its first, second or third derivative by path length
+        (``order`` 0-3) at path positions ``s`` taken on segments ``k``.
 
         ``s`` is clipped into each segment, so ``s`` at a boundary evaluates
         the end of segment ``k`` exactly whichever side it lies on.
         """
-        if order not in (0, 1, 2, 3):
-            raise ValueError(f"order must be 0, 1, 2 or 3, not {order!r}")
+        return self.eval_orders(k, s, (order,))[0]
+
+    def eval_orders(self, k, s, orders) -> list[np.ndarray]:
+        """:meth:`eval_segments` of each of ``orders`` at the same positions, in
+        one pass: the positions' offsets into their segments, each arc's angle,
+        cosine and sine, and each Bezier curve's parameter and derivatives are
+        computed once for all the orders. Each result is the one
+        :meth:`eval_segments` gives for its order alone, bit for bit (the same
+        arithmetic on the same arrays)."""
+        for order in orders:
+            if order not in (0, 1, 2, 3):
+                raise ValueError(f"order must be 0, 1, 2 or 3, not {order!r}")
         k = np.asarray(k, dtype=int)
         s = np.asarray(s, dtype=float)
         sigma = np.clip(s - self.offsets[k], 0.0, self.lengths[k])
         lam = sigma * self._ratio[k]
-        out = np.empty((s.size, self._dof))
+        outs = [np.empty((s.size, self._dof)) for _ in orders]
         kind = self._kind[k]
-        for code, kernel in ((_LINE, self._line_kernel), (_ARC, self._arc_kernel)):
-            sel = np.flatnonzero(kind == code)
-            if sel.size:
-                out[sel, :2] = kernel(k[sel], lam[sel], order)
+        sel = np.flatnonzero(kind == _LINE)
+        if sel.size:
+            for out, order in zip(outs, orders):
+                out[sel, :2] = self._line_kernel(k[sel], lam[sel], order)
+        sel = np.flatnonzero(kind == _ARC)
+        if sel.size:
+            for out, q in zip(outs, self._arc_kernel(k[sel], lam[sel], orders)):
+                out[sel, :2] = q
         sel = np.flatnonzero(kind == _OTHER)
         if sel.size and self._batches:
             bez = self._bezier[k[sel]]
             for b in range(len(self._batches)):
                 rows = sel[bez == b]
                 if rows.size:
-                    out[rows, :2] = self._bezier_kernel(b, k[rows], lam[rows], order) \
-                        * (self._ratio[k[rows]] ** order)[:, None]
+                    got = self._bezier_kernel(b, k[rows], lam[rows], orders)
+                    for out, order, q in zip(outs, orders, got):
+                        out[rows, :2] = q * (self._ratio[k[rows]] ** order)[:, None]
             sel = sel[bez < 0]
         if sel.size:
             ks = k[sel]
@@ -259,18 +280,27 @@ class ExactPath(AbstractGeometricPath):
             for grp in np.split(order_idx, cuts):
                 kk = int(ks[grp[0]])
                 rows = sel[grp]
-                geom = self.segments[kk].geom
-                r = self._ratio[kk]
-                if order == 0:
-                    out[rows, :2] = geom.point(lam[rows])
-                elif order == 1:
-                    out[rows, :2] = geom.d1(lam[rows]) * r
-                elif order == 2:
-                    out[rows, :2] = geom.d2(lam[rows]) * (r * r)
-                elif hasattr(geom, "d3"):  # exact where the curve has it (Bezier curves)
-                    out[rows, :2] = geom.d3(lam[rows]) * r ** 3
-                else:
-                    out[rows, :2] = _d3_by_difference(geom, lam[rows], self._L[kk]) * r ** 3
+                for out, order in zip(outs, orders):
+                    out[rows, :2] = self._curve_rows(kk, lam[rows], order)
+        return [self._placed(out, k, s, sigma, order) for out, order in zip(outs, orders)]
+
+    def _curve_rows(self, kk: int, lam: np.ndarray, order: int) -> np.ndarray:
+        """``order`` of segment ``kk``'s curve (one in no batch) at in-plane arc
+        lengths ``lam``, by path length."""
+        geom = self.segments[kk].geom
+        r = self._ratio[kk]
+        if order == 0:
+            return geom.point(lam)
+        if order == 1:
+            return geom.d1(lam) * r
+        if order == 2:
+            return geom.d2(lam) * (r * r)
+        if hasattr(geom, "d3"):  # exact where the curve has it (Bezier curves)
+            return geom.d3(lam) * r ** 3
+        return _d3_by_difference(geom, lam, self._L[kk]) * r ** 3
+
+    def _placed(self, out: np.ndarray, k, s, sigma, order: int) -> np.ndarray:
+        """``out`` (its in-plane columns filled) with its ``w`` column, in machine axes."""
         if self._dof == 3:
             if order == 0:
                 out[:, 2] = self._w0[k] + self._dw[k] * (sigma / self.lengths[k])
@@ -404,9 +434,10 @@ class ExactPath(AbstractGeometricPath):
             [seg.geom for seg in self.segments])
         self._recent_t: dict = {}
 
-    def _bezier_kernel(self, b: int, k, lam, order):
-        """Points or derivatives by in-plane arc length of the Bezier segments
-        ``k`` (all in batch ``b``), as their curves' own methods give them."""
+    def _bezier_kernel(self, b: int, k, lam, orders) -> list[np.ndarray]:
+        """Points or derivatives (each of ``orders``) by in-plane arc length of
+        the Bezier segments ``k`` (all in batch ``b``), as their curves' own
+        methods give them."""
         batch, rows = self._batches[b], self._bezier_row[k]
         # toppra and the jerk planner ask for several orders (and both sides) at
         # the same positions one after the other: the inversions are kept
@@ -417,12 +448,20 @@ class ExactPath(AbstractGeometricPath):
             if len(self._recent_t) >= RECENT_INVERSIONS:
                 self._recent_t.pop(next(iter(self._recent_t)))   # the oldest
             self._recent_t[key] = t
-        if order == 0:
-            return batch.at("P", rows, t)
-        r = batch.derivatives(rows, t, order)
-        if order == 1:
-            return unit_tangent(r[0])
-        return d2_from(*r) if order == 2 else d3_from(*r)
+        top = max(orders)
+        # each derivative of r as the batch gives it, whichever orders are asked
+        r = batch.derivatives(rows, t, top) if top > 0 else []
+        out = []
+        for order in orders:
+            if order == 0:
+                out.append(batch.at("P", rows, t))
+            elif order == 1:
+                out.append(unit_tangent(r[0]))
+            elif order == 2:
+                out.append(d2_from(r[0], r[1]))
+            else:
+                out.append(d3_from(r[0], r[1], r[2]))
+        return out
 
     def _line_kernel(self, k, lam, order):
         # Same formulas as Line.point/d1/d2: (1-t) p0 + t p1 hits both ends exactly.
@@ -434,30 +473,34 @@ class ExactPath(AbstractGeometricPath):
             return self._dir[k] * self._ratio[k][:, None]
         return np.zeros((k.size, 2))   # q'' and q''' of a line
 
-    def _arc_kernel(self, k, lam, order):
-        # Same formulas as Arc.point/d1/d2 (phi = theta0 + sweep * l / L).
+    def _arc_kernel(self, k, lam, orders) -> list[np.ndarray]:
+        # Same formulas as Arc.point/d1/d2 (phi = theta0 + sweep * l / L); the
+        # angle, its cosine and its sine once for all the orders asked.
         Lk = self._L[k]
         phi = self._th0[k] + self._sweep[k] * np.divide(lam, Lk, out=np.zeros_like(lam),
                                                          where=Lk > 0)
         c, s = np.cos(phi), np.sin(phi)
-        out = np.empty((k.size, 2))
-        if order == 0:
-            out[:, 0] = self._c[k, 0] + self._R[k] * c
-            out[:, 1] = self._c[k, 1] + self._R[k] * s
-        elif order == 1:
-            f = self._sg[k] * self._ratio[k]
-            out[:, 0] = -f * s
-            out[:, 1] = f * c
-        elif order == 3:
-            # d3 = -d1 / R^2 on a circle
-            f = -self._sg[k] * self._ratio[k] ** 3 / self._R[k] ** 2
-            out[:, 0] = -f * s
-            out[:, 1] = f * c
-        else:
-            f = self._ratio[k] ** 2 / self._R[k]
-            out[:, 0] = -c * f
-            out[:, 1] = -s * f
-        return out
+        outs = []
+        for order in orders:
+            out = np.empty((k.size, 2))
+            if order == 0:
+                out[:, 0] = self._c[k, 0] + self._R[k] * c
+                out[:, 1] = self._c[k, 1] + self._R[k] * s
+            elif order == 1:
+                f = self._sg[k] * self._ratio[k]
+                out[:, 0] = -f * s
+                out[:, 1] = f * c
+            elif order == 3:
+                # d3 = -d1 / R^2 on a circle
+                f = -self._sg[k] * self._ratio[k] ** 3 / self._R[k] ** 2
+                out[:, 0] = -f * s
+                out[:, 1] = f * c
+            else:
+                f = self._ratio[k] ** 2 / self._R[k]
+                out[:, 0] = -c * f
+                out[:, 1] = -s * f
+            outs.append(out)
+        return outs
 
     def _segment_tangents(self, at_end: bool) -> np.ndarray:
         k = np.arange(len(self.segments))

@@ -311,8 +311,7 @@ class FeedProfile:
             return times, np.zeros((n, path.dof))
         s, v, u, _, seg = self.motion(times)
         seg_eval = np.where(seg >= 0, seg, path.locate(s))
-        q1 = path.eval_segments(seg_eval, s, 1)
-        q2 = path.eval_segments(seg_eval, s, 2)
+        q1, q2 = path.eval_orders(seg_eval, s, (1, 2))
         return times, np.abs(q2 * (v * v)[:, None] + q1 * u[:, None]) / alim
 
     def longest_block(self) -> tuple[int | None, int | None, str]:
@@ -401,10 +400,7 @@ class FeedProfile:
         vlim, alim = self.limits.in_plane(path.frame, dof)
         jlim = self.limits.jerk_in_plane(path.frame, dof)
         seg_eval = np.where(seg >= 0, seg, path.locate(s))
-        q = path.eval_segments(seg_eval, s, 0)
-        q1 = path.eval_segments(seg_eval, s, 1)
-        q2 = path.eval_segments(seg_eval, s, 2)
-        q3 = path.eval_segments(seg_eval, s, 3)
+        q, q1, q2, q3 = path.eval_orders(seg_eval, s, (0, 1, 2, 3))
         vel = q1 * v[:, None]
         acc = q2 * (v * v)[:, None] + q1 * u[:, None]
         jerk = q3 * (v ** 3)[:, None] + q2 * (3.0 * v * u)[:, None] + q1 * w[:, None]

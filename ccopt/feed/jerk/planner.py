@@ -233,8 +233,8 @@ def build_grid(path: ExactPath, limits: AxisLimits, ts: float,
     if extra is not None and extra.size:
         s = np.union1d(s, extra)
     s = _clear_of_stops(s, stop_s, (JERK_GRID if grid is None else grid).min_spacing)
-    q = [np.stack([path.eval_sided(s, o, "left"), path.eval_sided(s, o, "right")])
-         for o in (1, 2, 3)]
+    left, right = (path.eval_sided_orders(s, (1, 2, 3), side) for side in ("left", "right"))
+    q = [np.stack([lo, hi]) for lo, hi in zip(left, right)]
     stop = np.isin(s, stop_s)
     bmax = _speed_caps(path, limits, s, q, v, j, ts)
     kind = np.full(s.size - 1, SLINEAR)
@@ -252,7 +252,8 @@ def build_grid(path: ExactPath, limits: AxisLimits, ts: float,
     a_t = limits.tangential_acc if limits.tangential_acc is not None else np.inf
     inner = np.asarray(INNER_POINTS)[:, None]
     x = (s[:-1] + inner * np.diff(s)).ravel()
-    m = [path.eval_sided(x, o, "right").reshape(inner.size, s.size - 1, -1) for o in (1, 2, 3)]
+    m = [q.reshape(inner.size, s.size - 1, -1)
+         for q in path.eval_sided_orders(x, (1, 2, 3), "right")]
     return JerkGrid(s, q[0], q[1], q[2], kind, stop, bmax, a_t, a, j, *m, lone=lone)
 
 

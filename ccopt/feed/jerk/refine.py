@@ -74,7 +74,7 @@ def jerk_over_inside(path: ExactPath, g: JerkGrid, b: np.ndarray, alpha: np.ndar
     v = np.sqrt(bx)
     s = g.s[k][:, None] + x
     seg = np.repeat(path.locate(0.5 * (g.s[k] + g.s[k + 1])), CHECK_POINTS.size)
-    q1, q2, q3 = (path.eval_segments(seg, s.ravel(), o).reshape(*s.shape, -1) for o in (1, 2, 3))
+    q1, q2, q3 = (q.reshape(*s.shape, -1) for q in path.eval_orders(seg, s.ravel(), (1, 2, 3)))
     jerk = (q1 * (v * c[:, None])[..., None] + 3.0 * q2 * (v * ax)[..., None]
             + q3 * (v * bx)[..., None])
     ratio = np.abs(jerk) / np.asarray(j, float)
