@@ -342,8 +342,9 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
     refined = passes = 0
     # split the curved intervals whose axis jerk goes over the limit between
     # their gridpoints (ccopt.feed.jerk.refine) and plan around them again
+    checked = None                    # every interval on the first pass
     while True:
-        over, excess = jerk_over_inside(path, g, b, alpha, j)
+        over, excess = jerk_over_inside(path, g, b, alpha, j, checked)
         if not over.any() or passes == MAX_PASSES:
             break
         passes += 1
@@ -352,11 +353,17 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         refined += int(np.count_nonzero(over))
         finer = build_grid(path, limits, ts, grid, extra)
         b, alpha = profile_at(g.s, b, alpha, finer.s)
-        b, alpha, failed = replan_locally(finer, b, alpha, new, _scale(finer.bmax))
+        b, alpha, failed, replanned = replan_locally(finer, b, alpha, new, _scale(finer.bmax))
         for lo, hi in failed:
             b[lo:hi + 1], alpha[lo:hi + 1], _, _ = _plan_grid(path, limits,
                                                               grid_slice(finer, lo, hi),
                                                               grid, scurve)
+        # the next pass checks only what was planned again: every other interval
+        # is one of the last grid's, with the profile it had, so within the limit
+        # (each interval over it was split, and its new points lie in a window)
+        checked = np.zeros(finer.kind.size, bool)
+        for lo, hi in (*replanned, *failed):
+            checked[lo:hi] = True
         g = finer
     info.update(ts=ts, gridpoints=int(g.s.size), refined_intervals=refined, refine_passes=passes,
                 jerk_over_inside=int(np.count_nonzero(over)))

@@ -49,18 +49,22 @@ MAX_SPLIT = 16
 
 
 def jerk_over_inside(path: ExactPath, g: JerkGrid, b: np.ndarray, alpha: np.ndarray,
-                     j: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                     j: np.ndarray, where: np.ndarray | None = None
+                     ) -> tuple[np.ndarray, np.ndarray]:
     """``(over, excess)``, both ``(N,)``: the ``SLINEAR`` intervals of ``g`` on
     curved geometry whose axis jerk at :data:`CHECK_POINTS` exceeds ``j``
     (axis limits, plane order) by more than :data:`REFINE_TOL`, and each
     interval's largest relative excess there (0 where not checked), for the
     profile ``b`` (units^2/s^2) and ``alpha`` (units/s^2) at the gridpoints
-    (NaN where no LP planned)."""
+    (NaN where no LP planned); ``where``: ``(N,)``, the intervals to check
+    (default all; the others count as within the limit)."""
     b0, b1 = b[:-1], b[1:]
     curved = np.any((g.q2[1, :-1] != 0.0) | (g.q2[0, 1:] != 0.0), axis=1)
     use = (g.kind == SLINEAR) & curved & np.isfinite(b0) & np.isfinite(b1)
     if g.lone is not None:
         use &= ~g.lone
+    if where is not None:
+        use &= where
     k = np.flatnonzero(use)
     excess = np.zeros(g.kind.size)
     if k.size == 0:
@@ -121,7 +125,8 @@ def profile_at(s_old: np.ndarray, b_old: np.ndarray, alpha_old: np.ndarray,
 
 
 def replan_locally(g: JerkGrid, b: np.ndarray, alpha: np.ndarray, new: np.ndarray,
-                   scale: float) -> tuple[np.ndarray, np.ndarray, list[tuple[int, int]]]:
+                   scale: float) -> tuple[np.ndarray, np.ndarray, list[tuple[int, int]],
+                                          list[tuple[int, int]]]:
     """The profile ``(b, alpha)`` on the refined grid ``g`` (the last plan
     there, :func:`profile_at`) planned again around the ``new`` gridpoints:
     a window of :data:`LOCAL_MARGIN` gridpoints beyond them on each side
@@ -132,13 +137,14 @@ def replan_locally(g: JerkGrid, b: np.ndarray, alpha: np.ndarray, new: np.ndarra
     (:func:`~ccopt.feed.jerk.windows.solve_rounds`) wander: they planned
     bench/feed.py's 1,000-block pocket 0.3 % faster but its 100-block one
     2.9 % slower (a stretch then fell back to the S-curve). Returns ``(b, alpha,
-    failed)``: ``failed`` the stretches ``(lo, hi)`` (stop to stop) whose
-    window stayed infeasible up to its stops, for the caller to plan whole."""
+    failed, replanned)``: ``failed`` the stretches ``(lo, hi)`` (stop to stop)
+    whose window stayed infeasible up to its stops, for the caller to plan
+    whole; ``replanned`` the windows ``(lo, hi)`` planned again (gridpoints)."""
     b, alpha = b.copy(), alpha.copy()
     stops = np.flatnonzero(g.stop)
     at = np.searchsorted(g.s, new)
     spans = _spans(at, stops)
-    failed = []
+    failed, replanned = [], []
     for lo_s, hi_s, i_lo, i_hi in spans:
         margin = LOCAL_MARGIN
         while True:
@@ -150,12 +156,13 @@ def replan_locally(g: JerkGrid, b: np.ndarray, alpha: np.ndarray, new: np.ndarra
             out = cover_peaks(lp, bhat, bhat, lp.solve(bhat, bhat))
             if out is not None and np.all(out[0][~g.stop[lo:hi + 1]] > 0.0):
                 b[lo:hi + 1], alpha[lo:hi + 1] = out[0] * scale, out[1] * scale
+                replanned.append((lo, hi))
                 break
             if lo == lo_s and hi == hi_s:
                 failed.append((lo_s, hi_s))
                 break
             margin *= 2
-    return b, alpha, failed
+    return b, alpha, failed, replanned
 
 
 def _spans(at: np.ndarray, stops: np.ndarray) -> list[tuple[int, int, int, int]]:
