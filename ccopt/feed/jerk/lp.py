@@ -17,7 +17,6 @@ from dataclasses import dataclass
 
 import highspy
 import numpy as np
-import scipy.sparse as sp
 
 #: Interval kinds: ``alpha`` linear in ``s``, or a constant-jerk piece from or to rest.
 SLINEAR, FROM_REST, TO_REST = 0, 1, 2
@@ -270,9 +269,9 @@ def _assemble(n, r, rows, cols, vals, stop, acc_rows, twin, jerk_rows, jerk_at, 
     used[rows] = True
     used[:n] = True                                  # the equalities stay (a row per interval)
     new_index = np.cumsum(used) - 1
-    A = sp.csc_matrix((vals, (new_index[rows], cols)), shape=(int(used.sum()), 2 * nb))
+    A = (new_index[rows], cols, vals, int(used.sum()))
     kept = used[jerk_rows]
-    lo = -np.ones(A.shape[0])
+    lo = -np.ones(A[3])
     lo[:n] = 0.0
     jerk = (new_index[jerk_rows[kept]].astype(np.int32), jerk_at[0, kept], jerk_at[1, kept],
             rise[kept])
@@ -309,8 +308,32 @@ def _peak_cap_rows(g: JerkGrid, i0: int, i1: int, scale: float):
     rows = np.concatenate([np.arange(m), np.arange(m)])
     cols = np.concatenate([ks, nb + ks])
     vals = np.concatenate([np.ones(m), h[use]])
-    A = sp.csc_matrix((vals, (rows, cols)), shape=(m, 2 * nb))
-    return A, bmax0[use] / scale
+    return (rows, cols, vals, m), bmax0[use] / scale
+
+
+def _csc(rows: np.ndarray, cols: np.ndarray, vals: np.ndarray, n_cols: int,
+         col_scale: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``(start, index, value)``: the compressed columns of the matrix whose
+    entries are ``vals`` at ``(rows, cols)`` (entries at one place summed in
+    the order given), each column ``j`` then times ``col_scale[j]``, exact
+    zeros left out, the row indices descending in each column. These are the
+    arrays of scipy's ``csc_matrix((vals, (rows, cols))) @ diags(col_scale)``,
+    which HiGHS was given before (the same sums and products: at most two
+    entries share a place; the rows in the order its product leaves them),
+    built without scipy's per-matrix overhead, most of a window's set-up."""
+    order = np.lexsort((-rows, cols))
+    r, c, v = rows[order], cols[order], vals[order]
+    first = np.ones(r.size, bool)
+    first[1:] = (r[1:] != r[:-1]) | (c[1:] != c[:-1])
+    at = np.flatnonzero(first)
+    if at.size < r.size:
+        v = np.add.reduceat(v, at)
+        r, c = r[at], c[at]
+    keep = v != 0.0
+    r, c, v = r[keep], c[keep], v[keep]
+    start = np.zeros(n_cols + 1, np.int32)
+    np.cumsum(np.bincount(c, minlength=n_cols), out=start[1:])
+    return start, r.astype(np.int32), v * col_scale[c]
 
 
 class WindowLP:
@@ -335,7 +358,6 @@ class WindowLP:
         self.vref = np.sqrt(np.where(bref > 0.0, bref, 1.0) * scale)     # units/s
         A, lo, hi, jerk, col_lo, col_hi = _interval_rows(g, i0, i1, scale, self.vref)
         A_cap, hi_cap = _peak_cap_rows(g, i0, i1, scale)
-        A = sp.vstack([A, A_cap], format="csc")
         lo = np.concatenate([lo, np.full(hi_cap.size, -np.inf)])
         hi = np.concatenate([hi, hi_cap])
         self.jerk_rows, self.jerk_at0, self.jerk_at1, self.rise = jerk
@@ -362,7 +384,12 @@ class WindowLP:
         # jerk went 1 % over its limit: a generated CAM plate, seed 127 of
         # tests/feed/test_jerk_generated.py)
         self.b_unit = np.maximum(np.where(bref[:nb] > 0.0, bref[:nb], 1.0), B_UNIT_FLOOR)
-        A = A @ sp.diags(np.concatenate([self.b_unit, np.ones(nb)]), format="csc")
+        # the interval rows, then the cap rows; each b column in its unit
+        n_rows = A[3] + A_cap[3]
+        start, index, value = _csc(np.concatenate([A[0], A_cap[0] + A[3]]),
+                                   np.concatenate([A[1], A_cap[1]]),
+                                   np.concatenate([A[2], A_cap[2]]), 2 * nb,
+                                   np.concatenate([self.b_unit, np.ones(nb)]))
         lb[:nb] /= self.b_unit
         ub[:nb] /= self.b_unit
         s = g.s[i0:i1 + 1]
@@ -372,12 +399,11 @@ class WindowLP:
         self.b_cols = np.arange(nb, dtype=np.int32)
         self.highs = _new_highs()
         lp = highspy.HighsLp()
-        lp.num_col_, lp.num_row_ = A.shape[1], A.shape[0]
+        lp.num_col_, lp.num_row_ = 2 * nb, n_rows
         lp.col_cost_, lp.col_lower_, lp.col_upper_ = np.zeros(2 * nb), lb, ub
         lp.row_lower_, lp.row_upper_ = lo, hi
         lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
-        lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = (A.indptr, A.indices,
-                                                                          A.data)
+        lp.a_matrix_.start_, lp.a_matrix_.index_, lp.a_matrix_.value_ = start, index, value
         self.highs.passModel(lp)
         self.warm = False
 
