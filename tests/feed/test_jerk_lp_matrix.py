@@ -1,5 +1,5 @@
 """The jerk planner's window LP hands HiGHS its matrix as compressed columns
-built directly (:func:`ccopt.feed.jerk.lp._csc`, issue 34: scipy.sparse's
+built directly (:func:`ccopt.feed.jerk.columns.compressed_columns`, issue 34: scipy.sparse's
 per-matrix overhead was most of a window's set-up). They must be exactly the
 arrays scipy.sparse gives for the same entries: duplicates summed, columns
 scaled, zeros left out, and the row indices in the order scipy's product
@@ -24,6 +24,7 @@ import scipy.sparse as sp
 from ccopt.compensate import compensate
 from ccopt.feed import AxisLimits, ExactPath, plan_feed
 from ccopt.feed.jerk import lp as L
+from ccopt.feed.jerk.columns import compressed_columns
 
 # bench/feed.py's generated programs (loaded by path: "feed" is also a test folder)
 _spec = importlib.util.spec_from_file_location(
@@ -38,7 +39,7 @@ def _scipy(rows, cols, vals, shape, scale):
     return A.indptr, A.indices, A.data
 
 
-def _same(rows, cols, vals, shape, scale, csc=L._csc):
+def _same(rows, cols, vals, shape, scale, csc=compressed_columns):
     got = csc(rows, cols, vals, shape[1], scale)
     want = _scipy(rows, cols, vals, shape, scale)
     for a, b in zip(got, want):
@@ -51,7 +52,7 @@ def test_hand_made_entries():
     rows = np.array([0, 2, 0, 1, 2, 1, 0])
     cols = np.array([1, 0, 1, 2, 2, 2, 0])
     vals = np.array([0.1, 2.0, 0.2, 5.0, 1e-3, -5.0, 7.0])
-    start, index, value = L._csc(rows, cols, vals, 3, np.array([3.0, 0.5, 2.0]))
+    start, index, value = compressed_columns(rows, cols, vals, 3, np.array([3.0, 0.5, 2.0]))
     # column 0: rows 2 (2 * 3), 0 (7 * 3); column 1: row 0 ((0.1 + 0.2) * 0.5);
     # column 2: row 2 (1e-3 * 2), row 1 (5 - 5 = 0, left out)
     assert start.tolist() == [0, 2, 3, 4]
@@ -64,14 +65,14 @@ def _windows_of(tp: ExactPath, limits: AxisLimits, monkeypatch) -> int:
     """Plan ``tp`` with every window's entries checked against scipy's; returns
     how many windows were built."""
     seen = []
-    original = L._csc
+    original = L.compressed_columns
 
     def checked(rows, cols, vals, n_cols, scale):
         _same(rows, cols, vals, (int(rows.max(initial=-1)) + 1, n_cols), scale, original)
         seen.append(rows.size)
         return original(rows, cols, vals, n_cols, scale)
 
-    monkeypatch.setattr(L, "_csc", checked)
+    monkeypatch.setattr(L, "compressed_columns", checked)
     monkeypatch.setattr("ccopt.feed.jerk.windows.WORKERS", 1)
     plan_feed(tp, limits, planner="jerk")
     return len(seen)

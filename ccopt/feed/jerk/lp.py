@@ -18,6 +18,8 @@ from dataclasses import dataclass
 import highspy
 import numpy as np
 
+from ccopt.feed.jerk.columns import compressed_columns
+
 #: Interval kinds: ``alpha`` linear in ``s``, or a constant-jerk piece from or to rest.
 SLINEAR, FROM_REST, TO_REST = 0, 1, 2
 
@@ -311,31 +313,6 @@ def _peak_cap_rows(g: JerkGrid, i0: int, i1: int, scale: float):
     return (rows, cols, vals, m), bmax0[use] / scale
 
 
-def _csc(rows: np.ndarray, cols: np.ndarray, vals: np.ndarray, n_cols: int,
-         col_scale: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """``(start, index, value)``: the compressed columns of the matrix whose
-    entries are ``vals`` at ``(rows, cols)`` (entries at one place summed in
-    the order given), each column ``j`` then times ``col_scale[j]``, exact
-    zeros left out, the row indices descending in each column. These are the
-    arrays of scipy's ``csc_matrix((vals, (rows, cols))) @ diags(col_scale)``,
-    which HiGHS was given before (the same sums and products: at most two
-    entries share a place; the rows in the order its product leaves them),
-    built without scipy's per-matrix overhead, most of a window's set-up."""
-    order = np.lexsort((-rows, cols))
-    r, c, v = rows[order], cols[order], vals[order]
-    first = np.ones(r.size, bool)
-    first[1:] = (r[1:] != r[:-1]) | (c[1:] != c[:-1])
-    at = np.flatnonzero(first)
-    if at.size < r.size:
-        v = np.add.reduceat(v, at)
-        r, c = r[at], c[at]
-    keep = v != 0.0
-    r, c, v = r[keep], c[keep], v[keep]
-    start = np.zeros(n_cols + 1, np.int32)
-    np.cumsum(np.bincount(c, minlength=n_cols), out=start[1:])
-    return start, r.astype(np.int32), v * col_scale[c]
-
-
 class WindowLP:
     """The LP of the gridpoints ``i0..i1`` of a window, built once and solved
     for each speed bound ``bhat`` of the pseudo-jerk rounds.
@@ -386,7 +363,7 @@ class WindowLP:
         self.b_unit = np.maximum(np.where(bref[:nb] > 0.0, bref[:nb], 1.0), B_UNIT_FLOOR)
         # the interval rows, then the cap rows; each b column in its unit
         n_rows = A[3] + A_cap[3]
-        start, index, value = _csc(np.concatenate([A[0], A_cap[0] + A[3]]),
+        start, index, value = compressed_columns(np.concatenate([A[0], A_cap[0] + A[3]]),
                                    np.concatenate([A[1], A_cap[1]]),
                                    np.concatenate([A[2], A_cap[2]]), 2 * nb,
                                    np.concatenate([self.b_unit, np.ones(nb)]))
