@@ -220,9 +220,14 @@ def _stop_refinement(path: ExactPath, stops: np.ndarray, a: np.ndarray, j: np.nd
 
 
 def build_grid(path: ExactPath, limits: AxisLimits, ts: float,
-               grid: GridOptions | None = None, extra: np.ndarray | None = None) -> JerkGrid:
+               grid: GridOptions | None = None, extra: np.ndarray | None = None,
+               previous: JerkGrid | None = None) -> JerkGrid:
     """The gridpoints and their data (see :class:`~ccopt.feed.jerk.lp.JerkGrid`);
-    ``extra``: further gridpoints (path positions strictly inside intervals)."""
+    ``extra``: further gridpoints (path positions strictly inside intervals);
+    ``previous``: a grid of the same path holding some of these gridpoints
+    (the last refinement pass's), whose derivatives at them, and inside its
+    intervals that are still intervals, are copied instead of evaluated again
+    (the same numbers: each is evaluated at its own position alone)."""
     plane = path.frame
     v, a = limits.in_plane(plane, path.dof)
     j = limits.jerk_in_plane(plane, path.dof)
@@ -233,8 +238,7 @@ def build_grid(path: ExactPath, limits: AxisLimits, ts: float,
     if extra is not None and extra.size:
         s = np.union1d(s, extra)
     s = _clear_of_stops(s, stop_s, (JERK_GRID if grid is None else grid).min_spacing)
-    left, right = (path.eval_sided_orders(s, (1, 2, 3), side) for side in ("left", "right"))
-    q = [np.stack([lo, hi]) for lo, hi in zip(left, right)]
+    q, kept = _sided_derivatives(path, s, previous)
     stop = np.isin(s, stop_s)
     bmax = _speed_caps(path, limits, s, q, v, j, ts)
     kind = np.full(s.size - 1, SLINEAR)
@@ -250,11 +254,51 @@ def build_grid(path: ExactPath, limits: AxisLimits, ts: float,
         raise FeedError(f"two stops one grid interval apart at s = {s[i]:.6g}",
                         path.source_file, path.block_line(s[i]))
     a_t = limits.tangential_acc if limits.tangential_acc is not None else np.inf
-    inner = np.asarray(INNER_POINTS)[:, None]
-    x = (s[:-1] + inner * np.diff(s)).ravel()
-    m = [q.reshape(inner.size, s.size - 1, -1)
-         for q in path.eval_sided_orders(x, (1, 2, 3), "right")]
+    m = _inner_derivatives(path, s, previous, kept)
     return JerkGrid(s, q[0], q[1], q[2], kind, stop, bmax, a_t, a, j, *m, lone=lone)
+
+
+def _sided_derivatives(path: ExactPath, s: np.ndarray, previous: JerkGrid | None):
+    """``(q, kept)``: ``q`` the first three derivatives, each ``(2, N, dof)``,
+    their left and right limits at the gridpoints ``s``, those ``previous``
+    has copied from it; ``kept = (at, had)``, each gridpoint's index there
+    and whether it is one of its gridpoints (None without ``previous``)."""
+    if previous is None:
+        left, right = (path.eval_sided_orders(s, (1, 2, 3), side) for side in ("left", "right"))
+        return [np.stack([lo, hi]) for lo, hi in zip(left, right)], None
+    at = np.minimum(np.searchsorted(previous.s, s), previous.s.size - 1)
+    had = previous.s[at] == s
+    q = [np.empty((2, s.size, path.dof)) for _ in range(3)]
+    for qq, old in zip(q, (previous.q1, previous.q2, previous.q3)):
+        qq[:, had] = old[:, at[had]]
+    new = ~had
+    if new.any():
+        for side, name in enumerate(("left", "right")):
+            for qq, got in zip(q, path.eval_sided_orders(s[new], (1, 2, 3), name)):
+                qq[side, new] = got
+    return q, (at, had)
+
+
+def _inner_derivatives(path: ExactPath, s: np.ndarray, previous: JerkGrid | None, kept):
+    """The first three derivatives at the fractions :data:`INNER_POINTS` of
+    every interval of ``s``, ``(T, N, dof)`` each; an interval ``previous``
+    has too (both ends its gridpoints, next to each other there) copied."""
+    inner = np.asarray(INNER_POINTS)[:, None]
+    if previous is None:
+        x = (s[:-1] + inner * np.diff(s)).ravel()
+        return [d.reshape(inner.size, s.size - 1, -1)
+                for d in path.eval_sided_orders(x, (1, 2, 3), "right")]
+    at, had = kept
+    same = had[:-1] & had[1:] & (at[1:] == at[:-1] + 1)
+    m = [np.empty((inner.size, s.size - 1, path.dof)) for _ in range(3)]
+    for mm, old in zip(m, (previous.m1, previous.m2, previous.m3)):
+        mm[:, same] = old[:, at[:-1][same]]
+    fresh = ~same
+    if fresh.any():
+        x = (s[:-1][fresh] + inner * np.diff(s)[fresh]).ravel()
+        for mm, got in zip(m, path.eval_sided_orders(x, (1, 2, 3), "right")):
+            mm[:, fresh] = got.reshape(inner.size, int(fresh.sum()), -1)
+    return m
 
 
 def _clear_of_stops(s: np.ndarray, stops: np.ndarray, min_spacing: float) -> np.ndarray:
@@ -351,7 +395,7 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         new = split_points(g.s, over, excess)
         extra = np.union1d(extra, new)
         refined += int(np.count_nonzero(over))
-        finer = build_grid(path, limits, ts, grid, extra)
+        finer = build_grid(path, limits, ts, grid, extra, previous=g)
         b, alpha = profile_at(g.s, b, alpha, finer.s)
         b, alpha, failed, replanned = replan_locally(finer, b, alpha, new, _scale(finer.bmax))
         for lo, hi in failed:
