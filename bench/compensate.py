@@ -39,8 +39,11 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+# the bench folder's own modules, also when a test loads this file by its path
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from ccopt.compensate import compensate  # noqa: E402
+from docs_section import ROOT, printed_section  # noqa: E402
 from ccopt.program.model import Block, Modal, Motion, Program, Source  # noqa: E402
 
 ARC_POINTS = 8
@@ -248,35 +251,47 @@ def main() -> None:
     ap.add_argument("--n", type=int, default=100_000)
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--serrated-only", action="store_true")
+    ap.add_argument("--docs", action="store_true",
+                    help="also write what it prints into docs/benchmarks.md (its own section)")
     args = ap.parse_args()
-    serrated_bench(SERRATED_N, args.repeat)
-    if args.serrated_only:
-        return
+    command = " ".join(["python bench/compensate.py",
+                        *(a for a in sys.argv[1:] if a != "--docs")])
+    with printed_section(ROOT / "docs" / "benchmarks.md" if args.docs else None,
+                         "bench/compensate.py", command,
+                         "Compensation and certificate of long contours (bench/compensate.py)"):
+        serrated_bench(SERRATED_N, args.repeat)
+        if not args.serrated_only:
+            contour_bench(args.n, args.repeat)
+
+
+def contour_bench(n: int, repeat: int) -> None:
+    """Time ccopt's compensation of the star-shaped contour of ``n`` elements
+    against shapely's offset_curve, and its peak memory per block at two sizes."""
     import shapely
 
-    pts, bulge = contour(args.n)
+    pts, bulge = contour(n)
     prog = program(pts, bulge)
     line = shapely.linestrings(polyline(pts, bulge))
 
-    t_ccopt = median_time(lambda: compensate(prog, "pmac"), args.repeat)
+    t_ccopt = median_time(lambda: compensate(prog, "pmac"), repeat)
     t_shapely = median_time(lambda: shapely.offset_curve(line, RADIUS, join_style="round"),
-                            args.repeat)
+                            repeat)
     path = compensate(prog, "pmac")
     kinds = {}
     for s in path.segments:
         kinds[s.kind] = kinds.get(s.kind, 0) + 1
-    print(f"contour: {args.n} elements ({int((bulge != 0).sum())} arcs), r = {RADIUS}")
-    print(f"ccopt  pmac compensate : {t_ccopt * 1e3:9.1f} ms median of {args.repeat} "
-          f"({args.n / t_ccopt:,.0f} blocks/s) -> {len(path.segments)} exact segments {kinds}")
-    print(f"shapely offset_curve   : {t_shapely * 1e3:9.1f} ms median of {args.repeat} "
-          f"({args.n / t_shapely:,.0f} blocks/s, arcs as {ARC_POINTS} chords, round joins)")
+    print(f"contour: {n} elements ({int((bulge != 0).sum())} arcs), r = {RADIUS}")
+    print(f"ccopt  pmac compensate : {t_ccopt * 1e3:9.1f} ms median of {repeat} "
+          f"({n / t_ccopt:,.0f} blocks/s) -> {len(path.segments)} exact segments {kinds}")
+    print(f"shapely offset_curve   : {t_shapely * 1e3:9.1f} ms median of {repeat} "
+          f"({n / t_shapely:,.0f} blocks/s, arcs as {ARC_POINTS} chords, round joins)")
     print(f"ratio ccopt/shapely    : {t_ccopt / t_shapely:9.2f}  (target <= 5)")
-    small = args.n // 10
+    small = n // 10
     p_small = program(*contour(small))
     m_small = peak_memory(lambda: compensate(p_small, "pmac"))
     m_big = peak_memory(lambda: compensate(prog, "pmac"))
     print(f"peak memory per block  : {m_small / small:9.0f} B at n={small}, "
-          f"{m_big / args.n:9.0f} B at n={args.n} (linear if about equal)")
+          f"{m_big / n:9.0f} B at n={n} (linear if about equal)")
 
 
 if __name__ == "__main__":

@@ -3,8 +3,13 @@ figures go into the page between ``<!-- NAME: begin -->`` and
 ``<!-- NAME: end -->``, so no figure in the docs is typed by hand."""
 from __future__ import annotations
 
+import contextlib
 import datetime
+import io
+import os
+import platform
 import subprocess
+import sys
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -39,3 +44,44 @@ def commit() -> str:
 
 def now() -> str:
     return datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+
+
+def machine(load_before: tuple, load_after: tuple) -> str:
+    """Cores, platform, Python and the load average (1/5/15 min) before and after a run."""
+    def fmt(load):
+        return "/".join(f"{x:.2f}" for x in load)
+    return (f"{os.cpu_count()} cores, {platform.platform()}, Python "
+            f"{platform.python_version()}; load average (1/5/15 min) {fmt(load_before)} "
+            f"before, {fmt(load_after)} after")
+
+
+class _Tee(io.TextIOBase):
+    """Writes to the real stdout and keeps a copy."""
+
+    def __init__(self, out):
+        self.out, self.kept = out, io.StringIO()
+
+    def write(self, text: str) -> int:
+        self.kept.write(text)
+        return self.out.write(text)
+
+    def flush(self) -> None:
+        self.out.flush()
+
+
+@contextlib.contextmanager
+def printed_section(page: Path | None, name: str, command: str, title: str):
+    """Run the body with what it prints kept; with ``page``, write it there as
+    section ``name``: ``title`` (a heading), ``command`` with the date, the
+    commit and the machine, and the printed figures as they were printed."""
+    if page is None:
+        yield
+        return
+    load_before = os.getloadavg()
+    tee = _Tee(sys.stdout)
+    with contextlib.redirect_stdout(tee):
+        yield
+    write_section(page, name,
+                  f"### {title}\n\n`{command}` on {now()}, commit {commit()}: "
+                  f"{machine(load_before, os.getloadavg())}.\n\n"
+                  f"```\n{tee.kept.getvalue().rstrip()}\n```")

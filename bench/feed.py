@@ -49,11 +49,14 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+# the bench folder's own modules, also when a test loads this file by its path
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from ccopt.compensate import compensate
 from ccopt.feed import AxisLimits, ExactPath, GridOptions, plan_feed
 from ccopt.program.model import Block, Modal, Motion, Program, Source
 from ccopt.workers import default_workers
+from docs_section import ROOT, printed_section  # noqa: E402
 
 EDGE = 2.0          # mm, edge length of the contour
 RADIUS = 0.5        # cutter radius, mm
@@ -280,12 +283,18 @@ def main() -> None:
                     help="runs of the jerk planner (medians), e.g. 3 with --sizes 10000")
     ap.add_argument("--programs", default="pocket,cam",
                     help="which generated programs: pocket (lines and arcs), cam (G1 chords)")
+    ap.add_argument("--docs", action="store_true",
+                    help="also write what it prints into docs/benchmarks.md (its own section)")
     args = ap.parse_args()
-    print(f"limits v={LIMITS.v} a={LIMITS.a}, feed {FEED} mm/s, cutter radius {RADIUS} mm; "
-          f"medians of {args.repeat} interleaved runs; grid {GridOptions()}")
-    for program in args.programs.split(","):
-        for n in (int(x) for x in args.sizes.split(",")):
-            bench(n, args.repeat, not args.no_jerk, program, args.jerk_repeat)
+    command = " ".join(["python bench/feed.py", *(a for a in sys.argv[1:] if a != "--docs")])
+    with printed_section(ROOT / "docs" / "benchmarks.md" if args.docs else None,
+                         "bench/feed.py", command,
+                         "Feed planning of long programs (bench/feed.py)"):
+        print(f"limits v={LIMITS.v} a={LIMITS.a}, feed {FEED} mm/s, cutter radius {RADIUS} mm; "
+              f"medians of {args.repeat} interleaved runs; grid {GridOptions()}")
+        for program in args.programs.split(","):
+            for n in (int(x) for x in args.sizes.split(",")):
+                bench(n, args.repeat, not args.no_jerk, program, args.jerk_repeat)
 
 
 if __name__ == "__main__":
