@@ -43,7 +43,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from docs_section import commit, now, write_section
+from docs_section import commit, machine, now, write_section
 
 ROOT = Path(__file__).resolve().parents[1]
 STAGES = ("read", "compensate", "feed", "verify", "compare", "export")
@@ -97,13 +97,10 @@ SECTION = "bench/run.py"
 
 def write_main_job(table: str, load_before: tuple, load_after: tuple, workers: int) -> None:
     """The main job's section of docs/benchmarks.md."""
-    load = "/".join(f"{x:.2f}" for x in load_before), "/".join(f"{x:.2f}" for x in load_after)
     write_section(BENCHMARKS, SECTION,
                   f"`python bench/run.py` on {now()}, commit {commit()}: "
-                  f"{os.cpu_count()} cores, {platform.platform()}, Python "
-                  f"{platform.python_version()}; load average (1/5/15 min) {load[0]} before, "
-                  f"{load[1]} after; parallel run with --workers {workers}.\n\n"
-                  f"```\n{table}\n```")
+                  f"{machine(load_before, load_after)}; parallel run with --workers {workers}."
+                  f"\n\n```\n{table}\n```")
 
 
 #: Seconds the busy processes of ``--load`` run before the first timed run, so

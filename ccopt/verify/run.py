@@ -25,8 +25,6 @@ from ccopt.verify.segments import Packed, lengths
 from ccopt.verify.side import check_side
 from ccopt.verify.tolerance import apply_tolerance, resolve_tolerance
 
-
-
 _LINE = attrgetter("source.line")
 
 

@@ -8,7 +8,24 @@ same arrays come from one sort and a few array operations.
 """
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
+
+
+class Entries(NamedTuple):
+    """A sparse matrix's entries: ``vals`` at ``(rows, cols)`` of ``n_rows`` rows."""
+
+    rows: np.ndarray
+    cols: np.ndarray
+    vals: np.ndarray
+    n_rows: int
+
+    def above(self, other: "Entries") -> "Entries":
+        """These rows, then ``other``'s below them."""
+        return Entries(np.concatenate([self.rows, other.rows + self.n_rows]),
+                       np.concatenate([self.cols, other.cols]),
+                       np.concatenate([self.vals, other.vals]), self.n_rows + other.n_rows)
 
 
 def compressed_columns(rows: np.ndarray, cols: np.ndarray, vals: np.ndarray, n_cols: int,

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 import highspy
 import numpy as np
 
-from ccopt.feed.jerk.columns import compressed_columns
+from ccopt.feed.jerk.columns import Entries, compressed_columns
 
 #: Interval kinds: ``alpha`` linear in ``s``, or a constant-jerk piece from or to rest.
 SLINEAR, FROM_REST, TO_REST = 0, 1, 2
@@ -271,9 +271,9 @@ def _assemble(n, r, rows, cols, vals, stop, acc_rows, twin, jerk_rows, jerk_at, 
     used[rows] = True
     used[:n] = True                                  # the equalities stay (a row per interval)
     new_index = np.cumsum(used) - 1
-    A = (new_index[rows], cols, vals, int(used.sum()))
+    A = Entries(new_index[rows], cols, vals, int(used.sum()))
     kept = used[jerk_rows]
-    lo = -np.ones(A[3])
+    lo = -np.ones(A.n_rows)
     lo[:n] = 0.0
     jerk = (new_index[jerk_rows[kept]].astype(np.int32), jerk_at[0, kept], jerk_at[1, kept],
             rise[kept])
@@ -310,7 +310,7 @@ def _peak_cap_rows(g: JerkGrid, i0: int, i1: int, scale: float):
     rows = np.concatenate([np.arange(m), np.arange(m)])
     cols = np.concatenate([ks, nb + ks])
     vals = np.concatenate([np.ones(m), h[use]])
-    return (rows, cols, vals, m), bmax0[use] / scale
+    return Entries(rows, cols, vals, m), bmax0[use] / scale
 
 
 class WindowLP:
@@ -362,11 +362,9 @@ class WindowLP:
         # tests/feed/test_jerk_generated.py)
         self.b_unit = np.maximum(np.where(bref[:nb] > 0.0, bref[:nb], 1.0), B_UNIT_FLOOR)
         # the interval rows, then the cap rows; each b column in its unit
-        n_rows = A[3] + A_cap[3]
-        start, index, value = compressed_columns(np.concatenate([A[0], A_cap[0] + A[3]]),
-                                   np.concatenate([A[1], A_cap[1]]),
-                                   np.concatenate([A[2], A_cap[2]]), 2 * nb,
-                                   np.concatenate([self.b_unit, np.ones(nb)]))
+        A = A.above(A_cap)
+        start, index, value = compressed_columns(A.rows, A.cols, A.vals, 2 * nb,
+                                                 np.concatenate([self.b_unit, np.ones(nb)]))
         lb[:nb] /= self.b_unit
         ub[:nb] /= self.b_unit
         s = g.s[i0:i1 + 1]
@@ -376,7 +374,7 @@ class WindowLP:
         self.b_cols = np.arange(nb, dtype=np.int32)
         self.highs = _new_highs()
         lp = highspy.HighsLp()
-        lp.num_col_, lp.num_row_ = 2 * nb, n_rows
+        lp.num_col_, lp.num_row_ = 2 * nb, A.n_rows
         lp.col_cost_, lp.col_lower_, lp.col_upper_ = np.zeros(2 * nb), lb, ub
         lp.row_lower_, lp.row_upper_ = lo, hi
         lp.a_matrix_.format_ = highspy.MatrixFormat.kColwise
