@@ -51,6 +51,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from ccopt.compensate import compensate  # noqa: E402
 from ccopt.export import export  # noqa: E402
 from ccopt.program import read_text  # noqa: E402
+from ccopt.program.model import unread  # noqa: E402
 from ccopt.verify import verify  # noqa: E402
 
 #: Tool diameter of the G-code program's tool table (mm).
@@ -245,7 +246,7 @@ def main() -> None:
 
     t_pfloor, _ = timed(lambda: floor_split(ptext), args.repeat)
     t_pread, pprog = timed(lambda: read_text(ptext, "bench.pmc", "pmac"), args.repeat)
-    t_pcomp, _ = timed(lambda: compensate(pprog, style="pmac"), args.repeat)
+    t_pcomp, _ = timed(lambda: compensate(unread(pprog), style="pmac"), args.repeat)
     print(f"PMAC   read {t_pread:7.3f} s  (target {READ_SECONDS:g} s: {t_pread / READ_SECONDS:.2f}x)"
           f"  floor (regex split) {t_pfloor:.3f} s: read/floor {t_pread / t_pfloor:.1f}x;"
           f"  compensate {t_pcomp:.3f} s: read/compensate {t_pread / t_pcomp:.2f}x"
@@ -254,7 +255,7 @@ def main() -> None:
     t_gfloor, _ = timed(lambda: floor_split(gtext), args.repeat)
     t_gread, gprog = timed(lambda: read_text(gtext, "bench.nc", "gcode", tool_table=table),
                            args.repeat)
-    t_gcomp, gpath = timed(lambda: compensate(gprog, style=args.style), args.repeat)
+    t_gcomp, gpath = timed(lambda: compensate(unread(gprog), style=args.style), args.repeat)
     print(f"G-code read {t_gread:7.3f} s  floor (regex split) {t_gfloor:.3f} s: read/floor "
           f"{t_gread / t_gfloor:.1f}x;  compensate {t_gcomp:.3f} s  "
           f"[{len(gprog.blocks)} blocks, {len(gpath.segments)} segments]")

@@ -301,8 +301,14 @@ class SegmentColumns:
 
     def planes(self) -> tuple[str, ...]:
         """The rows' planes (their blocks') in the order they first appear."""
-        _, first = np.unique(self.block, return_index=True)
-        used = self.block[np.sort(first)].tolist()
+        b = self.block
+        if b.size < 2 or (b[1:] >= b[:-1]).all():
+            # rows in their blocks' order (as compensation makes them): each
+            # block's first row is where the index changes
+            used = b[np.r_[True, b[1:] != b[:-1]]].tolist() if b.size else []
+        else:
+            _, first = np.unique(b, return_index=True)
+            used = b[np.sort(first)].tolist()
         # the blocks' few distinct modal states, then their planes (map: loops in C)
         modals = list(map(_MODAL, map(self.blocks.__getitem__, used)))
         distinct = dict(zip(map(id, modals), modals)).values()

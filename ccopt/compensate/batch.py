@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from itertools import chain
 from operator import attrgetter
 
 import numpy as np
@@ -22,6 +21,7 @@ from ccopt.compensate.corners import FULL_TURN_SLACK
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
 from ccopt.geometry.intersect_many import circles_circles, lines_circles, lines_lines
+from ccopt.program.columns import triples_column
 from ccopt.program.model import PLANE_AXES, Block, Motion
 from ccopt.tolerances import (
     OFFSET_CIRCLE_REL_TOL, POINT_EPS, SPIRAL_RADIUS_REL_TOL, TOOL_ARC_SAME_RADIUS_REL_TOL, TURN_EPS,
@@ -48,11 +48,6 @@ def wrap_pi(a: np.ndarray) -> np.ndarray:
 
 _ARC_MOTIONS = frozenset((Motion.ARC_CW, Motion.ARC_CCW))
 _RAPID = frozenset((Motion.RAPID,))
-
-
-def _column3(triples, n: int) -> np.ndarray:
-    """``(n, 3)`` float array of ``n`` coordinate triples."""
-    return np.fromiter(chain.from_iterable(triples), float, 3 * n).reshape(n, 3)
 
 
 @dataclass
@@ -93,8 +88,8 @@ class ElementArrays:
         # the blocks' fields straight into arrays (fromiter over flattened
         # tuples: no per-block list or tuple-of-tuples conversion)
         if columns is None:
-            st = _column3(map(attrgetter("start"), blocks), n)
-            en = _column3(map(attrgetter("end"), blocks), n)
+            st = triples_column(map(attrgetter("start"), blocks), n)
+            en = triples_column(map(attrgetter("end"), blocks), n)
             motions = list(map(attrgetter("motion"), blocks))
             motion_arc = np.fromiter(map(_ARC_MOTIONS.__contains__, motions), bool, n)
             rapid = np.fromiter(map(_RAPID.__contains__, motions), bool, n)

@@ -10,14 +10,13 @@ Conditions no style can compensate are reported here, located.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from itertools import chain
-from operator import attrgetter
 
 import numpy as np
 
 from ccopt.compensate import decisions
 from ccopt.compensate.corners import Element, element_of
 from ccopt.errors import CompensationError
+from ccopt.program.columns import DWELL_CODE, RAPID_CODE, columns_of
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
 from ccopt.toolpath import effective_side_radius
 
@@ -177,22 +176,15 @@ def _scan_blocks(program: Program, radius: float | None, side: int | None,
                       GapList.from_lists(gaps), plane, (float(start[0]), float(start[1])))
 
 
-def _column3(triples, n: int) -> np.ndarray:
-    """``(n, 3)`` float array of ``n`` coordinate triples."""
-    return np.fromiter(chain.from_iterable(triples), float, 3 * n).reshape(n, 3)
-
-
-def _side_radius_by_modal(blocks, modals, radius, side, plane: str):
+def _side_radius_by_modal(blocks, cols, radius, side, plane: str):
     """Side and radius of every block (one look-up per run of blocks that
-    share a modal state), or ``None`` when a look-up refuses (the
-    one-at-a-time scan then raises it, in program order) or a state is in
-    another plane than ``plane``."""
-    n = len(blocks)
-    ids = np.fromiter(map(id, modals), np.int64, n)
-    first = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]])
+    share a modal state, ``cols`` the program's :class:`BlockColumns`), or
+    ``None`` when a look-up refuses (the one-at-a-time scan then raises it,
+    in program order) or a state is in another plane than ``plane``."""
+    modals = cols.modals
     in_force: dict[int, tuple[int, float]] = {}
     ks, rs = [], []
-    for q in first.tolist():
+    for q in cols.modal_first.tolist():
         kr = in_force.get(id(modals[q]))
         if kr is None:
             if modals[q].plane != plane:
@@ -203,7 +195,7 @@ def _side_radius_by_modal(blocks, modals, radius, side, plane: str):
                 return None
         ks.append(kr[0])
         rs.append(kr[1])
-    runs = np.diff(np.r_[first, n])
+    runs = cols.modal_runs()
     return np.repeat(np.array(ks, int), runs), np.repeat(np.array(rs, float), runs)
 
 
@@ -216,20 +208,19 @@ def _scan_columns(program: Program, radius: float | None, side: int | None,
     n = len(blocks)
     if n == 0:
         return None
-    if any(t is not None for t in set(map(attrgetter("move_time"), blocks))):
+    cols = columns_of(program)
+    if cols.timed:
         return None
-    modals = list(map(attrgetter("modal"), blocks))
-    plane = modals[0].plane
-    kr = _side_radius_by_modal(blocks, modals, radius, side, plane)
+    plane = cols.modals[0].plane
+    kr = _side_radius_by_modal(blocks, cols, radius, side, plane)
     if kr is None:
         return None
     k, r = kr
-    motions = list(map(attrgetter("motion"), blocks))
-    dwell = np.fromiter(map(_DWELL.__contains__, motions), bool, n)
-    arc = np.fromiter(map(_ARCS.__contains__, motions), bool, n)
-    rapid = np.fromiter(map(_RAPID.__contains__, motions), bool, n)
-    st = _column3(map(attrgetter("start"), blocks), n)
-    en = _column3(map(attrgetter("end"), blocks), n)
+    motions, code = cols.motions, cols.motion_code
+    dwell = code == DWELL_CODE
+    arc = cols.is_arc
+    rapid = code == RAPID_CODE
+    st, en = cols.start, cols.end
     i, j, _ = PLANE_AXES[plane]
     in_plane = ~dwell & (arc | (st[:, i] != en[:, i]) | (st[:, j] != en[:, j]))
     if style == "pmac" and not decisions.PMAC_OFFSET_RAPIDS:
@@ -251,8 +242,6 @@ def _scan_columns(program: Program, radius: float | None, side: int | None,
 
 
 _ARCS = frozenset((Motion.ARC_CW, Motion.ARC_CCW))
-_DWELL = frozenset((Motion.DWELL,))
-_RAPID = frozenset((Motion.RAPID,))
 
 
 def _in_plane(blocks) -> list[bool]:

@@ -38,7 +38,6 @@ import math
 
 import numpy as np
 
-from ccopt.geometry import distance
 from ccopt.geometry.angles import TWO_PI
 from ccopt.program.model import PLANE_AXES
 from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
@@ -84,31 +83,34 @@ def corner_points(rows, contour: Contour, table, ci: np.ndarray):
     qa = np.where(before >= 0, table.move[np.maximum(before, 0)], -1)
     qb = np.where(after < n, table.move[np.minimum(after, n - 1)], -1)
     qc = table.move[ci]
-    moves = contour.moves
-    last = len(moves) - 1
+    last = len(contour.moves) - 1
+    # the moves run before and after are consecutive (the common case), or
+    # one of them is the carrier's own
+    seq = (qa >= 0) & (qb == qa + 1)
+    mine_in = ~seq & (qc >= 0) & (qa == qc)
+    mine_out = ~seq & ~mine_in & (qc >= 0) & (qb == qc)
+    q_in[seq], q_out[seq] = qa[seq], qb[seq]
+    q_in[mine_in] = qc[mine_in]
+    q_out[mine_in] = np.where(qc[mine_in] < last, qc[mine_in] + 1, -1)
+    q_in[mine_out], q_out[mine_out] = qc[mine_out] - 1, qc[mine_out]
+    known = seq | mine_in | mine_out
+    # P: the end of the move ending there, else the start of the one starting there
+    ending = known & (q_in >= 0)
+    P[ending] = contour.move_end[q_in[ending]]
+    starting = known & ~ending
+    P[starting] = contour.move_start[q_out[starting]]
     i0, j0, _ = PLANE_AXES[contour.plane]
-    for q in range(m):
-        a, b, c = int(qa[q]), int(qb[q]), int(qc[q])
-        if a >= 0 and b == a + 1:
-            q_in[q], q_out[q] = a, b
-        elif c >= 0 and a == c:
-            q_in[q], q_out[q] = c, (c + 1 if c < last else -1)
-        elif c >= 0 and b == c:
-            q_in[q], q_out[q] = c - 1, c
-        else:
-            # the carrier's own move has no tool segment of its own: its end
-            # nearer the arc's centre (the two are a whole move apart)
-            blk = rows.block(int(ci[q]))
-            centre = rows.tool.arr.center[int(ci[q])]
-            ends = np.array([[blk.start[i0], blk.start[j0]], [blk.end[i0], blk.end[j0]]])
-            at_end = bool(np.hypot(*(ends[1] - centre)) <= np.hypot(*(ends[0] - centre)))
-            P[q] = ends[1] if at_end else ends[0]
-            if c >= 0:
-                q_in[q], q_out[q] = (c, c + 1 if c < last else -1) if at_end else (c - 1, c)
-            continue
-        blk = moves[q_in[q]] if q_in[q] >= 0 else moves[q_out[q]]
-        pt = blk.end if q_in[q] >= 0 else blk.start
-        P[q] = (pt[i0], pt[j0])
+    for q in np.flatnonzero(~known).tolist():
+        # the carrier's own move has no tool segment of its own: its end
+        # nearer the arc's centre (the two are a whole move apart)
+        c = int(qc[q])
+        blk = rows.block(int(ci[q]))
+        centre = rows.tool.arr.center[int(ci[q])]
+        ends = np.array([[blk.start[i0], blk.start[j0]], [blk.end[i0], blk.end[j0]]])
+        at_end = bool(np.hypot(*(ends[1] - centre)) <= np.hypot(*(ends[0] - centre)))
+        P[q] = ends[1] if at_end else ends[0]
+        if c >= 0:
+            q_in[q], q_out[q] = (c, c + 1 if c < last else -1) if at_end else (c - 1, c)
     return P, q_in, q_out
 
 
@@ -124,8 +126,10 @@ def contact_pairs(rows, meta: dict, contour: Contour, lengths: np.ndarray, table
     # replace (checked for gouge and continuity like it, not for touching the
     # corner; a verifier decision, docs/compensation.md section 8.3)
     fitted = set(meta.get(FITTED_PIECES, ()))
-    ci = np.asarray([i for i in cand if rows.block_index[i] >= 0 and rows.is_arc[i]
-                     and int(i) not in fitted], np.intp)
+    keep = (rows.block_index[cand] >= 0) & rows.is_arc[cand]
+    if fitted:
+        keep &= ~np.isin(cand, np.fromiter(fitted, np.intp, len(fitted)))
+    ci = cand[keep].astype(np.intp)
     corner_p, q_in, q_out = corner_points(rows, contour, table, ci)
     return si, ej, ci, corner_p, table.r[ci], q_in, q_out
 

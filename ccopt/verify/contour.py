@@ -15,13 +15,14 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from itertools import chain, repeat
-from operator import attrgetter
+from operator import attrgetter, is_
 
 import numpy as np
 
 from ccopt.geometry import KIND_ARC, KIND_LINE, KIND_SPIRAL, SegmentArray
 from ccopt.geometry.angles import TWO_PI
 from ccopt.geometry.arclength import END_POINT_REL_TOL
+from ccopt.program.columns import CCW_CODE, DWELL_CODE, BlockColumns, columns_of
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
 from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL, VERIFY_EPS
 from ccopt.toolpath import block_geometry, effective_side_radius
@@ -38,8 +39,6 @@ STATUS_SIDE_CHANGE = "side-change"  # on before and during, new side introduced 
 STATUS_AIR = "air"                  # on before and during, but a lead in air (surface.py)
 STATUS_NAMES = (STATUS_OFF, STATUS_LEAD_IN, STATUS_STEADY, STATUS_RADIUS_CHANGE, STATUS_SIDE_CHANGE,
                 STATUS_AIR)
-_ARCS = frozenset((Motion.ARC_CW, Motion.ARC_CCW))
-_MOTION, _START, _END, _MODAL = (attrgetter(a) for a in ("motion", "start", "end", "modal"))
 _SIDE, _RADIUS = attrgetter("side"), attrgetter("radius")
 _CENTER, _TURNS = attrgetter("center"), attrgetter("turns")
 
@@ -67,7 +66,8 @@ class Contour:
     plane: plane of compensation.
     moves: every in-plane move of the program, in order; per move:
         ``move_status`` (a ``STATUS_*``), ``move_k``, ``move_r`` (side and radius
-        in force), ``move_element`` (its contour element, or -1).
+        in force), ``move_element`` (its contour element, or -1),
+        ``move_start``, ``move_end`` (its in-plane end points, ``(n, 2)``).
     notes: what the verifier assumed (e.g. a radius taken from the tool path).
     surface: which fully compensated moves were taken as part and which as
         air, and why (:meth:`ccopt.verify.surface.Surface.report`).
@@ -89,6 +89,8 @@ class Contour:
     move_element: np.ndarray = field(repr=False)
     notes: tuple[str, ...] = ()
     surface: dict = field(default_factory=dict, repr=False)
+    move_start: np.ndarray | None = field(default=None, repr=False)
+    move_end: np.ndarray | None = field(default=None, repr=False)
 
     def __len__(self) -> int:
         return len(self.blocks)
@@ -101,11 +103,15 @@ class Contour:
         """Index into :attr:`moves` of each block (-1 when it is not an in-plane
         move of the program, or ``None``). Blocks are matched by identity, and
         by value for a tool path whose blocks are equal copies."""
+        blocks = list(blocks)
+        if len(blocks) == len(self.moves) and all(map(is_, blocks, self.moves)):
+            # the common case: a path compensated from this program lists its
+            # in-plane moves, the contour's moves, in order
+            return np.arange(len(blocks), dtype=np.intp)
         by_id = self.__dict__.get("_by_id")
         if by_id is None:
             by_id = dict(zip(map(id, self.moves), range(len(self.moves))))
             object.__setattr__(self, "_by_id", by_id)
-        blocks = list(blocks)
         out = np.fromiter(map(by_id.get, map(id, blocks), repeat(-1)), np.intp, len(blocks))
         miss = [q for q in np.flatnonzero(out < 0) if blocks[q] is not None]
         if miss:
@@ -197,7 +203,7 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
     (:mod:`ccopt.verify.surface`); ``eps``: how near a loop must close.
     """
     mv = _InPlaneMoves.of(program)
-    k, r, notes = _sides_and_radii(mv.moves, radius, side, toolpath_radius)
+    k, r, notes = _sides_and_radii(mv, columns_of(program), radius, side, toolpath_radius)
     n = len(mv.moves)
     prev_k = np.r_[0, k[:-1]] if n else k
     prev_r = np.r_[0.0, r[:-1]] if n else r
@@ -243,32 +249,41 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
     clearance = np.where(radius_change[sel], np.minimum(r[sel], prev_r[sel]), r[sel])
     return Contour(cblocks, elements, k[sel], r[sel], clearance, steady[sel], open_start,
                    open_end, mv.plane, tuple(mv.moves), status, k, r, elem_idx, tuple(notes),
-                   surf.report(mv.moves, in_contour | air, _approaches(k, prev_k, side_change)))
+                   surf.report(mv.moves, in_contour | air, _approaches(k, prev_k, side_change)),
+                   move_start=mv.start, move_end=mv.end)
 
 
 def _close_joined_ends(elements: Packed, open_start: np.ndarray, open_end: np.ndarray,
                        episode: np.ndarray, eps: float) -> None:
     """An end is open only where the surface really stops: a start that
-    another element of the same run of contour moves (``episode``) ends at
-    within ``eps``, or an end another one starts at, is a joint of the
-    surface, not an open end (in place). A closed loop entered by a lead is
-    the case: its first element follows the lead in the program, but its start
-    is where its last element ends, so a lead leaving the loop's corner is
-    held to that corner. Another pass's element meeting it there is no joint
-    (passes are separate runs, each with its own leads)."""
-    if not (open_start.any() or open_end.any()):
+    another element of the same run of contour moves (``episode``, one number
+    per run, non-decreasing) ends at within ``eps``, or an end another one
+    starts at, is a joint of the surface, not an open end (in place). A closed
+    loop entered by a lead is the case: its first element follows the lead in
+    the program, but its start is where its last element ends, so a lead
+    leaving the loop's corner is held to that corner. Another pass's element
+    meeting it there is no joint (passes are separate runs, each with its own
+    leads).
+
+    Only a run's first start and last end can be open (``open_start``,
+    ``open_end`` are false elsewhere), so each run's elements are compared
+    with its two ends at once: linear in the elements, no search tree.
+    Within ``eps`` is ``dx**2 + dy**2 <= eps**2``, as
+    ``scipy.spatial.cKDTree.query_ball_point`` counts it."""
+    n = episode.size
+    if not n or not (open_start.any() or open_end.any()):
         return
-    # deferred: scipy.spatial would add 0.3 s to every `import ccopt`
-    from scipy.spatial import cKDTree
+    first = np.flatnonzero(np.r_[True, episode[1:] != episode[:-1]])
+    last = np.r_[first[1:], n] - 1
+    run = np.repeat(np.arange(first.size), np.diff(np.r_[first, n]))
+    at = np.arange(n)
     p0, p1 = elements.arr.p0, elements.arr.p1
-    for opened, here, there in ((open_start, p0, p1), (open_end, p1, p0)):
-        q = np.flatnonzero(opened)
-        if not q.size:
-            continue
-        near = cKDTree(there).query_ball_point(here[q], eps)
-        for j, others in zip(q.tolist(), near):
-            if any(o != j and episode[o] == episode[j] for o in others):
-                opened[j] = False
+    for opened, ends, here, there in ((open_start, first, p0, p1), (open_end, last, p1, p0)):
+        end = ends[run]                           # each element's run's end in question
+        gap = there - here[end]
+        met = (gap[:, 0] * gap[:, 0] + gap[:, 1] * gap[:, 1] <= eps * eps) & (at != end)
+        joined = ends[np.unique(run[met])]
+        opened[joined[opened[joined]]] = False
 
 
 def _approaches(k: np.ndarray, prev_k: np.ndarray, side_change: np.ndarray) -> dict[int, str]:
@@ -282,45 +297,46 @@ def _approaches(k: np.ndarray, prev_k: np.ndarray, side_change: np.ndarray) -> d
 @dataclass(frozen=True, eq=False)
 class _InPlaneMoves:
     """The program's in-plane moves (dwells and moves without an in-plane
-    component left out), with their in-plane start and end points and arc flags
-    as arrays (``(n, 2)``, ``(n,)``), in the plane of compensation."""
+    component left out): their blocks, their places in the program
+    (``index``), motion codes (:data:`ccopt.program.columns.MOTIONS`), and
+    in-plane start and end points and arc flags as arrays (``(n, 2)``,
+    ``(n,)``), in the plane of compensation."""
 
     plane: str
     moves: list
-    motions: list          # per in-plane move
+    index: np.ndarray
+    code: np.ndarray
     start: np.ndarray
     end: np.ndarray
     is_arc: np.ndarray
 
     @classmethod
     def of(cls, program: Program) -> "_InPlaneMoves":
-        # Array form of everything read from the blocks (C-level map/attrgetter
-        # passes: this runs once per verification over up to millions of blocks).
-        dwell = Motion.DWELL
-        allmoves = [b for b in program.blocks if b.motion is not dwell]
-        plane = allmoves[0].modal.plane if allmoves else (program.blocks[0].modal.plane
-                                                          if program.blocks else "XY")
+        # from the program's columns (read once per program, shared with
+        # compensation): this runs once per verification over up to millions
+        # of blocks
+        cols = columns_of(program)
+        blocks = program.blocks
+        moving = np.flatnonzero(cols.motion_code != DWELL_CODE)
+        plane = (cols.modals[moving[0]].plane if moving.size
+                 else (cols.modals[0].plane if blocks else "XY"))
         i0, j0, _ = PLANE_AXES[plane]
-        m = len(allmoves)
-        motions = list(map(_MOTION, allmoves))
-        arc_all = np.fromiter(map(_ARCS.__contains__, motions), bool, m)
-        st_all = np.fromiter(chain.from_iterable(map(_START, allmoves)), float, 3 * m
-                             ).reshape(m, 3)[:, [i0, j0]]
-        en_all = np.fromiter(chain.from_iterable(map(_END, allmoves)), float, 3 * m
-                             ).reshape(m, 3)[:, [i0, j0]]
+        arc = cols.is_arc[moving]
+        st = cols.start[moving][:, [i0, j0]]
+        en = cols.end[moving][:, [i0, j0]]
         # Block.in_plane, for all moves at once
-        inp = arc_all | (np.hypot(*(en_all - st_all).T) > 0.0)
-        if inp.all():
-            return cls(plane, allmoves, motions, st_all, en_all, arc_all)
-        sel = np.flatnonzero(inp)
-        return cls(plane, [allmoves[q] for q in sel], [motions[q] for q in sel],
-                   st_all[inp], en_all[inp], arc_all[inp])
+        inp = arc | (np.hypot(*(en - st).T) > 0.0)
+        if not inp.all():
+            moving, arc, st, en = moving[inp], arc[inp], st[inp], en[inp]
+        moves = list(blocks) if moving.size == len(blocks) else \
+            [blocks[q] for q in moving.tolist()]
+        return cls(plane, moves, moving, cols.motion_code[moving], st, en, arc)
 
     def elements(self, sel: np.ndarray, cblocks: tuple) -> Packed:
         """Programmed geometry of the moves ``sel`` (whose blocks are ``cblocks``)."""
         i0, j0, _ = PLANE_AXES[self.plane]
         nc = len(cblocks)
-        ccw = np.fromiter(map(Motion.ARC_CCW.__eq__, [self.motions[q] for q in sel]), bool, nc)
+        ccw = self.code[sel] == CCW_CODE
         carc = self.is_arc[sel]
         ce = np.full((nc, 2), np.nan)
         turns = np.zeros(nc)
@@ -335,27 +351,29 @@ class _InPlaneMoves:
                                 carc, ccw, turns)
 
 
-def _sides_and_radii(moves: list, radius: float | None, side: int | None,
-                     toolpath_radius: float | None):
+def _sides_and_radii(mv: _InPlaneMoves, cols: BlockColumns, radius: float | None,
+                     side: int | None, toolpath_radius: float | None):
     """``(k, r, notes)``: side (+1 left, -1 right, 0 off) and cutter radius in
-    force for each move after the overrides, and what the verifier assumed."""
-    n = len(moves)
-    modals = list(map(_MODAL, moves))
-    k = np.fromiter(map(_SIDE, modals), int, n)
-    rad = list(map(_RADIUS, modals))
-    on_radii = set(np.asarray(rad, dtype=object)[k != 0].tolist()) if n else set()
+    force for each of the moves ``mv`` (of a program whose columns are
+    ``cols``) after the overrides, and what the verifier assumed. Each modal
+    state is read once per run of blocks sharing it."""
+    n = len(mv.moves)
+    heads = [cols.modals[q] for q in cols.modal_first.tolist()]
+    run_of = np.repeat(np.arange(len(heads)), cols.modal_runs())[mv.index]
+    k = np.fromiter(map(_SIDE, heads), int, len(heads))[run_of]
+    rad = list(map(_RADIUS, heads))                     # per run; None: never set
+    unset = np.fromiter((x is None for x in rad), bool, len(rad))[run_of]
+    on_radii = {rad[u] for u in np.unique(run_of[k != 0]).tolist()}
     notes: list[str] = []
     if radius is None and toolpath_radius is not None and toolpath_radius > 0.0:
         radius = _radius_from_toolpath(on_radii, float(toolpath_radius), notes)
     if radius is None and None in on_radii:
-        q = next(q for q in range(n) if k[q] != 0 and rad[q] is None)
-        effective_side_radius(moves[q], None, None)      # raises, located
+        q = int(np.flatnonzero((k != 0) & unset)[0])
+        effective_side_radius(mv.moves[q], None, None)      # raises, located
     if radius is not None:
         r = np.full(n, float(radius))
-    elif None in rad:
-        r = np.array([0.0 if rr is None else rr for rr in rad], float)
     else:
-        r = np.array(rad, float)
+        r = np.array([0.0 if x is None else x for x in rad], float)[run_of]
     if side is not None:
         k = np.where(k != 0, int(side), 0)
     return k, np.where(k != 0, r, 0.0), notes

@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
-from operator import attrgetter
 
+from ccopt.program.columns import columns_of
 from ccopt.program.model import Program
 from ccopt.toolpath import FITTED_PIECES, ToolPath
 from ccopt.verify.certificate import EXACT, Certificate, Check, Violation
@@ -29,7 +29,6 @@ from ccopt.verify.limits import check_limits
 #: How a check's figure joins over the runs: the worst is the smallest
 #: margin (gouge, side) or the largest excess (contact, jump).
 WORST = {"gouge": min, "side": min, "contact": max, "continuity": max}
-_MODAL = attrgetter("modal")
 
 
 def plane_runs(toolpath: ToolPath, program: Program):
@@ -38,9 +37,9 @@ def plane_runs(toolpath: ToolPath, program: Program):
     (the plain route)."""
     # one plane in every block (the common case) is seen on the blocks' few
     # distinct modal objects, without walking the blocks in Python
-    modals = list(map(_MODAL, program.blocks))
-    distinct = dict(zip(map(id, modals), modals)).values()
-    if len({m.plane for m in distinct}) <= 1 and len(toolpath.planes) <= 1:
+    cols = columns_of(program)
+    heads = map(cols.modals.__getitem__, cols.modal_first.tolist())
+    if len({m.plane for m in heads}) <= 1 and len(toolpath.planes) <= 1:
         return None
     runs: list[list] = []
     for blk in program.blocks:

@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
+from operator import attrgetter
 
 import numpy as np
 
@@ -42,6 +43,7 @@ WHY_LINES = "in --part-lines"
 WHY_NOT_LINES = "not in --part-lines"
 WHY_MARK_PART = "marked (ccopt: part)"
 WHY_MARK_AIR = "marked (ccopt: air)"
+_SURFACE = attrgetter("surface")
 WHY_LEAD_IN = "lead-in: compensation comes on over it"
 WHY_LEAD_OUT = "lead-out: compensation goes off over it"
 WHY_SIDE_CHANGE = "side-change transition"
@@ -162,8 +164,10 @@ def surface_of(moves, compensated: np.ndarray, start: np.ndarray, end: np.ndarra
         for k in np.flatnonzero(compensated):
             why[k] = WHY_ALL
     marked = False
-    for k in np.flatnonzero(compensated):
-        mark = moves[k].surface
+    # the marks read in one pass; the loop visits the marked moves only
+    marks = list(map(_SURFACE, moves))
+    for k in (np.flatnonzero(compensated).tolist() if any(marks) else ()):
+        mark = marks[k]
         if mark is not None:
             marked = True
             part[k] = mark == SURFACE_PART

@@ -70,12 +70,16 @@ def candidate_pairs(tool_box: np.ndarray, elem_box: np.ndarray, reach: np.ndarra
     empty = (np.zeros(0, np.intp), np.zeros(0, np.intp))
     if nt == 0 or ne == 0:
         return empty
-    grown = elem_box + np.c_[-reach, -reach, reach, reach]
-    allbox = np.r_[tool_box, grown]
+    grown = np.empty_like(elem_box, dtype=float)
+    grown[:, :2] = elem_box[:, :2] - reach[:, None]
+    grown[:, 2:] = elem_box[:, 2:] + reach[:, None]
+    allbox = np.concatenate((tool_box, grown))
     ext = np.maximum(allbox[:, 2] - allbox[:, 0], allbox[:, 3] - allbox[:, 1])
     h = float(max(CELL_FACTOR * np.median(ext), float(reach.max(initial=0.0)), MIN_CELL))
-    origin = allbox[:, :2].min(axis=0)
-    span = (allbox[:, 2:].max(axis=0) - origin) / h
+    # column by column: numpy's reduction over axis 0 of a narrow array is
+    # several times slower than over each strided column
+    origin = np.array([allbox[:, 0].min(), allbox[:, 1].min()])
+    span = (np.array([allbox[:, 2].max(), allbox[:, 3].max()]) - origin) / h
     ncol = np.int64(np.floor(span[0])) + 2
     if float(span[0] + 2) * float(span[1] + 2) > 2.0 ** 62:
         raise ValueError("broad phase: the path is too large for the grid")
