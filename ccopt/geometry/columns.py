@@ -7,7 +7,9 @@ Python loop over pairs. This module broadcasts inputs to such columns
 (:func:`columns`), runs a kernel block by block (:func:`run_chunked`),
 selects between candidates without branches (:func:`blend`), keeps the
 running minimum of candidate pairs with their witnesses (:class:`RunningMin`)
-and prepares per-arc quantities once per call (:class:`PreparedArcs`).
+and prepares per-arc quantities once per call (:class:`PreparedArcs`);
+:func:`take_rows` and :func:`put_rows` gather and scatter rows of the
+``(n, 2)`` point arrays.
 Lengths are program units, angles radians.
 """
 from __future__ import annotations
@@ -18,6 +20,25 @@ from contextlib import contextmanager
 import numpy as np
 
 from ccopt.geometry.angles import in_sweep_prepared
+
+def take_rows(a: np.ndarray, idx) -> np.ndarray:
+    """``a[idx]`` for an index array ``idx``, by ``take``: the same values,
+    several times faster on a narrow 2-D array (``(n, 2)`` points), where
+    numpy's fancy indexing takes a slow general road."""
+    return a.take(idx, axis=0)
+
+
+def put_rows(a: np.ndarray, idx, rows: np.ndarray) -> None:
+    """``a[idx] = rows``. For a C-contiguous ``(n, 2)`` float ``a`` each row
+    is written as one complex number (its same 16 bytes, no arithmetic), which
+    numpy scatters several times faster than the rows of a 2-D array."""
+    if isinstance(idx, np.ndarray) and a.dtype == np.float64 and a.ndim == 2 \
+            and a.shape[1] == 2 and a.flags.c_contiguous:
+        src = np.ascontiguousarray(rows, np.float64).reshape(-1, 2)
+        a.view(np.complex128)[idx, 0] = src.view(np.complex128)[:, 0]
+    else:
+        a[idx] = rows
+
 
 @contextmanager
 def paused_gc():

@@ -30,6 +30,7 @@ import numpy as np
 
 from ccopt.geometry import Arc, Line, distance, pair_distance
 from ccopt.geometry.angles import TWO_PI, angle_along, sweep_sign
+from ccopt.geometry.columns import put_rows, take_rows
 from ccopt.tolerances import VERIFY_CERTIFIED_GAP
 from ccopt.verify import decisions
 from ccopt.verify.distance import candidate_pairs, min_distance, min_distances
@@ -428,9 +429,13 @@ def pair_distances(tool: Packed, contour: Contour, eps: float,
     we = np.zeros((n, 2))
     exact = tool.exact[it] & E.exact[je]
     sel = np.flatnonzero(exact)
+    every = sel.size == n          # no spiral or curve: chunks are slices
     for lo in range(0, sel.size, PAIR_CHUNK):
-        part = sel[lo:lo + PAIR_CHUNK]
-        d[part], wt[part], we[part] = pair_distance(tool.arr, it[part], E.arr, je[part])
+        part = slice(lo, lo + PAIR_CHUNK) if every else sel[lo:lo + PAIR_CHUNK]
+        got = pair_distance(tool.arr, it[part], E.arr, je[part])
+        d[part] = got[0]
+        put_rows(wt, part, got[1])
+        put_rows(we, part, got[2])
     ub = d.copy()
     tol = VERIFY_CERTIFIED_GAP * eps
     open_elem = contour.open_start | contour.open_end
@@ -460,9 +465,9 @@ def pair_distances(tool: Packed, contour: Contour, eps: float,
         required = np.minimum(required, np.asarray(tool_radius, float)[it])
     margin = f - required
     cnt = np.ones(n, bool) if counted is None else np.asarray(counted, bool)[it]
-    return PairDistances(it[keep], je[keep], d[keep], ub[keep], wt[keep], we[keep],
-                         exact[keep], margin[keep], cnt[keep], reach, tapered[keep],
-                         required[keep])
+    at = np.flatnonzero(keep)
+    return PairDistances(it[at], je[at], d[at], ub[at], take_rows(wt, at), take_rows(we, at),
+                         exact[at], margin[at], cnt[at], reach, tapered[at], required[at])
 
 def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: float, out):
     """Certified bounds of the ``pairs`` (indices into ``it``, ``je``) with a

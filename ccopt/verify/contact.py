@@ -39,6 +39,7 @@ import math
 import numpy as np
 
 from ccopt.geometry.angles import TWO_PI
+from ccopt.geometry.columns import take_rows
 from ccopt.program.model import PLANE_AXES
 from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
 from ccopt.toolpath import FITTED_PIECES, Role
@@ -137,8 +138,8 @@ def contact_pairs(rows, meta: dict, contour: Contour, lengths: np.ndarray, table
 def _line_line(T, ti, E, ej):
     """Largest distance alongside, line tool segments vs line elements:
     ``(dmax, point, alongside)``."""
-    a0, a1 = T.p0[ti], T.p1[ti]
-    p0, p1 = E.p0[ej], E.p1[ej]
+    a0, a1 = take_rows(T.p0, ti), take_rows(T.p1, ti)
+    p0, p1 = take_rows(E.p0, ej), take_rows(E.p1, ej)
     d = p1 - p0
     L = np.hypot(d[:, 0], d[:, 1])
     t = d / L[:, None]

@@ -24,6 +24,7 @@ import numpy as np
 
 from ccopt.geometry import KIND_ARC, KIND_LINE, KIND_SPIRAL, Arc, Line, SegmentArray, Spiral
 from ccopt.geometry.angles import angle_in_sweep
+from ccopt.geometry.columns import put_rows, take_rows
 from ccopt.toolpath import ARC_ROW, LINE_ROW
 
 #: Row kind of a parametric curve (no closed form; certified bounds only).
@@ -204,18 +205,23 @@ def end_tangents(pk: Packed) -> tuple[np.ndarray, np.ndarray]:
     n = len(A)
     ts = np.zeros((n, 2))
     te = np.zeros((n, 2))
-    line = A.kind == KIND_LINE
-    d = A.p1[line] - A.p0[line]
+    # rows by index (take_rows, put_rows): the same values as boolean masks,
+    # faster on (n, 2) arrays
+    line = np.flatnonzero(A.kind == KIND_LINE)
+    d = take_rows(A.p1, line) - take_rows(A.p0, line)
     L = np.hypot(d[:, 0], d[:, 1])
-    ok = L > 0.0
+    ok = np.flatnonzero(L > 0.0)
     u = np.zeros_like(d)
-    u[ok] = d[ok] / L[ok, None]
-    ts[line] = u
-    te[line] = u
-    arc = A.kind == KIND_ARC
+    put_rows(u, ok, take_rows(d, ok) / L[ok, None])
+    put_rows(ts, line, u)
+    put_rows(te, line, u)
+    arc = np.flatnonzero(A.kind == KIND_ARC)
     sg = np.copysign(1.0, A.sweep[arc])
     for out, th in ((ts, A.theta0[arc]), (te, A.theta0[arc] + A.sweep[arc])):
-        out[arc] = np.c_[-sg * np.sin(th), sg * np.cos(th)]
+        tangent = np.empty((arc.size, 2))
+        tangent[:, 0] = -sg * np.sin(th)
+        tangent[:, 1] = sg * np.cos(th)
+        put_rows(out, arc, tangent)
     for i, g in pk.curved.items():
         if g.length > 0.0:
             ts[i] = g.start_tangent
