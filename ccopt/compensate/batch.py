@@ -20,6 +20,7 @@ from ccopt.compensate import decisions
 from ccopt.compensate.corners import FULL_TURN_SLACK
 from ccopt.geometry import Arc, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
+from ccopt.geometry.columns import put_rows, take_rows
 from ccopt.geometry.intersect_many import circles_circles, lines_circles, lines_lines
 from ccopt.program.columns import triples_column
 from ccopt.program.model import PLANE_AXES, Block, Motion
@@ -36,7 +37,10 @@ FULL_CIRCLE_GAP = 1e-9
 
 
 def _perp(t: np.ndarray) -> np.ndarray:
-    return np.c_[-t[:, 1], t[:, 0]]
+    out = np.empty_like(t)
+    out[:, 0] = -t[:, 1]
+    out[:, 1] = t[:, 0]
+    return out
 
 
 def wrap_pi(a: np.ndarray) -> np.ndarray:
@@ -108,40 +112,57 @@ class ElementArrays:
             ce[arcs] = [nan3 if blocks[q].center is None else blocks[q].center for q in arcs]
             turns[arcs] = [blocks[q].turns for q in arcs]
         S, E, C = st[:, [i, j]], en[:, [i, j]], ce[:, [i, j]]
-        R0 = np.hypot(*(S - C).T)
-        R1 = np.hypot(*(E - C).T)
-        # Same spiral criterion as toolpath.block_geometry.
-        spiral = motion_arc & (np.abs(R1 - R0) > SPIRAL_RADIUS_REL_TOL * np.maximum(1.0, R0))
-        kind = np.where(motion_arc, np.where(spiral, SPIRAL, ARC), LINE)
-        sgn = np.where(motion_arc, np.where(ccw, 1.0, -1.0), 0.0)
-        th0 = np.arctan2(S[:, 1] - C[:, 1], S[:, 0] - C[:, 0])
-        th1 = np.arctan2(E[:, 1] - C[:, 1], E[:, 0] - C[:, 0])
-        # geometry.angles.sweep_between, elementwise (full circle when the gap
-        # is within FULL_CIRCLE_GAP*max(1, R) as a length).
-        gap = np.fmod(np.where(ccw, th1 - th0, th0 - th1), TWO_PI)
-        gap = np.where(gap < 0.0, gap + TWO_PI, gap)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            full_if_below = FULL_CIRCLE_GAP * np.maximum(1.0, R0) / R0
-        full = (gap <= full_if_below) | (TWO_PI - gap <= full_if_below) | (gap >= TWO_PI)
-        gap = np.where(full, TWO_PI, gap) + TWO_PI * turns
-        sweep = np.where(motion_arc, np.where(ccw, gap, -gap), 0.0)
-        # tangents
+        # lines: their tangent; the arcs' quantities are worked out for the
+        # arcs alone (a line's radius and angle are NaN, from its NaN centre)
         d = E - S
         L = np.hypot(d[:, 0], d[:, 1])
         with np.errstate(invalid="ignore", divide="ignore"):
-            t_line = d / L[:, None]
-        th_end = th0 + sweep
-        t_arc_s = sgn[:, None] * np.c_[-np.sin(th0), np.cos(th0)]
-        t_arc_e = sgn[:, None] * np.c_[-np.sin(th_end), np.cos(th_end)]
-        is_line = (kind == LINE)[:, None]
-        ts = np.where(is_line, t_line, t_arc_s)
-        te = np.where(is_line, t_line, t_arc_e)
+            ts = d / L[:, None]
+        te = ts.copy()
+        kind = np.full(n, LINE)
+        sgn = np.zeros(n)
+        R0 = np.full(n, math.nan)
+        th0 = np.full(n, math.nan)
+        sweep = np.zeros(n)
+        if arcs:
+            a = np.asarray(arcs, np.intp)
+            got = _arc_geometry(take_rows(S, a), take_rows(E, a), take_rows(C, a), ccw[a],
+                                turns[a])
+            kind[a], sgn[a], R0[a], th0[a], sweep[a] = got[:5]
+            put_rows(ts, a, got[5])
+            put_rows(te, a, got[6])
         return cls(kind, S, E, C, R0, sgn, th0, sweep, ts, te,
                    np.asarray(k, float), np.asarray(r, float), st[:, w], en[:, w], rapid)
 
     def offset_radius(self, idx: np.ndarray, k: np.ndarray, r: np.ndarray) -> np.ndarray:
         """Offset arc radius ``R - k*r`` counter-clockwise, ``R + k*r`` clockwise."""
         return self.R[idx] - k * r * self.sgn[idx]
+
+
+def _arc_geometry(S, E, C, ccw, turns):
+    """``(kind, sgn, R0, theta0, sweep, ts, te)`` of arc moves from ``S`` to
+    ``E`` about ``C`` (:meth:`ElementArrays.from_blocks`)."""
+    R0 = np.hypot(*(S - C).T)
+    R1 = np.hypot(*(E - C).T)
+    # Same spiral criterion as toolpath.block_geometry.
+    spiral = np.abs(R1 - R0) > SPIRAL_RADIUS_REL_TOL * np.maximum(1.0, R0)
+    kind = np.where(spiral, SPIRAL, ARC)
+    sgn = np.where(ccw, 1.0, -1.0)
+    th0 = np.arctan2(S[:, 1] - C[:, 1], S[:, 0] - C[:, 0])
+    th1 = np.arctan2(E[:, 1] - C[:, 1], E[:, 0] - C[:, 0])
+    # geometry.angles.sweep_between, elementwise (full circle when the gap
+    # is within FULL_CIRCLE_GAP*max(1, R) as a length).
+    gap = np.fmod(np.where(ccw, th1 - th0, th0 - th1), TWO_PI)
+    gap = np.where(gap < 0.0, gap + TWO_PI, gap)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        full_if_below = FULL_CIRCLE_GAP * np.maximum(1.0, R0) / R0
+    full = (gap <= full_if_below) | (TWO_PI - gap <= full_if_below) | (gap >= TWO_PI)
+    gap = np.where(full, TWO_PI, gap) + TWO_PI * turns
+    sweep = np.where(ccw, gap, -gap)
+    th_end = th0 + sweep
+    ts = sgn[:, None] * np.c_[-np.sin(th0), np.cos(th0)]
+    te = sgn[:, None] * np.c_[-np.sin(th_end), np.cos(th_end)]
+    return kind, sgn, R0, th0, sweep, ts, te
 
 
 def nearest_corner_points(arr: ElementArrays, ia: np.ndarray, k: np.ndarray, r: np.ndarray,
@@ -163,31 +184,41 @@ def nearest_corner_points(arr: ElementArrays, ia: np.ndarray, k: np.ndarray, r: 
     lb = arr.kind[ib] == LINE
     Ra = np.where(la, np.nan, arr.offset_radius(ia, k, r))
     Rb = np.where(lb, np.nan, arr.offset_radius(ib, k, r))
-    te, ts = arr.te[ia], arr.ts[ib]
-    Ca, Cb = arr.C[ia], arr.C[ib]
+    te, ts = take_rows(arr.te, ia), take_rows(arr.ts, ib)
+    Ca, Cb = take_rows(arr.C, ia), take_rows(arr.C, ib)
     for mask, fn, args in (
         (la & lb, lines_lines, lambda s: (A[s], te[s], B[s], ts[s])),
         (la & ~lb, lines_circles, lambda s: (A[s], te[s], Cb[s], Rb[s])),
         (~la & lb, lines_circles, lambda s: (B[s], ts[s], Ca[s], Ra[s])),
         (~la & ~lb, circles_circles, lambda s: (Ca[s], Ra[s], Cb[s], Rb[s])),
     ):
-        if not mask.any():
+        sel = np.flatnonzero(mask)
+        if not sel.size:
             continue
-        x1, x2, n, deli = fn(*args(mask))
-        a, b = A[mask], B[mask]
+        # every corner of one kind (a path of lines): the arrays as they are
+        sel = slice(None) if sel.size == m else sel
+        x1, x2, n, deli = fn(*(_pick(v, sel) for v in args(slice(None))))
+        a, b = _pick(A, sel), _pick(B, sel)
         cost1 = np.hypot(*(x1 - a).T) + np.hypot(*(x1 - b).T)
         cost2 = np.hypot(*(x2 - a).T) + np.hypot(*(x2 - b).T)
         # ties keep the first candidate, like the scalar loop (strict <)
         pick2 = (n == 2) & (cost2 < cost1)
-        X[mask] = np.where(pick2[:, None], x2, x1)
-        found[mask] = n > 0
-        delicate[mask] = deli
+        put_rows(X, sel, np.where(pick2[:, None], x2, x1))
+        found[sel] = n > 0
+        delicate[sel] = deli
     return X, found, delicate
+
+
+def _pick(v: np.ndarray, sel) -> np.ndarray:
+    """Rows ``sel`` (an index array or ``slice(None)``) of ``v``."""
+    if isinstance(sel, slice):
+        return v
+    return take_rows(v, sel) if v.ndim == 2 else v[sel]
 
 
 def corner_turn(arr: ElementArrays, ia: np.ndarray):
     """Cross ``c`` and dot ``d`` of the turn at the end of elements ``ia``."""
-    te, ts = arr.te[ia], arr.ts[ia + 1]
+    te, ts = take_rows(arr.te, ia), take_rows(arr.ts, ia + 1)
     c = te[:, 0] * ts[:, 1] - te[:, 1] * ts[:, 0]
     d = te[:, 0] * ts[:, 0] + te[:, 1] * ts[:, 1]
     return c, d
@@ -195,9 +226,9 @@ def corner_turn(arr: ElementArrays, ia: np.ndarray):
 
 def offset_points(arr: ElementArrays, ia: np.ndarray, k: np.ndarray, r: np.ndarray):
     """Nominal offset points ``A = P + r*o(t_in)`` and ``B = P + r*o(t_out)``."""
-    P = arr.E[ia]
-    A = P + (k * r)[:, None] * _perp(arr.te[ia])
-    B = P + (k * r)[:, None] * _perp(arr.ts[ia + 1])
+    P = take_rows(arr.E, ia)
+    A = P + (k * r)[:, None] * _perp(take_rows(arr.te, ia))
+    B = P + (k * r)[:, None] * _perp(take_rows(arr.ts, ia + 1))
     return A, B
 
 
@@ -236,10 +267,13 @@ def tool_rows(arr: ElementArrays, idx: np.ndarray, starts: np.ndarray, ends: np.
     geom = np.zeros((m, 5))
     objects: dict = {}
     lines = arr.kind[idx] == LINE
-    s, e = starts[idx[lines]], ends[idx[lines]]
-    kind[lines] = LINE_ROW
-    geom[lines, 0:2], geom[lines, 2:4] = s, e
-    bad = ~(np.isfinite(s).all(axis=1) & np.isfinite(e).all(axis=1))
+    at = np.flatnonzero(lines)
+    s, e = take_rows(starts, idx[at]), take_rows(ends, idx[at])
+    kind[at] = LINE_ROW
+    geom[at, 0:2], geom[at, 2:4] = s, e
+    # column by column: numpy's axis-1 reduction of a narrow array is slow
+    bad = ~(np.isfinite(s[:, 0]) & np.isfinite(s[:, 1]) & np.isfinite(e[:, 0])
+            & np.isfinite(e[:, 1]))
     for q in np.flatnonzero(bad).tolist():
         Line((float(s[q, 0]), float(s[q, 1])), (float(e[q, 0]), float(e[q, 1])))
     q_arc = np.flatnonzero(~lines)
@@ -250,8 +284,8 @@ def tool_rows(arr: ElementArrays, idx: np.ndarray, starts: np.ndarray, ends: np.
 
 def _arc_rows(arr: ElementArrays, idx, starts, ends, at, kind, geom, objects) -> None:
     """:func:`tool_rows` of arc elements ``idx``, written at positions ``at``."""
-    s, e = starts[idx], ends[idx]
-    C = arr.C[idx]
+    s, e = take_rows(starts, idx), take_rows(ends, idx)
+    C = take_rows(arr.C, idx)
     rs = np.hypot(*(s - C).T)
     re = np.hypot(*(e - C).T)
     th_s = np.arctan2(s[:, 1] - C[:, 1], s[:, 0] - C[:, 0])
