@@ -28,6 +28,7 @@ from operator import attrgetter
 import numpy as np
 
 from ccopt.errors import CompensationError
+from ccopt.program.columns import columns_of
 from ccopt.program.model import PLANE_CHANGES_CHECKED, Block, Program
 from ccopt.tolerances import POINT_EPS
 from ccopt.toolpath import ToolPath, machine_point, plane_point
@@ -121,7 +122,8 @@ def by_plane(compensate):
     @wraps(compensate)
     def run(self, program: Program, radius: float | None = None,
             side: int | None = None) -> ToolPath:
-        if len(set(map(_PLANE_OF, program.blocks))) <= 1:
+        cols = columns_of(program)          # read once, for the scan too
+        if len({cols.modals[q].plane for q in cols.modal_first.tolist()}) <= 1:
             # one plane (most programs): no sections to cut, nothing to check
             return compensate(self, program, radius=radius, side=side)
         sections = plane_sections(program)

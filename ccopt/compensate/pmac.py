@@ -31,7 +31,7 @@ from ccopt.compensate.emit import COMP_CODE, class_codes, emit_columns
 from ccopt.compensate.planes import by_plane
 from ccopt.compensate.scan import ScanResult, scan_program
 from ccopt.geometry import Arc, Line
-from ccopt.geometry.columns import paused_gc
+from ccopt.geometry.columns import paused_gc, put_rows, take_rows
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
 from ccopt.tolerances import PMAC_BREAK_COS, POINT_EPS
 from ccopt.toolpath import PathSegment, Role, ToolPath
@@ -224,8 +224,9 @@ class PmacStyle:
         done &= ~(delicate & (inside | shallow))
         end_prev = np.where(use_x[:, None], X, A)
         start_next = np.where(use_x[:, None], X, np.where(has_arc[:, None], B, A))
-        o = k[:, None] * np.c_[-arr.te[ia][:, 1], arr.te[ia][:, 0]]
-        arcs = {"has": has_arc, "theta0": np.arctan2(o[:, 1], o[:, 0]),
+        te = take_rows(arr.te, ia)
+        # the corner arc's start angle: the outward normal k * (-t_y, t_x)
+        arcs = {"has": has_arc, "theta0": np.arctan2(k * te[:, 0], k * -te[:, 1]),
                 "sweep": np.arctan2(c, d)}
         return done, end_prev, start_next, arcs
 
@@ -285,10 +286,13 @@ def _batch_joints(style, scan: ScanResult, arr: ElementArrays, classes: list[str
     if not len(ia):
         return np.arange(n - 1)
     done, e_prev, s_next, arcs = style.batch_corners(arr, ia)
-    joints.ends[ia[done]] = e_prev[done]
-    joints.starts[ia[done] + 1] = s_next[done]
+    at = np.flatnonzero(done)
+    put_rows(joints.ends, ia[at], take_rows(e_prev, at))
+    put_rows(joints.starts, ia[at] + 1, take_rows(s_next, at))
     q = np.flatnonzero(done & arcs["has"])
-    rows = np.c_[arr.E[ia[q]], scan.r[ia[q]], arcs["theta0"][q], arcs["sweep"][q]]
+    rows = np.empty((q.size, 5))
+    rows[:, 0:2] = take_rows(arr.E, ia[q])
+    rows[:, 2], rows[:, 3], rows[:, 4] = scan.r[ia[q]], arcs["theta0"][q], arcs["sweep"][q]
     bad = ~(np.isfinite(rows).all(axis=1) & (rows[:, 2] > 0.0))
     for c in rows[bad].tolist():        # the checked constructor says what is wrong
         Arc((c[0], c[1]), c[2], c[3], c[4])
