@@ -288,11 +288,19 @@ def contour_bench(n: int, repeat: int) -> None:
 
     pts, bulge = contour(n)
     prog = program(pts, bulge)
-    line = shapely.linestrings(polyline(pts, bulge))
+    chords = polyline(pts, bulge)
+    line = shapely.linestrings(chords)
+    read = unread(prog)
+    columns_of(read)
 
     t_ccopt = median_time(lambda: compensate(unread(prog), "pmac"), repeat)
+    t_read = median_time(lambda: compensate(read, "pmac"), repeat)
     t_shapely = median_time(lambda: shapely.offset_curve(line, RADIUS, join_style="round"),
                             repeat)
+    # the same polygon (arcs as chords), offset to the tool's side: CC1 on a
+    # counter-clockwise contour is inside
+    clipper = clipper_offset(chords[:-1], -RADIUS)
+    t_clipper = median_time(clipper, repeat) if clipper is not None else None
     path = compensate(prog, "pmac")
     kinds = {}
     for s in path.segments:
@@ -303,6 +311,13 @@ def contour_bench(n: int, repeat: int) -> None:
     print(f"shapely offset_curve   : {t_shapely * 1e3:9.1f} ms median of {repeat} "
           f"({n / t_shapely:,.0f} blocks/s, arcs as {ARC_POINTS} chords, round joins)")
     print(f"ratio ccopt/shapely    : {t_ccopt / t_shapely:9.2f}  (target <= 5)")
+    if t_clipper is None:
+        print("Clipper2 (pyclipr)     : not installed (pip install -e '.[bench]')")
+    else:
+        print(f"Clipper2 offset        : {t_clipper * 1e3:9.1f} ms median of {repeat} (pyclipr, "
+              f"the same polygon, round joins); ratio ccopt/Clipper2 {t_ccopt / t_clipper:.2f} "
+              f"(target <= 1.0, issue 34); from the program's columns ({t_read * 1e3:.1f} ms) "
+              f"{t_read / t_clipper:.2f}")
     small = n // 10
     p_small = program(*contour(small))
     m_small = peak_memory(lambda: compensate(unread(p_small), "pmac"))
