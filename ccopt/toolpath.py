@@ -309,10 +309,12 @@ class SegmentColumns:
         else:
             _, first = np.unique(b, return_index=True)
             used = b[np.sort(first)].tolist()
-        # the blocks' few distinct modal states, then their planes (map: loops in C)
+        # the blocks' few distinct modal states, then their planes (map: loops
+        # in C; the states come in runs, so only each run's first is looked at)
         modals = list(map(_MODAL, map(self.blocks.__getitem__, used)))
-        distinct = dict(zip(map(id, modals), modals)).values()
-        return tuple(dict.fromkeys(m.plane for m in distinct))
+        ids = np.fromiter(map(id, modals), np.int64, len(modals))
+        heads = np.flatnonzero(np.r_[True, ids[1:] != ids[:-1]]) if len(modals) else ids
+        return tuple(dict.fromkeys(modals[q].plane for q in heads.tolist()))
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,7 @@ import math
 
 import numpy as np
 
+from ccopt.geometry.columns import take_rows
 from ccopt.tolerances import POINT_EPS, VERIFY_TANGENT_BREAK
 from ccopt.verify.certificate import EXACT, Check, Violation
 from ccopt.verify.segments import Packed, end_tangents
@@ -44,8 +45,9 @@ def check_continuity(tool: Packed, w0: np.ndarray, w1: np.ndarray, eps: float, l
     breaks = []
     if moving.size >= 2:
         a, b = moving[:-1], moving[1:]
-        cosang = np.clip(np.einsum("ij,ij->i", te[a], ts[b]), -1.0, 1.0)
-        cross = te[a, 0] * ts[b, 1] - te[a, 1] * ts[b, 0]
+        te_a, ts_b = take_rows(te, a), take_rows(ts, b)
+        cosang = np.clip(np.einsum("ij,ij->i", te_a, ts_b), -1.0, 1.0)
+        cross = te_a[:, 0] * ts_b[:, 1] - te_a[:, 1] * ts_b[:, 0]
         ang = np.arctan2(np.abs(cross), cosang)
         idx = np.flatnonzero(ang > VERIFY_TANGENT_BREAK)
         for q in idx[:LISTED_BREAKS]:

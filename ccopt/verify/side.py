@@ -17,6 +17,7 @@ import math
 import numpy as np
 
 from ccopt.geometry import Line
+from ccopt.geometry.columns import put_rows, take_rows
 from ccopt.geometry.distance import point_arc, point_segment
 from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
 from ccopt.toolpath import Role
@@ -30,14 +31,16 @@ def _midpoints(tool: Packed, idx):
     A = tool.arr
     out = np.empty((idx.size, 2))
     k = A.kind[idx]
-    ln = k == KIND_LINE
-    out[ln] = 0.5 * (A.p0[idx[ln]] + A.p1[idx[ln]])
-    ar = k == KIND_ARC
-    if ar.any():
+    # rows by index (take_rows, put_rows): boolean masks are slow on (n, 2) arrays
+    ln = np.flatnonzero(k == KIND_LINE)
+    put_rows(out, ln, 0.5 * (take_rows(A.p0, idx[ln]) + take_rows(A.p1, idx[ln])))
+    ar = np.flatnonzero(k == KIND_ARC)
+    if ar.size:
         a = idx[ar]
         ang = A.theta0[a] + 0.5 * A.sweep[a]
-        out[ar] = A.center[a] + A.radius[a][:, None] * np.c_[np.cos(ang), np.sin(ang)]
-    for q in np.flatnonzero(~(ln | ar)):
+        put_rows(out, ar, take_rows(A.center, a)
+                 + A.radius[a][:, None] * np.c_[np.cos(ang), np.sin(ang)])
+    for q in np.flatnonzero((k != KIND_LINE) & (k != KIND_ARC)):
         g = tool.geom(idx[q])
         out[q] = g.point(0.5 * g.length)
     return out
@@ -48,14 +51,14 @@ def _tangent_at(E, j, w):
     A = E.arr
     t = np.zeros((j.size, 2))
     k = A.kind[j]
-    ln = k == KIND_LINE
-    d = A.p1[j[ln]] - A.p0[j[ln]]
-    t[ln] = d / np.hypot(d[:, 0], d[:, 1])[:, None]
-    cur = ~ln
-    if cur.any():
+    ln = np.flatnonzero(k == KIND_LINE)
+    d = take_rows(A.p1, j[ln]) - take_rows(A.p0, j[ln])
+    put_rows(t, ln, d / np.hypot(d[:, 0], d[:, 1])[:, None])
+    cur = np.flatnonzero(k != KIND_LINE)
+    if cur.size:
         jj = j[cur]
-        c = A.center[jj]
-        v = w[cur] - c
+        c = take_rows(A.center, jj)
+        v = take_rows(w, cur) - c
         a = np.arctan2(v[:, 1], v[:, 0])
         rho = np.hypot(v[:, 0], v[:, 1])
         sg = np.copysign(1.0, A.sweep[jj])
@@ -63,7 +66,7 @@ def _tangent_at(E, j, w):
         b = np.where(A.kind[jj] == KIND_ARC, 0.0,
                      (A.radius_end[jj] - A.radius[jj]) / np.where(A.sweep[jj] != 0, np.abs(A.sweep[jj]), 1.0))
         tv = np.c_[b * np.cos(a) - sg * rho * np.sin(a), b * np.sin(a) + sg * rho * np.cos(a)]
-        t[cur] = tv / np.hypot(tv[:, 0], tv[:, 1])[:, None]
+        put_rows(t, cur, tv / np.hypot(tv[:, 0], tv[:, 1])[:, None])
     return t
 
 
@@ -76,14 +79,17 @@ def check_side(tool: Packed, contour: Contour, eps: float, lengths, info, table)
     q = _midpoints(tool, si)
     w = np.zeros_like(q)
     k = E.arr.kind[ej]
-    ln = k == KIND_LINE
-    if ln.any():
-        w[ln] = point_segment(q[ln], E.arr.p0[ej[ln]], E.arr.p1[ej[ln]])[2]
-    ar = k == KIND_ARC
-    if ar.any():
+    ln = np.flatnonzero(k == KIND_LINE)
+    if ln.size:
+        a = ej[ln]
+        put_rows(w, ln, point_segment(take_rows(q, ln), take_rows(E.arr.p0, a),
+                                      take_rows(E.arr.p1, a))[2])
+    ar = np.flatnonzero(k == KIND_ARC)
+    if ar.size:
         a = ej[ar]
-        w[ar] = point_arc(q[ar], E.arr.center[a], E.arr.radius[a], E.arr.theta0[a], E.arr.sweep[a])[2]
-    exact = ln | ar
+        put_rows(w, ar, point_arc(take_rows(q, ar), take_rows(E.arr.center, a), E.arr.radius[a],
+                                  E.arr.theta0[a], E.arr.sweep[a])[2])
+    exact = (k == KIND_LINE) | (k == KIND_ARC)
     tol = VERIFY_CERTIFIED_GAP * eps
     # the nearest point of each curved element: spirals and arcs all at once
     items = [(m, E.geom(ej[m]), Line(tuple(q[m]), tuple(q[m]))) for m in np.flatnonzero(~exact)]
