@@ -22,9 +22,12 @@ import numpy as np
 from ccopt.geometry.angles import in_sweep_prepared
 
 def take_rows(a: np.ndarray, idx) -> np.ndarray:
-    """``a[idx]`` for an index array ``idx``, by ``take``: the same values,
-    several times faster on a narrow 2-D array (``(n, 2)`` points), where
-    numpy's fancy indexing takes a slow general road."""
+    """``a[idx]`` for an index array or boolean mask ``idx``, by ``take``: the
+    same values, several times faster on a narrow 2-D array (``(n, 2)``
+    points), where numpy's fancy indexing takes a slow general road."""
+    idx = np.asarray(idx)
+    if idx.dtype == bool:
+        idx = np.flatnonzero(idx)       # take would read the mask as indices 0 and 1
     return a.take(idx, axis=0)
 
 
