@@ -194,6 +194,50 @@ def _encloses(verts: np.ndarray, arcs: np.ndarray, eps: float) -> bool:
     return area > eps * perimeter
 
 
+#: :func:`pairs_within` sweeps at most this many candidates per point before
+#: it leaves the search to a k-d tree (points crowded along x: a vertical line).
+SWEEP_CANDIDATES_PER_POINT = 8
+
+
+def pairs_within(pts: np.ndarray, eps: float) -> np.ndarray:
+    """``(m, 2)`` index pairs ``(p, q)`` of the points ``pts`` (``(n, 2)``) at
+    most ``eps`` apart, as ``scipy.spatial.cKDTree.query_pairs`` finds them
+    (``dx**2 + dy**2 <= eps**2``), in no particular order.
+
+    Sorted by x, a point's partners within ``eps`` follow it within ``eps``
+    in x: the sweep compares each point with the next ones while that holds,
+    one offset at a time for all points together (a contour's vertices have
+    one or two such neighbours). Where the points crowd along x it hands over
+    to the k-d tree."""
+    n = len(pts)
+    x, y = pts[:, 0], pts[:, 1]
+    order = np.argsort(x, kind="stable")
+    xs = x[order]
+    e2 = eps * eps
+    out_p, out_q = [], []
+    live = np.arange(n - 1)
+    swept, k = 0, 1
+    while live.size:
+        j = live + k
+        live, j = live[j < n], j[j < n]
+        dx = xs[j] - xs[live]
+        near = dx * dx <= e2                  # rounding is monotone: past it, all are
+        live, j = live[near], j[near]
+        swept += live.size
+        if swept > SWEEP_CANDIDATES_PER_POINT * n:
+            from scipy.spatial import cKDTree   # deferred: 0.3 s on every `import ccopt`
+            return cKDTree(pts).query_pairs(eps, output_type="ndarray")
+        a, b = order[live], order[j]
+        gx, gy = x[a] - x[b], y[a] - y[b]
+        close = gx * gx + gy * gy <= e2
+        out_p.append(a[close])
+        out_q.append(b[close])
+        k += 1
+    if not out_p:
+        return np.zeros((0, 2), np.intp)
+    return np.column_stack((np.concatenate(out_p), np.concatenate(out_q)))
+
+
 def _loops(compensated, start, end, is_arc, eps, part, why) -> None:
     """Mark the innermost closed loops of every episode part and the rest of
     an episode with a loop air (in place).
@@ -205,15 +249,13 @@ def _loops(compensated, start, end, is_arc, eps, part, why) -> None:
     around the contour's own loop. Only loops holding no other loop are the
     part (the leads are air); loops that overlap without nesting (a contour
     run twice, a loop started at another vertex) are all part."""
-    # deferred: scipy.spatial would add 0.3 s to every `import ccopt`
-    from scipy.spatial import cKDTree
     for a, b in _episodes(compensated):
         a, b = int(a), int(b)
         # the episode's vertices: its first start, then every end; a loop is a
         # later vertex back within eps of an earlier one
         verts = np.r_[start[a:a + 1], end[a:b + 1]]
         returns: dict[int, list[int]] = {}
-        for p, q in cKDTree(verts).query_pairs(eps, output_type="ndarray"):
+        for p, q in pairs_within(verts, eps):
             p, q = (int(p), int(q)) if p < q else (int(q), int(p))
             returns.setdefault(p, []).append(q)
         # per vertex, its first return that encloses: the smallest loop from it
