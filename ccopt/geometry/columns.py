@@ -35,12 +35,14 @@ def put_rows(a: np.ndarray, idx, rows: np.ndarray) -> None:
     """``a[idx] = rows``. For a C-contiguous ``(n, 2)`` float ``a`` each row
     is written as one complex number (its same 16 bytes, no arithmetic), which
     numpy scatters several times faster than the rows of a 2-D array."""
+    rows = np.asarray(rows)
     if isinstance(idx, np.ndarray) and a.dtype == np.float64 and a.ndim == 2 \
-            and a.shape[1] == 2 and a.flags.c_contiguous:
-        src = np.ascontiguousarray(rows, np.float64).reshape(-1, 2)
+            and a.shape[1] == 2 and a.flags.c_contiguous and rows.ndim == 2 \
+            and rows.shape[1] == 2:
+        src = np.ascontiguousarray(rows, np.float64)
         a.view(np.complex128)[idx, 0] = src.view(np.complex128)[:, 0]
     else:
-        a[idx] = rows
+        a[idx] = rows           # anything else as numpy does it (a row broadcast, ...)
 
 
 @contextmanager

@@ -47,6 +47,16 @@ def test_rows_equal_numpy_indexing_bit_for_bit(seed):
         assert got.tobytes() == want.tobytes()
 
 
+def test_put_rows_broadcasts_as_numpy_does():
+    a, b = np.zeros((5, 2)), np.zeros((5, 2))
+    idx = np.array([0, 3])
+    put_rows(a, idx, np.array([1.5, -2.0]))
+    b[idx] = np.array([1.5, -2.0])
+    put_rows(a, np.array([4]), 7.0)
+    b[np.array([4])] = 7.0
+    assert a.tobytes() == b.tobytes()
+
+
 def test_put_rows_with_a_slice_writes_the_slice():
     a = np.zeros((6, 2))
     put_rows(a, slice(1, 4), np.arange(6.0).reshape(3, 2))
