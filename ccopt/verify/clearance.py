@@ -33,8 +33,10 @@ from ccopt.geometry.angles import TWO_PI, angle_along, sweep_sign
 from ccopt.geometry.columns import put_rows, take_rows
 from ccopt.tolerances import VERIFY_CERTIFIED_GAP
 from ccopt.verify import decisions
-from ccopt.verify.distance import candidate_pairs, min_distance, min_distances
-from ccopt.verify.distance.certified_batch import batchable_by_class, batchable_class
+from ccopt.verify.distance import candidate_pairs, min_distance
+from ccopt.verify.distance.certified_batch import (
+    batchable_by_class, batchable_class, min_distance_arrays,
+)
 from ccopt.verify.contour import Contour
 
 #: Units of clearance given up per unit past an open end
@@ -491,15 +493,22 @@ def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: 
     a_of = [egs[e] if s else tgs[t] for t, e, s in zip(tinv, einv, swapped)]
     b_of = [tgs[t] if s else egs[e] for t, e, s in zip(tinv, einv, swapped)]
     ok = _batchable_pairs(tgs, egs, tinv, einv, swapped)
-    ex_of = [exemption.get(e) for e in einv]
+    ex_of = [exemption.get(e) for e in einv.tolist()] if exemption else [None] * len(einv)
     caps = reach[je[pairs]]
     batch, one = np.flatnonzero(ok), np.flatnonzero(~ok)
-    # every pair of spirals, arcs and lines in one vectorised branch and bound
-    bounds = min_distances([(a_of[m], b_of[m]) for m in batch], tol, caps[batch],
-                           [ex_of[m] for m in batch])
-    bounds += [min_distance(a_of[m], b_of[m], tol, cap=float(caps[m]), exempt=ex_of[m])
-               for m in one]
-    for m, b in zip(np.concatenate((batch, one)), bounds):
+    # every pair of spirals, arcs and lines in one vectorised branch and bound,
+    # its bounds as arrays
+    res = min_distance_arrays([(a_of[m], b_of[m]) for m in batch.tolist()], tol, caps[batch],
+                              [ex_of[m] for m in batch.tolist()])
+    q = pairs[batch]
+    d[q], ub[q] = res.lb, res.ub
+    has = np.flatnonzero(~np.isinf(res.ub))        # a witness realises a finite ub
+    flip = swapped[batch][has][:, None]
+    wa, wb = take_rows(res.wa, has), take_rows(res.wb, has)
+    put_rows(wt, q[has], np.where(flip, wb, wa))
+    put_rows(we, q[has], np.where(flip, wa, wb))
+    for m in one.tolist():
+        b = min_distance(a_of[m], b_of[m], tol, cap=float(caps[m]), exempt=ex_of[m])
         q = pairs[m]
         d[q], ub[q] = b.lb, b.ub
         if b.wa is not None:

@@ -21,6 +21,8 @@ Pairs covered: a spiral or arc ``a`` (the curved one) against a line or arc
 from __future__ import annotations
 
 import math
+from operator import itemgetter
+from typing import NamedTuple
 
 import numpy as np
 
@@ -75,13 +77,17 @@ def _family(g):
 def _distinct(geoms):
     """``(objects, inverse)``: each object of ``geoms`` once (by identity, in
     order of first appearance) and, per entry, its index among them; a curve
-    is in as many pairs as elements near it, and its parameters are made once."""
-    first: dict = {}
-    inv = np.fromiter((first.setdefault(id(g), len(first)) for g in geoms), np.intp, len(geoms))
-    objs = [None] * len(first)
-    for g, k in zip(geoms, inv):
-        objs[k] = g
-    return objs, inv
+    is in as many pairs as elements near it, and its parameters are made once.
+    The identities are sorted as integers (no Python loop over the entries)."""
+    n = len(geoms)
+    if n == 0:
+        return [], np.zeros(0, np.intp)
+    ids = np.fromiter(map(id, geoms), np.int64, n)
+    _, first, inv = np.unique(ids, return_index=True, return_inverse=True)
+    order = np.argsort(first)                 # by first appearance
+    rank = np.empty(order.size, np.intp)
+    rank[order] = np.arange(order.size)
+    return [geoms[i] for i in first[order].tolist()], rank[inv.reshape(-1)]
 
 
 class _Spirals:
@@ -209,32 +215,71 @@ def _dist_and_witness(r):
     return r[0], r[2]
 
 
+class BoundArrays(NamedTuple):
+    """:class:`~ccopt.verify.distance.certified.Bound` of many pairs as arrays:
+    ``lb``, ``ub`` ``(n,)``; witnesses ``wa``, ``wb`` ``(n, 2)`` (NaN rows
+    where a pair has none, its ``ub`` infinite); ``converged``, ``pieces``."""
+
+    lb: np.ndarray
+    ub: np.ndarray
+    wa: np.ndarray
+    wb: np.ndarray
+    converged: np.ndarray
+    pieces: np.ndarray
+
+    @classmethod
+    def empty(cls, n: int) -> "BoundArrays":
+        return cls(np.full(n, math.inf), np.full(n, math.inf), np.full((n, 2), np.nan),
+                   np.full((n, 2), np.nan), np.zeros(n, bool), np.zeros(n, np.int64))
+
+    def put(self, at, other: "BoundArrays") -> None:
+        """Rows ``at`` (indices) set to ``other``'s rows, in order."""
+        for mine, theirs in zip(self, other):
+            mine[at] = theirs
+
+    def bounds(self) -> list[Bound]:
+        """Each row as its :class:`Bound` (the same numbers as Python floats)."""
+        has = ~np.isinf(self.ub)
+        wa, wb = self.wa.tolist(), self.wb.tolist()
+        return [Bound(lb, ub, tuple(a) if h else None, tuple(b) if h else None, c, k)
+                for lb, ub, a, b, h, c, k in zip(self.lb.tolist(), self.ub.tolist(), wa, wb,
+                                                 has.tolist(), self.converged.tolist(),
+                                                 self.pieces.tolist())]
+
+
 def min_distances(pairs, tol: float, caps, exempts=None,
                   max_rounds: int = VERIFY_CERTIFIED_MAX_ROUNDS) -> list[Bound]:
     """:func:`ccopt.verify.distance.certified.min_distance` ``(a, b, tol, cap, exempt)`` of
     every ``(a, b)`` in ``pairs`` (each :func:`batchable`) with ``caps[i]`` and
     ``exempts[i]`` (``None``: no exemption; only with an exact ``b``), at once."""
+    return min_distance_arrays(pairs, tol, caps, exempts, max_rounds).bounds()
+
+
+def min_distance_arrays(pairs, tol: float, caps, exempts=None,
+                        max_rounds: int = VERIFY_CERTIFIED_MAX_ROUNDS) -> BoundArrays:
+    """:func:`min_distances` as arrays (:class:`BoundArrays`): no object per pair."""
+    out = BoundArrays.empty(len(pairs))
     if not pairs:
-        return []
+        return out
     exempts = [None] * len(pairs) if exempts is None else list(exempts)
-    curved = np.array([not is_exact(b) for _, b in pairs], bool)
+    a_all, b_all = list(map(itemgetter(0), pairs)), list(map(itemgetter(1), pairs))
+    # what is asked of each curve once, not once per pair it is in
+    b_objs, b_inv = _distinct(b_all)
+    curved = np.array([not is_exact(b) for b in b_objs], bool)[b_inv]
     if any(ex is not None for ex, c in zip(exempts, curved) if c):
         raise ValueError("exemptions apply to pairs with an exact second element")
     caps = np.asarray(caps, float)
-    out: list[Bound | None] = [None] * len(pairs)
-    families: dict = {}
-    for i, (a, _) in enumerate(pairs):
-        families.setdefault(_family(a), []).append(i)
-    for key, members in families.items():
-        members = np.asarray(members)
-        A = (_Spirals if key[0] == "spiral" else _Beziers)([pairs[i][0] for i in members])
+    a_objs, a_inv = _distinct(a_all)
+    keys = list(dict.fromkeys(map(_family, a_objs)))
+    key_of = np.array([keys.index(_family(a)) for a in a_objs], np.intp)[a_inv]
+    for q, key in enumerate(keys):
+        members = np.flatnonzero(key_of == q)      # in pair order, as one at a time
+        A = (_Spirals if key[0] == "spiral" else _Beziers)([a_all[i] for i in members])
         for sel in (np.flatnonzero(~curved[members]), np.flatnonzero(curved[members])):
             if sel.size:
                 idx = members[sel]
-                res = _run(A, [pairs[i][1] for i in idx], sel, bool(curved[idx[0]]), tol,
-                           caps[idx], max_rounds, [exempts[i] for i in idx])
-                for i, r in zip(idx, res):
-                    out[i] = r
+                out.put(idx, _run(A, [b_all[i] for i in idx], sel, bool(curved[idx[0]]), tol,
+                                  caps[idx], max_rounds, [exempts[i] for i in idx]))
     return out
 
 
@@ -253,24 +298,23 @@ def _concentric_b(A: _Spirals | _Beziers, B, sel, curved: bool):
 
 
 def _run(A: _Spirals | _Beziers, bs, sel, curved: bool, tol: float, caps, max_rounds: int,
-         exempts) -> list[Bound]:
+         exempts) -> BoundArrays:
     """The branch and bound of the pairs ``(A[sel[m]], bs[m])``, all ``b`` exact or all curved."""
     B = _Spirals(bs) if curved else _Exact(bs)
     sel = np.asarray(sel)
     go = np.arange(len(bs))
-    out: list[Bound | None] = [None] * len(bs)
+    out = BoundArrays.empty(len(bs))
     if A.concentric:
         # a whole spiral beyond its cap: nothing to refine (as min_distance)
         whole = _mid_arc(A, sel, B, go, np.zeros(go.size), A.U[sel], np.zeros(go.size),
                          B.U if curved else None)
-        for i in np.flatnonzero(whole >= caps):
-            out[i] = Bound(float(whole[i]), math.inf, None, None, True, 0)
+        beyond = np.flatnonzero(whole >= caps)
+        out.lb[beyond], out.converged[beyond] = whole[beyond], True
         go = np.flatnonzero(~(whole >= caps))
     if go.size:
         B_go = B if go.size == len(bs) else _rows(B, go)
-        for i, r in zip(go, _branch_and_bound(A, B_go, sel[go], curved, tol, caps[go],
-                                              max_rounds, [exempts[i] for i in go])):
-            out[i] = r
+        out.put(go, _branch_and_bound(A, B_go, sel[go], curved, tol, caps[go], max_rounds,
+                                      [exempts[i] for i in go]))
     return out
 
 
@@ -282,7 +326,7 @@ def _rows(C: _Spirals | _Exact, idx):
 
 
 def _branch_and_bound(A: _Spirals | _Beziers, B, sel, curved: bool, tol: float, caps,
-                      max_rounds: int, exempts) -> list[Bound]:
+                      max_rounds: int, exempts) -> BoundArrays:
     """Rounds of bounding and halving the pieces of every pair at once."""
     geo = (A, B, sel, curved) + _concentric_b(A, B, sel, curved)
     pieces = _first(A, B, sel, curved)
@@ -340,17 +384,16 @@ class _State:
         stop = last | (2 * kept * (2 if curved else 1) > MAX_PIECES)
         return keep & ~stop[pid]
 
-    def bounds(self, tol: float, caps) -> list[Bound]:
+    def bounds(self, tol: float, caps) -> BoundArrays:
         best = self.best
         lbv = np.minimum(np.minimum(self.dropped, self.remaining), best)
         with np.errstate(invalid="ignore"):     # inf - inf: a pair wholly exempt
             conv = (best - lbv <= tol) | (lbv >= caps)
-        return [Bound(float(lbv[i]), float(best[i]),
-                      None if math.isinf(best[i]) else (float(self.wa[i, 0]),
-                                                         float(self.wa[i, 1])),
-                      None if math.isinf(best[i]) else (float(self.wb[i, 0]),
-                                                         float(self.wb[i, 1])),
-                      bool(conv[i]), int(self.npieces[i])) for i in range(self.P)]
+        none = np.isinf(best)                   # no witness: NaN rows
+        wa, wb = self.wa.copy(), self.wb.copy()
+        wa[none], wb[none] = np.nan, np.nan
+        return BoundArrays(lbv, best.copy(), wa, wb, np.asarray(conv, bool),
+                           self.npieces.copy())
 
 
 def _round(geo, pieces, exempts):
