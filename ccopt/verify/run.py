@@ -11,7 +11,7 @@ from ccopt.errors import ProgramError
 from ccopt.program.model import Program
 from ccopt.sides import side_sign
 from ccopt.tolerances import VERIFY_EPS
-from ccopt.toolpath import Role, ToolPath, tool_centre_path
+from ccopt.toolpath import ROLES, Role, ToolPath, tool_centre_path
 from ccopt.verify import decisions
 from ccopt.verify.certificate import CERTIFIED, EXACT, Certificate, Check, Violation
 from ccopt.verify.clearance import PairDistances, pair_distances
@@ -81,6 +81,12 @@ class SegmentTable:
     def is_role(self, role: Role) -> np.ndarray:
         return self.role == ROLE_CODES[role]
 
+    def infos(self, idx: np.ndarray) -> tuple[list, list]:
+        """``(source lines, roles)`` of the tool segments ``idx``, as
+        :meth:`~ccopt.verify.rows.SegmentRows.info` gives each (``None``: no block)."""
+        lines = [None if x < 0 else x for x in self.line[idx].tolist()]
+        return lines, [ROLE_VALUES[c] for c in self.role[idx].tolist()]
+
 
 @dataclass(frozen=True, eq=False)
 class VerifyContext:
@@ -105,6 +111,9 @@ class VerifyContext:
         return c[np.argsort(m, kind="stable")]
 
 
+#: Each role's name, by its code.
+ROLE_VALUES = tuple(r.value for r in ROLES)
+
 #: Uncompensated approaches listed in the gouge check's detail.
 LISTED_APPROACHES = 20
 
@@ -118,22 +127,26 @@ def _gouge_detail(pairs: PairDistances, q: int, clearance: float) -> dict:
     return {"distance": float(pairs.d[q]), "clearance": clearance}
 
 
-def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info):
+def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info,
+                table: SegmentTable):
     viol = []
     bad = pairs.margin < -eps
     sel = np.flatnonzero(bad & pairs.counted)
+    # deepest first (a stable sort of the margins: ties in pair order)
+    sel = sel[np.argsort(pairs.margin[sel], kind="stable")]
     # the numbers as Python floats and ints in one pass each (tolist gives the
     # values float() and int() give, element by element)
-    cols = (sel.tolist(), pairs.tool[sel].tolist(), pairs.elem[sel].tolist(),
+    tool, elem = pairs.tool[sel], pairs.elem[sel]
+    lines, roles = table.infos(tool)
+    elem_line = {j: contour.element_line(j) for j in np.unique(elem).tolist()}
+    cols = (sel.tolist(), tool.tolist(), elem.tolist(), lines, roles,
             (-pairs.margin[sel]).tolist(), pairs.wt[sel].tolist(), pairs.we[sel].tolist(),
             pairs.exact[sel].tolist(), pairs.required[sel].tolist())
-    for q, i, j, depth, wt, we, exact, required in zip(*cols):
-        line, role = info(i)
+    for q, i, j, line, role, depth, wt, we, exact, required in zip(*cols):
         viol.append(Violation(
-            "gouge", depth, i, line, role, j, contour.element_line(j),
+            "gouge", depth, i, line, role, j, elem_line[j],
             (wt[0], wt[1]), (we[0], we[1]), EXACT if exact else CERTIFIED,
             _gouge_detail(pairs, q, required)))
-    viol.sort(key=lambda v: -v.depth)
     approaches = []
     for q in np.flatnonzero(bad & ~pairs.counted)[:LISTED_APPROACHES]:
         i, j = int(pairs.tool[q]), int(pairs.elem[q])
@@ -246,7 +259,7 @@ def _verify(toolpath, program, profile, eps, radius, side, limits_tol,
     else:
         counted = np.ones(len(rows), bool)
     pairs = pair_distances(tool, contour, eps, counted, table.tool_r)
-    results = [check_gouge(pairs, contour, eps, info),
+    results = [check_gouge(pairs, contour, eps, info, table),
                check_contact(rows, toolpath, contour, eps, seg_len, info, table),
                check_side(tool, contour, eps, seg_len, info, table),
                check_continuity(tool, rows.w0, rows.w1, eps, seg_len, info),

@@ -14,6 +14,7 @@ the verdict is "ok within tolerance"; deeper ones fail. The figures stay exact.
 from __future__ import annotations
 
 import math
+from collections import Counter
 from dataclasses import fields, replace
 
 from ccopt.errors import ProgramError
@@ -93,13 +94,13 @@ def apply_tolerance(cert: Certificate, tolerance: float, toolpath: ToolPath) -> 
         else:
             keep.append(v)
     checks = []
+    warned, failed = Counter(v.kind for v in warn), Counter(v.kind for v in keep)
     for c in cert.checks:
         kind = TOLERATED.get(c.name)
         if kind is None:
             checks.append(c)
             continue
-        n_warn = sum(1 for v in warn if v.kind == kind)
-        n_fail = sum(1 for v in keep if v.kind == kind)
+        n_warn, n_fail = warned[kind], failed[kind]
         # a check that failed without listing violations (none of its kind) keeps its verdict
         ok = c.ok or (n_fail == 0 and n_warn > 0)
         checks.append(replace(c, ok=ok, violations=n_fail,
