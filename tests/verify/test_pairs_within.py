@@ -45,7 +45,8 @@ def _points(seed: int) -> np.ndarray:
     return rng.permutation(pts)
 
 
-@pytest.mark.parametrize("seed", range(300))
+@pytest.mark.parametrize("seed", [*range(20),
+                                  *(pytest.param(k, marks=pytest.mark.slow) for k in range(20, 300))])
 def test_pairs_within_equal_the_k_d_trees(seed):
     pts = _points(seed)
     want = _as_set(cKDTree(pts).query_pairs(EPS, output_type="ndarray"))
