@@ -26,7 +26,9 @@ up to 0.3 rad, so PMAC's offset folds and the path gouges all round (some
 200,000 violations); its read-back holds the corner arcs as spirals (their
 end radii rounded), whose pairs the certificate bounds one by one.
 
-    python bench/io.py [--blocks 20000] [--lines 100000] [--repeat 3] [--ring]
+    python bench/io.py [--blocks 20000] [--lines 100000] [--repeat 3] [--ring] [--docs]
+
+``--docs`` also writes what it prints into its own section of docs/benchmarks.md.
 
 The targets (issue 34): export of the 20,000-block program (and of the ring)
 within 2 s and 300 MB; reading 100,000 PMAC lines within 0.4 s. The machine's
@@ -47,12 +49,15 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+# the bench folder's own modules, also when a test loads this file by its path
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from ccopt.compensate import compensate  # noqa: E402
 from ccopt.export import export  # noqa: E402
 from ccopt.program import read_text  # noqa: E402
 from ccopt.program.model import unread  # noqa: E402
 from ccopt.verify import verify  # noqa: E402
+from docs_section import ROOT, printed_section  # noqa: E402
 
 #: Tool diameter of the G-code program's tool table (mm).
 TOOL_DIAMETER = 6.0
@@ -234,10 +239,21 @@ def main() -> None:
     ap.add_argument("--child", choices=("export", "verify"), help=argparse.SUPPRESS)
     ap.add_argument("--skip-export", action="store_true", help="time reading only")
     ap.add_argument("--ring", action="store_true", help="also export the noisy ring (slow)")
+    ap.add_argument("--docs", action="store_true",
+                    help="also write what it prints into docs/benchmarks.md (its own section)")
     args = ap.parse_args()
     if args.child:
         _child(args.blocks, args.style, args.child)
         return
+    command = " ".join(["python bench/io.py", *(a for a in sys.argv[1:] if a != "--docs")])
+    with printed_section(ROOT / "docs" / "benchmarks.md" if args.docs else None,
+                         "bench/io.py", command,
+                         "Reading and exporting long programs (bench/io.py)"):
+        io_bench(args)
+
+
+def io_bench(args) -> None:
+    """Read, compensate and export the generated programs (see the module docstring)."""
     gtext = gcode_program(args.blocks)
     ptext = pmac_program(args.lines)
     table = {1: TOOL_DIAMETER}
