@@ -187,17 +187,17 @@ def nearest_corner_points(arr: ElementArrays, ia: np.ndarray, k: np.ndarray, r: 
     te, ts = take_rows(arr.te, ia), take_rows(arr.ts, ib)
     Ca, Cb = take_rows(arr.C, ia), take_rows(arr.C, ib)
     for mask, fn, args in (
-        (la & lb, lines_lines, lambda s: (A[s], te[s], B[s], ts[s])),
-        (la & ~lb, lines_circles, lambda s: (A[s], te[s], Cb[s], Rb[s])),
-        (~la & lb, lines_circles, lambda s: (B[s], ts[s], Ca[s], Ra[s])),
-        (~la & ~lb, circles_circles, lambda s: (Ca[s], Ra[s], Cb[s], Rb[s])),
+        (la & lb, lines_lines, (A, te, B, ts)),
+        (la & ~lb, lines_circles, (A, te, Cb, Rb)),
+        (~la & lb, lines_circles, (B, ts, Ca, Ra)),
+        (~la & ~lb, circles_circles, (Ca, Ra, Cb, Rb)),
     ):
         sel = np.flatnonzero(mask)
         if not sel.size:
             continue
         # every corner of one kind (a path of lines): the arrays as they are
         sel = slice(None) if sel.size == m else sel
-        x1, x2, n, deli = fn(*(_pick(v, sel) for v in args(slice(None))))
+        x1, x2, n, deli = fn(*(_pick(v, sel) for v in args))
         a, b = _pick(A, sel), _pick(B, sel)
         cost1 = np.hypot(*(x1 - a).T) + np.hypot(*(x1 - b).T)
         cost2 = np.hypot(*(x2 - a).T) + np.hypot(*(x2 - b).T)
@@ -211,9 +211,7 @@ def nearest_corner_points(arr: ElementArrays, ia: np.ndarray, k: np.ndarray, r: 
 
 def _pick(v: np.ndarray, sel) -> np.ndarray:
     """Rows ``sel`` (an index array or ``slice(None)``) of ``v``."""
-    if isinstance(sel, slice):
-        return v
-    return take_rows(v, sel) if v.ndim == 2 else v[sel]
+    return v if isinstance(sel, slice) else take_rows(v, sel)
 
 
 def corner_turn(arr: ElementArrays, ia: np.ndarray):

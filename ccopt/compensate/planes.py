@@ -122,8 +122,7 @@ def by_plane(compensate):
     @wraps(compensate)
     def run(self, program: Program, radius: float | None = None,
             side: int | None = None) -> ToolPath:
-        cols = columns_of(program)          # read once, for the scan too
-        if len({cols.modals[q].plane for q in cols.modal_first.tolist()}) <= 1:
+        if len(columns_of(program).planes()) <= 1:      # read once, for the scan too
             # one plane (most programs): no sections to cut, nothing to check
             return compensate(self, program, radius=radius, side=side)
         sections = plane_sections(program)

@@ -59,6 +59,10 @@ class BlockColumns:
         """Whether each block is an arc (clockwise or counter-clockwise)."""
         return (self.motion_code == CW_CODE) | (self.motion_code == CCW_CODE)
 
+    def planes(self) -> set[str]:
+        """The planes of the blocks' modal states (each run's looked at once)."""
+        return {self.modals[q].plane for q in self.modal_first.tolist()}
+
     def modal_runs(self) -> np.ndarray:
         """How many blocks each run of :attr:`modal_first` holds."""
         return np.diff(np.r_[self.modal_first, len(self.motions)])

@@ -87,10 +87,10 @@ class Contour:
     move_k: np.ndarray = field(repr=False)
     move_r: np.ndarray = field(repr=False)
     move_element: np.ndarray = field(repr=False)
+    move_start: np.ndarray = field(repr=False)
+    move_end: np.ndarray = field(repr=False)
     notes: tuple[str, ...] = ()
     surface: dict = field(default_factory=dict, repr=False)
-    move_start: np.ndarray | None = field(default=None, repr=False)
-    move_end: np.ndarray | None = field(default=None, repr=False)
 
     def __len__(self) -> int:
         return len(self.blocks)
@@ -248,9 +248,9 @@ def contour_of(program: Program, radius: float | None = None, side: int | None =
         _close_joined_ends(elements, open_start, open_end, np.cumsum(~prev_in[sel]), eps)
     clearance = np.where(radius_change[sel], np.minimum(r[sel], prev_r[sel]), r[sel])
     return Contour(cblocks, elements, k[sel], r[sel], clearance, steady[sel], open_start,
-                   open_end, mv.plane, tuple(mv.moves), status, k, r, elem_idx, tuple(notes),
-                   surf.report(mv.moves, in_contour | air, _approaches(k, prev_k, side_change)),
-                   move_start=mv.start, move_end=mv.end)
+                   open_end, mv.plane, tuple(mv.moves), status, k, r, elem_idx, mv.start,
+                   mv.end, tuple(notes),
+                   surf.report(mv.moves, in_contour | air, _approaches(k, prev_k, side_change)))
 
 
 def _close_joined_ends(elements: Packed, open_start: np.ndarray, open_end: np.ndarray,

@@ -37,9 +37,7 @@ def plane_runs(toolpath: ToolPath, program: Program):
     (the plain route)."""
     # one plane in every block (the common case) is seen on the blocks' few
     # distinct modal objects, without walking the blocks in Python
-    cols = columns_of(program)
-    heads = map(cols.modals.__getitem__, cols.modal_first.tolist())
-    if len({m.plane for m in heads}) <= 1 and len(toolpath.planes) <= 1:
+    if len(columns_of(program).planes()) <= 1 and len(toolpath.planes) <= 1:
         return None
     runs: list[list] = []
     for blk in program.blocks:

@@ -127,8 +127,7 @@ def _gouge_detail(pairs: PairDistances, q: int, clearance: float) -> dict:
     return {"distance": float(pairs.d[q]), "clearance": clearance}
 
 
-def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info,
-                table: SegmentTable):
+def check_gouge(pairs: PairDistances, contour: Contour, eps: float, table: SegmentTable):
     viol = []
     bad = pairs.margin < -eps
     sel = np.flatnonzero(bad & pairs.counted)
@@ -148,9 +147,9 @@ def check_gouge(pairs: PairDistances, contour: Contour, eps: float, info,
             (wt[0], wt[1]), (we[0], we[1]), EXACT if exact else CERTIFIED,
             _gouge_detail(pairs, q, required)))
     approaches = []
-    for q in np.flatnonzero(bad & ~pairs.counted)[:LISTED_APPROACHES]:
+    listed = np.flatnonzero(bad & ~pairs.counted)[:LISTED_APPROACHES]
+    for q, (line, role) in zip(listed, zip(*table.infos(pairs.tool[listed]))):
         i, j = int(pairs.tool[q]), int(pairs.elem[q])
-        line, role = info(i)
         approaches.append({"tool_segment": i, "tool_block": line, "tool_role": role,
                            "element": j, "element_block": contour.element_line(j),
                            "depth": float(-pairs.margin[q]),
@@ -259,7 +258,7 @@ def _verify(toolpath, program, profile, eps, radius, side, limits_tol,
     else:
         counted = np.ones(len(rows), bool)
     pairs = pair_distances(tool, contour, eps, counted, table.tool_r)
-    results = [check_gouge(pairs, contour, eps, info, table),
+    results = [check_gouge(pairs, contour, eps, table),
                check_contact(rows, toolpath, contour, eps, seg_len, info, table),
                check_side(tool, contour, eps, seg_len, info, table),
                check_continuity(tool, rows.w0, rows.w1, eps, seg_len, info),

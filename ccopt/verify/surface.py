@@ -43,7 +43,6 @@ WHY_LINES = "in --part-lines"
 WHY_NOT_LINES = "not in --part-lines"
 WHY_MARK_PART = "marked (ccopt: part)"
 WHY_MARK_AIR = "marked (ccopt: air)"
-_SURFACE = attrgetter("surface")
 WHY_LEAD_IN = "lead-in: compensation comes on over it"
 WHY_LEAD_OUT = "lead-out: compensation goes off over it"
 WHY_SIDE_CHANGE = "side-change transition"
@@ -127,6 +126,9 @@ class Surface:
                 "part_lines": [r["lines"] for r in runs if r["surface"] == SURFACE_PART],
                 "air_lines": [r["lines"] for r in runs if r["surface"] == SURFACE_AIR],
                 "moves": runs}
+
+
+_SURFACE = attrgetter("surface")
 
 
 def surface_of(moves, compensated: np.ndarray, start: np.ndarray, end: np.ndarray,
