@@ -7,6 +7,8 @@ from ccopt's output).
 from __future__ import annotations
 
 import math
+import random
+from dataclasses import replace
 
 import pytest
 
@@ -244,3 +246,95 @@ def test_cli_dialect_option_and_units(tmp_path, capsys):
     assert "sinumerik" in out and "units mm" in out
     prog = read_program(f, "sinumerik", units="mm")
     assert prog.blocks[0].end[:2] == pytest.approx((25.4, 50.8))
+
+
+# G group 1 at program start: its reset value (MD20150 $MC_GCODE_RESET_VALUES),
+# G1 in Siemens' standard configuration (PM Fundamentals, list of G functions:
+# G1 "Def."; 808D manual: "G01 *"). docs/sinumerik.md, "Moves".
+
+def test_axis_words_before_any_motion_word_move_at_g1():
+    prog = read("N10 X0 Y0 F1000\nN20 X10\n")
+    # by hand: N10 goes from the start (0,0,0) to (0,0,0), N20 from there to
+    # (10,0,0), both straight at F1000 mm/min = 1000/60 mm/s
+    assert [b.motion for b in prog.blocks] == [Motion.LINE, Motion.LINE]
+    assert [b.start for b in prog.blocks] == [(0.0, 0.0, 0.0), (0.0, 0.0, 0.0)]
+    assert ends(prog) == [(0.0, 0.0, 0.0), (10.0, 0.0, 0.0)]
+    assert [b.feed for b in prog.blocks] == [pytest.approx(1000 / 60)] * 2
+    assert [b.source.line for b in prog.blocks] == [1, 2]
+
+
+def test_a_programmed_g0_first_still_rapids():
+    prog = read("N10 G0 X0 Y0 F1000\nN20 X10\n")
+    assert [b.motion for b in prog.blocks] == [Motion.RAPID, Motion.RAPID]
+    assert ends(prog) == [(0.0, 0.0, 0.0), (10.0, 0.0, 0.0)]
+    assert [b.feed for b in prog.blocks] == [None, None]
+
+
+def test_the_reset_g1_without_a_feed_is_refused_as_g1_without_f():
+    # the G-code reader's refusal of G1 with no F, located at the block's move
+    with pytest.raises(ProgramError) as info:
+        read("N10 X0 Y0\nN20 X10\n")
+    exc = info.value
+    assert (exc.file, exc.line, exc.col) == ("p.mpf", 1, 5), str(exc)
+    assert "feed move with no feed rate F" in str(exc)
+    with pytest.raises(ProgramError) as info:
+        read_text("G1 X0 Y0\n", "p.ngc", "gcode")
+    assert "feed move with no feed rate F" in str(info.value)
+
+
+def test_the_gcode_dialect_still_wants_a_motion_word():
+    with pytest.raises(ProgramError) as info:
+        read_text("N10 X0 Y0 F1000\nN20 X10\n", "p.ngc", "gcode")
+    exc = info.value
+    assert (exc.file, exc.line, exc.col) == ("p.ngc", 1, 5), str(exc)
+    assert "X word with no motion mode in force: add G0, G1, G2 or G3" in str(exc)
+
+
+def _random_program(rng) -> list[str]:
+    """A few blocks; the first moves with no G0-G3 (sometimes no F either)."""
+    def axes(k=None):
+        picked = rng.sample("XYZ", k or rng.randint(1, 3))
+        return " ".join(f"{a}{rng.randint(-40, 40) / 4:g}" for a in sorted(picked))
+    first = ["N10"] + [rng.choice(["G90", "G91"])] * (rng.random() < 0.3) + [axes()]
+    if rng.random() < 0.85:
+        first.append(f"F{rng.randint(1, 50) * 100}")
+    blocks = [" ".join(first)]
+    for n in range(rng.randint(1, 5)):
+        words = [f"N{20 + 10 * n}"]
+        motion = rng.choice(["", "", "", "G0", "G1", "G2", "G3"])
+        if motion:
+            words.append(motion)
+        if rng.random() < 0.15:
+            words.append(rng.choice(["G90", "G91"]))
+        if motion in ("G2", "G3"):
+            # X and Y within +-40 (G91: +-80 from the start): a chord under
+            # 2 * 500, so CR=500 always gives a circle
+            words += [axes(2) if rng.random() < 0.5 else "X5 Y-5", "CR=500"]
+        elif rng.random() < 0.9:
+            words.append(axes())
+        if rng.random() < 0.25:
+            words.append(f"F{rng.randint(1, 50) * 100}")
+        blocks.append(" ".join(words))
+    return blocks
+
+
+def _outcome(text: str):
+    """The blocks (the column aside: the inserted G1 shifts the words) or the
+    error's message and line."""
+    try:
+        prog = read(text)
+    except ProgramError as exc:
+        return ("error", exc.message, exc.line)
+    return [replace(b, source=replace(b.source, col=1)) for b in prog.blocks]
+
+
+def test_generated_programs_read_as_with_g1_in_the_first_block():
+    rng = random.Random(20150)
+    kinds = set()
+    for _ in range(50):
+        blocks = _random_program(rng)
+        with_g1 = [blocks[0].replace("N10 ", "N10 G1 ", 1)] + blocks[1:]
+        got = _outcome("\n".join(blocks) + "\n")
+        assert got == _outcome("\n".join(with_g1) + "\n"), blocks
+        kinds.add("error" if isinstance(got, tuple) else "read")
+    assert kinds == {"read", "error"}     # both cases were generated

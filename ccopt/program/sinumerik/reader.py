@@ -26,6 +26,12 @@ from ccopt.program.sinumerik.values import whole
 #: ``STOPRE``, ...) -> the first line each stands on.
 IGNORED_CODES = "sinumerik_ignored"
 
+#: The motion (G group 1, tenths) in force at program start: its reset value
+#: (MD20150 ``$MC_GCODE_RESET_VALUES``), ``G1`` in Siemens' standard
+#: configuration (PM Fundamentals, list of G functions: G1 "Def."), so axis
+#: words before any G0-G3 move linearly at the programmed feed.
+RESET_MOTION = 10
+
 
 def read_sinumerik(text: str, file: str = "<string>", *,
                    tool_table: dict[int, float] | None = None, start=(0.0, 0.0, 0.0),
@@ -51,6 +57,7 @@ def read_sinumerik(text: str, file: str = "<string>", *,
     state.out_units = units
     state.sub_path = tuple(str(p) for p in sub_path)
     state.siemens = SiemensModes()
+    state.motion_mode = RESET_MOTION
     init_coordinates(state)
     paused = gc.isenabled()
     gc.disable()
