@@ -33,7 +33,7 @@ The 10,000-block figure of issue 18 (under 60 s on 2 cores), three runs:
 
     python bench/feed.py --sizes 10000 --programs pocket --repeat 1 --jerk-repeat 3
 
-    python bench/feed.py [--sizes 1000,10000] [--repeat 3] [--jerk-repeat 1] [--no-jerk] [--programs pocket,cam]
+    python bench/feed.py [--sizes 1000,10000] [--repeat 3] [--jerk-repeat 1] [--no-jerk] [--programs pocket,cam] [--jerk-threads]
 """
 from __future__ import annotations
 
@@ -171,7 +171,7 @@ def cpu_with_children() -> tuple[float, float]:
 
 
 def bench_jerk(tp, toppra_cpu: float, toppra_wall: float, toppra_n: int, toppra_T: float,
-               n_blocks: int, repeat: int = 1) -> None:
+               n_blocks: int, repeat: int = 1, threads_too: bool = False) -> None:
     """The jerk planner ``repeat`` times (medians; it takes long), against
     TOPPRA's figures (same path, same run), and the jerk-limited baselines.
     Its CPU time is split into this process's and the workers'; on ``P``
@@ -192,7 +192,8 @@ def bench_jerk(tp, toppra_cpu: float, toppra_wall: float, toppra_n: int, toppra_
     stop = plan_feed(tp, lim, planner="stop")
     junction = plan_feed(tp, lim, planner="junction")
     print(f"  jerk planner (j = {JERK})       : {cpu:7.3f} CPU s in {prof.info['workers']} "
-          f"process(es) ({wall:.3f} wall, median of {repeat}; load average {load:.1f} on "
+          f"process(es), {prof.info['threads']} thread(s) here "
+          f"({wall:.3f} wall, median of {repeat}; load average {load:.1f} on "
           f"{procs} CPUs), {N:,} gridpoints, {prof.info['windows']} windows, "
           f"{prof.info['lp_rounds']} LPs")
     print(f"    CPU here {own:.3f} s, in workers {kids:.3f} s: quiet {procs}-CPU wall about "
@@ -204,6 +205,30 @@ def bench_jerk(tp, toppra_cpu: float, toppra_wall: float, toppra_n: int, toppra_
           f"{prof.duration / stop.duration:.4f} x the jerk-limited stop baseline's "
           f"({stop.duration:.3f} s), {prof.duration / junction.duration:.4f} x the "
           f"jerk-limited junction baseline's ({junction.duration:.3f} s)")
+    if threads_too:
+        bench_jerk_threads(tp, lim, prof, wall)
+
+
+def bench_jerk_threads(tp, lim: AxisLimits, prof, wall: float) -> None:
+    """The jerk planner once more, its chains solved the other way: in
+    threads of this process where the run above used processes, in processes
+    where it used threads (``PARALLEL_MIN_POINTS`` moved), against that run:
+    where processes pay off (:data:`ccopt.feed.jerk.windows.PARALLEL_MIN_POINTS`)."""
+    from ccopt.feed.jerk import windows as jerk_windows
+    kept = jerk_windows.PARALLEL_MIN_POINTS
+    jerk_windows.PARALLEL_MIN_POINTS = math.inf if prof.info["workers"] > 1 else 0
+    try:
+        w0 = time.perf_counter()
+        other = plan_feed(tp, lim, planner="jerk")
+        w1 = time.perf_counter()
+    finally:
+        jerk_windows.PARALLEL_MIN_POINTS = kept
+
+    def how(p):
+        return (f"{p.info['workers']} processes" if p.info["workers"] > 1
+                else f"{p.info['threads']} thread(s)")
+    print(f"    in {how(other)} instead: {w1 - w0:.3f} s wall, {(w1 - w0) / wall:.2f} x the run "
+          f"above ({how(prof)}); the same cycle time: {other.duration == prof.duration}")
 
 
 def cam_program(n: int) -> Program:
@@ -235,7 +260,7 @@ PROGRAMS = {"pocket": pocket_program, "cam": cam_program}
 
 
 def bench(n: int, repeat: int, jerk: bool = True, program: str = "pocket",
-          jerk_repeat: int = 1) -> None:
+          jerk_repeat: int = 1, jerk_threads: bool = False) -> None:
     prog = PROGRAMS[program](n)
     tp = compensate(prog, "pmac")
     kinds: dict[str, int] = {}
@@ -271,7 +296,7 @@ def bench(n: int, repeat: int, jerk: bool = True, program: str = "pocket",
         label = "toppra" if name == "ccopt" else name
         print(f"  {label:9s} {p.duration:10.3f} s  {p.duration / T0:9.4f}   {cpu_s:10.3f}")
     if jerk:
-        bench_jerk(tp, c_cpu, c_wall, N, T0, n, jerk_repeat)
+        bench_jerk(tp, c_cpu, c_wall, N, T0, n, jerk_repeat, jerk_threads)
 
 
 def main() -> None:
@@ -281,6 +306,8 @@ def main() -> None:
     ap.add_argument("--no-jerk", action="store_true", help="leave the jerk planner out")
     ap.add_argument("--jerk-repeat", type=int, default=1,
                     help="runs of the jerk planner (medians), e.g. 3 with --sizes 10000")
+    ap.add_argument("--jerk-threads", action="store_true",
+                    help="also time the jerk planner with its chains in threads, not processes")
     ap.add_argument("--programs", default="pocket,cam",
                     help="which generated programs: pocket (lines and arcs), cam (G1 chords)")
     ap.add_argument("--docs", action="store_true",
@@ -294,7 +321,8 @@ def main() -> None:
               f"medians of {args.repeat} interleaved runs; grid {GridOptions()}")
         for program in args.programs.split(","):
             for n in (int(x) for x in args.sizes.split(",")):
-                bench(n, args.repeat, not args.no_jerk, program, args.jerk_repeat)
+                bench(n, args.repeat, not args.no_jerk, program, args.jerk_repeat,
+                      args.jerk_threads)
 
 
 if __name__ == "__main__":

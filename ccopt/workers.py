@@ -76,6 +76,23 @@ def default_workers() -> int:
         return max(1, os.cpu_count() or 1)
 
 
+#: How many processes of one of ccopt's pools share this machine's cores with
+#: this one (1 outside a pool): set as a worker starts (:func:`start_child`).
+_POOL_SIZE = 1
+
+
+def thread_budget() -> int:
+    """How many threads a job in this process may keep busy at once: its share
+    of the cores (:func:`default_workers` over the processes of the pool it
+    is a worker of, at least 1), and 1 in a daemonic process (a Dask worker,
+    one of many a machine runs). The jerk planner solves windows in threads
+    (HiGHS releases the GIL while it solves); in ``ccopt run --workers 2`` on
+    2 cores each case then keeps one core busy, as before."""
+    if multiprocessing.current_process().daemon:
+        return 1
+    return max(1, default_workers() // _POOL_SIZE)
+
+
 def resolve_workers(workers: int | None) -> int:
     """How many worker processes ``--workers N`` (``workers=`` in the API)
     means: ``N``, or when not given one per core (:func:`default_workers`).
@@ -111,18 +128,23 @@ def fork_context():
     return multiprocessing.get_context("fork" if "fork" in methods else None)
 
 
-def start_child(parent: int) -> None:
-    """What a worker process (a child of process ``parent``) does first: ignore
-    SIGINT (the parent decides, and kills it: a solver such as IPOPT may catch
-    the signal and go on) and die with its parent (:func:`die_with_parent`)."""
+def start_child(parent: int, pool_size: int = 1) -> None:
+    """What a worker process (a child of process ``parent``, one of
+    ``pool_size``) does first: ignore SIGINT (the parent decides, and kills
+    it: a solver such as IPOPT may catch the signal and go on), die with its
+    parent (:func:`die_with_parent`) and record its share of the cores
+    (:func:`thread_budget`)."""
+    global _POOL_SIZE
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    _POOL_SIZE = max(1, int(pool_size))
     die_with_parent(parent)
 
 
-def _child(work: Callable, tasks, results, parent: int) -> None:
-    """A worker's loop (a child of process ``parent``): take ``(index, item)``
-    until ``None``; report progress, results and failures on ``results``."""
-    start_child(parent)
+def _child(work: Callable, tasks, results, parent: int, pool_size: int = 1) -> None:
+    """A worker's loop (a child of process ``parent``, one of ``pool_size``):
+    take ``(index, item)`` until ``None``; report progress, results and
+    failures on ``results``."""
+    start_child(parent, pool_size)
     try:
         os.setpgrp()    # our own group, so the parent can kill what we start with us
     except OSError:
@@ -222,7 +244,7 @@ def run_in_workers(work: Callable[[Any, Callable[[str], None]], Any], items: Seq
     n = max(1, min(workers, len(items)))
     for _ in range(n):
         tasks.put(None)
-    procs = [ctx.Process(target=_child, args=(work, tasks, results, os.getpid()),
+    procs = [ctx.Process(target=_child, args=(work, tasks, results, os.getpid(), n),
                          daemon=False)
              for _ in range(n)]
     out: dict[int, Any] = {}
@@ -268,7 +290,7 @@ def process_pool(workers: int):
     killed (a library pool lets each finish its task first, seconds on a
     long plan)."""
     pool = ProcessPoolExecutor(max_workers=workers, mp_context=fork_context(),
-                               initializer=start_child, initargs=(os.getpid(),))
+                               initializer=start_child, initargs=(os.getpid(), workers))
     done = False
     try:
         yield pool

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 import sys
+import threading
 from dataclasses import dataclass
 
 import highspy
@@ -512,6 +513,7 @@ class WindowLP:
 PEAK_TOL = 1e-6
 
 _BANNER_SHOWN = []
+_BANNER_LOCK = threading.Lock()
 
 
 #: Whether a window's first solve starts from :meth:`WindowLP._crash`'s basis
@@ -553,16 +555,20 @@ def _new_highs():
     if _BANNER_SHOWN:
         h = highspy.Highs()
     else:
-        sys.stdout.flush()
-        saved = os.dup(1)
-        try:
-            with open(os.devnull, "w") as null:
-                os.dup2(null.fileno(), 1)
+        with _BANNER_LOCK:           # windows are solved in threads too
+            if _BANNER_SHOWN:
                 h = highspy.Highs()
-        finally:
-            os.dup2(saved, 1)
-            os.close(saved)
-        _BANNER_SHOWN.append(True)
+            else:
+                sys.stdout.flush()
+                saved = os.dup(1)
+                try:
+                    with open(os.devnull, "w") as null:
+                        os.dup2(null.fileno(), 1)
+                        h = highspy.Highs()
+                finally:
+                    os.dup2(saved, 1)
+                    os.close(saved)
+                _BANNER_SHOWN.append(True)
     h.setOptionValue("output_flag", False)
     # presolve finds little to remove in these banded LPs: 20 % faster without
     h.setOptionValue("presolve", "off")

@@ -114,11 +114,14 @@ TOPPRA's speed that state can be infeasible: the jerk rows at the start
 tighten); ``b`` stays under TOPPRA's speed there, so the braking it still
 needs is within reach. A window that is infeasible all the same is merged
 with the one before (``info["merged_windows"]``).
-Windows that start at a stop are independent of those before, and on a long
-program are solved in several processes (``info["workers"]``); there each
-task also computes TOPPRA's bound on its own stretch, stop to stop
+Windows that start at a stop are independent of those before: on a long
+program they are solved in several processes (``info["workers"]``), where
+each task also computes TOPPRA's bound on its own stretch, stop to stop
 (:mod:`ccopt.feed.jerk.speed_bound`), rather than one TOPPRA over the whole path
-running alone first.
+running alone first; on a shorter one in threads of this process
+(``info["threads"]``: HiGHS releases the GIL while it solves), as are the
+refinement's re-plans, stretch by stretch. Each window is solved from the same
+data either way, so the profile does not depend on how many.
 
 Last, on every stretch between two stops the profile is the faster of the
 LP's and the jerk-limited stop baseline's (an S-curve per block: feasible,
@@ -450,7 +453,7 @@ def _plan_grid(path: ExactPath, limits: AxisLimits, g: JerkGrid, grid: GridOptio
         # processes solve the windows, instead of after them
         pending = (pool.submit(scurve_pieces, path, limits)
                    if cap is None and scurve is None else None)
-        results, n_windows, workers = plan_windows(g, cap, scale, bound_of)
+        results, n_windows, workers, n_threads = plan_windows(g, cap, scale, bound_of)
         if scurve is None:
             scurve = scurve_pieces(path, limits) if pending is None else pending.result()
     for i0, i1, keep, bw, aw, rounds in results:
@@ -467,7 +470,7 @@ def _plan_grid(path: ExactPath, limits: AxisLimits, g: JerkGrid, grid: GridOptio
         b[i0:keep + 1] = bw * scale
         alpha[i0:keep + 1] = aw * scale
     info = {"gridpoints": int(g.s.size), "windows": n_windows, "lp_rounds": total_rounds,
-            "lp_failed_windows": failed, "workers": workers,
+            "lp_failed_windows": failed, "workers": workers, "threads": n_threads,
             "merged_windows": n_windows - len(results),
             "lone_lines": int(np.count_nonzero(g.lone[g.stop[:-1]]))}
     return b, alpha, info, scurve

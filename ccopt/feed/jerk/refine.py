@@ -31,7 +31,7 @@ from __future__ import annotations
 import numpy as np
 
 from ccopt.feed.jerk.lp import SLINEAR, JerkGrid, WindowLP
-from ccopt.feed.jerk.windows import cover_peaks
+from ccopt.feed.jerk.windows import cover_peaks, map_tasks, threads
 from ccopt.feed.path import ExactPath
 from ccopt.verify.limits import LIMITS_TOL
 
@@ -143,7 +143,23 @@ def replan_locally(g: JerkGrid, b: np.ndarray, alpha: np.ndarray, new: np.ndarra
     b, alpha = b.copy(), alpha.copy()
     stops = np.flatnonzero(g.stop)
     at = np.searchsorted(g.s, new)
-    spans = _spans(at, stops)
+    groups: dict[tuple[int, int], list] = {}
+    for span in _spans(at, stops):
+        groups.setdefault(span[:2], []).append(span)
+    # stretches are independent (a window never reaches past its stretch's
+    # stops, where b and alpha are 0): each stretch's spans in turn, the
+    # stretches in threads (each writes only its own part of b and alpha)
+    tasks = list(groups.values())
+    done = map_tasks(lambda spans: _replan_stretch(g, b, alpha, spans, scale), tasks,
+                     threads(len(tasks)))
+    failed = [f for fs, _ in done for f in fs]
+    replanned = [r for _, rs in done for r in rs]
+    return b, alpha, failed, replanned
+
+
+def _replan_stretch(g: JerkGrid, b: np.ndarray, alpha: np.ndarray, spans, scale: float):
+    """:func:`replan_locally` of the ``spans`` of one stretch, in turn, ``b``
+    and ``alpha`` changed in place: ``(failed, replanned)``."""
     failed, replanned = [], []
     for lo_s, hi_s, i_lo, i_hi in spans:
         margin = LOCAL_MARGIN
@@ -162,7 +178,7 @@ def replan_locally(g: JerkGrid, b: np.ndarray, alpha: np.ndarray, new: np.ndarra
                 failed.append((lo_s, hi_s))
                 break
             margin *= 2
-    return b, alpha, failed, replanned
+    return failed, replanned
 
 
 def _spans(at: np.ndarray, stops: np.ndarray) -> list[tuple[int, int, int, int]]:

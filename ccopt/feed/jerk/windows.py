@@ -16,12 +16,14 @@ many.
 from __future__ import annotations
 
 import multiprocessing
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 
 import numpy as np
 
 from ccopt.feed.jerk.lp import JerkGrid, WindowLP
-from ccopt.workers import PARENT_ENV, interpreter_command, resolve_workers, run_in_interpreters
+from ccopt.workers import (PARENT_ENV, interpreter_command, resolve_workers,
+                           run_in_interpreters, thread_budget)
 
 #: Relative agreement of ``b`` and ``bhat`` that ends the pseudo-jerk rounds.
 BHAT_TOL = 2e-3
@@ -62,11 +64,16 @@ BHAT_RISE = 1.5
 BATCH_POINTS = 200
 WINDOW_POINTS = 1500
 WINDOW_OVERLAP = 0.25
-#: Processes for the chains (None: as many as the CPUs this process may use),
-#: and the fewest gridpoints worth starting them for (a spawned process takes
-#: about a second to import ccopt).
+#: Processes or threads for the chains (None: as many as the CPUs this
+#: process may use, :func:`~ccopt.workers.thread_budget`), and the fewest
+#: gridpoints worth starting processes for; below it the chains are solved in
+#: threads of this process. A spawned process takes about a second to import
+#: ccopt and is sent its grid, where a thread needs neither; but only HiGHS's
+#: solves run beside each other in threads (it releases the GIL, the LP's
+#: set-up does not), so on long programs processes win: bench/feed.py times
+#: both (``--jerk-threads``) on the pocket (docs/benchmarks.md).
 WORKERS: int | None = None
-PARALLEL_MIN_POINTS = 50_000
+PARALLEL_MIN_POINTS = 200_000
 #: The fewest gridpoints from which each task computes the speed bound of its
 #: own stretch (:func:`split`); TOPPRA over the whole path would otherwise run
 #: alone before the processes start (12 CPU s on the 10,000-block pocket of
@@ -339,15 +346,26 @@ def _solve_task(g: JerkGrid, cap: np.ndarray | None, chains, scale: float,
     stop, bmax) / scale`` (the speed bound of the task's own stretch,
     :class:`~ccopt.feed.jerk.speed_bound.StretchBound`), computed only when the
     task has such a chain."""
+    solve = _chain_solver(g, cap, chains, scale, bound)
+    return [r for chain in chains for r in solve(chain)]
+
+
+def _chain_solver(g: JerkGrid, cap: np.ndarray | None, chains, scale: float, bound=None):
+    """``solve(chain)``: :func:`_solve_chain` of one of ``chains`` with the
+    bounds :func:`_solve_task` gives it (each computed once, here, for all)."""
     in_chain = [chained(c, g.stop) for c in chains]
     if cap is None and any(in_chain):
         cap = bound(g.s, g.stop, g.bmax) / scale
+    box = first = None
     if not all(in_chain):
         box = np.where(g.stop, 0.0, g.bmax) / scale
         first = rest_bound(g.s, g.stop, g.q1, g.a, g.j, g.bmax) / scale
-    return [r for chain, c in zip(chains, in_chain)
-            for r in (_solve_chain(g, cap, chain, scale) if c
-                      else _solve_chain(g, box, chain, scale, first))]
+
+    def solve(chain):
+        if chained(chain, g.stop):
+            return _solve_chain(g, cap, chain, scale)
+        return _solve_chain(g, box, chain, scale, first)
+    return solve
 
 
 def _tasks(g: JerkGrid, cap: np.ndarray | None, chains, scale: float, bound_of=None):
@@ -390,13 +408,32 @@ def _workers(points: int, n_chains: int) -> int:
         return 1
     if multiprocessing.current_process().daemon:
         return 1                      # a daemonic process (a Dask worker) may not have children
-    return max(1, min(resolve_workers(WORKERS), n_chains))
+    return max(1, min(resolve_workers(WORKERS), thread_budget(), n_chains))
+
+
+def threads(n_tasks: int) -> int:
+    """How many threads of this process solve ``n_tasks`` independent tasks
+    (chains, or the stretches a refinement pass plans again): as many as
+    :data:`WORKERS` and this process's share of the cores allow
+    (:func:`~ccopt.workers.thread_budget`). HiGHS releases the GIL while it
+    solves, most of a window's time, so threads need no process started and
+    no grid sent; the tasks are independent, so the result is the same."""
+    return max(1, min(resolve_workers(WORKERS), thread_budget(), n_tasks))
+
+
+def map_tasks(fn, tasks: list, n_threads: int) -> list:
+    """``[fn(t) for t in tasks]``, in ``n_threads`` threads (in order)."""
+    if n_threads <= 1 or len(tasks) < 2:
+        return [fn(t) for t in tasks]
+    with ThreadPoolExecutor(n_threads) as pool:
+        return list(pool.map(fn, tasks))
 
 
 def plan_windows(g: JerkGrid, cap: np.ndarray | None, scale: float, bound_of=None):
     """Every window of ``g`` solved (see the module docstring): ``(results,
-    n_windows, workers)``, ``results`` as :func:`_solve_chain`'s, with global
-    gridpoint indices, in order along the path.
+    n_windows, workers, threads)``, ``results`` as :func:`_solve_chain`'s, with
+    global gridpoint indices, in order along the path; ``workers`` the
+    processes that solved them, ``threads`` the threads of this one.
 
     ``cap``: the scaled speed bound at every gridpoint, or None on a
     :func:`split` program: then ``bound_of(i0, i1)`` gives each task the
@@ -406,18 +443,22 @@ def plan_windows(g: JerkGrid, cap: np.ndarray | None, scale: float, bound_of=Non
     wins = windows(g)
     chains = _chains(wins, g.stop)
     workers = _workers(g.s.size, len(chains))
-    if workers == 1 and cap is not None:
-        return _solve_task(g, cap, chains, scale), len(wins), 1
+    if workers == 1 and (cap is not None or bound_of is None):
+        # in this process, chain by chain, in threads where the cores allow
+        n = threads(len(chains))
+        parts = map_tasks(_chain_solver(g, cap, chains, scale), chains, n)
+        return [r for part in parts for r in part], len(wins), 1, n
     tasks = list(_tasks(g, cap, chains, scale, bound_of))
     workers = max(1, min(workers, len(tasks)))     # 1: this process (or no LP at all)
+    n = threads(len(tasks)) if workers == 1 else 1
     if workers == 1:
-        parts = [_solve_task(*args) for _, args in tasks]
+        parts = map_tasks(lambda args: _solve_task(*args), [args for _, args in tasks], n)
     else:
         parts = run_in_interpreters(__name__, "_solve_task", [args for _, args in tasks], workers)
     results: list[tuple] = []
     for (lo, _), part in zip(tasks, parts):
         results.extend((i0 + lo, i1 + lo, keep + lo, *rest) for i0, i1, keep, *rest in part)
-    return results, len(wins), workers
+    return results, len(wins), workers, n
 
 
 #: What a worker process runs (:func:`ccopt.workers.run_in_interpreters`):
