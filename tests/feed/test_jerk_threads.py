@@ -105,3 +105,25 @@ def test_thread_budget_in_a_pool_is_the_process_share():
     got = run_in_workers(_budget, [0, 1], 2)
     assert got == [max(1, default_workers() // 2)] * 2
     assert run_in_workers(_budget, [0], 1) == [default_workers()]
+
+
+def test_a_failing_task_drops_the_tasks_not_started():
+    """A task that raises (as a Ctrl-C would in the waiting thread) ends the
+    map once the running tasks end: the ones not yet started never run."""
+    import threading
+    import time
+
+    started = []
+    lock = threading.Lock()
+
+    def task(i):
+        with lock:
+            started.append(i)
+        if i == 0:
+            raise KeyboardInterrupt
+        time.sleep(0.05)
+        return i
+
+    with pytest.raises(KeyboardInterrupt):
+        jerk_windows.map_tasks(task, list(range(40)), 2)
+    assert len(started) < 10, started

@@ -422,11 +422,16 @@ def threads(n_tasks: int) -> int:
 
 
 def map_tasks(fn, tasks: list, n_threads: int) -> list:
-    """``[fn(t) for t in tasks]``, in ``n_threads`` threads (in order)."""
+    """``[fn(t) for t in tasks]``, in ``n_threads`` threads (in order). On
+    any exception here (a Ctrl-C, a failed task) the tasks not started are
+    dropped, so it returns as soon as the running ones end (a window each)."""
     if n_threads <= 1 or len(tasks) < 2:
         return [fn(t) for t in tasks]
-    with ThreadPoolExecutor(n_threads) as pool:
+    pool = ThreadPoolExecutor(n_threads)
+    try:
         return list(pool.map(fn, tasks))
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
 
 
 def plan_windows(g: JerkGrid, cap: np.ndarray | None, scale: float, bound_of=None):
