@@ -12,7 +12,9 @@ child start (:func:`start_child`, :func:`die_with_parent`), kill
   (the jerk planner's windows, :mod:`ccopt.feed.jerk.windows`).
 
 The sweep's Dask cluster starts its own processes (Dask's), of the size
-:func:`resolve_workers` gives.
+:func:`resolve_workers` gives. Work that runs in threads of one process (the
+jerk planner's windows: HiGHS releases the GIL) takes as many as
+:func:`thread_budget` allows, the process's share of the cores.
 
 :func:`run_in_workers` calls ``work(item, progress)`` for every item in
 ``workers`` child processes and hands back the results in the items' order,
