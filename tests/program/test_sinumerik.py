@@ -146,6 +146,29 @@ def test_continuous_path_modes_are_read_and_noted():
     assert set(prog.meta["sinumerik_ignored"]) >= {"G64", "G642", "STOPRE", "G60"}
 
 
+def test_g460_the_default_retraction_strategy_is_read_and_compensates_as_without_it():
+    """G460 (PM 8.11.2 / W1 2.4: approach and retraction "as before") changes
+    nothing ccopt computes: the tool path is the same as without it, corner
+    by corner, and G460 is noted."""
+    from ccopt.compensate import compensate
+    body = ("$TC_DP6[1,1]=5\nN10 G17 G90 T1 D1\nN20 G0 X0 Y0\n{g}N30 G1 G41 X10 Y0 F500\n"
+            "N40 X50\nN50 Y30\nN60 G40 X60 Y40\nM30\n")
+    with_g460, plain = read(body.format(g="N25 G460\n")), read(body.format(g=""))
+    assert "G460" in with_g460.meta["sinumerik_ignored"]
+    a, b = (compensate(p, style="siemens").segments for p in (with_g460, plain))
+    assert [(s.kind, s.start, s.end) for s in a] == [(s.kind, s.start, s.end) for s in b]
+    # G41 at radius 5 along +X, then +Y: the offset corner at (45, 5) (an inside turn)
+    assert any(s.end == pytest.approx((45.0, 5.0)) for s in a)
+
+
+@pytest.mark.parametrize("g", [461, 462])
+def test_g461_g462_are_refused_where_they_stand(g):
+    with pytest.raises(ProgramError) as e:
+        read(f"$TC_DP6[1,1]=10\nN30 G0 X0 Y0 T1 D1\nN40 Y20\nN50 G42 X50 Y5 G{g}\n")
+    assert (e.value.line, e.value.col) == (4, 16)          # the G of G46x
+    assert f"G{g} is not read" in e.value.message and "G460" in e.value.message
+
+
 REFUSALS = {
     "subprogram without its file": ("G1 X1 F100\nL123\n", 2, 1, "no subprogram file L123"),
     "frame": ("G1 X1 F100\nMIRROR X0\n", 2, 1, "scaling and mirroring"),

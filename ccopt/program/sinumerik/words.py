@@ -30,6 +30,13 @@ CORE_G = {0: 0, 1: 10, 2: 20, 3: 30, 4: 40, 17: 170, 18: 180, 19: 190, 53: 530,
 #: Continuous-path and exact-stop modes: no effect on the programmed path's
 #: geometry in ccopt (its feed planner plans the path itself); read and noted.
 PATH_MODES = {9, 60, 64, 641, 642, 643, 644, 645, 601, 602, 603}
+#: G460: the approach and retraction blocks with collision monitoring "as
+#: before" (PM 8.11.2, W1 2.4), the control's reset state; ccopt applies no
+#: collision (bottleneck) detection, as with CDON, so it is read and noted.
+#: G461/G462 change the path only where that monitoring finds no
+#: intersection with a preceding block, which ccopt does not model: refused.
+RETRACT_STRATEGY_G = {460}
+UNMODELLED_RETRACT_G = {461, 462}
 COMP_G = {40, 41, 42}
 CORNER_G = {450, 451}
 SAR_KIND_G = {147, 148, 247, 248, 347, 348}
@@ -276,8 +283,13 @@ def _g(bw: BlockWords, value: float, col: int) -> None:
         if n == 4:
             bw.dwell = True
         bw.g.append((CORE_G[n], col))
-    elif n in PATH_MODES:
+    elif n in PATH_MODES or n in RETRACT_STRATEGY_G:
         bw.ignored.append((f"G{n}", col))
+    elif n in UNMODELLED_RETRACT_G:
+        raise ExprError(f"G{n} is not read by ccopt's SINUMERIK reader: it changes the approach "
+                        "or retraction only where the control's collision monitoring finds no "
+                        "intersection with a preceding block, which ccopt does not model (G460, "
+                        "the default, is read)", col)
     elif n == 500:
         bw.g.append((540, col))       # G500: no settable frame; see docs/sinumerik.md
     else:
