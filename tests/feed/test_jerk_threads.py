@@ -4,8 +4,8 @@ bit for bit, the profile solved in one thread.
 Chains of windows (stop to stop) and the stretches a refinement pass plans
 again are independent: each is solved from the same data whichever thread
 takes it, and writes only its own gridpoints. Checked on generated CAM
-programs (tests/cam_programs.py) in several controller styles, whose corner
-arcs and curvature breaks make the planner refine, planned once with
+programs (tests/cam_programs.py) in several controller styles and on
+bench/feed.py's pockets, whose corner arcs make the planner refine, planned once with
 ``WORKERS = 1`` and once with two threads; and the threads' budget follows
 the process's share of the cores (:func:`ccopt.workers.thread_budget`).
 """
@@ -81,14 +81,14 @@ def test_threads_replan_what_one_thread_replans(monkeypatch):
 
 @pytest.mark.slow
 def test_threads_plan_what_one_thread_plans_generated(monkeypatch):
-    cases = [_case(seed) for seed in range(100, 160)] + [_pocket(s) for s in range(2, 22)]
+    cases = [_case(seed) for seed in range(100, 130)] + [_pocket(s) for s in range(2, 12)]
     used = refined = 0
     for case in cases:
         info = _same_in_threads(case, monkeypatch)
         used += info["threads"] == 2
         refined += info["threads"] == 2 and info["refined_intervals"] > 0
     # the property was exercised: programs of several chains, and re-plans
-    assert used >= 40 and refined >= 20, (used, refined)
+    assert used >= 20 and refined >= 10, (used, refined)
 
 
 def test_thread_budget_outside_a_pool_is_the_cores():
