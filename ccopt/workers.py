@@ -12,9 +12,9 @@ child start (:func:`start_child`, :func:`die_with_parent`), kill
   (the jerk planner's windows, :mod:`ccopt.feed.jerk.windows`).
 
 The sweep's Dask cluster starts its own processes (Dask's), of the size
-:func:`resolve_workers` gives. Work that runs in threads of one process (the
-jerk planner's windows: HiGHS releases the GIL) takes as many as
-:func:`thread_budget` allows, the process's share of the cores.
+:func:`resolve_workers` gives. Work that runs in threads of one process
+(:func:`map_in_threads`: the jerk planner's windows, HiGHS releases the GIL)
+takes as many as :func:`thread_budget` allows, the process's share of the cores.
 
 :func:`run_in_workers` calls ``work(item, progress)`` for every item in
 ``workers`` child processes and hands back the results in the items' order,
@@ -45,7 +45,7 @@ import sys
 import threading
 import traceback
 from collections import deque
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Callable, Iterable, Sequence
@@ -93,6 +93,20 @@ def thread_budget() -> int:
     if multiprocessing.current_process().daemon:
         return 1
     return max(1, default_workers() // _POOL_SIZE)
+
+
+def map_in_threads(fn: Callable[[Any], Any], items: Sequence, threads: int) -> list:
+    """``[fn(x) for x in items]``, in ``threads`` threads of this process (in
+    order): for work that leaves the GIL (a solver's C code). On any
+    exception here (a Ctrl-C, a failed item) the items not started are
+    dropped, so it returns as soon as the running ones end."""
+    if threads <= 1 or len(items) < 2:
+        return [fn(x) for x in items]
+    pool = ThreadPoolExecutor(threads)
+    try:
+        return list(pool.map(fn, items))
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
 
 
 def resolve_workers(workers: int | None) -> int:

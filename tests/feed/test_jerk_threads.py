@@ -125,5 +125,5 @@ def test_a_failing_task_drops_the_tasks_not_started():
         return i
 
     with pytest.raises(KeyboardInterrupt):
-        jerk_windows.map_tasks(task, list(range(40)), 2)
+        ccopt_workers.map_in_threads(task, list(range(40)), 2)
     assert len(started) < 10, started

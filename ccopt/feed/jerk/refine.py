@@ -31,9 +31,10 @@ from __future__ import annotations
 import numpy as np
 
 from ccopt.feed.jerk.lp import SLINEAR, JerkGrid, WindowLP
-from ccopt.feed.jerk.windows import cover_peaks, map_tasks, threads
+from ccopt.feed.jerk.windows import cover_peaks, threads
 from ccopt.feed.path import ExactPath
 from ccopt.verify.limits import LIMITS_TOL
+from ccopt.workers import map_in_threads
 
 #: Fractions of an interval where the axis jerk is checked.
 CHECK_POINTS = np.arange(1, 8) / 8.0
@@ -150,7 +151,7 @@ def replan_locally(g: JerkGrid, b: np.ndarray, alpha: np.ndarray, new: np.ndarra
     # stops, where b and alpha are 0): each stretch's spans in turn, the
     # stretches in threads (each writes only its own part of b and alpha)
     tasks = list(groups.values())
-    done = map_tasks(lambda spans: _replan_stretch(g, b, alpha, spans, scale), tasks,
+    done = map_in_threads(lambda spans: _replan_stretch(g, b, alpha, spans, scale), tasks,
                      threads(len(tasks)))
     failed = [f for fs, _ in done for f in fs]
     replanned = [r for _, rs in done for r in rs]

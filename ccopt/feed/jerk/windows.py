@@ -16,14 +16,14 @@ many.
 from __future__ import annotations
 
 import multiprocessing
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import replace
 
 import numpy as np
 
 from ccopt.feed.jerk.lp import JerkGrid, WindowLP
-from ccopt.workers import (PARENT_ENV, interpreter_command, resolve_workers,
-                           run_in_interpreters, thread_budget)
+# PARENT_ENV: the variable WORKER_COMMAND's processes read (named here for them and the tests)
+from ccopt.workers import (PARENT_ENV, interpreter_command, map_in_threads,  # noqa: F401
+                           resolve_workers, run_in_interpreters, thread_budget)
 
 #: Relative agreement of ``b`` and ``bhat`` that ends the pseudo-jerk rounds.
 BHAT_TOL = 2e-3
@@ -421,19 +421,6 @@ def threads(n_tasks: int) -> int:
     return max(1, min(resolve_workers(WORKERS), thread_budget(), n_tasks))
 
 
-def map_tasks(fn, tasks: list, n_threads: int) -> list:
-    """``[fn(t) for t in tasks]``, in ``n_threads`` threads (in order). On
-    any exception here (a Ctrl-C, a failed task) the tasks not started are
-    dropped, so it returns as soon as the running ones end (a window each)."""
-    if n_threads <= 1 or len(tasks) < 2:
-        return [fn(t) for t in tasks]
-    pool = ThreadPoolExecutor(n_threads)
-    try:
-        return list(pool.map(fn, tasks))
-    finally:
-        pool.shutdown(wait=True, cancel_futures=True)
-
-
 def plan_windows(g: JerkGrid, cap: np.ndarray | None, scale: float, bound_of=None):
     """Every window of ``g`` solved (see the module docstring): ``(results,
     n_windows, workers, threads)``, ``results`` as :func:`_solve_chain`'s, with
@@ -451,13 +438,13 @@ def plan_windows(g: JerkGrid, cap: np.ndarray | None, scale: float, bound_of=Non
     if workers == 1 and (cap is not None or bound_of is None):
         # in this process, chain by chain, in threads where the cores allow
         n = threads(len(chains))
-        parts = map_tasks(_chain_solver(g, cap, chains, scale), chains, n)
+        parts = map_in_threads(_chain_solver(g, cap, chains, scale), chains, n)
         return [r for part in parts for r in part], len(wins), 1, n
     tasks = list(_tasks(g, cap, chains, scale, bound_of))
     workers = max(1, min(workers, len(tasks)))     # 1: this process (or no LP at all)
     n = threads(len(tasks)) if workers == 1 else 1
     if workers == 1:
-        parts = map_tasks(lambda args: _solve_task(*args), [args for _, args in tasks], n)
+        parts = map_in_threads(lambda args: _solve_task(*args), [args for _, args in tasks], n)
     else:
         parts = run_in_interpreters(__name__, "_solve_task", [args for _, args in tasks], workers)
     results: list[tuple] = []
