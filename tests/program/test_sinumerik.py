@@ -161,6 +161,34 @@ def test_g460_the_default_retraction_strategy_is_read_and_compensates_as_without
     assert any(s.end == pytest.approx((45.0, 5.0)) for s in a)
 
 
+def _g460_same_path(seed: int) -> None:
+    """A generated plate (tests/sinumerik_plates.py) with G460 on its approach
+    (G41/G42) and retraction (G40) blocks compensates, in the siemens and
+    pmac styles, to the tool path of the plate without it."""
+    from ccopt.compensate import compensate
+    from sinumerik_plates import generated_plate
+    text = generated_plate(seed)[0]
+    marked = "\n".join(line + " G460" if line.startswith(("G41", "G42", "G40")) else line
+                        for line in text.splitlines()) + "\n"
+    assert marked.count("G460") == 2
+    a, b = read(marked), read(text)
+    for style in ("siemens", "pmac"):
+        pa, pb = (compensate(p, style=style).segments for p in (a, b))
+        assert [(s.kind, s.start, s.end) for s in pa] == [(s.kind, s.start, s.end) for s in pb], \
+            (seed, style)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2])
+def test_g460_on_generated_plates_is_the_path_without_it(seed):
+    _g460_same_path(seed)
+
+
+@pytest.mark.slow
+def test_g460_on_generated_plates_is_the_path_without_it_many():
+    for seed in range(3, 60):
+        _g460_same_path(seed)
+
+
 @pytest.mark.parametrize("g", [461, 462])
 def test_g461_g462_are_refused_where_they_stand(g):
     with pytest.raises(ProgramError) as e:
