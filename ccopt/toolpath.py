@@ -15,7 +15,6 @@ and :attr:`ToolPath.plane` is the first segment's.
 from __future__ import annotations
 
 import enum
-import math
 from dataclasses import dataclass, field, replace
 from operator import attrgetter
 from typing import Any, Iterator, Sequence
@@ -25,8 +24,10 @@ import numpy as np
 from ccopt.errors import CompensationError
 from ccopt.geometry import Arc, Line, Spiral, translated
 from ccopt.geometry.columns import paused_gc
+from ccopt.move_geometry import block_geometry, move_rows
+from ccopt.program.columns import DWELL_CODE, columns_of
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
-from ccopt.tolerances import POINT_EPS, SPIRAL_RADIUS_REL_TOL
+from ccopt.tolerances import POINT_EPS
 
 
 class Role(str, enum.Enum):
@@ -256,9 +257,13 @@ class SegmentColumns:
         curves, anything made one at a time).
     role: ``(n,)`` int, index into :data:`ROLES`.
     block: ``(n,)`` int, index into ``blocks`` of the source block (each
-        segment's feed and plane are its block's).
+        segment's plane is its block's, and its feed unless ``feed`` says).
     blocks: the source blocks (shared with the program, not copied).
     w: ``(n, 2)`` float, out-of-plane coordinate at start and end.
+    feed: per row, the feed (program units per second, ``None`` for a rapid)
+        where it is not the row's block's: an exported path read back has
+        the feeds read back on the computed path's blocks; ``None``: the
+        blocks' feeds.
 
     Rows of lines and arcs must already be valid (finite, radius > 0): the
     maker checks them in bulk.
@@ -271,6 +276,7 @@ class SegmentColumns:
     block: np.ndarray
     blocks: Sequence[Block]
     w: np.ndarray
+    feed: Sequence[float | None] | None = None
 
     def __len__(self) -> int:
         return int(self.kind.shape[0])
@@ -295,9 +301,10 @@ class SegmentColumns:
         for q, obj in self.objects.items():
             geoms[q] = obj
         blocks = list(map(self.blocks.__getitem__, self.block.tolist()))
+        feeds = map(_FEED, blocks) if self.feed is None else self.feed
         return tuple(map(PathSegment.trusted, geoms, map(ROLES.__getitem__, self.role.tolist()),
                          blocks, self.w[:, 0].tolist(), self.w[:, 1].tolist(),
-                         map(_FEED, blocks), map(_PLANE, blocks)))
+                         feeds, map(_PLANE, blocks)))
 
     def planes(self) -> tuple[str, ...]:
         """The rows' planes (their blocks') in the order they first appear."""
@@ -465,37 +472,38 @@ def _located(block: Block, message: str) -> CompensationError:
     return CompensationError(message, s.file, s.line, s.col)
 
 
-def block_geometry(block: Block, start_uv=None, end_uv=None):
-    """Exact in-plane primitive of a programmed block.
-
-    ``start_uv``/``end_uv`` override the block's own in-plane points (used by
-    compensation for gradual changes about the programmed centre). A CIRCLE
-    move whose end radius differs from its start radius is a :class:`Spiral`:
-    radius linear in swept angle (an Archimedean spiral, the only spiral
-    ccopt has; docs/compensation.md, "spiral radius linear in angle").
-    """
-    s = block.start_uv if start_uv is None else start_uv
-    e = block.end_uv if end_uv is None else end_uv
-    if block.motion.is_arc:
-        c = block.center_uv
-        ccw = block.motion is Motion.ARC_CCW
-        r0 = math.hypot(s[0] - c[0], s[1] - c[1])
-        r1 = math.hypot(e[0] - c[0], e[1] - c[1])
-        if abs(r1 - r0) > SPIRAL_RADIUS_REL_TOL * max(1.0, r0):
-            return Spiral.from_points(s, e, c, ccw, turns=block.turns)
-        return Arc.from_points(s, e, c, ccw, turns=block.turns)
-    return Line(tuple(s), tuple(e))
-
-
 def programmed_path(program: Program) -> ToolPath:
     """The programmed (uncompensated) path of a program as a :class:`ToolPath`.
 
     Rapids get role ``rapid``, feed moves ``uncompensated``; moves with no
     in-plane component are zero-length lines carrying their ``w`` change.
+    A path of columns (:func:`~ccopt.move_geometry.move_rows`): its segments
+    are made when first asked for, the same as :func:`programmed_segments`'.
     """
+    try:
+        rows = move_rows(program)
+    except ValueError:
+        rows = None         # a move its geometry refuses: the reference says which, and why
+    if rows is None:
+        return programmed_segments(program)
+    kind = np.where(rows.arc, ARC_ROW, LINE_ROW).astype(np.int8)
+    kind[list(rows.spirals)] = OBJECT_ROW
+    role = np.where(rows.rapid, ROLE_CODE[Role.RAPID],
+                    ROLE_CODE[Role.UNCOMPENSATED]).astype(np.int8)
+    blocks = program.blocks
+    columns = SegmentColumns(kind, rows.geom, rows.spirals, role, rows.move, blocks, rows.w)
+    # a dwell comes before the moves after it: as many as moves before it
+    dwell_at = np.flatnonzero(columns_of(program).motion_code == DWELL_CODE).tolist()
+    dwells = tuple((q - k, blocks[q].dwell, blocks[q]) for k, q in enumerate(dwell_at))
+    return ToolPath.from_columns(columns, style="programmed", radius=0.0, dwells=dwells,
+                                 units=program.units, plane=_first_plane(program))
+
+
+def programmed_segments(program: Program) -> ToolPath:
+    """:func:`programmed_path` made segment by segment (:func:`block_geometry`
+    of each move): the reference, and what reports a move it refuses."""
     segs: list[PathSegment] = []
     dwells: list[tuple[int, float, Block]] = []
-    plane = program.blocks[0].modal.plane if program.blocks else "XY"
     for b in program.blocks:
         if b.motion is Motion.DWELL:
             dwells.append((len(segs), b.dwell, b))
@@ -504,11 +512,13 @@ def programmed_path(program: Program) -> ToolPath:
         w0 = b.uvw(b.start)[2]
         w1 = b.uvw(b.end)[2]
         segs.append(PathSegment(block_geometry(b), role, b, w0, w1, b.feed))
-    if segs:
-        plane = segs[0].plane
-    return ToolPath(tuple(segs), plane=plane, style="programmed", radius=0.0,
+    return ToolPath(tuple(segs), plane=_first_plane(program), style="programmed", radius=0.0,
                     dwells=tuple(dwells), units=program.units)
 
+
+def _first_plane(program: Program) -> str:
+    """The plane of ``program``'s first block, ``"XY"`` without blocks."""
+    return program.blocks[0].modal.plane if program.blocks else "XY"
 
 
 def starts_at_origin(path: ToolPath) -> bool:

@@ -33,15 +33,14 @@ from ccopt.errors import ProgramError
 from ccopt.export.arcfit import DEFAULT_TOL
 from ccopt.export.gcode import write_gcode
 from ccopt.export.pmacprog import write_pmac
+from ccopt.export.readback import readback_path
 from ccopt.export.svg import write_svg
 from ccopt.export.text import with_header
 from ccopt.geometry import Arc, Line
-from ccopt.program import read_text
 from ccopt.program.gcode.execute import LATHE_DIAMETER_MODE_USED
 from ccopt.program.model import INPUT_FILES, START_PARAMETERS, Program
 from ccopt.tolerances import EXPORT_REFIT_MIN_TOL, EXPORT_REFIT_ROUNDS, EXPORT_REFIT_SHRINK
-from ccopt.toolpath import (FITTED_PIECES, TOOL_TIP, PathSegment, Role, ToolPath,
-                            programmed_path)
+from ccopt.toolpath import ToolPath, programmed_path
 from ccopt.verify import verify
 from ccopt.version import __version__
 
@@ -173,39 +172,6 @@ def _write_checked(res: ExportResult, out: Path, text: str, program: Program | N
                          f"{res.kept_existing} left as it was")
     refuse_overwriting_inputs([out], inputs_of(program))
     write_text_atomic(out, text)
-
-
-def readback_path(text: str, dialect: str, original: ToolPath, moves: list, file: str,
-                  parameters: dict | None = None) -> ToolPath:
-    """Read exported text back and give each move the role and source block of
-    the tool-path segment it came from (``moves`` as the writers return it);
-    ``parameters``: the numbered parameters (a parameter file's) the program
-    was read with, so its work offsets read back the same."""
-    prog = read_text(text, file, dialect, parameters=parameters if dialect == "gcode" else None)
-    back = programmed_path(prog)
-    if len(back.segments) != len(moves):
-        raise ProgramError(f"read-back has {len(back.segments)} moves, {len(moves)} were written",
-                           file)
-    segs, pieces = [], []
-    for m, (seg, (src, _, _)) in enumerate(zip(back.segments, moves)):
-        if src < 0:
-            segs.append(PathSegment(seg.geom, Role.RAPID, seg.block, seg.w0, seg.w1, None))
-        else:
-            o = original.segments[src]
-            segs.append(PathSegment(seg.geom, o.role, o.block, seg.w0, seg.w1, seg.feed))
-            if not isinstance(o.geom, (Line, Arc)):
-                pieces.append(m)      # an arc or line fitted to a spiral or blend curve
-    meta = {"readback_of": file, FITTED_PIECES: tuple(pieces)}
-    if original.meta.get(TOOL_TIP):
-        # a lathe path: the read-back moves carry the tool tip as the computed ones
-        written = {}
-        for m, (src, _, _) in enumerate(moves):
-            written.setdefault(src, []).append(m)
-        meta[TOOL_TIP] = tuple((m, how, du, dv) for i, how, du, dv in original.meta[TOOL_TIP]
-                               for m in written.get(i, ()))
-    return ToolPath(tuple(segs), plane=original.plane, style=original.style,
-                    radius=original.radius, dwells=back.dwells, units=original.units,
-                    meta=meta)
 
 
 def displacement(meant, got) -> float:

@@ -203,20 +203,7 @@ class Arc:
         arc is a full circle, ``sweep = +-2*pi``. ``turns`` adds extra full
         turns (G-code ``P``, minus one).
         """
-        start, end, center = as_point(start), as_point(end), as_point(center)
-        R = math.hypot(start[0] - center[0], start[1] - center[1])
-        if R <= 0.0:
-            raise ValueError(f"Arc start {start} coincides with its centre")
-        R_end = math.hypot(end[0] - center[0], end[1] - center[1])
-        bound = tol * max(1.0, R)
-        if abs(R_end - R) > bound:
-            raise ValueError(
-                f"Arc end radius {R_end!r} differs from start radius {R!r} by "
-                f"{abs(R_end - R):.3g} > {bound:.3g}")
-        th0 = math.atan2(start[1] - center[1], start[0] - center[0])
-        th1 = math.atan2(end[1] - center[1], end[0] - center[0])
-        sweep = sweep_between(th0, th1, ccw, turns, full_if_below=bound / R)
-        return cls(center, R, th0, sweep)
+        return cls(*arc_through(start, end, center, ccw, turns, tol))
 
     @property
     def length(self) -> float:
@@ -327,6 +314,27 @@ class Arc:
 
     def reversed(self) -> "Arc":
         return Arc(self.center, self.radius, self.theta0 + self.sweep, -self.sweep)
+
+
+def arc_through(start, end, center, ccw: bool, turns: int = 0,
+                tol: float = END_POINT_REL_TOL) -> tuple[Point, float, float, float]:
+    """``(center, radius, theta0, sweep)`` of :meth:`Arc.from_points` (same
+    arguments, same ``ValueError``), without making the arc: for makers that
+    keep arcs as numbers (a column tool path), which check the result as the
+    :class:`Arc` constructor does (finite, radius > 0)."""
+    start, end, center = as_point(start), as_point(end), as_point(center)
+    R = math.hypot(start[0] - center[0], start[1] - center[1])
+    if R <= 0.0:
+        raise ValueError(f"Arc start {start} coincides with its centre")
+    R_end = math.hypot(end[0] - center[0], end[1] - center[1])
+    bound = tol * max(1.0, R)
+    if abs(R_end - R) > bound:
+        raise ValueError(
+            f"Arc end radius {R_end!r} differs from start radius {R!r} by "
+            f"{abs(R_end - R):.3g} > {bound:.3g}")
+    th0 = math.atan2(start[1] - center[1], start[0] - center[0])
+    th1 = math.atan2(end[1] - center[1], end[0] - center[0])
+    return center, R, th0, sweep_between(th0, th1, ccw, turns, full_if_below=bound / R)
 
 
 Primitive = Line | Arc | Spiral

@@ -26,7 +26,9 @@ NEWTON_STEP_REL = 1e-15
 
 
 def spiral_arclength(phi, rho0: float, b: float):
-    """Arc length of ``rho = rho0 + b*phi`` from angle 0 to ``phi >= 0``.
+    """Arc length of ``rho = rho0 + b*phi`` from angle 0 to ``phi >= 0``
+    (``rho0`` and ``b`` may be arrays of ``phi``'s shape, one spiral each:
+    every element is what the call with its own numbers gives).
 
     ``ds/dphi = sqrt(rho^2 + b^2)``. The textbook antiderivative
     ``F(rho) = [rho*sqrt(rho^2+b^2) + b^2*asinh(rho/|b|)] / (2b)`` loses all
@@ -45,12 +47,16 @@ def spiral_arclength(phi, rho0: float, b: float):
     rho = rho0 + b * phi
     b2 = b * b
     S = np.sqrt(rho * rho + b2)
-    S0 = math.sqrt(rho0 * rho0 + b2)
+    S0 = np.sqrt(rho0 * rho0 + b2) if isinstance(b2, np.ndarray) else math.sqrt(rho0 * rho0 + b2)
     rsum = rho + rho0
     first = phi * rsum * (rho * rho + rho0 * rho0 + b2) / (2.0 * (rho * S + rho0 * S0))
-    if b == 0.0:
-        return first
-    return first + 0.5 * b * np.arcsinh(b * phi * rsum / (rho * S0 + rho0 * S))
+    if not isinstance(b, np.ndarray):
+        if b == 0.0:
+            return first
+        return first + 0.5 * b * np.arcsinh(b * phi * rsum / (rho * S0 + rho0 * S))
+    with np.errstate(invalid="ignore", divide="ignore"):   # rows of b = 0 take `first`
+        rest = 0.5 * b * np.arcsinh(b * phi * rsum / (rho * S0 + rho0 * S))
+    return np.where(b == 0.0, first, first + rest)
 
 
 @dataclass(frozen=True, slots=True)
@@ -108,17 +114,37 @@ class Spiral:
         ``tol * max(1, rho)`` as a length) make one full turn; ``turns`` adds
         extra full turns.
         """
-        start, end, center = as_point(start), as_point(end), as_point(center)
-        r0 = math.hypot(start[0] - center[0], start[1] - center[1])
-        r1 = math.hypot(end[0] - center[0], end[1] - center[1])
-        if r0 <= 0.0 or r1 <= 0.0:
-            raise ValueError(
-                f"Spiral end points must differ from the centre (rho0={r0}, rho1={r1})")
-        th0 = math.atan2(start[1] - center[1], start[0] - center[0])
-        th1 = math.atan2(end[1] - center[1], end[0] - center[0])
-        rmax = max(r0, r1)
-        sweep = sweep_between(th0, th1, ccw, turns, full_if_below=tol * max(1.0, rmax) / rmax)
-        return cls(center, r0, r1, th0, sweep)
+        return cls(*spiral_through(start, end, center, ccw, turns, tol))
+
+    @classmethod
+    def many_from_points(cls, starts, ends, centers, ccws, turns) -> list["Spiral"]:
+        """:meth:`from_points` of each ``(start, end, center, ccw, turns)``
+        (sequences of one length), the same spirals bit for bit, their
+        lengths worked out together; ``ValueError`` when one is refused
+        (not necessarily the first: :meth:`from_points` of each says which)."""
+        numbers = list(map(spiral_through, starts, ends, centers, ccws, turns))
+        n = len(numbers)
+        if not n:
+            return []
+        rows = np.array([(cu, cv, r0, r1, th0, sw) for (cu, cv), r0, r1, th0, sw in numbers])
+        rho0, rho1, sweep = rows[:, 2], rows[:, 3], rows[:, 5]
+        # the checks of __post_init__, row by row
+        if not (np.isfinite(rows).all() and (rho0 > 0.0).all() and (rho1 > 0.0).all()
+                and ((sweep != 0.0) | (rho0 == rho1)).all()):
+            raise ValueError("a spiral's numbers are not valid (see Spiral.from_points)")
+        phi = np.abs(sweep)
+        b = np.divide(rho1 - rho0, phi, out=np.zeros(n), where=sweep != 0.0)
+        length = spiral_arclength(phi, rho0, b)
+        return list(map(cls._trusted, numbers, b.tolist(), length.tolist()))
+
+    @classmethod
+    def _trusted(cls, numbers, b: float, length: float) -> "Spiral":
+        """The spiral of checked ``(center, rho0, rho1, theta0, sweep)`` with
+        its ``b`` and length already worked out (:meth:`many_from_points`)."""
+        obj = object.__new__(cls)
+        for setter, value in zip(_SETTERS, (*numbers, b, length)):
+            setter(obj, value)
+        return obj
 
     # -- scalar properties ---------------------------------------------------
 
@@ -333,3 +359,26 @@ class Spiral:
         return Spiral(self.center, self.rho1, self.rho0, self.theta0 + self.sweep, -self.sweep)
 
 
+
+
+def spiral_through(start, end, center, ccw: bool, turns: int = 0,
+                   tol: float = END_POINT_REL_TOL) -> tuple[Point, float, float, float, float]:
+    """``(center, rho0, rho1, theta0, sweep)`` of :meth:`Spiral.from_points`
+    (same arguments, same ``ValueError`` for an end point on the centre),
+    without making the spiral."""
+    start, end, center = as_point(start), as_point(end), as_point(center)
+    r0 = math.hypot(start[0] - center[0], start[1] - center[1])
+    r1 = math.hypot(end[0] - center[0], end[1] - center[1])
+    if r0 <= 0.0 or r1 <= 0.0:
+        raise ValueError(
+            f"Spiral end points must differ from the centre (rho0={r0}, rho1={r1})")
+    th0 = math.atan2(start[1] - center[1], start[0] - center[0])
+    th1 = math.atan2(end[1] - center[1], end[0] - center[0])
+    rmax = max(r0, r1)
+    sweep = sweep_between(th0, th1, ccw, turns, full_if_below=tol * max(1.0, rmax) / rmax)
+    return center, r0, r1, th0, sweep
+
+
+# the slots' own descriptors, in the order Spiral._trusted sets them
+_SETTERS = tuple(Spiral.__dict__[name].__set__
+                 for name in ("center", "rho0", "rho1", "theta0", "sweep", "_b", "_length"))
