@@ -134,6 +134,8 @@ class Spiral:
             raise ValueError("a spiral's numbers are not valid (see Spiral.from_points)")
         phi = np.abs(sweep)
         b = np.divide(rho1 - rho0, phi, out=np.zeros(n), where=sweep != 0.0)
+        # the same operations, element by element, as one spiral's (numpy
+        # runs arcsinh with one loop whatever the length; the tests compare)
         length = spiral_arclength(phi, rho0, b)
         return list(map(cls._trusted, numbers, b.tolist(), length.tolist()))
 
@@ -357,8 +359,6 @@ class Spiral:
 
     def reversed(self) -> "Spiral":
         return Spiral(self.center, self.rho1, self.rho0, self.theta0 + self.sweep, -self.sweep)
-
-
 
 
 def spiral_through(start, end, center, ccw: bool, turns: int = 0,
