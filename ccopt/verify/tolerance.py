@@ -16,6 +16,10 @@ from __future__ import annotations
 import math
 from collections import Counter
 from dataclasses import fields, replace
+from itertools import compress
+from operator import attrgetter
+
+import numpy as np
 
 from ccopt.errors import ProgramError
 from ccopt.tolerances import GOUGE_TOLERANCE, LINUXCNC_CONCAVE_CORNER
@@ -27,6 +31,9 @@ from ccopt.verify.certificate import Certificate, Violation
 TOLERATED = {"gouge": "gouge", "contact": "contact", "side": "side"}
 
 CAUSE_WITHIN = "no deeper than the tolerance"
+
+_TOLERATED_KINDS = frozenset(TOLERATED.values())
+_DEPTH, _KIND = attrgetter("depth"), attrgetter("kind")
 
 
 def default_tolerance(units: str) -> float:
@@ -87,14 +94,20 @@ def apply_tolerance(cert: Certificate, tolerance: float, toolpath: ToolPath) -> 
     """``cert`` with its violations no deeper than ``tolerance`` moved to
     ``warnings`` (each with its ``cause`` in ``detail``) and each check's
     verdict taken on the deeper ones only."""
-    warn, keep = [], []
-    for v in cert.violations:
-        if v.kind in TOLERATED.values() and math.isfinite(v.depth) and v.depth <= tolerance:
-            warn.append(_with_cause(v, cause_of(v, toolpath)))
-        else:
-            keep.append(v)
+    viol = cert.violations
+    # the verdict of each violation in bulk (a long path has hundreds of
+    # thousands of them): tolerated kind, finite depth, no deeper than the tolerance
+    kinds = list(map(_KIND, viol))
+    shallow = np.fromiter(map(_TOLERATED_KINDS.__contains__, kinds), bool, len(viol))
+    # (the depths of the tolerated kinds only: the others' need not be numbers)
+    depth = np.fromiter(map(_DEPTH, compress(viol, shallow.tolist())), float)
+    shallow[shallow] = np.isfinite(depth) & (depth <= tolerance)
+    deep = (~shallow).tolist()
+    shallow = shallow.tolist()
+    warn = [_with_cause(v, cause_of(v, toolpath)) for v in compress(viol, shallow)]
+    keep = list(compress(viol, deep))
     checks = []
-    warned, failed = Counter(v.kind for v in warn), Counter(v.kind for v in keep)
+    warned, failed = Counter(compress(kinds, shallow)), Counter(compress(kinds, deep))
     for c in cert.checks:
         kind = TOLERATED.get(c.name)
         if kind is None:
