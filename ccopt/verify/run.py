@@ -85,8 +85,11 @@ class SegmentTable:
     def infos(self, idx: np.ndarray) -> tuple[list, list]:
         """``(source lines, roles)`` of the tool segments ``idx``, as
         :meth:`~ccopt.verify.rows.SegmentRows.info` gives each (``None``: no block)."""
-        lines = [None if x < 0 else x for x in self.line[idx].tolist()]
-        return lines, [ROLE_VALUES[c] for c in self.role[idx].tolist()]
+        line = self.line[idx]
+        lines = line.tolist()
+        if (line < 0).any():
+            lines = [None if x < 0 else x for x in lines]
+        return lines, _picked(ROLE_VALUES, self.role[idx])
 
 
 @dataclass(frozen=True, eq=False)
@@ -163,10 +166,10 @@ def check_gouge(pairs: PairDistances, contour: Contour, eps: float, table: Segme
     elem_lines = _picked([contour.element_line(j) for j in uniq.tolist()], at.reshape(-1))
     required = pairs.required[sel].tolist()
     basis = _picked((CERTIFIED, EXACT), pairs.exact[sel].astype(np.intp))
-    viol = list(map(Violation, repeat("gouge", sel.size), (-pairs.margin[sel]).tolist(),
-                    tool.tolist(), lines, roles, elem.tolist(), elem_lines,
-                    _points(pairs.wt[sel]), _points(pairs.we[sel]), basis,
-                    _gouge_details(pairs, sel, required)))
+    viol = Violation.many(repeat("gouge", sel.size), (-pairs.margin[sel]).tolist(),
+                          tool.tolist(), lines, roles, elem.tolist(), elem_lines,
+                          _points(pairs.wt[sel]), _points(pairs.we[sel]), basis,
+                          _gouge_details(pairs, sel, required))
     approaches = []
     listed = np.flatnonzero(bad & ~pairs.counted)[:LISTED_APPROACHES]
     for q, (line, role) in zip(listed, zip(*table.infos(pairs.tool[listed]))):
