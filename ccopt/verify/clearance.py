@@ -485,13 +485,14 @@ def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: 
     # each tool segment and element once, though it is in many pairs
     ti, tinv = np.unique(it[pairs], return_inverse=True)
     ej, einv = np.unique(je[pairs], return_inverse=True)
-    tgs = [tool.geom(i) for i in ti]
-    egs = [E.geom(j) for j in ej]
+    tgs, egs = tool.geoms(ti), E.geoms(ej)
     # the curved one first (an exact element only ever has the exemption)
     swapped = tool.exact[ti][tinv] & ~E.exact[ej][einv]
     exemption = _exemptions(contour, ej)
-    a_of = [egs[e] if s else tgs[t] for t, e, s in zip(tinv, einv, swapped)]
-    b_of = [tgs[t] if s else egs[e] for t, e, s in zip(tinv, einv, swapped)]
+    # (Python ints and bools: indexing lists with numpy scalars is slow)
+    pair_of = list(zip(tinv.tolist(), einv.tolist(), swapped.tolist()))
+    a_of = [egs[e] if s else tgs[t] for t, e, s in pair_of]
+    b_of = [tgs[t] if s else egs[e] for t, e, s in pair_of]
     ok = _batchable_pairs(tgs, egs, tinv, einv, swapped)
     ex_of = [exemption.get(e) for e in einv.tolist()] if exemption else [None] * len(einv)
     caps = reach[je[pairs]]

@@ -65,6 +65,20 @@ class Packed:
                 g = self.made[i] = self.arr.segment(i)
         return g
 
+    def geoms(self, idx: np.ndarray) -> list:
+        """:meth:`geom` of each row ``idx``; the line rows not made yet are made
+        in one pass (the same objects ``geom`` makes: a contour's elements are
+        asked for by the ten thousand)."""
+        idx = np.asarray(idx, np.intp)
+        A = self.arr
+        li = idx[(A.kind[idx] == KIND_LINE) & np.isfinite(A.p0[idx]).all(axis=1)
+                 & np.isfinite(A.p1[idx]).all(axis=1)].tolist()
+        new = [i for i in dict.fromkeys(li) if i not in self.made]
+        if new:
+            (x0, y0), (x1, y1) = A.p0[new].T.tolist(), A.p1[new].T.tolist()
+            self.made.update(zip(new, map(Line.trusted, x0, y0, x1, y1)))
+        return list(map(self.geom, idx.tolist()))
+
 
 def arc_bbox(center, radius, theta0, sweep, p0, p1) -> np.ndarray:
     """Exact bounding boxes of arcs: end points plus the axis extremes inside
