@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from operator import itemgetter
 
 import numpy as np
 
@@ -485,21 +486,26 @@ def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: 
     # each tool segment and element once, though it is in many pairs
     ti, tinv = np.unique(it[pairs], return_inverse=True)
     ej, einv = np.unique(je[pairs], return_inverse=True)
-    tgs = [tool.geom(i) for i in ti]
-    egs = [E.geom(j) for j in ej]
+    tgs, egs = tool.geoms(ti), E.geoms(ej)
     # the curved one first (an exact element only ever has the exemption)
     swapped = tool.exact[ti][tinv] & ~E.exact[ej][einv]
     exemption = _exemptions(contour, ej)
-    a_of = [egs[e] if s else tgs[t] for t, e, s in zip(tinv, einv, swapped)]
-    b_of = [tgs[t] if s else egs[e] for t, e, s in zip(tinv, einv, swapped)]
+    # the objects of hundreds of thousands of pairs picked in C (itemgetter),
+    # not one list index at a time
+    t_of, e_of = _picked(tgs, tinv), _picked(egs, einv)
+    if swapped.any():
+        a_of = [e if s else t for t, e, s in zip(t_of, e_of, swapped.tolist())]
+        b_of = [t if s else e for t, e, s in zip(t_of, e_of, swapped.tolist())]
+    else:
+        a_of, b_of = t_of, e_of
     ok = _batchable_pairs(tgs, egs, tinv, einv, swapped)
-    ex_of = [exemption.get(e) for e in einv.tolist()] if exemption else [None] * len(einv)
+    ex_of = _picked([exemption.get(k) for k in range(ej.size)], einv)
     caps = reach[je[pairs]]
     batch, one = np.flatnonzero(ok), np.flatnonzero(~ok)
     # every pair of spirals, arcs and lines in one vectorised branch and bound,
     # its bounds as arrays
-    res = min_distance_arrays([(a_of[m], b_of[m]) for m in batch.tolist()], tol, caps[batch],
-                              [ex_of[m] for m in batch.tolist()])
+    res = min_distance_arrays(list(zip(_picked(a_of, batch), _picked(b_of, batch))), tol,
+                              caps[batch], _picked(ex_of, batch))
     q = pairs[batch]
     d[q], ub[q] = res.lb, res.ub
     has = np.flatnonzero(~np.isinf(res.ub))        # a witness realises a finite ub
@@ -513,6 +519,14 @@ def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: 
         d[q], ub[q] = b.lb, b.ub
         if b.wa is not None:
             wt[q], we[q] = (b.wb, b.wa) if swapped[m] else (b.wa, b.wb)
+
+
+def _picked(values, idx: np.ndarray) -> list:
+    """``[values[i] for i in idx]``."""
+    if idx.size == 0:
+        return []
+    got = itemgetter(*idx.tolist())(values)
+    return [got] if idx.size == 1 else list(got)
 
 
 def _exemptions(contour: Contour, ej) -> dict:

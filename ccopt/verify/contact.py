@@ -16,7 +16,8 @@ largest value is at an end of the part of ``T`` inside the band, and for an
 arc concentric with its element it is ``|R_T - R_e|``: both in closed form,
 vectorised. Any other line/arc pair (a displaced segment) is cut at the band
 boundaries and measured with the exact farthest-point kernel
-(:func:`~ccopt.verify.distance.max_distance`); spirals and curves get a certified upper bound over the
+(:func:`~ccopt.verify.distance.max_distance`), all such pairs at once
+(:mod:`ccopt.verify.alongside`); spirals and curves get a certified upper bound over the
 whole segment (:func:`~ccopt.verify.distance.max_distance_bound`, conservative). A tool segment
 that runs alongside its element over no length at all (it only touches the
 band's edge, or it is an arc about the element's centre turning the other
@@ -43,11 +44,11 @@ from ccopt.geometry.columns import take_rows
 from ccopt.program.model import PLANE_AXES
 from ccopt.tolerances import POINT_EPS, VERIFY_CERTIFIED_GAP
 from ccopt.toolpath import FITTED_PIECES, Role
+from ccopt.verify.alongside import ALONGSIDE_MIN_LENGTH, farthest_clipped
 from ccopt.verify.certificate import CERTIFIED, EXACT, Check, Violation
-from ccopt.verify.clearance import clip_pieces, end_regions
 from ccopt.verify.contour import Contour
-from ccopt.verify.distance import max_distance, max_distance_bound, max_distance_to_point
-from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed, pack
+from ccopt.verify.distance import max_distance_bound, max_distance_to_point
+from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed
 
 
 def corner_points(rows, contour: Contour, table, ci: np.ndarray):
@@ -177,13 +178,6 @@ def _line_line(T, ti, E, ej):
 CONCENTRIC_REL = 1e-12
 
 
-#: A tool segment runs alongside its element when more than this length of it
-#: (program units) lies alongside; touching the band's edge at a point does
-#: not count (an arc swept the wrong way meets the element's sector only at
-#: its two ends).
-ALONGSIDE_MIN_LENGTH = POINT_EPS
-
-
 def sweep_overlap(th1, sw1, th2, sw2) -> np.ndarray:
     """Angle (radians) common to the arcs' sweeps ``(th1, sw1)`` and ``(th2, sw2)``
     about one centre, whichever way each turns (vectorised)."""
@@ -215,20 +209,6 @@ def _arc_arc_concentric(T, ti, E, ej):
     dmax = np.abs(T.radius[ti] - E.radius[ej])
     q = cT + T.radius[ti][:, None] * np.c_[np.cos(midT), np.sin(midT)]
     return dmax, q, conc, along
-
-
-def _general(tg, eg, E: Packed, j):
-    """Clip ``tg`` to the band of element ``j`` and take the exact farthest distance."""
-    regions = end_regions(E, j, True, True)
-    pieces = clip_pieces(tg, regions) if tg.length > 0.0 else []
-    if sum(p.length for p in pieces) <= ALONGSIDE_MIN_LENGTH:
-        # nowhere alongside its element: it does not run along it at all
-        return math.inf, tuple(map(float, tg.start))
-    pk = pack(pieces)
-    earr = pack([eg]).arr
-    dm, q, _ = max_distance(pk.arr, np.arange(len(pieces)), earr, np.zeros(len(pieces), np.intp))
-    k = int(np.argmax(dm))
-    return float(dm[k]), (float(q[k, 0]), float(q[k, 1]))
 
 
 def check_contact(rows, toolpath, contour: Contour, eps: float, lengths, info, table):
@@ -307,9 +287,8 @@ def farthest_alongside(tool: Packed, contour: Contour, si: np.ndarray, ej: np.nd
         dmax[q[wrong_way]], wq[q[wrong_way]] = math.inf, T.p0[si[q[wrong_way]]]
         todo[q[~(ok | wrong_way)]] = True
     todo |= exact & ~(ll | aa)
-    for q in np.flatnonzero(todo):
-        dmax[q], wq[q] = _general(tool.geom(si[q]), contour.elements.geom(ej[q]),
-                                  contour.elements, int(ej[q]))
+    q = np.flatnonzero(todo)
+    dmax[q], wq[q] = farthest_clipped(tool, contour.elements, si[q], ej[q])
     tol = VERIFY_CERTIFIED_GAP * eps
     for q in np.flatnonzero(~exact):
         b = max_distance_bound(tool.geom(si[q]), contour.elements.geom(ej[q]), tol)

@@ -3,7 +3,8 @@ from __future__ import annotations
 
 import gc
 from dataclasses import dataclass
-from operator import attrgetter
+from itertools import repeat
+from operator import attrgetter, itemgetter
 
 import numpy as np
 
@@ -84,8 +85,11 @@ class SegmentTable:
     def infos(self, idx: np.ndarray) -> tuple[list, list]:
         """``(source lines, roles)`` of the tool segments ``idx``, as
         :meth:`~ccopt.verify.rows.SegmentRows.info` gives each (``None``: no block)."""
-        lines = [None if x < 0 else x for x in self.line[idx].tolist()]
-        return lines, [ROLE_VALUES[c] for c in self.role[idx].tolist()]
+        line = self.line[idx]
+        lines = line.tolist()
+        if (line < 0).any():
+            lines = [None if x < 0 else x for x in lines]
+        return lines, _picked(ROLE_VALUES, self.role[idx])
 
 
 @dataclass(frozen=True, eq=False)
@@ -127,25 +131,45 @@ def _gouge_detail(pairs: PairDistances, q: int, clearance: float) -> dict:
     return {"distance": float(pairs.d[q]), "clearance": clearance}
 
 
+def _gouge_details(pairs: PairDistances, sel: np.ndarray, required: list) -> list[dict]:
+    """:func:`_gouge_detail` of each pair ``sel`` with its clearance ``required``."""
+    details = [{"distance": d, "clearance": c} for d, c in zip(pairs.d[sel].tolist(), required)]
+    for k in np.flatnonzero(pairs.tapered[sel]).tolist():
+        details[k] = _gouge_detail(pairs, int(sel[k]), required[k])
+    return details
+
+
+def _points(xy: np.ndarray) -> list[tuple[float, float]]:
+    """Rows ``(N, 2)`` as tuples of two Python floats."""
+    return list(zip(xy[:, 0].tolist(), xy[:, 1].tolist()))
+
+
+def _picked(values: list, idx: np.ndarray) -> list:
+    """``[values[i] for i in idx]``."""
+    if idx.size == 0:
+        return []
+    return [values[int(idx[0])]] if idx.size == 1 else list(itemgetter(*idx.tolist())(values))
+
+
 def check_gouge(pairs: PairDistances, contour: Contour, eps: float, table: SegmentTable):
-    viol = []
     bad = pairs.margin < -eps
     sel = np.flatnonzero(bad & pairs.counted)
     # deepest first (a stable sort of the margins: ties in pair order)
     sel = sel[np.argsort(pairs.margin[sel], kind="stable")]
-    # the numbers as Python floats and ints in one pass each (tolist gives the
-    # values float() and int() give, element by element)
+    # the numbers as Python floats and ints, column by column (tolist gives the
+    # values float() and int() give, element by element): a long path has
+    # hundreds of thousands of gouges, and a loop of numpy scalars costs more
+    # than the rest of the check
     tool, elem = pairs.tool[sel], pairs.elem[sel]
     lines, roles = table.infos(tool)
-    elem_line = {j: contour.element_line(j) for j in np.unique(elem).tolist()}
-    cols = (sel.tolist(), tool.tolist(), elem.tolist(), lines, roles,
-            (-pairs.margin[sel]).tolist(), pairs.wt[sel].tolist(), pairs.we[sel].tolist(),
-            pairs.exact[sel].tolist(), pairs.required[sel].tolist())
-    for q, i, j, line, role, depth, wt, we, exact, required in zip(*cols):
-        viol.append(Violation(
-            "gouge", depth, i, line, role, j, elem_line[j],
-            (wt[0], wt[1]), (we[0], we[1]), EXACT if exact else CERTIFIED,
-            _gouge_detail(pairs, q, required)))
+    uniq, at = np.unique(elem, return_inverse=True)
+    elem_lines = _picked([contour.element_line(j) for j in uniq.tolist()], at.reshape(-1))
+    required = pairs.required[sel].tolist()
+    basis = _picked((CERTIFIED, EXACT), pairs.exact[sel].astype(np.intp))
+    viol = Violation.many(repeat("gouge", sel.size), (-pairs.margin[sel]).tolist(),
+                          tool.tolist(), lines, roles, elem.tolist(), elem_lines,
+                          _points(pairs.wt[sel]), _points(pairs.we[sel]), basis,
+                          _gouge_details(pairs, sel, required))
     approaches = []
     listed = np.flatnonzero(bad & ~pairs.counted)[:LISTED_APPROACHES]
     for q, (line, role) in zip(listed, zip(*table.infos(pairs.tool[listed]))):

@@ -65,6 +65,20 @@ class Packed:
                 g = self.made[i] = self.arr.segment(i)
         return g
 
+    def geoms(self, idx: np.ndarray) -> list:
+        """:meth:`geom` of each row ``idx``; the line rows not made yet are made
+        in one pass (the same objects ``geom`` makes: a contour's elements are
+        asked for by the ten thousand)."""
+        idx = np.asarray(idx, np.intp)
+        A = self.arr
+        li = idx[(A.kind[idx] == KIND_LINE) & np.isfinite(A.p0[idx]).all(axis=1)
+                 & np.isfinite(A.p1[idx]).all(axis=1)].tolist()
+        new = [i for i in dict.fromkeys(li) if i not in self.made]
+        if new:
+            (x0, y0), (x1, y1) = A.p0[new].T.tolist(), A.p1[new].T.tolist()
+            self.made.update(zip(new, map(Line.trusted, x0, y0, x1, y1)))
+        return list(map(self.geom, idx.tolist()))
+
 
 def arc_bbox(center, radius, theta0, sweep, p0, p1) -> np.ndarray:
     """Exact bounding boxes of arcs: end points plus the axis extremes inside
@@ -131,6 +145,16 @@ def pack_columns(columns) -> Packed:
             more = _arc_numbers([curved.pop(i) for i in extra_arcs])
             arcs = tuple(np.concatenate([a, b]) for a, b in zip(arcs, more))
     return _packed(len(columns), lines_i, pts, arcs_i, arcs, curved)
+
+
+def pack_rows(n: int, line_rows: np.ndarray, line_points: np.ndarray, arc_rows: np.ndarray,
+              arcs) -> Packed:
+    """:func:`pack` of ``n`` lines and arcs given by their numbers: lines at rows
+    ``line_rows`` (``line_points``: ``(m, 4)`` ``x0, y0, x1, y1``), arcs at
+    ``arc_rows`` (``arcs``: centres ``(m, 2)``, radii, start angles, sweeps);
+    the same :class:`Packed`, bit for bit, as ``pack`` of those Line and Arc objects."""
+    return _packed(n, np.asarray(line_rows, np.intp), line_points,
+                   np.asarray(arc_rows, np.intp), arcs, {})
 
 
 def _line_points(lines) -> np.ndarray:

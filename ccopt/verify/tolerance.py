@@ -16,6 +16,10 @@ from __future__ import annotations
 import math
 from collections import Counter
 from dataclasses import fields, replace
+from itertools import compress, repeat
+from operator import attrgetter
+
+import numpy as np
 
 from ccopt.errors import ProgramError
 from ccopt.tolerances import GOUGE_TOLERANCE, LINUXCNC_CONCAVE_CORNER
@@ -27,6 +31,9 @@ from ccopt.verify.certificate import Certificate, Violation
 TOLERATED = {"gouge": "gouge", "contact": "contact", "side": "side"}
 
 CAUSE_WITHIN = "no deeper than the tolerance"
+
+_TOLERATED_KINDS = frozenset(TOLERATED.values())
+_DEPTH, _KIND = attrgetter("depth"), attrgetter("kind")
 
 
 def default_tolerance(units: str) -> float:
@@ -66,35 +73,45 @@ def cause_of(violation, toolpath: ToolPath) -> str:
     return CAUSE_WITHIN
 
 
-#: The fields :func:`_with_cause` copies, in order (checked here: a field
+#: The fields :func:`_with_causes` copies, in order (checked here: a field
 #: added to :class:`Violation` must be copied there too).
 _VIOLATION_FIELDS = ("kind", "depth", "tool_segment", "tool_block", "tool_role", "element",
                      "element_block", "witness_tool", "witness_contour", "basis", "detail")
 if tuple(f.name for f in fields(Violation)) != _VIOLATION_FIELDS:
-    raise ImportError("Violation's fields changed: update tolerance._with_cause")
+    raise ImportError("Violation's fields changed: update tolerance._with_causes")
 
 
-def _with_cause(v: Violation, cause: str) -> Violation:
-    """``v`` with ``cause`` in its detail: ``dataclasses.replace`` field by field,
-    called directly (a long path has tens of thousands of warnings, and
-    ``replace`` looks up the fields anew for each)."""
-    return Violation(v.kind, v.depth, v.tool_segment, v.tool_block, v.tool_role, v.element,
-                     v.element_block, v.witness_tool, v.witness_contour, v.basis,
-                     {**v.detail, "cause": cause})
+def _with_causes(viol: list[Violation], toolpath: ToolPath) -> list[Violation]:
+    """Each of ``viol`` with its cause (:func:`cause_of`) in its detail:
+    ``dataclasses.replace`` field by field, done column by column
+    (:meth:`Violation.many`: a long path has tens of thousands of warnings)."""
+    if toolpath.meta.get(STRAIGHT_JOINS):
+        causes = [cause_of(v, toolpath) for v in viol]
+    else:
+        causes = repeat(CAUSE_WITHIN)          # no straight join recorded: no other cause
+    copied = [list(map(attrgetter(name), viol)) for name in _VIOLATION_FIELDS[:-1]]
+    details = [{**v.detail, "cause": cause} for v, cause in zip(viol, causes)]
+    return Violation.many(*copied, details)
 
 
 def apply_tolerance(cert: Certificate, tolerance: float, toolpath: ToolPath) -> Certificate:
     """``cert`` with its violations no deeper than ``tolerance`` moved to
     ``warnings`` (each with its ``cause`` in ``detail``) and each check's
     verdict taken on the deeper ones only."""
-    warn, keep = [], []
-    for v in cert.violations:
-        if v.kind in TOLERATED.values() and math.isfinite(v.depth) and v.depth <= tolerance:
-            warn.append(_with_cause(v, cause_of(v, toolpath)))
-        else:
-            keep.append(v)
+    viol = cert.violations
+    # the verdict of each violation in bulk (a long path has hundreds of
+    # thousands of them): tolerated kind, finite depth, no deeper than the tolerance
+    kinds = list(map(_KIND, viol))
+    shallow = np.fromiter(map(_TOLERATED_KINDS.__contains__, kinds), bool, len(viol))
+    # (the depths of the tolerated kinds only: the others' need not be numbers)
+    depth = np.fromiter(map(_DEPTH, compress(viol, shallow.tolist())), float)
+    shallow[shallow] = np.isfinite(depth) & (depth <= tolerance)
+    deep = (~shallow).tolist()
+    shallow = shallow.tolist()
+    warn = _with_causes(list(compress(viol, shallow)), toolpath)
+    keep = list(compress(viol, deep))
     checks = []
-    warned, failed = Counter(v.kind for v in warn), Counter(v.kind for v in keep)
+    warned, failed = Counter(compress(kinds, shallow)), Counter(compress(kinds, deep))
     for c in cert.checks:
         kind = TOLERATED.get(c.name)
         if kind is None:
