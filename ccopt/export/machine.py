@@ -22,6 +22,10 @@ Coordinates are program units; an offset is machine minus work coordinates.
 """
 from __future__ import annotations
 
+from itertools import repeat
+
+import numpy as np
+
 from ccopt.program.model import (AXES_USED, PROGRAM_END, START_PARAMETERS, TRAILING_WORDS,
                                  Block, Frame, Program, Vec3)
 
@@ -90,6 +94,33 @@ class MachineWords:
         if block is not None and block.frame is not None:
             out += self._frame_lines(block.frame)
         return out
+
+    def quiet(self, blocks: list) -> tuple[np.ndarray, np.ndarray]:
+        """Which of the moves made from ``blocks`` (in writing order) need
+        nothing written before or on them once the move before them is
+        written: the same frame (object) as that move's, no A B C U V W
+        carried, and no block with words between the blocks of the moves
+        before and its own. Returns that mask (the first move's False) and
+        each block's place in the program (-1: none) for :meth:`passed`."""
+        n = len(blocks)
+        order = np.fromiter(map(self.index.get, map(id, blocks), repeat(-1)), np.int64, n)
+        # worded[i]: the program's blocks with words among its first i
+        worded = np.zeros(len(self.blocks) + 1, np.int64)
+        np.cumsum([bool(b.words) for b in self.blocks], out=worded[1:])
+        # the words of the blocks after the furthest one reached so far, up
+        # to this move's own, come before it: none there, nothing to write
+        reached = np.maximum.accumulate(order)
+        frames = [None if b is None else b.frame for b in blocks]
+        out = np.zeros(n, dtype=bool)
+        out[1:] = (worded[order[1:] + 1] <= worded[reached[:-1] + 1]) & np.array(
+            [f is g for f, g in zip(frames[1:], frames)], dtype=bool)
+        carried = np.array([b is not None and b.axes is not None for b in blocks], dtype=bool)
+        return out & ~carried, order
+
+    def passed(self, place: int) -> None:
+        """The moves made up to the block at ``place`` in the program were
+        written, with nothing before them (:meth:`quiet`)."""
+        self.flushed = max(self.flushed, place + 1)
 
     def _frame_lines(self, frame: Frame) -> list[str]:
         out = []
