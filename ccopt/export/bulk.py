@@ -7,14 +7,16 @@ move by move. Every number must come out as the move-by-move writer makes
 it, to the last bit and the last character: the columns are computed with
 the same floating-point operations in the same order as the geometry's own
 properties (:attr:`Arc.start <ccopt.geometry.Arc.start>` is ``centre +
-radius * math.cos(theta0)``, with ``math.cos``, not numpy's), rounding is
-Python's :func:`round` and text is Python's own float formatting.
+radius * math.cos(theta0)``, with ``math.cos``, not numpy's), and rounding
+and text are Python's :func:`round` and float formatting, made from the
+nearest decimal where that is known without them (:func:`nearest_decimals`)
+and asked of Python elsewhere.
 """
 from __future__ import annotations
 
 import math
 from itertools import chain, repeat
-from operator import attrgetter
+from operator import attrgetter, is_not
 
 import numpy as np
 
@@ -140,6 +142,24 @@ def points(pairs, n: int) -> np.ndarray:
     return np.fromiter(chain.from_iterable(pairs), float, 2 * n).reshape(n, 2)
 
 
+def changes(values: list, current) -> list[int]:
+    """Where a modal value changes along moves that set ``values`` in turn
+    (``None``: a move that leaves it as it is), from ``current`` (``None``:
+    none in force): the indices whose value is not ``None`` and differs
+    (``!=``) from the last one before it that is, or from ``current``."""
+    n = len(values)
+    given = np.fromiter(map(is_not, values, repeat(None)), bool, n)
+    if not given.any():
+        return []
+    numbers = np.array(values, dtype=float)          # None -> NaN, never compared
+    last = np.maximum.accumulate(np.where(given, np.arange(n), -1))
+    before = np.r_[-1, last[:-1]]
+    differs = numbers != numbers[np.maximum(before, 0)]
+    first = before < 0
+    differs[first] = True if current is None else numbers[first] != current
+    return np.flatnonzero(given & differs).tolist()
+
+
 def run_ends(joins: np.ndarray) -> list[int]:
     """For each row ``i``, the first row after it that does not join the run
     before it (``joins`` False), or the number of rows."""
@@ -213,5 +233,5 @@ class PlainColumns:
                                                 theta0 + sweep))
 
 
-__all__ = ["ARC", "LINE", "OTHER", "PlainColumns", "fmt_many", "nearest_decimals", "points",
-           "rounded", "run_ends"]
+__all__ = ["ARC", "LINE", "OTHER", "PlainColumns", "changes", "fmt_many", "nearest_decimals",
+           "points", "rounded", "run_ends"]

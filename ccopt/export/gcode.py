@@ -12,15 +12,17 @@ bound). Feeds are written per minute (G94).
 from __future__ import annotations
 
 import math
-from operator import attrgetter
+from itertools import repeat
+from operator import attrgetter, eq, is_
 
 import numpy as np
 
 from ccopt.errors import ProgramError
 from ccopt.export.arcfit import fit_arcs, fit_bezier, fit_located, fit_tolerance
-from ccopt.export.bulk import (ARC, OTHER, PlainColumns, fmt_many, rounded,
+from ccopt.export.bulk import (ARC, OTHER, PlainColumns, changes, fmt_many, rounded,
                                run_ends)
-from ccopt.export.machine import MachineWords, machine_prefix, written_frame, written_offset
+from ccopt.export.machine import (MachineWords, machine_prefix, stand_in, written_frame,
+                                  written_offset)
 from ccopt.export.text import with_header
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
@@ -32,7 +34,7 @@ PLANE_WORD = {"XY": "G17", "ZX": "G18", "YZ": "G19"}
 AXES = "XYZ"
 CENTRE = "IJK"
 
-_BLOCK, _PLANE = attrgetter("block"), attrgetter("plane")
+_BLOCK, _PLANE, _PITCH = attrgetter("block"), attrgetter("plane"), attrgetter("per_revolution")
 #: Rounding allowance when counting an arc's full turns: a sweep of exactly
 #: n full turns (up to rounding) is n turns, written P<n>, not n + 1.
 _TURNS_SLACK = 1e-12
@@ -79,6 +81,23 @@ def written_as_lines(sweep, ends, before, starts, digits: int) -> np.ndarray:
         return np.fromiter(map(math.hypot, du, dv), float, len(du)) <= near
 
     return (np.abs(sweep) < math.pi) & (within(before) | within(starts))
+
+
+def run_arcs(cols: PlainColumns, a: int, b: int, ends, at, shift, digits: int):
+    """The arcs among segments ``a`` .. ``b - 1`` written one after another:
+    their places in the run, their written starts ``(k, 2)`` (machine minus
+    ``shift``, rounded), and which of them are written as lines
+    (:func:`written_as_lines`); ``ends``: the run's rounded written ends
+    ``(u, v)``, ``at``: the written point before the run (or None)."""
+    (ru, rv), (du, dv) = ends, shift
+    arcs = np.flatnonzero(cols.kind[a:b] == ARC)
+    rows = arcs + a
+    at = at if at is not None else (math.nan, math.nan)
+    before = np.column_stack((np.r_[at[0], ru[:-1]], np.r_[at[1], rv[:-1]]))[arcs]
+    starts = np.column_stack((rounded(cols.start[rows, 0] - du, digits),
+                              rounded(cols.start[rows, 1] - dv, digits)))
+    return arcs, starts, written_as_lines(cols.sweep[rows], np.column_stack((ru[arcs], rv[arcs])),
+                                          before, starts, digits)
 
 
 class _Writer:
@@ -181,30 +200,28 @@ def _write_run(wr: _Writer, cols: PlainColumns, a: int, b: int) -> None:
     d, (du, dv, dw) = wr.digits, wr.shift
     u, v = cols.end[a:b, 0] - du, cols.end[a:b, 1] - dv
     fu, fv, ru, rv = fmt_many(u, d), fmt_many(v, d), rounded(u, d), rounded(v, d)
-    arcs = np.flatnonzero(cols.kind[a:b] == ARC)
+    arcs, starts, as_line = run_arcs(cols, a, b, (ru, rv), wr.at, (du, dv), d)
     rows = arcs + a
-    at = wr.at if wr.at is not None else (math.nan, math.nan)
-    before = np.column_stack((np.r_[at[0], ru[:-1]], np.r_[at[1], rv[:-1]]))[arcs]
-    starts = np.column_stack((rounded(cols.start[rows, 0] - du, d),
-                              rounded(cols.start[rows, 1] - dv, d)))
-    as_line = written_as_lines(cols.sweep[rows], np.column_stack((ru[arcs], rv[arcs])), before,
-                               starts, d)
     feeds = cols.feeds[a:b]
-    heads = [f"{wr.prefix}G0 " if f is None else f"{wr.prefix}G1 " for f in feeds]
-    tails = list(map(wr.feed_word, feeds))
-    true = ~as_line
-    sweep = cols.sweep[rows[true]]
+    rapid, feed = f"{wr.prefix}G0 ", f"{wr.prefix}G1 "
+    heads = [rapid if f is None else feed for f in feeds]
+    tails = [""] * len(feeds)
+    for k in changes(feeds, wr.feed):       # as feed_word writes them
+        tails[k] = f" F{fmt(feeds[k] * 60.0, 4)}"
+        wr.feed = feeds[k]
+    circles = ~as_line                      # the arcs written as arcs
+    sweep = cols.sweep[rows[circles]]
     turns = np.maximum(np.ceil(np.abs(sweep) / TWO_PI - _TURNS_SLACK).astype(np.int64) - 1, 0)
-    i = fmt_many(cols.center[rows[true], 0] - du - starts[true, 0], d)
-    j = fmt_many(cols.center[rows[true], 1] - dv - starts[true, 1], d)
-    for k, sw, ik, jk, t in zip(arcs[true].tolist(), sweep.tolist(), i, j, turns.tolist()):
+    i = fmt_many(cols.center[rows[circles], 0] - du - starts[circles, 0], d)
+    j = fmt_many(cols.center[rows[circles], 1] - dv - starts[circles, 1], d)
+    ci, cj = f" {wr.ci}", f" {wr.cj}"
+    for k, sw, ik, jk, t in zip(arcs[circles].tolist(), sweep.tolist(), i, j, turns.tolist()):
         heads[k] = "G3 " if sw > 0 else "G2 "
-        tails[k] = f" {wr.ci}{ik} {wr.cj}{jk}{f' P{t + 1}' if t else ''}{tails[k]}"
-    U, V, W = wr.u, wr.v, wr.w
-    wr.lines += [f"{h}{U}{x} {V}{y} {W}{z}{t}" for h, x, y, z, t in
-                 zip(heads, fu, fv, fmt_many(cols.w1[a:b] - dw, d), tails)]
+        tails[k] = f"{ci}{ik}{cj}{jk}{f' P{t + 1}' if t else ''}{tails[k]}"
+    wr.lines += map("".join, zip(heads, repeat(wr.u), fu, repeat(f" {wr.v}"), fv,
+                                 repeat(f" {wr.w}"), fmt_many(cols.w1[a:b] - dw, d), tails))
     wr.source += range(a, b)
-    intended = [(g, 0.0) for g in cols.geoms[a:b]]
+    intended = list(zip(cols.geoms[a:b], repeat(0.0)))
     for k in arcs[as_line].tolist():
         g = cols.geoms[a + k]
         intended[k] = (Line(g.start, g.end), 0.0 + g.length)
@@ -292,13 +309,14 @@ def _joins(path: ToolPath, cols: PlainColumns, machine: MachineWords,
     before it and nothing of the machine's to write (:meth:`MachineWords.quiet`);
     and each segment's block's place in the program."""
     segments = path.segments
+    n = len(segments)
     blocks = list(map(_BLOCK, segments))
     joins, order = machine.quiet(blocks)
     joins &= cols.kind != OTHER
     planes = list(map(_PLANE, segments))
-    joins[1:] &= np.array([p == q for p, q in zip(planes[1:], planes)], dtype=bool)
-    joins &= np.array([b is None or b.per_revolution is None for b in blocks], dtype=bool)
-    joins[[i for i in dwell_at if i < len(segments)]] = False
+    joins[1:] &= np.fromiter(map(eq, planes[1:], planes), bool, n - 1)
+    joins &= np.fromiter(map(is_, map(_PITCH, stand_in(blocks)), repeat(None)), bool, n)
+    joins[[i for i in dwell_at if i < n]] = False
     return joins, order
 
 

@@ -13,15 +13,17 @@ segment is written in its own plane: ``NORMAL K-1`` (XY), ``J-1`` (ZX) or
 """
 from __future__ import annotations
 
-import math
+from itertools import repeat
+from operator import attrgetter, eq, is_, ne
 
 import numpy as np
 
 from ccopt.errors import ProgramError
 from ccopt.export.arcfit import DEFAULT_TOL, fit_located, fit_tolerance
-from ccopt.export.bulk import (ARC, LINE, PlainColumns, fmt_many, rounded,
+from ccopt.export.bulk import (ARC, LINE, PlainColumns, changes, fmt_many, rounded,
                                run_ends)
-from ccopt.export.gcode import bezier_pieces, fmt, written_as_line, written_as_lines
+from ccopt.export.gcode import bezier_pieces, fmt, run_arcs, written_as_line
+from ccopt.export.machine import stand_in
 from ccopt.export.text import with_header
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
@@ -29,6 +31,7 @@ from ccopt.geometry.columns import paused_gc
 from ccopt.program.model import PLANE_AXES
 from ccopt.toolpath import ToolPath, starts_at_origin
 
+_BLOCK, _PLANE, _PITCH = attrgetter("block"), attrgetter("plane"), attrgetter("per_revolution")
 NORMAL = {"XY": "NORMAL K-1", "ZX": "NORMAL J-1", "YZ": "NORMAL I-1"}
 AXES = "XYZ"
 CENTRE = "IJK"
@@ -160,13 +163,9 @@ class _Writer:
         d = self.digits
         u, v = cols.end[a:b, 0], cols.end[a:b, 1]
         fu, fv, ru, rv = fmt_many(u, d), fmt_many(v, d), rounded(u, d), rounded(v, d)
-        arcs = np.flatnonzero(cols.kind[a:b] == ARC)
+        # machine coordinates: no shift (x - 0.0 is x, to the bit)
+        arcs, starts, as_line = run_arcs(cols, a, b, (ru, rv), self.axes.at, (0.0, 0.0), d)
         rows = arcs + a
-        at = self.axes.at if self.axes.at is not None else (math.nan, math.nan)
-        before = np.column_stack((np.r_[at[0], ru[:-1]], np.r_[at[1], rv[:-1]]))[arcs]
-        starts = np.column_stack((rounded(cols.start[rows, 0], d), rounded(cols.start[rows, 1], d)))
-        as_line = written_as_lines(cols.sweep[rows], np.column_stack((ru[arcs], rv[arcs])), before,
-                                   starts, d)
         feeds = cols.feeds[a:b]
         w = cols.w1[a:b].copy()
         w0 = cols.w0[rows]
@@ -176,11 +175,12 @@ class _Writer:
         modes = ["RAPID" if f is None else "LINEAR" for f in feeds]
         U, V, W = self.axes.letters
         texts = [f"{U}{x} {V}{y} {W}{z}" for x, y, z in zip(fu, fv, fmt_many(w, d))]
-        true = ~as_line
+        circles = ~as_line                  # the arcs written as arcs
         CI, CJ = self.axes.centres
-        i = fmt_many(cols.center[rows[true], 0] - starts[true, 0], d)
-        j = fmt_many(cols.center[rows[true], 1] - starts[true, 1], d)
-        for k, sweep, ik, jk in zip(arcs[true].tolist(), cols.sweep[rows[true]].tolist(), i, j):
+        i = fmt_many(cols.center[rows[circles], 0] - starts[circles, 0], d)
+        j = fmt_many(cols.center[rows[circles], 1] - starts[circles, 1], d)
+        for k, sweep, ik, jk in zip(arcs[circles].tolist(), cols.sweep[rows[circles]].tolist(),
+                                    i, j):
             modes[k] = "CIRCLE2" if sweep > 0 else "CIRCLE1"
             texts[k] = f"{texts[k]} {CI}{ik} {CJ}{jk}"
         self._lines(modes, feeds, texts)
@@ -193,16 +193,18 @@ class _Writer:
 
     def _lines(self, modes: list[str], feeds: list, texts: list[str]) -> None:
         """The lines of moves in ``modes`` at ``feeds`` (``None``: the feed in
-        force) saying ``texts``, each with the mode and feed words that change."""
-        mode, feed = self.mode, self.feed
-        for m, f, text in zip(modes, feeds, texts):
-            words = ""
-            if m != mode:
-                words, mode = f"{m} ", m
-            if f is not None and f != feed:
-                words, feed = f"{words}F{fmt(f, 6)} ", f
-            self.lines.append(f"{words}{text}")
-        self.mode, self.feed = mode, feed
+        force) saying ``texts``, each with the mode and feed words that change
+        (as :meth:`emit` writes them)."""
+        words = [""] * len(modes)
+        if modes[0] != self.mode:
+            words[0] = f"{modes[0]} "
+        for k in np.flatnonzero(np.fromiter(map(ne, modes[1:], modes), bool)).tolist():
+            words[k + 1] = f"{modes[k + 1]} "
+        for k in changes(feeds, self.feed):
+            words[k] += f"F{fmt(feeds[k], 6)} "
+            self.feed = feeds[k]
+        self.mode = modes[-1]
+        self.lines += map(str.__add__, words, texts)
 
 
 def _joins(path: ToolPath, cols: PlainColumns, dwells: dict) -> np.ndarray:
@@ -210,14 +212,15 @@ def _joins(path: ToolPath, cols: PlainColumns, dwells: dict) -> np.ndarray:
     them: a line, or an arc of at most a turn and of finite non-zero length,
     not synchronised, in the same plane, with no dwell before it."""
     segments = path.segments
+    n = len(segments)
     arc = cols.kind == ARC
     joins = (cols.kind == LINE) | (arc & (np.abs(cols.sweep) <= TWO_PI) & (cols.length > 0.0)
                                    & np.isfinite(cols.length))
-    planes = [s.plane for s in segments]
-    joins[1:] &= np.array([p == q for p, q in zip(planes[1:], planes)], dtype=bool)
-    joins &= np.array([s.block is None or s.block.per_revolution is None for s in segments],
-                      dtype=bool)
-    joins[[i for i in dwells if i < len(segments)]] = False
+    planes = list(map(_PLANE, segments))
+    joins[1:] &= np.fromiter(map(eq, planes[1:], planes), bool, n - 1)
+    pitches = map(_PITCH, stand_in(list(map(_BLOCK, segments))))
+    joins &= np.fromiter(map(is_, pitches, repeat(None)), bool, n)
+    joins[[i for i in dwells if i < n]] = False
     return joins
 
 
