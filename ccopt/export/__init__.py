@@ -213,13 +213,18 @@ def _tighter_fits(cert, moves: list, seg_tol: dict[int, float], tol: float) -> d
     :data:`~ccopt.tolerances.EXPORT_REFIT_MIN_TOL` (the written numbers'
     rounding, which no fit can beat)."""
     out = dict(seg_tol)
-    for v in cert.violations_of("gouge"):
-        m = v.tool_segment
-        if m is None or not 0 <= m < len(moves):
+    # exact lines and arcs have no bound: nothing to refit, and a path of
+    # them alone (the common case) needs no look at its gouges
+    fitted = {m: (src, bound) for m, (src, _, bound) in enumerate(moves)
+              if src >= 0 and bound > 0.0}
+    if not fitted:
+        return out
+    # each move once, in the order it first gouges: tightening is monotone,
+    # so a move's later gouges change nothing
+    for m in dict.fromkeys(v.tool_segment for v in cert.violations_of("gouge")):
+        if m not in fitted:
             continue
-        src, _, bound = moves[m]
-        if src < 0 or bound <= 0.0:
-            continue              # an exact line or arc: nothing to refit
+        src, bound = fitted[m]
         now = out.get(src, tol)
         new = max(min(now, bound / EXPORT_REFIT_SHRINK), EXPORT_REFIT_MIN_TOL)
         if new < now:

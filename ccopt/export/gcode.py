@@ -12,13 +12,21 @@ bound). Feeds are written per minute (G94).
 from __future__ import annotations
 
 import math
+from itertools import repeat
+from operator import attrgetter, eq, is_
+
+import numpy as np
 
 from ccopt.errors import ProgramError
 from ccopt.export.arcfit import fit_arcs, fit_bezier, fit_located, fit_tolerance
-from ccopt.export.machine import MachineWords, machine_prefix, written_frame, written_offset
+from ccopt.export.bulk import (ARC, OTHER, PlainColumns, changes, fmt_many, rounded,
+                               run_ends)
+from ccopt.export.machine import (MachineWords, machine_prefix, stand_in, written_frame,
+                                  written_offset)
 from ccopt.export.text import with_header
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
+from ccopt.geometry.columns import paused_gc
 from ccopt.program.model import PLANE_AXES
 from ccopt.toolpath import ToolPath, starts_at_origin
 
@@ -26,6 +34,7 @@ PLANE_WORD = {"XY": "G17", "ZX": "G18", "YZ": "G19"}
 AXES = "XYZ"
 CENTRE = "IJK"
 
+_BLOCK, _PLANE, _PITCH = attrgetter("block"), attrgetter("plane"), attrgetter("per_revolution")
 #: Rounding allowance when counting an arc's full turns: a sweep of exactly
 #: n full turns (up to rounding) is n turns, written P<n>, not n + 1.
 _TURNS_SLACK = 1e-12
@@ -59,6 +68,36 @@ def written_as_line(arc, starts, end, digits: int) -> bool:
     near = SHORT_CHORD_UNITS * 10.0 ** -digits
     return any(p is not None and math.hypot(end[0] - p[0], end[1] - p[1]) <= near
                for p in starts)
+
+
+def written_as_lines(sweep, ends, before, starts, digits: int) -> np.ndarray:
+    """:func:`written_as_line` of many arcs at once: ``sweep`` ``(n,)``, the
+    rounded written ``ends`` and ``starts`` ``(n, 2)``, and ``before``
+    ``(n, 2)``, the written point the reader starts each from (NaN: none)."""
+    near = SHORT_CHORD_UNITS * 10.0 ** -digits
+
+    def within(p) -> np.ndarray:
+        du, dv = (ends[:, 0] - p[:, 0]).tolist(), (ends[:, 1] - p[:, 1]).tolist()
+        return np.fromiter(map(math.hypot, du, dv), float, len(du)) <= near
+
+    return (np.abs(sweep) < math.pi) & (within(before) | within(starts))
+
+
+def run_arcs(cols: PlainColumns, a: int, b: int, ends, at, shift, digits: int):
+    """The arcs among segments ``a`` .. ``b - 1`` written one after another:
+    their places in the run, their written starts ``(k, 2)`` (machine minus
+    ``shift``, rounded), and which of them are written as lines
+    (:func:`written_as_lines`); ``ends``: the run's rounded written ends
+    ``(u, v)``, ``at``: the written point before the run (or None)."""
+    (ru, rv), (du, dv) = ends, shift
+    arcs = np.flatnonzero(cols.kind[a:b] == ARC)
+    rows = arcs + a
+    at = at if at is not None else (math.nan, math.nan)
+    before = np.column_stack((np.r_[at[0], ru[:-1]], np.r_[at[1], rv[:-1]]))[arcs]
+    starts = np.column_stack((rounded(cols.start[rows, 0] - du, digits),
+                              rounded(cols.start[rows, 1] - dv, digits)))
+    return arcs, starts, written_as_lines(cols.sweep[rows], np.column_stack((ru[arcs], rv[arcs])),
+                                          before, starts, digits)
 
 
 class _Writer:
@@ -154,6 +193,42 @@ class _Writer:
                        f"{self.cj}{fmt(j, self.digits)}{p}{self.feed_word(feed)}", arc, bound)
 
 
+def _write_run(wr: _Writer, cols: PlainColumns, a: int, b: int) -> None:
+    """Write segments ``a`` .. ``b - 1``, lines and arcs in the writer's plane
+    and unrotated frame with nothing to write between them but their moves,
+    as :meth:`_Writer.line` and :meth:`_Writer.arc` write them one by one."""
+    d, (du, dv, dw) = wr.digits, wr.shift
+    u, v = cols.end[a:b, 0] - du, cols.end[a:b, 1] - dv
+    fu, fv, ru, rv = fmt_many(u, d), fmt_many(v, d), rounded(u, d), rounded(v, d)
+    arcs, starts, as_line = run_arcs(cols, a, b, (ru, rv), wr.at, (du, dv), d)
+    rows = arcs + a
+    feeds = cols.feeds[a:b]
+    rapid, feed = f"{wr.prefix}G0 ", f"{wr.prefix}G1 "
+    heads = [rapid if f is None else feed for f in feeds]
+    tails = [""] * len(feeds)
+    for k in changes(feeds, wr.feed):       # as feed_word writes them
+        tails[k] = f" F{fmt(feeds[k] * 60.0, 4)}"
+        wr.feed = feeds[k]
+    circles = ~as_line                      # the arcs written as arcs
+    sweep = cols.sweep[rows[circles]]
+    turns = np.maximum(np.ceil(np.abs(sweep) / TWO_PI - _TURNS_SLACK).astype(np.int64) - 1, 0)
+    i = fmt_many(cols.center[rows[circles], 0] - du - starts[circles, 0], d)
+    j = fmt_many(cols.center[rows[circles], 1] - dv - starts[circles, 1], d)
+    ci, cj = f" {wr.ci}", f" {wr.cj}"
+    for k, sw, ik, jk, t in zip(arcs[circles].tolist(), sweep.tolist(), i, j, turns.tolist()):
+        heads[k] = "G3 " if sw > 0 else "G2 "
+        tails[k] = f"{ci}{ik}{cj}{jk}{f' P{t + 1}' if t else ''}{tails[k]}"
+    wr.lines += map("".join, zip(heads, repeat(wr.u), fu, repeat(f" {wr.v}"), fv,
+                                 repeat(f" {wr.w}"), fmt_many(cols.w1[a:b] - dw, d), tails))
+    wr.source += range(a, b)
+    intended = list(zip(cols.geoms[a:b], repeat(0.0)))
+    for k in arcs[as_line].tolist():
+        g = cols.geoms[a + k]
+        intended[k] = (Line(g.start, g.end), 0.0 + g.length)
+    wr.intended += intended
+    wr.at = (float(ru[-1]), float(rv[-1]))
+
+
 def synchronised_pitch(seg) -> float | None:
     """The units per spindle revolution of a segment made by a spindle-
     synchronised block (``G33``, ``G76``'s cuts), or None; refused, located,
@@ -227,6 +302,69 @@ def _write_segment(wr: _Writer, idx: int, seg, tol: float) -> float:
     return max_err
 
 
+def _joins(path: ToolPath, cols: PlainColumns, machine: MachineWords,
+           dwell_at: dict) -> tuple[np.ndarray, np.ndarray]:
+    """Which segments continue a run (:func:`_write_run`) from the one before
+    them: a line or arc, not synchronised, in the same plane, with no dwell
+    before it and nothing of the machine's to write (:meth:`MachineWords.quiet`);
+    and each segment's block's place in the program."""
+    segments = path.segments
+    n = len(segments)
+    blocks = list(map(_BLOCK, segments))
+    joins, order = machine.quiet(blocks)
+    joins &= cols.kind != OTHER
+    planes = list(map(_PLANE, segments))
+    joins[1:] &= np.fromiter(map(eq, planes[1:], planes), bool, n - 1)
+    joins &= np.fromiter(map(is_, map(_PITCH, stand_in(blocks)), repeat(None)), bool, n)
+    joins[[i for i in dwell_at if i < n]] = False
+    return joins, order
+
+
+def _write_one(wr: _Writer, machine: MachineWords, path: ToolPath, idx: int, dwells,
+               tol: float) -> float:
+    """Write segment ``idx`` with what goes before and on it: the ``dwells``
+    before it, its plane and machine words, its frame, its moves (fitted within
+    ``tol``), the A B C U V W of its block's end; the largest fitting error."""
+    seg = path.segments[idx]
+    for seconds, block in dwells:
+        wr.lines += machine.before(block)
+        wr.lines.append(f"G4 P{fmt(seconds, 4)}")
+    if seg.plane != wr.plane:
+        # a path in several planes: the plane word before its first move
+        wr.lines.append(PLANE_WORD[seg.plane])
+        wr.set_plane(seg.plane)
+    wr.lines += machine.before(seg.block)
+    wr.set_frame(seg.block)
+    err = _write_segment(wr, idx, seg, tol)
+    if idx + 1 == len(path.segments) or path.segments[idx + 1].block is not seg.block:
+        # the carried axes end with their block's last move
+        wr.lines[-1] += machine.axes_words(seg.block)
+    return err
+
+
+def _write_segments(wr: _Writer, machine: MachineWords, path: ToolPath, dwell_at: dict,
+                    tol_of) -> float:
+    """Write the path's segments, runs of plain lines and arcs in bulk
+    (:func:`_write_run`), the others one by one, each fitted within
+    ``tol_of(index)``; the largest fitting error."""
+    cols = PlainColumns(path)
+    joins, order = _joins(path, cols, machine, dwell_at)
+    ends = run_ends(joins)
+    max_err = 0.0
+    idx = 0
+    while idx < len(path.segments):
+        max_err = max(max_err, _write_one(wr, machine, path, idx, dwell_at.get(idx, ()),
+                                          tol_of(idx)))
+        end = ends[idx]
+        if end > idx + 1 and wr.rotated is None:
+            _write_run(wr, cols, idx + 1, end)
+            machine.passed(int(order[idx + 1:end].max()))
+            idx = end
+        else:
+            idx += 1
+    return max_err
+
+
 def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, digits: int = 6,
                 seg_tol: dict[int, float] | None = None, radius_mode: bool = False,
                 program=None):
@@ -254,7 +392,6 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
     if isinstance(number, int):
         out.append(f"O{number}")
     out.append(f"G21 {modes}" if path.units == "mm" else f"G20 {modes}")
-    max_err = 0.0
     dwell_at: dict[int, list] = {}
     for idx, seconds, block in path.dwells:
         dwell_at.setdefault(idx, []).append((seconds, block))
@@ -263,25 +400,13 @@ def write_gcode(path: ToolPath, tol: float, header: list[str] | None = None, dig
         wr.lines += machine.before(first.block)
         wr.set_frame(first.block)
         wr.move(-1, f"G0 {wr.coords(first.start, first.w0)}")  # positioning, no segment
-    for idx, seg in enumerate(path.segments):
-        for seconds, block in dwell_at.get(idx, ()):
-            wr.lines += machine.before(block)
-            wr.lines.append(f"G4 P{fmt(seconds, 4)}")
-        if seg.plane != wr.plane:
-            # a path in several planes: the plane word before its first move
-            wr.lines.append(PLANE_WORD[seg.plane])
-            wr.set_plane(seg.plane)
-        wr.lines += machine.before(seg.block)
-        wr.set_frame(seg.block)
-        max_err = max(max_err, _write_segment(wr, idx, seg, fit_tolerance(
-            seg_tol.get(idx, tol), digits)))
-        if idx + 1 == len(path.segments) or path.segments[idx + 1].block is not seg.block:
-            # the carried axes end with their block's last move
-            wr.lines[-1] += machine.axes_words(seg.block)
+    with paused_gc():       # many small objects, none in a cycle: see paused_gc
+        max_err = _write_segments(wr, machine, path, dwell_at,
+                                  lambda idx: fit_tolerance(seg_tol.get(idx, tol), digits))
+        moves = list(zip(wr.source, *zip(*wr.intended)))
     for seconds, block in dwell_at.get(len(path.segments), ()):
         wr.lines += machine.before(block)
         wr.lines.append(f"G4 P{fmt(seconds, 4)}")
     out += wr.lines
     out += machine.finish() + ["%"]
-    return (with_header("\n".join(out) + "\n", header, "gcode"),
-            list(zip(wr.source, *zip(*wr.intended))), max_err)
+    return with_header("\n".join(out) + "\n", header, "gcode"), moves, max_err

@@ -22,6 +22,12 @@ Coordinates are program units; an offset is machine minus work coordinates.
 """
 from __future__ import annotations
 
+from itertools import repeat
+from operator import attrgetter, is_, is_not
+from types import SimpleNamespace
+
+import numpy as np
+
 from ccopt.program.model import (AXES_USED, PROGRAM_END, START_PARAMETERS, TRAILING_WORDS,
                                  Block, Frame, Program, Vec3)
 
@@ -31,6 +37,10 @@ SYSTEM_CODE = {1: "G54", 2: "G55", 3: "G56", 4: "G57", 5: "G58", 6: "G59",
 _NO_OFFSET: Vec3 = (0.0, 0.0, 0.0)
 _EXTRA = "ABCUVW"
 _NO_AXES = (0.0,) * 6
+_WORDS, _FRAME, _AXES = attrgetter("words"), attrgetter("frame"), attrgetter("axes")
+#: What a move without a block (made by hand) has of one: no frame, no axes
+#: carried, no spindle synchronisation.
+NO_BLOCK = SimpleNamespace(frame=None, axes=None, per_revolution=None)
 
 
 def _fmt(x: float) -> str:
@@ -59,7 +69,7 @@ class MachineWords:
     def __init__(self, program: Program | None):
         blocks = program.blocks if program is not None else ()
         self.blocks = blocks
-        self.index = {id(b): i for i, b in enumerate(blocks)}
+        self.index = dict(zip(map(id, blocks), range(len(blocks))))
         self.flushed = 0              # blocks whose words are written: [0, flushed)
         meta = program.meta if program is not None else {}
         self.trailing = tuple(meta.get(TRAILING_WORDS, ()))
@@ -73,7 +83,6 @@ class MachineWords:
         self.axis_offset = (tuple(params.get(5211 + k, 0.0) for k in range(3))
                             if applied else _NO_OFFSET)
         self.system: int | None = None
-        self.uses_frames = any(b.frame is not None for b in blocks)
         self.axes: tuple[float, ...] | None = None   # A .. W last written
         self.axes_used = meta.get(AXES_USED, "")
         self.axes_offset = tuple(params.get(5214 + k, 0.0) for k in range(6)) if applied \
@@ -90,6 +99,34 @@ class MachineWords:
         if block is not None and block.frame is not None:
             out += self._frame_lines(block.frame)
         return out
+
+    def quiet(self, blocks: list) -> tuple[np.ndarray, np.ndarray]:
+        """Which of the moves made from ``blocks`` (in writing order) need
+        nothing written before or on them once the move before them is
+        written: the same frame (object) as that move's, no A B C U V W
+        carried, and no block with words between the blocks of the moves
+        before and its own. Returns that mask (the first move's False) and
+        each block's place in the program (-1: none) for :meth:`passed`."""
+        n = len(blocks)
+        order = np.fromiter(map(self.index.get, map(id, blocks), repeat(-1)), np.int64, n)
+        # worded[i]: the program's blocks with words among its first i
+        worded = np.zeros(len(self.blocks) + 1, np.int64)
+        np.cumsum(np.fromiter(map(bool, map(_WORDS, self.blocks)), bool, len(self.blocks)),
+                  out=worded[1:])
+        # the words of the blocks after the furthest one reached so far, up
+        # to this move's own, come before it: none there, nothing to write
+        reached = np.maximum.accumulate(order)
+        blocks = stand_in(blocks)
+        frames = np.fromiter(map(id, map(_FRAME, blocks)), np.uint64, n)
+        out = np.zeros(n, dtype=bool)
+        out[1:] = (worded[order[1:] + 1] <= worded[reached[:-1] + 1]) & (frames[1:] == frames[:-1])
+        carried = np.fromiter(map(is_not, map(_AXES, blocks), repeat(None)), bool, n)
+        return out & ~carried, order
+
+    def passed(self, place: int) -> None:
+        """The moves made up to the block at ``place`` in the program were
+        written, with nothing before them (:meth:`quiet`)."""
+        self.flushed = max(self.flushed, place + 1)
 
     def _frame_lines(self, frame: Frame) -> list[str]:
         out = []
@@ -131,6 +168,13 @@ class MachineWords:
             out += b.words
         self.flushed = len(self.blocks)
         return out + list(self.trailing) + [self.end]
+
+
+def stand_in(blocks: list) -> list:
+    """``blocks`` with :data:`NO_BLOCK` for each ``None`` (a move made by hand)."""
+    if any(map(is_, blocks, repeat(None))):
+        return [NO_BLOCK if b is None else b for b in blocks]
+    return blocks
 
 
 def written_offset(block: Block | None) -> Vec3:
