@@ -25,6 +25,7 @@ import numpy as np
 from ccopt.geometry import KIND_ARC, KIND_LINE, KIND_SPIRAL, Arc, Line, SegmentArray, Spiral
 from ccopt.geometry.angles import angle_in_sweep
 from ccopt.geometry.columns import put_rows, take_rows
+from ccopt.geometry.spiral import spiral_bboxes
 from ccopt.toolpath import ARC_ROW, LINE_ROW
 
 #: Row kind of a parametric curve (no closed form; certified bounds only).
@@ -174,6 +175,14 @@ def _arc_numbers(arcs):
             np.fromiter(map(_SWEEP, arcs), float, m))
 
 
+def _spiral_numbers(spirals):
+    """``(centres (m, 2), rho0, rho1, theta0, sweep, b)`` of the spirals."""
+    m = len(spirals)
+    return (np.fromiter(chain.from_iterable(map(_CENTER, spirals)), float, 2 * m).reshape(m, 2),
+            *(np.fromiter(map(get, spirals), float, m)
+              for get in map(attrgetter, ("rho0", "rho1", "theta0", "sweep", "b"))))
+
+
 def _packed(n: int, li: np.ndarray, pts: np.ndarray, ai: np.ndarray, arcs, curved: dict) -> Packed:
     """The :class:`Packed` of ``n`` rows: lines at rows ``li`` (``pts``, see
     :func:`_line_points`), arcs at rows ``ai`` (``arcs``, see
@@ -206,17 +215,19 @@ def _packed(n: int, li: np.ndarray, pts: np.ndarray, ai: np.ndarray, arcs, curve
         radius[ai] = radius_end[ai] = R
         theta0[ai], sweep[ai] = th0, sw
         bbox[ai] = arc_bbox(c, R, th0, sw, a0, a1)
+    si = [i for i, g in curved.items() if isinstance(g, Spiral)]
+    if si:
+        # all spirals at once: the same ends and boxes as their start, end and bbox()
+        sc, r0, r1, th0, sw, b = _spiral_numbers([curved[i] for i in si])
+        kind[si] = KIND_SPIRAL
+        center[si], radius[si], radius_end[si], theta0[si], sweep[si] = sc, r0, r1, th0, sw
+        p0[si], p1[si], bbox[si] = spiral_bboxes(sc, r0, r1, th0, sw, b)
     for i, g in curved.items():
-        p0[i] = g.start
-        p1[i] = g.end
-        bbox[i] = _curve_bbox(g)
-        if isinstance(g, Spiral):
-            kind[i] = KIND_SPIRAL
-            center[i] = g.center
-            radius[i], radius_end[i] = g.rho0, g.rho1
-            theta0[i], sweep[i] = g.theta0, g.sweep
-        else:
+        if not isinstance(g, Spiral):
             kind[i] = KIND_CURVE
+            p0[i] = g.start
+            p1[i] = g.end
+            bbox[i] = _curve_bbox(g)
     for a in (kind, p0, p1, center, radius, radius_end, theta0, sweep):
         a.flags.writeable = False
     return Packed(SegmentArray(kind, p0, p1, center, radius, radius_end, theta0, sweep),
