@@ -213,7 +213,8 @@ def test_first_pieces_of_every_pair_at_once_are_the_one_at_a_time_cuts(seed):
     # the batch cuts all pairs' first pieces at once; each pair's must be the
     # cuts np.linspace gives one curve at a time (a spiral one per pi/16 of
     # sweep, at least 8; a Bezier curve 8), curved pairs as their outer product
-    from ccopt.verify.distance.certified_batch import _Beziers, _first, _Spirals
+    from ccopt.verify.distance.certified_batch import _first
+    from ccopt.verify.distance.curve_rows import BezierRows, SpiralRows
     rng = np.random.default_rng(seed)
     spirals = [Spiral((0.0, 0.0), rng.uniform(1, 5), rng.uniform(1, 5), rng.uniform(-3, 3),
                       rng.choice([-1, 1]) * rng.uniform(0.01, 12)) for _ in range(40)]
@@ -225,10 +226,10 @@ def test_first_pieces_of_every_pair_at_once_are_the_one_at_a_time_cuts(seed):
         return u[:-1], u[1:]
 
     sel = rng.integers(0, 40, 25)
-    for A, spiral in ((_Spirals(spirals), True), (_Beziers(beziers), False)):
+    for A, spiral in ((SpiralRows(spirals), True), (BezierRows(beziers), False)):
         s = sel % len(A.U)
         others = [spirals[i] for i in rng.integers(0, 40, s.size)]
-        B = _Spirals(others)
+        B = SpiralRows(others)
         for curved in (False, True):
             pid, ua0, ua1, ub0, ub1 = _first(A, B, s, curved)
             for m, i in enumerate(s):
