@@ -27,6 +27,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ccopt.geometry import Arc, Line, Spiral
+from ccopt.geometry.columns import put_rows, take_rows
 from ccopt.geometry.distance import segment_segment
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
 from ccopt.verify.distance.concentric import polar_gap, same_angle
@@ -204,7 +205,7 @@ def _run(A: SpiralRows | BezierRows, bs, sel, curved: bool, tol: float, caps, ma
 def _rows(C: SpiralRows | ExactRows, idx):
     """The rows ``idx`` of ``C`` (every attribute of an instance is a per-row array)."""
     sub = object.__new__(type(C))
-    sub.__dict__.update({name: value[idx] for name, value in vars(C).items()})
+    sub.__dict__.update({name: take_rows(value, idx) for name, value in vars(C).items()})
     return sub
 
 
@@ -286,10 +287,10 @@ def _round(geo, pieces, exempts):
     A, B, sel, curved, conc, Rb = geo
     pid, ua0, ua1, ub0, ub1 = pieces
     ka = sel[pid]
-    c0, c1 = A.eval(ka, ua0), A.eval(ka, ua1)
+    c0, c1 = _ends(A, ka, ua0, ua1) if A.concentric else (A.eval(ka, ua0), A.eval(ka, ua1))
     da = A.delta(ka, ua0, ua1)
     if curved:
-        e0, e1 = B.eval(pid, ub0), B.eval(pid, ub1)
+        e0, e1 = _ends(B, pid, ub0, ub1)
         db = B.delta(pid, ub0, ub1)
         d, w_a, w_b = segment_segment(c0, c1, e0, e1)
     else:
@@ -317,15 +318,30 @@ def _round(geo, pieces, exempts):
     return lb, dq, qa, qb, live, ok
 
 
+def _ends(S: SpiralRows, k, u0, u1):
+    """``(S.eval(k, u0), S.eval(k, u1))``, a point that ends one piece and starts
+    the next (one curve, the same bits of ``u``: the same point, as the
+    evaluation works element by element) evaluated once."""
+    n = k.size
+    p0 = S.eval(k, u0)
+    shared = (k[1:] == k[:-1]) & (u1[:-1].view(np.int64) == u0[1:].view(np.int64))
+    from_next = np.flatnonzero(shared)
+    own = np.append(np.flatnonzero(~shared), n - 1) if n else from_next
+    p1 = np.empty((n, 2))
+    put_rows(p1, from_next, take_rows(p0, from_next + 1))
+    put_rows(p1, own, S.eval(k[own], u1[own]))
+    return p0, p1
+
+
 def _mid_arc(A: SpiralRows, ka, B: ExactRows | SpiralRows, pid, ua0, ua1, ub0=None, ub1=None):
     """:func:`~ccopt.verify.distance.mid_arc.mid_arc_bound` of spiral pieces
     ``[ua0, ua1]`` of ``A``'s curves ``ka`` against ``B``'s elements ``pid``, or
     against their pieces ``[ub0, ub1]`` when ``B`` holds spirals."""
-    arc_a = mid_arc(A.c[ka], A.rho0[ka], A.b[ka], A.th0[ka], A.sg[ka], ua0, ua1)
+    arc_a = mid_arc(take_rows(A.c, ka), A.rho0[ka], A.b[ka], A.th0[ka], A.sg[ka], ua0, ua1)
     if isinstance(B, ExactRows):
         return mid_arc_bound(arc_a, element_to=lambda c, R, t, w: B.arcs_to(pid, c, R, t, w))
-    return mid_arc_bound(arc_a, mid_arc(B.c[pid], B.rho0[pid], B.b[pid], B.th0[pid], B.sg[pid],
-                                        ub0, ub1))
+    return mid_arc_bound(arc_a, mid_arc(take_rows(B.c, pid), B.rho0[pid], B.b[pid], B.th0[pid],
+                                        B.sg[pid], ub0, ub1))
 
 
 def _exempt(pid, c0, c1, da, qa, exempts):

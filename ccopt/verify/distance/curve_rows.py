@@ -17,6 +17,7 @@ from operator import attrgetter
 import numpy as np
 
 from ccopt.geometry import Arc, Line
+from ccopt.geometry.columns import put_rows, take_rows
 from ccopt.geometry.bezier_arclength import bernstein_basis, bezier_points
 from ccopt.geometry.distance import (
     arc_arc, point_arc, point_segment, segment_arc, segment_segment,
@@ -79,7 +80,7 @@ class SpiralRows:
         out = np.empty((u.size, 2))
         np.multiply(rho, np.cos(ang), out=out[:, 0])
         np.multiply(rho, np.sin(ang), out=out[:, 1])
-        out += self.c[k]
+        out += take_rows(self.c, k)
         return out
 
     def delta(self, k, u0, u1):
@@ -144,41 +145,55 @@ class ExactRows:
         """``on_lines(sel, kk)`` on the rows ``sel`` of ``k`` whose element is a
         line (``kk = k[sel]``), ``on_arcs`` on the arcs; the columns they return
         gathered into arrays of ``k``'s length (``widths``: 0 for one value a
-        row, 2 for a point)."""
-        out = [np.empty(k.size) if w == 0 else np.empty((k.size, w)) for w in widths]
+        row, 2 for a point). ``sel`` is ``None`` when all rows are of one kind
+        (the kernel's columns are then the result, nothing gathered)."""
         ln = self.line[k]
-        for sel, kernel in ((np.flatnonzero(ln), on_lines), (np.flatnonzero(~ln), on_arcs)):
+        lines = np.flatnonzero(ln)
+        if lines.size in (0, k.size):
+            return list((on_lines if lines.size else on_arcs)(None, k))
+        out = [np.empty(k.size) if w == 0 else np.empty((k.size, w)) for w in widths]
+        for sel, kernel in ((lines, on_lines), (np.flatnonzero(~ln), on_arcs)):
             if sel.size:
                 for col, got in zip(out, kernel(sel, k[sel])):
-                    col[sel] = got
+                    put_rows(col, sel, got)
         return out
+
+    def _line(self, kk):
+        """``(p0, p1)`` of elements ``kk``."""
+        return take_rows(self.p0, kk), take_rows(self.p1, kk)
+
+    def _arc(self, kk):
+        """``(c, R, th0, sw)`` of elements ``kk``."""
+        return take_rows(self.c, kk), self.R[kk], self.th0[kk], self.sw[kk]
 
     def chords_to(self, k, c0, c1):
         """``(distance, witness on the chord, witness on the element)`` of chords
         ``c0 -> c1`` to elements ``k``."""
         d, wa, wb = self._each_kind(
-            k, lambda sel, kk: segment_segment(c0[sel], c1[sel], self.p0[kk], self.p1[kk]),
-            lambda sel, kk: segment_arc(c0[sel], c1[sel], self.c[kk], self.R[kk], self.th0[kk],
-                                        self.sw[kk]), (0, 2, 2))
+            k, lambda sel, kk: segment_segment(_at(c0, sel), _at(c1, sel), *self._line(kk)),
+            lambda sel, kk: segment_arc(_at(c0, sel), _at(c1, sel), *self._arc(kk)), (0, 2, 2))
         return d, wa, wb
 
     def arcs_to(self, k, c, R, th0, sw):
         """Distances from arcs ``(c, R, th0, sw)`` (row-wise) to elements ``k``."""
+        def arcs(sel):
+            return [_at(a, sel) for a in (c, R, th0, sw)]
         d, = self._each_kind(
-            k, lambda sel, kk: segment_arc(self.p0[kk], self.p1[kk], c[sel], R[sel], th0[sel],
-                                           sw[sel])[:1],
-            lambda sel, kk: arc_arc(c[sel], R[sel], th0[sel], sw[sel], self.c[kk], self.R[kk],
-                                    self.th0[kk], self.sw[kk])[:1], (0,))
+            k, lambda sel, kk: segment_arc(*self._line(kk), *arcs(sel))[:1],
+            lambda sel, kk: arc_arc(*arcs(sel), *self._arc(kk))[:1], (0,))
         return d
 
     def points_to(self, k, q):
         """``(distance, nearest point on the element)`` of points ``q`` to elements ``k``."""
         d, wb = self._each_kind(
-            k, lambda sel, kk: _dist_and_witness(
-                point_segment(q[sel], self.p0[kk], self.p1[kk])),
-            lambda sel, kk: _dist_and_witness(
-                point_arc(q[sel], self.c[kk], self.R[kk], self.th0[kk], self.sw[kk])), (0, 2))
+            k, lambda sel, kk: _dist_and_witness(point_segment(_at(q, sel), *self._line(kk))),
+            lambda sel, kk: _dist_and_witness(point_arc(_at(q, sel), *self._arc(kk))), (0, 2))
         return d, wb
+
+
+def _at(a: np.ndarray, sel) -> np.ndarray:
+    """Rows ``sel`` of ``a`` (all of it for ``None``)."""
+    return a if sel is None else take_rows(a, sel)
 
 
 def _points(gs, get) -> np.ndarray:
