@@ -18,7 +18,7 @@ from ccopt.geometry.arclength import (
     END_POINT_REL_TOL, Point, as_point, clip_s, rotate_left, scalar_out, vector_out,
 )
 
-__all__ = ["Spiral", "spiral_arclength", "spiral_bboxes"]
+__all__ = ["Spiral", "spiral_arclength", "spiral_bboxes", "spiral_end_tangents"]
 
 #: Newton in the swept angle stops once every step is below this fraction of
 #: ``|sweep|`` (a few ulps of the angle: nothing smaller is representable).
@@ -398,6 +398,28 @@ def spiral_bboxes(center, rho0, rho1, theta0, sweep, b):
             kept = box[rows, col]
             box[rows, col] = np.where(v < kept if lower else v > kept, v, kept)
     return start, end, box
+
+
+def spiral_end_tangents(rho0, rho1, theta0, sweep, b):
+    """Unit tangents ``(n, 2)`` at the starts and at the ends of ``n`` spirals
+    given by their numbers (arrays, as :func:`spiral_bboxes` takes them): each
+    row, bit for bit, its spiral's ``start_tangent`` and ``end_tangent`` (with
+    math's cos, sin and hypot, as those use)."""
+    sg = np.copysign(1.0, sweep)
+    return _unit_tangents(rho0, theta0, sg, b), _unit_tangents(rho1, theta0 + sweep, sg, b)
+
+
+def _unit_tangents(rho, ang, sg, b) -> np.ndarray:
+    """:meth:`Spiral._unit_tangent` of each row."""
+    n = rho.size
+    angles = ang.tolist()
+    c = np.fromiter(map(math.cos, angles), float, n)
+    s = np.fromiter(map(math.sin, angles), float, n)
+    length = np.fromiter(map(math.hypot, rho.tolist(), b.tolist()), float, n)
+    out = np.empty((n, 2))
+    out[:, 0] = (b * c - sg * rho * s) / length
+    out[:, 1] = (b * s + sg * rho * c) / length
+    return out
 
 
 def _axis_extremes(center, rho0, theta0, sweep, b) -> list:

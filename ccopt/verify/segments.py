@@ -25,7 +25,7 @@ import numpy as np
 from ccopt.geometry import KIND_ARC, KIND_LINE, KIND_SPIRAL, Arc, Line, SegmentArray, Spiral
 from ccopt.geometry.angles import angle_in_sweep
 from ccopt.geometry.columns import put_rows, take_rows
-from ccopt.geometry.spiral import spiral_bboxes
+from ccopt.geometry.spiral import spiral_bboxes, spiral_end_tangents
 from ccopt.toolpath import ARC_ROW, LINE_ROW
 
 #: Row kind of a parametric curve (no closed form; certified bounds only).
@@ -33,6 +33,7 @@ KIND_CURVE = 3
 
 _P0, _P1, _CENTER = attrgetter("p0"), attrgetter("p1"), attrgetter("center")
 _RADIUS, _THETA0, _SWEEP = attrgetter("radius"), attrgetter("theta0"), attrgetter("sweep")
+_LENGTH = attrgetter("length")
 
 
 @dataclass(frozen=True, eq=False)
@@ -257,8 +258,12 @@ def end_tangents(pk: Packed) -> tuple[np.ndarray, np.ndarray]:
         tangent[:, 0] = -sg * np.sin(th)
         tangent[:, 1] = sg * np.cos(th)
         put_rows(out, arc, tangent)
+    spirals = [i for i, g in pk.curved.items() if isinstance(g, Spiral) and g.length > 0.0]
+    if spirals:
+        _, rho0, rho1, th0, sw, b = _spiral_numbers([pk.curved[i] for i in spirals])
+        ts[spirals], te[spirals] = spiral_end_tangents(rho0, rho1, th0, sw, b)
     for i, g in pk.curved.items():
-        if g.length > 0.0:
+        if not isinstance(g, Spiral) and g.length > 0.0:
             ts[i] = g.start_tangent
             te[i] = g.end_tangent
     return ts, te
@@ -270,6 +275,7 @@ def lengths(pk: Packed) -> np.ndarray:
     out = np.hypot(*(A.p1 - A.p0).T)
     arc = A.kind == KIND_ARC
     out[arc] = A.radius[arc] * np.abs(A.sweep[arc])
-    for i, g in pk.curved.items():
-        out[i] = g.length
+    if pk.curved:
+        rows = list(pk.curved)
+        out[rows] = np.fromiter(map(_LENGTH, pk.curved.values()), float, len(rows))
     return out

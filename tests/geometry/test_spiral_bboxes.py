@@ -1,8 +1,10 @@
-"""``spiral_bboxes`` (the ends and boxes of many spirals at once) gives what
-``Spiral.start``, ``Spiral.end`` and ``Spiral.bbox`` give one by one, bit for
-bit, over seeded random spirals: growing, shrinking and circular, either way
-round, tiny sweeps, points, full and many turns, start angles on the axes;
-and the verifier's ``pack`` puts those numbers in its rows."""
+"""``spiral_bboxes`` and ``spiral_end_tangents`` (the ends, boxes and end
+tangents of many spirals at once) give what ``Spiral.start``, ``end``,
+``bbox``, ``start_tangent`` and ``end_tangent`` give one by one, bit for bit,
+over seeded random spirals: growing, shrinking and circular, either way round,
+tiny sweeps, points, full and many turns, start angles on the axes; and the
+verifier's ``pack``, ``end_tangents`` and ``lengths`` put those numbers in
+their rows."""
 from __future__ import annotations
 
 import math
@@ -12,8 +14,8 @@ import numpy as np
 import pytest
 
 from ccopt.geometry import Line, Spiral
-from ccopt.geometry.spiral import spiral_bboxes
-from ccopt.verify.segments import KIND_SPIRAL, pack
+from ccopt.geometry.spiral import spiral_bboxes, spiral_end_tangents
+from ccopt.verify.segments import KIND_SPIRAL, end_tangents, lengths, pack
 
 
 def _spirals(seed: int, n: int) -> list[Spiral]:
@@ -48,9 +50,13 @@ def test_boxes_are_each_spirals_bbox(seed):
     assert _bits(start) == _bits([g.start for g in spirals])
     assert _bits(end) == _bits([g.end for g in spirals])
     assert _bits(box) == _bits([g.bbox() for g in spirals])
+    ts, te = spiral_end_tangents(*numbers[1:])
+    moving = [g.length > 0.0 for g in spirals]
+    assert _bits(ts[moving]) == _bits([g.start_tangent for g in spirals if g.length > 0.0])
+    assert _bits(te[moving]) == _bits([g.end_tangent for g in spirals if g.length > 0.0])
 
 
-def test_pack_rows_of_spirals():
+def test_pack_end_tangents_and_lengths_of_spirals():
     spirals = _spirals(9, 400)
     geoms = [g for s in spirals for g in (s, Line((0.0, 0.0), (1.0, 2.0)))]
     pk = pack(geoms)
@@ -61,4 +67,11 @@ def test_pack_rows_of_spirals():
     assert _bits(pk.arr.p1[rows]) == _bits([g.end for g in spirals])
     assert _bits(pk.arr.radius_end[rows]) == _bits([g.rho1 for g in spirals])
     assert _bits(pk.arr.sweep[rows]) == _bits([g.sweep for g in spirals])
+    ts, te = end_tangents(pk)
+    moving = [g.length > 0.0 for g in spirals]
+    assert _bits(ts[rows]) == _bits([g.start_tangent if m else (0.0, 0.0)
+                                     for g, m in zip(spirals, moving)])
+    assert _bits(te[rows]) == _bits([g.end_tangent if m else (0.0, 0.0)
+                                     for g, m in zip(spirals, moving)])
+    assert _bits(lengths(pk)[rows]) == _bits([g.length for g in spirals])
     assert spiral_bboxes(np.empty((0, 2)), *[np.empty(0)] * 5)[2].shape == (0, 4)
