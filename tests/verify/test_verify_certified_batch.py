@@ -67,6 +67,20 @@ def test_batch_gives_the_one_at_a_time_bounds_exactly(seed):
     assert min_distances(pairs, 1e-7, caps) == one
 
 
+@pytest.mark.parametrize("seed", range(2))
+def test_pairs_sharing_their_curves_give_the_one_at_a_time_bounds(seed):
+    # a tool spiral near many elements is in many pairs (the same object): the
+    # batch works out each curve's first pieces once, and must still give
+    # every pair's own bounds
+    pairs = random_pairs(10 + seed, 30)
+    spirals = [a for a, _ in pairs[:6]]
+    shared = [(spirals[k % 6], b) for k, (_, b) in enumerate(pairs) if not isinstance(b, Spiral)]
+    shared += [(b, spirals[k % 6]) for k, (_, b) in enumerate(pairs) if isinstance(b, Spiral)]
+    caps = [math.inf if k % 4 else 2.0 for k in range(len(shared))]
+    one = [certified.min_distance(a, b, 1e-7, cap=c) for (a, b), c in zip(shared, caps)]
+    assert min_distances(shared, 1e-7, caps) == one
+
+
 def test_not_batchable():
     sp = Spiral((0, 0), 2.0, 3.0, 0.0, 1.0)
     assert not batchable(Arc((0, 0), 2.0, 0.0, 1.0), sp)       # the curved one goes first
@@ -231,7 +245,12 @@ def test_first_pieces_of_every_pair_at_once_are_the_one_at_a_time_cuts(seed):
         others = [spirals[i] for i in rng.integers(0, 40, s.size)]
         B = SpiralRows(others)
         for curved in (False, True):
-            pid, ua0, ua1, ub0, ub1 = _first(A, B, s, curved)
+            (pid, ua0, ua1, ub0, ub1), alike = _first(A, B, s, curved)
+            if spiral:
+                # each curve's pieces once: the same cuts as each pair's
+                k, u0, u1, at = alike
+                assert np.array_equal(u0[at], ua0) and np.array_equal(u1[at], ua1)
+                assert np.array_equal(A.obj[k[at]], A.obj[s[pid]])
             for m, i in enumerate(s):
                 a0, a1 = cuts(A.U[i], spiral)
                 mine = pid == m

@@ -213,12 +213,13 @@ def _branch_and_bound(A: SpiralRows | BezierRows, B, sel, curved: bool, tol: flo
                       max_rounds: int, exempts) -> BoundArrays:
     """Rounds of bounding and halving the pieces of every pair at once."""
     geo = (A, B, sel, curved) + _concentric_b(A, B, sel, curved)
-    pieces = _first(A, B, sel, curved)
+    pieces, alike = _first(A, B, sel, curved)
     state = _State(len(sel))
     rounds = 0
     while pieces[0].size:
         rounds += 1
-        lb, dq, qa, qb, live, ok = _round(geo, pieces, exempts)
+        lb, dq, qa, qb, live, ok = _round(geo, pieces, exempts, alike)
+        alike = None
         go = state.update(pieces[0], lb, dq, qa, qb, live, ok, tol, caps,
                           rounds >= max_rounds, curved)
         pieces = _halve(*pieces, go, curved)
@@ -280,15 +281,24 @@ class _State:
                            self.npieces.copy())
 
 
-def _round(geo, pieces, exempts):
+def _round(geo, pieces, exempts, alike=None):
     """Bounds of every live piece (pair): ``(lb, dq, qa, qb, live, ok)`` as
     :func:`ccopt.verify.distance.certified._bound_pieces` gives them (``ok``: ``dq`` is a
-    genuine distance outside the pair's exemption)."""
+    genuine distance outside the pair's exemption); ``alike``: the first pieces'
+    :func:`_curve_pieces`, or ``None``."""
     A, B, sel, curved, conc, Rb = geo
     pid, ua0, ua1, ub0, ub1 = pieces
     ka = sel[pid]
-    c0, c1 = _ends(A, ka, ua0, ua1) if A.concentric else (A.eval(ka, ua0), A.eval(ka, ua1))
-    da = A.delta(ka, ua0, ua1)
+    arc_a = None
+    if alike is not None:
+        # what depends on a's piece alone, once per piece of each distinct curve
+        k, u0, u1, at = alike
+        c0, c1 = (take_rows(p, at) for p in _ends(A, k, u0, u1))
+        da = A.delta(k, u0, u1)[at]
+        arc_a = tuple(take_rows(v, at) for v in _mid_arc_of(A, k, u0, u1))
+    else:
+        c0, c1 = _ends(A, ka, ua0, ua1) if A.concentric else (A.eval(ka, ua0), A.eval(ka, ua1))
+        da = A.delta(ka, ua0, ua1)
     if curved:
         e0, e1 = _ends(B, pid, ub0, ub1)
         db = B.delta(pid, ub0, ub1)
@@ -299,7 +309,7 @@ def _round(geo, pieces, exempts):
     lb = np.maximum(d - da - db, _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb,
                                              curved))
     if A.concentric:
-        lb = np.fmax(lb, _mid_arc(A, ka, B, pid, ua0, ua1, ub0, ub1))
+        lb = np.fmax(lb, _mid_arc(A, ka, B, pid, ua0, ua1, ub0, ub1, arc_a))
     ta = _fraction(w_a, c0, c1)
     qa = A.eval(ka, ua0 + ta * (ua1 - ua0))
     if curved:
@@ -333,11 +343,14 @@ def _ends(S: SpiralRows, k, u0, u1):
     return p0, p1
 
 
-def _mid_arc(A: SpiralRows, ka, B: ExactRows | SpiralRows, pid, ua0, ua1, ub0=None, ub1=None):
+def _mid_arc(A: SpiralRows, ka, B: ExactRows | SpiralRows, pid, ua0, ua1, ub0=None, ub1=None,
+             arc_a=None):
     """:func:`~ccopt.verify.distance.mid_arc.mid_arc_bound` of spiral pieces
-    ``[ua0, ua1]`` of ``A``'s curves ``ka`` against ``B``'s elements ``pid``, or
-    against their pieces ``[ub0, ub1]`` when ``B`` holds spirals."""
-    arc_a = mid_arc(take_rows(A.c, ka), A.rho0[ka], A.b[ka], A.th0[ka], A.sg[ka], ua0, ua1)
+    ``[ua0, ua1]`` of ``A``'s curves ``ka`` (their :func:`_mid_arc_of`, if known:
+    ``arc_a``) against ``B``'s elements ``pid``, or against their pieces
+    ``[ub0, ub1]`` when ``B`` holds spirals."""
+    if arc_a is None:
+        arc_a = _mid_arc_of(A, ka, ua0, ua1)
     if isinstance(B, ExactRows):
         return mid_arc_bound(arc_a, element_to=lambda c, R, t, w: B.arcs_to(pid, c, R, t, w))
     return mid_arc_bound(arc_a, mid_arc(take_rows(B.c, pid), B.rho0[pid], B.b[pid], B.th0[pid],
@@ -366,6 +379,12 @@ def _exempt(pid, c0, c1, da, qa, exempts):
     return live, ok
 
 
+def _mid_arc_of(S: SpiralRows, k, u0, u1):
+    """:func:`~ccopt.verify.distance.mid_arc.mid_arc` of the pieces ``[u0, u1]``
+    of ``S``'s curves ``k``."""
+    return mid_arc(take_rows(S.c, k), S.rho0[k], S.b[k], S.th0[k], S.sg[k], u0, u1)
+
+
 def _piece_counts(C: SpiralRows | BezierRows, k) -> np.ndarray:
     """How many first pieces :func:`~ccopt.verify.distance.certified._first_pieces`
     cuts curve ``k`` of ``C`` into: a spiral (or arc) one per
@@ -387,7 +406,8 @@ def _cuts(U: np.ndarray, n: np.ndarray, k: np.ndarray):
 
 def _first(A: SpiralRows | BezierRows, B, sel, curved: bool):
     """Every pair's first pieces (pairs of pieces for a curved ``b``): the cuts
-    of :func:`~ccopt.verify.distance.certified._first_pieces`, all pairs at once."""
+    of :func:`~ccopt.verify.distance.certified._first_pieces`, all pairs at
+    once, and their :func:`_curve_pieces` (``None`` for Bezier curves)."""
     sel = np.asarray(sel, np.intp)
     m = np.arange(sel.size)
     na = _piece_counts(A, sel)
@@ -400,10 +420,25 @@ def _first(A: SpiralRows | BezierRows, B, sel, curved: bool):
     else:
         ia = t
     ua0, ua1 = _cuts(A.U[sel][pid], na[pid], ia)
+    alike = _curve_pieces(A, sel, na, pid, ia) if isinstance(A, SpiralRows) else None
     if not curved:
-        return pid, ua0, ua1, None, None
+        return (pid, ua0, ua1, None, None), alike
     ub0, ub1 = _cuts(B.U[pid], nb[pid], ib)
-    return pid, ua0, ua1, ub0, ub1
+    return (pid, ua0, ua1, ub0, ub1), alike
+
+
+def _curve_pieces(A: SpiralRows, sel, na, pid, ia):
+    """``(k, u0, u1, at)``: the first pieces of each distinct curve of the pairs
+    ``sel`` (``k`` a row of ``A`` holding it, ``[u0, u1]`` the piece) and, per
+    piece ``ia`` of pair ``pid``, its place among them. The pairs of one curve
+    have the same numbers and so the same cuts: what depends on the curve's
+    piece alone is the same for each of them."""
+    _, rep, inv = np.unique(A.obj[sel], return_index=True, return_inverse=True)
+    n = na[rep]
+    start = np.cumsum(n) - n
+    k = np.repeat(sel[rep], n)
+    u0, u1 = _cuts(A.U[k], np.repeat(n, n), np.arange(k.size) - np.repeat(start, n))
+    return k, u0, u1, start[inv.reshape(-1)][pid] + ia
 
 
 def _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb, curved):

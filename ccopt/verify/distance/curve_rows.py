@@ -73,6 +73,9 @@ class SpiralRows:
         self.th0 = np.fromiter(map(_THETA0, gs), float, m)[inv]
         self.sg = np.copysign(1.0, sweep)[inv]
         self.U = np.abs(sweep)[inv]
+        #: each pair's curve among the distinct ones (the pairs of one curve
+        #: have the same numbers)
+        self.obj = inv
 
     def eval(self, k, u):
         rho = self.rho0[k] + self.b[k] * u
