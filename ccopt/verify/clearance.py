@@ -30,7 +30,7 @@ import numpy as np
 
 from ccopt.geometry import Arc, Line, distance, pair_distance
 from ccopt.geometry.angles import TWO_PI, angle_along, sweep_sign
-from ccopt.geometry.columns import put_rows, take_rows
+from ccopt.geometry.columns import put_rows, take_rows, used_rows
 from ccopt.tolerances import VERIFY_CERTIFIED_GAP
 from ccopt.verify import decisions
 from ccopt.verify.distance import candidate_pairs, min_distance
@@ -483,13 +483,13 @@ def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: 
     if not pairs.size:
         return
     # each tool segment and element once, though it is in many pairs
-    ti, tinv = np.unique(it[pairs], return_inverse=True)
-    ej, einv = np.unique(je[pairs], return_inverse=True)
+    ti, tinv = used_rows(it[pairs], len(tool))
+    ej, einv = used_rows(je[pairs], len(E))
     tgs, egs = tool.geoms(ti), E.geoms(ej)
     # the pairs as indices into one list of objects, the curved one first (an
     # exact element only ever has the exemption): no Python work per pair
     objs = tgs + egs
-    t_at, e_at = tinv.reshape(-1), len(tgs) + einv.reshape(-1)
+    t_at, e_at = tinv, len(tgs) + einv
     swapped = tool.exact[ti][t_at] & ~E.exact[ej][einv]
     a_at, b_at = np.where(swapped, e_at, t_at), np.where(swapped, t_at, e_at)
     exemption = _exemptions(contour, ej)

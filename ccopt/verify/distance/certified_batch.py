@@ -27,7 +27,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ccopt.geometry import Arc, Line, Spiral
-from ccopt.geometry.columns import put_rows, take_rows
+from ccopt.geometry.columns import put_rows, take_rows, used_rows
 from ccopt.geometry.distance import segment_segment
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
 from ccopt.verify.distance.concentric import polar_gap, same_angle
@@ -433,12 +433,16 @@ def _curve_pieces(A: SpiralRows, sel, na, pid, ia):
     piece ``ia`` of pair ``pid``, its place among them. The pairs of one curve
     have the same numbers and so the same cuts: what depends on the curve's
     piece alone is the same for each of them."""
-    _, rep, inv = np.unique(A.obj[sel], return_index=True, return_inverse=True)
+    obj = A.obj[sel]
+    used, inv = used_rows(obj, A.obj.size)
+    pair = np.empty(A.obj.size, np.intp)
+    pair[obj] = np.arange(sel.size)     # a pair of each curve (any: they are alike)
+    rep = pair[used]
     n = na[rep]
     start = np.cumsum(n) - n
     k = np.repeat(sel[rep], n)
     u0, u1 = _cuts(A.U[k], np.repeat(n, n), np.arange(k.size) - np.repeat(start, n))
-    return k, u0, u1, start[inv.reshape(-1)][pid] + ia
+    return k, u0, u1, start[inv][pid] + ia
 
 
 def _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb, curved):

@@ -17,7 +17,7 @@ from operator import attrgetter
 import numpy as np
 
 from ccopt.geometry import Arc, Line
-from ccopt.geometry.columns import put_rows, take_rows
+from ccopt.geometry.columns import put_rows, take_rows, used_rows
 from ccopt.geometry.bezier_arclength import bernstein_basis, bezier_points
 from ccopt.geometry.distance import (
     arc_arc, point_arc, point_segment, segment_arc, segment_segment,
@@ -50,7 +50,7 @@ def used_objects(objs, idx):
     when ``idx`` is ``None``)."""
     if idx is None:
         return list(objs), np.arange(len(objs))
-    used, inv = np.unique(np.asarray(idx, np.intp), return_inverse=True)
+    used, inv = used_rows(idx, len(objs))
     return [objs[i] for i in used.tolist()], inv.reshape(-1)
 
 
