@@ -9,7 +9,7 @@ selects between candidates without branches (:func:`blend`), keeps the
 running minimum of candidate pairs with their witnesses (:class:`RunningMin`)
 and prepares per-arc quantities once per call (:class:`PreparedArcs`);
 :func:`take_rows` and :func:`put_rows` gather and scatter rows of the
-``(n, 2)`` point arrays.
+``(n, 2)`` point arrays, :func:`used_rows` finds the rows an index array uses.
 Lengths are program units, angles radians.
 """
 from __future__ import annotations
@@ -20,6 +20,20 @@ from contextlib import contextmanager
 import numpy as np
 
 from ccopt.geometry.angles import in_sweep_prepared
+
+def used_rows(idx, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """``(used, inverse)`` of indices ``idx`` into ``n`` rows: the rows used,
+    ascending, each once, and per index its place among them; what
+    ``np.unique(idx, return_inverse=True)`` gives, from a mask of the rows
+    instead of a sort of the indices."""
+    idx = np.asarray(idx, np.intp).reshape(-1)
+    seen = np.zeros(n, bool)
+    seen[idx] = True
+    used = np.flatnonzero(seen)
+    place = np.empty(n, np.intp)
+    place[used] = np.arange(used.size)
+    return used, place[idx]
+
 
 def take_rows(a: np.ndarray, idx) -> np.ndarray:
     """``a[idx]`` for an index array or boolean mask ``idx``, by ``take``: the

@@ -18,7 +18,7 @@ from ccopt.geometry.arclength import (
     END_POINT_REL_TOL, Point, as_point, clip_s, rotate_left, scalar_out, vector_out,
 )
 
-__all__ = ["Spiral", "spiral_arclength"]
+__all__ = ["Spiral", "spiral_arclength", "spiral_bboxes", "spiral_end_tangents"]
 
 #: Newton in the swept angle stops once every step is below this fraction of
 #: ``|sweep|`` (a few ulps of the angle: nothing smaller is representable).
@@ -377,6 +377,107 @@ def spiral_through(start, end, center, ccw: bool, turns: int = 0,
     rmax = max(r0, r1)
     sweep = sweep_between(th0, th1, ccw, turns, full_if_below=tol * max(1.0, rmax) / rmax)
     return center, r0, r1, th0, sweep
+
+
+def spiral_bboxes(center, rho0, rho1, theta0, sweep, b):
+    """Start points ``(n, 2)``, end points ``(n, 2)`` and boxes ``(n, 4)``
+    ``(xmin, ymin, xmax, ymax)`` of ``n`` spirals given by their numbers
+    (arrays of :class:`Spiral`'s fields and ``b``): each row, bit for bit,
+    what ``start``, ``end`` and :meth:`Spiral.bbox` of its spiral give (the
+    same operations on each element; the tests compare)."""
+    cx, cy = center[:, 0], center[:, 1]
+    th1 = theta0 + sweep
+    start = np.stack([cx + rho0 * np.cos(theta0), cy + rho0 * np.sin(theta0)], axis=1)
+    end = np.stack([cx + rho1 * np.cos(th1), cy + rho1 * np.sin(th1)], axis=1)
+    box = np.concatenate([start, start], axis=1)
+    # taken in bbox's order (start, end, then the extremes by swept angle) with
+    # its strict comparisons: Python's min and max keep the first of equals
+    for x, y, rows in [(end[:, 0], end[:, 1], slice(None)),
+                       *_axis_extremes(center, rho0, theta0, sweep, b)]:
+        for col, v, lower in ((0, x, True), (1, y, True), (2, x, False), (3, y, False)):
+            kept = box[rows, col]
+            box[rows, col] = np.where(v < kept if lower else v > kept, v, kept)
+    return start, end, box
+
+
+def spiral_end_tangents(rho0, rho1, theta0, sweep, b):
+    """Unit tangents ``(n, 2)`` at the starts and at the ends of ``n`` spirals
+    given by their numbers (arrays, as :func:`spiral_bboxes` takes them): each
+    row, bit for bit, its spiral's ``start_tangent`` and ``end_tangent`` (with
+    math's cos, sin and hypot, as those use)."""
+    sg = np.copysign(1.0, sweep)
+    return _unit_tangents(rho0, theta0, sg, b), _unit_tangents(rho1, theta0 + sweep, sg, b)
+
+
+def _unit_tangents(rho, ang, sg, b) -> np.ndarray:
+    """:meth:`Spiral._unit_tangent` of each row."""
+    n = rho.size
+    angles = ang.tolist()
+    c = np.fromiter(map(math.cos, angles), float, n)
+    s = np.fromiter(map(math.sin, angles), float, n)
+    length = np.fromiter(map(math.hypot, rho.tolist(), b.tolist()), float, n)
+    out = np.empty((n, 2))
+    out[:, 0] = (b * c - sg * rho * s) / length
+    out[:, 1] = (b * s + sg * rho * c) / length
+    return out
+
+
+def _axis_extremes(center, rho0, theta0, sweep, b) -> list:
+    """The points where :meth:`Spiral.bbox` finds ``dx/dphi`` or ``dy/dphi``
+    zero, as ``(x, y, rows)`` for ``j = 0, 1, ...``: the ``j``-th such point
+    (by swept angle) of each spiral ``rows`` that has one."""
+    Phi = np.abs(sweep)
+    sg = np.copysign(1.0, sweep)
+    sgth = sg * theta0
+    half_pi = 0.5 * math.pi
+    h0 = sgth + 0.0 + np.arctan2(rho0 + b * 0.0, b)
+    h1 = sgth + Phi + np.arctan2(rho0 + b * Phi, b)
+    k0 = np.ceil(h0 / half_pi)
+    count = np.where(Phi > 0.0, np.floor(h1 / half_pi) + 1.0 - k0, 0.0)
+    rows = np.flatnonzero(count > 0.0)
+    if not rows.size:
+        return []
+    count = count[rows].astype(np.intp)
+    first = np.cumsum(count) - count        # each spiral's first point in the flat arrays
+    spiral = np.repeat(np.arange(rows.size), count)
+    j = np.arange(spiral.size) - first[spiral]
+    at = rows[spiral]
+    phi = _roots((k0[at] + j) * half_pi, h0[at], sgth[at], rho0[at], b[at], Phi[at], spiral)
+    rho = rho0[at] + b[at] * phi
+    ang = theta0[at] + sg[at] * phi
+    x = center[at, 0] + rho * np.cos(ang)
+    y = center[at, 1] + rho * np.sin(ang)
+    out = []
+    for jj in range(int(count.max())):
+        m = np.flatnonzero(count > jj)
+        out.append((x[first[m] + jj], y[first[m] + jj], rows[m]))
+    return out
+
+
+def _roots(target, h0, sgth, rho0, b, Phi, spiral) -> np.ndarray:
+    """Swept angles where ``h`` (see :meth:`Spiral.bbox`) reaches ``target``:
+    its bracketed Newton element by element, the elements of each ``spiral``
+    stopping together, at the step where all of them are done (as in bbox)."""
+    phi = np.clip(target - h0, 0.0, Phi)
+    lo = np.zeros(phi.size)
+    hi = Phi.copy()
+    out = np.empty(phi.size)
+    live = np.arange(phi.size)
+    for _ in range(100):
+        f = sgth + phi + np.arctan2(rho0 + b * phi, b) - target
+        lo = np.where(f <= 0.0, phi, lo)
+        hi = np.where(f >= 0.0, phi, hi)
+        rho = rho0 + b * phi
+        new = phi - f / (1.0 + b * b / (rho * rho + b * b))
+        new = np.where((new < lo) | (new > hi), 0.5 * (lo + hi), new)
+        done = np.abs(new - phi) <= NEWTON_STEP_REL * Phi
+        phi = out[live] = new
+        going = np.bincount(spiral, ~done)[spiral] > 0
+        if not going.any():
+            break
+        live, phi, lo, hi, target, sgth, rho0, b, Phi, spiral = (
+            a[going] for a in (live, phi, lo, hi, target, sgth, rho0, b, Phi, spiral))
+    return out
 
 
 # the slots' own descriptors, in the order Spiral._trusted sets them

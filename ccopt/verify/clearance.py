@@ -25,18 +25,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from operator import itemgetter
 
 import numpy as np
 
 from ccopt.geometry import Arc, Line, distance, pair_distance
 from ccopt.geometry.angles import TWO_PI, angle_along, sweep_sign
-from ccopt.geometry.columns import put_rows, take_rows
+from ccopt.geometry.columns import put_rows, take_rows, used_rows
 from ccopt.tolerances import VERIFY_CERTIFIED_GAP
 from ccopt.verify import decisions
 from ccopt.verify.distance import candidate_pairs, min_distance
 from ccopt.verify.distance.certified_batch import (
-    batchable_by_class, batchable_class, min_distance_arrays,
+    batchable_by_class, batchable_class, min_distance_indexed,
 )
 from ccopt.verify.contour import Contour
 
@@ -484,28 +483,27 @@ def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: 
     if not pairs.size:
         return
     # each tool segment and element once, though it is in many pairs
-    ti, tinv = np.unique(it[pairs], return_inverse=True)
-    ej, einv = np.unique(je[pairs], return_inverse=True)
+    ti, tinv = used_rows(it[pairs], len(tool))
+    ej, einv = used_rows(je[pairs], len(E))
     tgs, egs = tool.geoms(ti), E.geoms(ej)
-    # the curved one first (an exact element only ever has the exemption)
-    swapped = tool.exact[ti][tinv] & ~E.exact[ej][einv]
+    # the pairs as indices into one list of objects, the curved one first (an
+    # exact element only ever has the exemption): no Python work per pair
+    objs = tgs + egs
+    t_at, e_at = tinv, len(tgs) + einv
+    swapped = tool.exact[ti][t_at] & ~E.exact[ej][einv]
+    a_at, b_at = np.where(swapped, e_at, t_at), np.where(swapped, t_at, e_at)
     exemption = _exemptions(contour, ej)
-    # the objects of hundreds of thousands of pairs picked in C (itemgetter),
-    # not one list index at a time
-    t_of, e_of = _picked(tgs, tinv), _picked(egs, einv)
-    if swapped.any():
-        a_of = [e if s else t for t, e, s in zip(t_of, e_of, swapped.tolist())]
-        b_of = [t if s else e for t, e, s in zip(t_of, e_of, swapped.tolist())]
-    else:
-        a_of, b_of = t_of, e_of
+    ex_objs = list(exemption.values())
+    ex_at = np.full(ej.size, -1, np.intp)
+    ex_at[list(exemption)] = np.arange(len(ex_objs))
+    ex_at = ex_at[einv]
     ok = _batchable_pairs(tgs, egs, tinv, einv, swapped)
-    ex_of = _picked([exemption.get(k) for k in range(ej.size)], einv)
     caps = reach[je[pairs]]
     batch, one = np.flatnonzero(ok), np.flatnonzero(~ok)
     # every pair of spirals, arcs and lines in one vectorised branch and bound,
     # its bounds as arrays
-    res = min_distance_arrays(list(zip(_picked(a_of, batch), _picked(b_of, batch))), tol,
-                              caps[batch], _picked(ex_of, batch))
+    res = min_distance_indexed(objs, a_at[batch], objs, b_at[batch], tol, caps[batch], ex_objs,
+                               ex_at[batch])
     q = pairs[batch]
     d[q], ub[q] = res.lb, res.ub
     has = np.flatnonzero(~np.isinf(res.ub))        # a witness realises a finite ub
@@ -514,19 +512,12 @@ def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: 
     put_rows(wt, q[has], np.where(flip, wb, wa))
     put_rows(we, q[has], np.where(flip, wa, wb))
     for m in one.tolist():
-        b = min_distance(a_of[m], b_of[m], tol, cap=float(caps[m]), exempt=ex_of[m])
+        ex = ex_objs[ex_at[m]] if ex_at[m] >= 0 else None
+        b = min_distance(objs[a_at[m]], objs[b_at[m]], tol, cap=float(caps[m]), exempt=ex)
         q = pairs[m]
         d[q], ub[q] = b.lb, b.ub
         if b.wa is not None:
             wt[q], we[q] = (b.wb, b.wa) if swapped[m] else (b.wa, b.wb)
-
-
-def _picked(values, idx: np.ndarray) -> list:
-    """``[values[i] for i in idx]``."""
-    if idx.size == 0:
-        return []
-    got = itemgetter(*idx.tolist())(values)
-    return [got] if idx.size == 1 else list(got)
 
 
 def _exemptions(contour: Contour, ej) -> dict:

@@ -25,6 +25,7 @@ import numpy as np
 from ccopt.geometry import KIND_ARC, KIND_LINE, KIND_SPIRAL, Arc, Line, SegmentArray, Spiral
 from ccopt.geometry.angles import angle_in_sweep
 from ccopt.geometry.columns import put_rows, take_rows
+from ccopt.geometry.spiral import spiral_bboxes, spiral_end_tangents
 from ccopt.toolpath import ARC_ROW, LINE_ROW
 
 #: Row kind of a parametric curve (no closed form; certified bounds only).
@@ -32,6 +33,7 @@ KIND_CURVE = 3
 
 _P0, _P1, _CENTER = attrgetter("p0"), attrgetter("p1"), attrgetter("center")
 _RADIUS, _THETA0, _SWEEP = attrgetter("radius"), attrgetter("theta0"), attrgetter("sweep")
+_LENGTH = attrgetter("length")
 
 
 @dataclass(frozen=True, eq=False)
@@ -174,6 +176,14 @@ def _arc_numbers(arcs):
             np.fromiter(map(_SWEEP, arcs), float, m))
 
 
+def _spiral_numbers(spirals):
+    """``(centres (m, 2), rho0, rho1, theta0, sweep, b)`` of the spirals."""
+    m = len(spirals)
+    return (np.fromiter(chain.from_iterable(map(_CENTER, spirals)), float, 2 * m).reshape(m, 2),
+            *(np.fromiter(map(get, spirals), float, m)
+              for get in map(attrgetter, ("rho0", "rho1", "theta0", "sweep", "b"))))
+
+
 def _packed(n: int, li: np.ndarray, pts: np.ndarray, ai: np.ndarray, arcs, curved: dict) -> Packed:
     """The :class:`Packed` of ``n`` rows: lines at rows ``li`` (``pts``, see
     :func:`_line_points`), arcs at rows ``ai`` (``arcs``, see
@@ -206,17 +216,19 @@ def _packed(n: int, li: np.ndarray, pts: np.ndarray, ai: np.ndarray, arcs, curve
         radius[ai] = radius_end[ai] = R
         theta0[ai], sweep[ai] = th0, sw
         bbox[ai] = arc_bbox(c, R, th0, sw, a0, a1)
+    si = [i for i, g in curved.items() if isinstance(g, Spiral)]
+    if si:
+        # all spirals at once: the same ends and boxes as their start, end and bbox()
+        sc, r0, r1, th0, sw, b = _spiral_numbers([curved[i] for i in si])
+        kind[si] = KIND_SPIRAL
+        center[si], radius[si], radius_end[si], theta0[si], sweep[si] = sc, r0, r1, th0, sw
+        p0[si], p1[si], bbox[si] = spiral_bboxes(sc, r0, r1, th0, sw, b)
     for i, g in curved.items():
-        p0[i] = g.start
-        p1[i] = g.end
-        bbox[i] = _curve_bbox(g)
-        if isinstance(g, Spiral):
-            kind[i] = KIND_SPIRAL
-            center[i] = g.center
-            radius[i], radius_end[i] = g.rho0, g.rho1
-            theta0[i], sweep[i] = g.theta0, g.sweep
-        else:
+        if not isinstance(g, Spiral):
             kind[i] = KIND_CURVE
+            p0[i] = g.start
+            p1[i] = g.end
+            bbox[i] = _curve_bbox(g)
     for a in (kind, p0, p1, center, radius, radius_end, theta0, sweep):
         a.flags.writeable = False
     return Packed(SegmentArray(kind, p0, p1, center, radius, radius_end, theta0, sweep),
@@ -246,8 +258,12 @@ def end_tangents(pk: Packed) -> tuple[np.ndarray, np.ndarray]:
         tangent[:, 0] = -sg * np.sin(th)
         tangent[:, 1] = sg * np.cos(th)
         put_rows(out, arc, tangent)
+    spirals = [i for i, g in pk.curved.items() if isinstance(g, Spiral) and g.length > 0.0]
+    if spirals:
+        _, rho0, rho1, th0, sw, b = _spiral_numbers([pk.curved[i] for i in spirals])
+        ts[spirals], te[spirals] = spiral_end_tangents(rho0, rho1, th0, sw, b)
     for i, g in pk.curved.items():
-        if g.length > 0.0:
+        if not isinstance(g, Spiral) and g.length > 0.0:
             ts[i] = g.start_tangent
             te[i] = g.end_tangent
     return ts, te
@@ -259,6 +275,7 @@ def lengths(pk: Packed) -> np.ndarray:
     out = np.hypot(*(A.p1 - A.p0).T)
     arc = A.kind == KIND_ARC
     out[arc] = A.radius[arc] * np.abs(A.sweep[arc])
-    for i, g in pk.curved.items():
-        out[i] = g.length
+    if pk.curved:
+        rows = list(pk.curved)
+        out[rows] = np.fromiter(map(_LENGTH, pk.curved.values()), float, len(rows))
     return out

@@ -3,13 +3,14 @@
 issue 34): the same bytes as numpy's ``a[idx]`` and ``a[idx] = rows``, on
 the ``(n, 2)`` arrays they are fast for and on the others they hand back to
 numpy; every float is kept bit for bit (negative zeros, infinities, NaNs,
-subnormals included)."""
+subnormals included); and :func:`~ccopt.geometry.columns.used_rows`, the rows
+an index array uses as ``np.unique`` with its inverse gives them."""
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from ccopt.geometry.columns import put_rows, take_rows
+from ccopt.geometry.columns import put_rows, take_rows, used_rows
 
 SPECIAL = np.array([0.0, -0.0, np.inf, -np.inf, np.nan, 5e-324, -1e308, 1.5])
 
@@ -61,3 +62,16 @@ def test_put_rows_with_a_slice_writes_the_slice():
     a = np.zeros((6, 2))
     put_rows(a, slice(1, 4), np.arange(6.0).reshape(3, 2))
     assert a.tolist() == [[0, 0], [0, 1], [2, 3], [4, 5], [0, 0], [0, 0]]
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_used_rows_is_numpys_unique_with_inverse(seed):
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(1, 300))
+    idx = rng.integers(0, n, size=int(rng.integers(0, 3 * n)))
+    if rng.random() < 0.5:
+        idx = np.sort(idx)
+    used, inv = used_rows(idx, n)
+    want_used, want_inv = np.unique(idx, return_inverse=True)
+    assert np.array_equal(used, want_used) and np.array_equal(inv, want_inv.reshape(-1))
+    assert used.dtype == np.intp and inv.dtype == np.intp and inv.shape == idx.shape

@@ -67,6 +67,20 @@ def test_batch_gives_the_one_at_a_time_bounds_exactly(seed):
     assert min_distances(pairs, 1e-7, caps) == one
 
 
+@pytest.mark.parametrize("seed", range(2))
+def test_pairs_sharing_their_curves_give_the_one_at_a_time_bounds(seed):
+    # a tool spiral near many elements is in many pairs (the same object): the
+    # batch works out each curve's first pieces once, and must still give
+    # every pair's own bounds
+    pairs = random_pairs(10 + seed, 30)
+    spirals = [a for a, _ in pairs[:6]]
+    shared = [(spirals[k % 6], b) for k, (_, b) in enumerate(pairs) if not isinstance(b, Spiral)]
+    shared += [(b, spirals[k % 6]) for k, (_, b) in enumerate(pairs) if isinstance(b, Spiral)]
+    caps = [math.inf if k % 4 else 2.0 for k in range(len(shared))]
+    one = [certified.min_distance(a, b, 1e-7, cap=c) for (a, b), c in zip(shared, caps)]
+    assert min_distances(shared, 1e-7, caps) == one
+
+
 def test_not_batchable():
     sp = Spiral((0, 0), 2.0, 3.0, 0.0, 1.0)
     assert not batchable(Arc((0, 0), 2.0, 0.0, 1.0), sp)       # the curved one goes first
@@ -213,7 +227,8 @@ def test_first_pieces_of_every_pair_at_once_are_the_one_at_a_time_cuts(seed):
     # the batch cuts all pairs' first pieces at once; each pair's must be the
     # cuts np.linspace gives one curve at a time (a spiral one per pi/16 of
     # sweep, at least 8; a Bezier curve 8), curved pairs as their outer product
-    from ccopt.verify.distance.certified_batch import _Beziers, _first, _Spirals
+    from ccopt.verify.distance.certified_batch import _first
+    from ccopt.verify.distance.curve_rows import BezierRows, SpiralRows
     rng = np.random.default_rng(seed)
     spirals = [Spiral((0.0, 0.0), rng.uniform(1, 5), rng.uniform(1, 5), rng.uniform(-3, 3),
                       rng.choice([-1, 1]) * rng.uniform(0.01, 12)) for _ in range(40)]
@@ -225,12 +240,17 @@ def test_first_pieces_of_every_pair_at_once_are_the_one_at_a_time_cuts(seed):
         return u[:-1], u[1:]
 
     sel = rng.integers(0, 40, 25)
-    for A, spiral in ((_Spirals(spirals), True), (_Beziers(beziers), False)):
+    for A, spiral in ((SpiralRows(spirals), True), (BezierRows(beziers), False)):
         s = sel % len(A.U)
         others = [spirals[i] for i in rng.integers(0, 40, s.size)]
-        B = _Spirals(others)
+        B = SpiralRows(others)
         for curved in (False, True):
-            pid, ua0, ua1, ub0, ub1 = _first(A, B, s, curved)
+            (pid, ua0, ua1, ub0, ub1), alike = _first(A, B, s, curved)
+            if spiral:
+                # each curve's pieces once: the same cuts as each pair's
+                k, u0, u1, at = alike
+                assert np.array_equal(u0[at], ua0) and np.array_equal(u1[at], ua1)
+                assert np.array_equal(A.obj[k[at]], A.obj[s[pid]])
             for m, i in enumerate(s):
                 a0, a1 = cuts(A.U[i], spiral)
                 mine = pid == m

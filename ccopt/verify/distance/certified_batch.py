@@ -27,15 +27,16 @@ from typing import NamedTuple
 import numpy as np
 
 from ccopt.geometry import Arc, Line, Spiral
-from ccopt.geometry.distance import (
-    arc_arc, point_arc, point_segment, segment_arc, segment_segment,
-)
+from ccopt.geometry.columns import put_rows, take_rows, used_rows
+from ccopt.geometry.distance import segment_segment
 from ccopt.tolerances import VERIFY_CERTIFIED_MAX_ROUNDS
 from ccopt.verify.distance.concentric import polar_gap, same_angle
+from ccopt.verify.distance.curve_rows import (
+    BezierRows, ExactRows, SpiralRows, asked_once, distinct,
+)
 from ccopt.verify.distance.mid_arc import mid_arc, mid_arc_bound
-from ccopt.geometry.bezier_arclength import bernstein_basis, bezier_points
 from ccopt.verify.distance.certified import (
-    FIRST_PIECE_ANGLE, FIRST_PIECES, MAX_PIECES, BezierParam, Bound, SpiralParam, _fraction,
+    FIRST_PIECE_ANGLE, FIRST_PIECES, MAX_PIECES, Bound, _fraction,
     is_bezier, is_exact,
 )
 
@@ -72,147 +73,6 @@ def _family(g):
     """The pairs whose ``a`` share this key run together: spirals and arcs, or
     Bezier curves of one degree."""
     return ("bezier", len(g.control_points) - 1) if is_bezier(g) else ("spiral",)
-
-
-def _distinct(geoms):
-    """``(objects, inverse)``: each object of ``geoms`` once (by identity, in
-    order of first appearance) and, per entry, its index among them; a curve
-    is in as many pairs as elements near it, and its parameters are made once.
-    The identities are sorted as integers (no Python loop over the entries)."""
-    n = len(geoms)
-    if n == 0:
-        return [], np.zeros(0, np.intp)
-    ids = np.fromiter(map(id, geoms), np.int64, n)
-    _, first, inv = np.unique(ids, return_index=True, return_inverse=True)
-    order = np.argsort(first)                 # by first appearance
-    rank = np.empty(order.size, np.intp)
-    rank[order] = np.arange(order.size)
-    return [geoms[i] for i in first[order].tolist()], rank[inv.reshape(-1)]
-
-
-class _Spirals:
-    """The :class:`SpiralParam` of many curves as arrays, evaluated per piece's pair."""
-
-    concentric = True            # the polar radius bounds about a common centre apply
-
-    def __init__(self, geoms):
-        objs, inv = _distinct(geoms)
-        ps = [SpiralParam(g) for g in objs]
-        self.c = np.array([p.c for p in ps], float).reshape(-1, 2)[inv]
-        self.rho0 = np.array([p.rho0 for p in ps], float)[inv]
-        self.b = np.array([p.b for p in ps], float)[inv]
-        self.th0 = np.array([p.th0 for p in ps], float)[inv]
-        self.sg = np.array([p.sg for p in ps], float)[inv]
-        self.U = np.array([p.U for p in ps], float)[inv]
-
-    def eval(self, k, u):
-        rho = self.rho0[k] + self.b[k] * u
-        ang = self.th0[k] + self.sg[k] * u
-        out = np.empty((u.size, 2))
-        np.multiply(rho, np.cos(ang), out=out[:, 0])
-        np.multiply(rho, np.sin(ang), out=out[:, 1])
-        out += self.c[k]
-        return out
-
-    def delta(self, k, u0, u1):
-        rho = np.maximum(self.rho0[k] + self.b[k] * u0, self.rho0[k] + self.b[k] * u1)
-        d2 = np.sqrt(rho * rho + 4.0 * self.b[k] * self.b[k])
-        h = u1 - u0
-        return d2 * h * h / 8.0
-
-    def radius_range(self, k, u0, u1):
-        r0 = self.rho0[k] + self.b[k] * u0
-        r1 = self.rho0[k] + self.b[k] * u1
-        return np.minimum(r0, r1), np.maximum(r0, r1)
-
-
-class _Beziers:
-    """The :class:`BezierParam` of many Bezier curves of one degree as arrays,
-    evaluated per piece's pair with the same operations as one curve's
-    (:func:`~ccopt.verify.distance.certified.bezier_points`, so the same numbers)."""
-
-    concentric = False
-
-    def __init__(self, geoms):
-        self.params = [BezierParam(g) for g in geoms]
-        self.P = np.array([p.P for p in self.params], float)        # (m, n + 1, 2)
-        self.K = np.array([p.K for p in self.params], float)
-        self.U = np.ones(len(self.params))
-        self.n = self.P.shape[1] - 1
-
-    def eval(self, k, u):
-        return bezier_points(bernstein_basis(u, self.n), self.P[k])
-
-    def delta(self, k, u0, u1):
-        h = u1 - u0
-        return self.K[k] * h * h / 8.0
-
-
-class _Exact:
-    """Lines and arcs ``b`` as arrays (a line's arc fields unused and vice versa)."""
-
-    def __init__(self, geoms):
-        objs, inv = _distinct(geoms)
-        n = len(objs)
-        line = np.array([isinstance(g, Line) for g in objs], bool).reshape(n)
-        p0 = np.zeros((n, 2))
-        p1 = np.zeros((n, 2))
-        c = np.zeros((n, 2))
-        R = np.ones(n)
-        th0 = np.zeros(n)
-        sw = np.zeros(n)
-        for i, g in enumerate(objs):
-            if line[i]:
-                p0[i], p1[i] = g.p0, g.p1
-            else:
-                c[i], R[i], th0[i], sw[i] = g.center, g.radius, g.theta0, g.sweep
-        self.line, self.p0, self.p1 = line[inv], p0[inv], p1[inv]
-        self.c, self.R, self.th0, self.sw = c[inv], R[inv], th0[inv], sw[inv]
-
-    def _each_kind(self, k, on_lines, on_arcs, widths):
-        """``on_lines(sel, kk)`` on the rows ``sel`` of ``k`` whose element is a
-        line (``kk = k[sel]``), ``on_arcs`` on the arcs; the columns they return
-        gathered into arrays of ``k``'s length (``widths``: 0 for one value a
-        row, 2 for a point)."""
-        out = [np.empty(k.size) if w == 0 else np.empty((k.size, w)) for w in widths]
-        ln = self.line[k]
-        for sel, kernel in ((np.flatnonzero(ln), on_lines), (np.flatnonzero(~ln), on_arcs)):
-            if sel.size:
-                for col, got in zip(out, kernel(sel, k[sel])):
-                    col[sel] = got
-        return out
-
-    def chords_to(self, k, c0, c1):
-        """``(distance, witness on the chord, witness on the element)`` of chords
-        ``c0 -> c1`` to elements ``k``."""
-        d, wa, wb = self._each_kind(
-            k, lambda sel, kk: segment_segment(c0[sel], c1[sel], self.p0[kk], self.p1[kk]),
-            lambda sel, kk: segment_arc(c0[sel], c1[sel], self.c[kk], self.R[kk], self.th0[kk],
-                                        self.sw[kk]), (0, 2, 2))
-        return d, wa, wb
-
-    def arcs_to(self, k, c, R, th0, sw):
-        """Distances from arcs ``(c, R, th0, sw)`` (row-wise) to elements ``k``."""
-        d, = self._each_kind(
-            k, lambda sel, kk: segment_arc(self.p0[kk], self.p1[kk], c[sel], R[sel], th0[sel],
-                                           sw[sel])[:1],
-            lambda sel, kk: arc_arc(c[sel], R[sel], th0[sel], sw[sel], self.c[kk], self.R[kk],
-                                    self.th0[kk], self.sw[kk])[:1], (0,))
-        return d
-
-    def points_to(self, k, q):
-        """``(distance, nearest point on the element)`` of points ``q`` to elements ``k``."""
-        d, wb = self._each_kind(
-            k, lambda sel, kk: _dist_and_witness(
-                point_segment(q[sel], self.p0[kk], self.p1[kk])),
-            lambda sel, kk: _dist_and_witness(
-                point_arc(q[sel], self.c[kk], self.R[kk], self.th0[kk], self.sw[kk])), (0, 2))
-        return d, wb
-
-
-def _dist_and_witness(r):
-    """A point kernel's distance and its witness on the element (its 1st and 3rd results)."""
-    return r[0], r[2]
 
 
 class BoundArrays(NamedTuple):
@@ -258,32 +118,53 @@ def min_distances(pairs, tol: float, caps, exempts=None,
 def min_distance_arrays(pairs, tol: float, caps, exempts=None,
                         max_rounds: int = VERIFY_CERTIFIED_MAX_ROUNDS) -> BoundArrays:
     """:func:`min_distances` as arrays (:class:`BoundArrays`): no object per pair."""
-    out = BoundArrays.empty(len(pairs))
-    if not pairs:
-        return out
-    exempts = [None] * len(pairs) if exempts is None else list(exempts)
-    a_all, b_all = list(map(itemgetter(0), pairs)), list(map(itemgetter(1), pairs))
+    n = len(pairs)
     # what is asked of each curve once, not once per pair it is in
-    b_objs, b_inv = _distinct(b_all)
-    curved = np.array([not is_exact(b) for b in b_objs], bool)[b_inv]
-    if any(ex is not None for ex, c in zip(exempts, curved) if c):
+    a_objs, a_of = distinct(list(map(itemgetter(0), pairs)))
+    b_objs, b_of = distinct(list(map(itemgetter(1), pairs)))
+    ex_objs, ex_of = [], np.full(n, -1, np.intp)
+    if exempts is not None:
+        exempts = list(exempts)
+        at = [m for m, ex in enumerate(exempts) if ex is not None]
+        ex_objs = [exempts[m] for m in at]
+        ex_of[at] = np.arange(len(at))
+    return min_distance_indexed(a_objs, a_of, b_objs, b_of, tol, caps, ex_objs, ex_of,
+                                max_rounds)
+
+
+def min_distance_indexed(a_objs, a_of, b_objs, b_of, tol: float, caps, ex_objs=(),
+                         ex_of=None, max_rounds: int = VERIFY_CERTIFIED_MAX_ROUNDS
+                         ) -> BoundArrays:
+    """:func:`min_distance_arrays` of the pairs ``(a_objs[a_of[m]], b_objs[b_of[m]])``
+    given by index arrays (``a_objs`` and ``b_objs`` may be one list), pair ``m``
+    with the exemption ``ex_objs[ex_of[m]]`` (``-1`` or ``ex_of`` ``None``: none):
+    the same bounds, with no Python work per pair."""
+    a_of, b_of = np.asarray(a_of, np.intp), np.asarray(b_of, np.intp)
+    n = a_of.size
+    out = BoundArrays.empty(n)
+    if not n:
+        return out
+    ex_of = np.full(n, -1, np.intp) if ex_of is None else np.asarray(ex_of, np.intp)
+    answers, inv = asked_once(b_objs, b_of, is_exact)
+    curved = ~np.array(answers, bool).reshape(-1)[inv]
+    if (curved & (ex_of >= 0)).any():
         raise ValueError("exemptions apply to pairs with an exact second element")
     caps = np.asarray(caps, float)
-    a_objs, a_inv = _distinct(a_all)
-    keys = list(dict.fromkeys(map(_family, a_objs)))
-    key_of = np.array([keys.index(_family(a)) for a in a_objs], np.intp)[a_inv]
+    families, inv = asked_once(a_objs, a_of, _family)
+    keys = list(dict.fromkeys(families))
+    key_of = np.array([keys.index(f) for f in families], np.intp)[inv]
     for q, key in enumerate(keys):
         members = np.flatnonzero(key_of == q)      # in pair order, as one at a time
-        A = (_Spirals if key[0] == "spiral" else _Beziers)([a_all[i] for i in members])
+        A = (SpiralRows if key[0] == "spiral" else BezierRows)(a_objs, a_of[members])
         for sel in (np.flatnonzero(~curved[members]), np.flatnonzero(curved[members])):
             if sel.size:
                 idx = members[sel]
-                out.put(idx, _run(A, [b_all[i] for i in idx], sel, bool(curved[idx[0]]), tol,
-                                  caps[idx], max_rounds, [exempts[i] for i in idx]))
+                out.put(idx, _run(A, (b_objs, b_of[idx]), sel, bool(curved[idx[0]]), tol,
+                                  caps[idx], max_rounds, (ex_objs, ex_of[idx])))
     return out
 
 
-def _concentric_b(A: _Spirals | _Beziers, B, sel, curved: bool):
+def _concentric_b(A: SpiralRows | BezierRows, B, sel, curved: bool):
     """Per pair: whether ``b`` (of ``B``) shares ``a``'s centre (a polar radius gap
     is then a lower bound, :func:`ccopt.verify.distance.certified._radial_gap`), and
     for an arc ``b`` its radius."""
@@ -297,13 +178,16 @@ def _concentric_b(A: _Spirals | _Beziers, B, sel, curved: bool):
     return same & arc, np.where(arc, B.R, 0.0)
 
 
-def _run(A: _Spirals | _Beziers, bs, sel, curved: bool, tol: float, caps, max_rounds: int,
+def _run(A: SpiralRows | BezierRows, bs, sel, curved: bool, tol: float, caps, max_rounds: int,
          exempts) -> BoundArrays:
-    """The branch and bound of the pairs ``(A[sel[m]], bs[m])``, all ``b`` exact or all curved."""
-    B = _Spirals(bs) if curved else _Exact(bs)
+    """The branch and bound of the pairs ``(A[sel[m]], b_objs[b_of[m]])`` (``bs``:
+    ``(b_objs, b_of)``), all ``b`` exact or all curved; ``exempts``:
+    ``(ex_objs, ex_of)`` as :func:`min_distance_indexed` takes them."""
+    B = SpiralRows(*bs) if curved else ExactRows(*bs)
     sel = np.asarray(sel)
-    go = np.arange(len(bs))
-    out = BoundArrays.empty(len(bs))
+    n = bs[1].size
+    go = np.arange(n)
+    out = BoundArrays.empty(n)
     if A.concentric:
         # a whole spiral beyond its cap: nothing to refine (as min_distance)
         whole = _mid_arc(A, sel, B, go, np.zeros(go.size), A.U[sel], np.zeros(go.size),
@@ -312,29 +196,30 @@ def _run(A: _Spirals | _Beziers, bs, sel, curved: bool, tol: float, caps, max_ro
         out.lb[beyond], out.converged[beyond] = whole[beyond], True
         go = np.flatnonzero(~(whole >= caps))
     if go.size:
-        B_go = B if go.size == len(bs) else _rows(B, go)
+        B_go = B if go.size == n else _rows(B, go)
         out.put(go, _branch_and_bound(A, B_go, sel[go], curved, tol, caps[go], max_rounds,
-                                      [exempts[i] for i in go]))
+                                      (exempts[0], exempts[1][go])))
     return out
 
 
-def _rows(C: _Spirals | _Exact, idx):
+def _rows(C: SpiralRows | ExactRows, idx):
     """The rows ``idx`` of ``C`` (every attribute of an instance is a per-row array)."""
     sub = object.__new__(type(C))
-    sub.__dict__.update({name: value[idx] for name, value in vars(C).items()})
+    sub.__dict__.update({name: take_rows(value, idx) for name, value in vars(C).items()})
     return sub
 
 
-def _branch_and_bound(A: _Spirals | _Beziers, B, sel, curved: bool, tol: float, caps,
+def _branch_and_bound(A: SpiralRows | BezierRows, B, sel, curved: bool, tol: float, caps,
                       max_rounds: int, exempts) -> BoundArrays:
     """Rounds of bounding and halving the pieces of every pair at once."""
     geo = (A, B, sel, curved) + _concentric_b(A, B, sel, curved)
-    pieces = _first(A, B, sel, curved)
+    pieces, alike = _first(A, B, sel, curved)
     state = _State(len(sel))
     rounds = 0
     while pieces[0].size:
         rounds += 1
-        lb, dq, qa, qb, live, ok = _round(geo, pieces, exempts)
+        lb, dq, qa, qb, live, ok = _round(geo, pieces, exempts, alike)
+        alike = None
         go = state.update(pieces[0], lb, dq, qa, qb, live, ok, tol, caps,
                           rounds >= max_rounds, curved)
         pieces = _halve(*pieces, go, curved)
@@ -396,17 +281,26 @@ class _State:
                            self.npieces.copy())
 
 
-def _round(geo, pieces, exempts):
+def _round(geo, pieces, exempts, alike=None):
     """Bounds of every live piece (pair): ``(lb, dq, qa, qb, live, ok)`` as
     :func:`ccopt.verify.distance.certified._bound_pieces` gives them (``ok``: ``dq`` is a
-    genuine distance outside the pair's exemption)."""
+    genuine distance outside the pair's exemption); ``alike``: the first pieces'
+    :func:`_curve_pieces`, or ``None``."""
     A, B, sel, curved, conc, Rb = geo
     pid, ua0, ua1, ub0, ub1 = pieces
     ka = sel[pid]
-    c0, c1 = A.eval(ka, ua0), A.eval(ka, ua1)
-    da = A.delta(ka, ua0, ua1)
+    arc_a = None
+    if alike is not None:
+        # what depends on a's piece alone, once per piece of each distinct curve
+        k, u0, u1, at = alike
+        c0, c1 = (take_rows(p, at) for p in _ends(A, k, u0, u1))
+        da = A.delta(k, u0, u1)[at]
+        arc_a = tuple(take_rows(v, at) for v in _mid_arc_of(A, k, u0, u1))
+    else:
+        c0, c1 = _ends(A, ka, ua0, ua1) if A.concentric else (A.eval(ka, ua0), A.eval(ka, ua1))
+        da = A.delta(ka, ua0, ua1)
     if curved:
-        e0, e1 = B.eval(pid, ub0), B.eval(pid, ub1)
+        e0, e1 = _ends(B, pid, ub0, ub1)
         db = B.delta(pid, ub0, ub1)
         d, w_a, w_b = segment_segment(c0, c1, e0, e1)
     else:
@@ -415,7 +309,7 @@ def _round(geo, pieces, exempts):
     lb = np.maximum(d - da - db, _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb,
                                              curved))
     if A.concentric:
-        lb = np.fmax(lb, _mid_arc(A, ka, B, pid, ua0, ua1, ub0, ub1))
+        lb = np.fmax(lb, _mid_arc(A, ka, B, pid, ua0, ua1, ub0, ub1, arc_a))
     ta = _fraction(w_a, c0, c1)
     qa = A.eval(ka, ua0 + ta * (ua1 - ua0))
     if curved:
@@ -434,45 +328,70 @@ def _round(geo, pieces, exempts):
     return lb, dq, qa, qb, live, ok
 
 
-def _mid_arc(A: _Spirals, ka, B: _Exact | _Spirals, pid, ua0, ua1, ub0=None, ub1=None):
+def _ends(S: SpiralRows, k, u0, u1):
+    """``(S.eval(k, u0), S.eval(k, u1))``, a point that ends one piece and starts
+    the next (one curve, the same bits of ``u``: the same point, as the
+    evaluation works element by element) evaluated once."""
+    n = k.size
+    p0 = S.eval(k, u0)
+    shared = (k[1:] == k[:-1]) & (u1[:-1].view(np.int64) == u0[1:].view(np.int64))
+    from_next = np.flatnonzero(shared)
+    own = np.append(np.flatnonzero(~shared), n - 1) if n else from_next
+    p1 = np.empty((n, 2))
+    put_rows(p1, from_next, take_rows(p0, from_next + 1))
+    put_rows(p1, own, S.eval(k[own], u1[own]))
+    return p0, p1
+
+
+def _mid_arc(A: SpiralRows, ka, B: ExactRows | SpiralRows, pid, ua0, ua1, ub0=None, ub1=None,
+             arc_a=None):
     """:func:`~ccopt.verify.distance.mid_arc.mid_arc_bound` of spiral pieces
-    ``[ua0, ua1]`` of ``A``'s curves ``ka`` against ``B``'s elements ``pid``, or
-    against their pieces ``[ub0, ub1]`` when ``B`` holds spirals."""
-    arc_a = mid_arc(A.c[ka], A.rho0[ka], A.b[ka], A.th0[ka], A.sg[ka], ua0, ua1)
-    if isinstance(B, _Exact):
+    ``[ua0, ua1]`` of ``A``'s curves ``ka`` (their :func:`_mid_arc_of`, if known:
+    ``arc_a``) against ``B``'s elements ``pid``, or against their pieces
+    ``[ub0, ub1]`` when ``B`` holds spirals."""
+    if arc_a is None:
+        arc_a = _mid_arc_of(A, ka, ua0, ua1)
+    if isinstance(B, ExactRows):
         return mid_arc_bound(arc_a, element_to=lambda c, R, t, w: B.arcs_to(pid, c, R, t, w))
-    return mid_arc_bound(arc_a, mid_arc(B.c[pid], B.rho0[pid], B.b[pid], B.th0[pid], B.sg[pid],
-                                        ub0, ub1))
+    return mid_arc_bound(arc_a, mid_arc(take_rows(B.c, pid), B.rho0[pid], B.b[pid], B.th0[pid],
+                                        B.sg[pid], ub0, ub1))
 
 
 def _exempt(pid, c0, c1, da, qa, exempts):
     """``(live, ok)`` of each piece: not skipped as inside its pair's open-end
     exemption by its chord deviation, and its witness outside the exemption
-    (all True for pairs without one)."""
+    (all True for pairs without one); ``exempts``: ``(ex_objs, ex_of)``."""
     live = np.ones(pid.size, bool)
     ok = np.ones(pid.size, bool)
-    with_ex = [m for m, ex in enumerate(exempts) if ex is not None]
-    if not with_ex:
+    ex_objs, ex_of = exempts
+    with_ex = np.flatnonzero(ex_of >= 0)
+    if not with_ex.size:
         return live, ok
     order = np.argsort(pid, kind="stable")
-    edges = np.searchsorted(pid[order], np.arange(len(exempts) + 1))
-    for m in with_ex:
+    edges = np.searchsorted(pid[order], np.arange(ex_of.size + 1))
+    for m, ex in zip(with_ex.tolist(), ex_of[with_ex].tolist()):
         idx = order[edges[m]:edges[m + 1]]
         if idx.size:
-            inside_by, contains = exempts[m]
+            inside_by, contains = ex_objs[ex]
             skip = inside_by(c0[idx], da[idx]) & inside_by(c1[idx], da[idx])
             live[idx] = ~skip
             ok[idx] = ~skip & ~contains(qa[idx])
     return live, ok
 
 
-def _piece_counts(C: _Spirals | _Beziers, k) -> np.ndarray:
+def _mid_arc_of(S: SpiralRows, k, u0, u1):
+    """:func:`~ccopt.verify.distance.mid_arc.mid_arc` of the pieces ``[u0, u1]``
+    of ``S``'s curves ``k``."""
+    return mid_arc(take_rows(S.c, k), S.rho0[k], S.b[k], S.th0[k], S.sg[k], u0, u1)
+
+
+def _piece_counts(C: SpiralRows | BezierRows, k) -> np.ndarray:
     """How many first pieces :func:`~ccopt.verify.distance.certified._first_pieces`
     cuts curve ``k`` of ``C`` into: a spiral (or arc) one per
     :data:`~ccopt.verify.distance.certified.FIRST_PIECE_ANGLE` of sweep, at
     least :data:`~ccopt.verify.distance.certified.FIRST_PIECES`; a Bezier curve
     that many."""
-    if isinstance(C, _Spirals):
+    if isinstance(C, SpiralRows):
         return np.maximum(FIRST_PIECES, np.ceil(C.U[k] / FIRST_PIECE_ANGLE)).astype(np.intp)
     return np.full(np.size(k), FIRST_PIECES, np.intp)
 
@@ -485,9 +404,10 @@ def _cuts(U: np.ndarray, n: np.ndarray, k: np.ndarray):
     return k * step, np.where(k + 1 == n, U, (k + 1) * step)
 
 
-def _first(A: _Spirals | _Beziers, B, sel, curved: bool):
+def _first(A: SpiralRows | BezierRows, B, sel, curved: bool):
     """Every pair's first pieces (pairs of pieces for a curved ``b``): the cuts
-    of :func:`~ccopt.verify.distance.certified._first_pieces`, all pairs at once."""
+    of :func:`~ccopt.verify.distance.certified._first_pieces`, all pairs at
+    once, and their :func:`_curve_pieces` (``None`` for Bezier curves)."""
     sel = np.asarray(sel, np.intp)
     m = np.arange(sel.size)
     na = _piece_counts(A, sel)
@@ -500,10 +420,29 @@ def _first(A: _Spirals | _Beziers, B, sel, curved: bool):
     else:
         ia = t
     ua0, ua1 = _cuts(A.U[sel][pid], na[pid], ia)
+    alike = _curve_pieces(A, sel, na, pid, ia) if isinstance(A, SpiralRows) else None
     if not curved:
-        return pid, ua0, ua1, None, None
+        return (pid, ua0, ua1, None, None), alike
     ub0, ub1 = _cuts(B.U[pid], nb[pid], ib)
-    return pid, ua0, ua1, ub0, ub1
+    return (pid, ua0, ua1, ub0, ub1), alike
+
+
+def _curve_pieces(A: SpiralRows, sel, na, pid, ia):
+    """``(k, u0, u1, at)``: the first pieces of each distinct curve of the pairs
+    ``sel`` (``k`` a row of ``A`` holding it, ``[u0, u1]`` the piece) and, per
+    piece ``ia`` of pair ``pid``, its place among them. The pairs of one curve
+    have the same numbers and so the same cuts: what depends on the curve's
+    piece alone is the same for each of them."""
+    obj = A.obj[sel]
+    used, inv = used_rows(obj, A.obj.size)
+    pair = np.empty(A.obj.size, np.intp)
+    pair[obj] = np.arange(sel.size)     # a pair of each curve (any: they are alike)
+    rep = pair[used]
+    n = na[rep]
+    start = np.cumsum(n) - n
+    k = np.repeat(sel[rep], n)
+    u0, u1 = _cuts(A.U[k], np.repeat(n, n), np.arange(k.size) - np.repeat(start, n))
+    return k, u0, u1, start[inv][pid] + ia
 
 
 def _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb, curved):
@@ -529,7 +468,7 @@ def _radial_gap(A, ka, ua0, ua1, B, pid, ub0, ub1, conc, Rb, curved):
 class _View:
     """The spiral parameters of each piece's curve, as :func:`polar_gap` reads them."""
 
-    def __init__(self, S: _Spirals, k):
+    def __init__(self, S: SpiralRows, k):
         self.th0, self.sg, self.rho0, self.b = S.th0[k], S.sg[k], S.rho0[k], S.b[k]
 
 
