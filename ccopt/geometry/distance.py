@@ -179,6 +179,36 @@ class SegmentArray:
                       self.theta0[i], self.sweep[i])
 
 
+@dataclass(frozen=True, eq=False)
+class SegmentRows:
+    """Rows ``idx`` of a :class:`SegmentArray` of lines and arcs as columns:
+    ``line`` (True for a line, else an arc), end points ``p0``, ``p1``
+    ``(M, 2)``, and the arc's centre ``c`` ``(M, 2)``, radius ``R``, start
+    angle ``th`` and signed sweep ``sw`` (radians; NaN for lines)."""
+
+    line: np.ndarray
+    p0: np.ndarray
+    p1: np.ndarray
+    c: np.ndarray
+    R: np.ndarray
+    th: np.ndarray
+    sw: np.ndarray
+
+    @staticmethod
+    def columns(S: SegmentArray, idx) -> tuple:
+        """The fields of rows ``idx`` of ``S``, in the order of the class's."""
+        return (S.kind[idx] == KIND_LINE, S.p0[idx], S.p1[idx], S.center[idx], S.radius[idx],
+                S.theta0[idx], S.sweep[idx])
+
+    @classmethod
+    def take(cls, S: SegmentArray, idx) -> "SegmentRows":
+        return cls(*cls.columns(S, idx))
+
+    def finite_center(self) -> np.ndarray:
+        """Centres with the NaN of line rows replaced by 0 (mask those rows out)."""
+        return np.where(np.isfinite(self.c), self.c, 0.0)
+
+
 def pair_distance(A: SegmentArray, idx_a, B: SegmentArray, idx_b):
     """Distances between rows ``A[idx_a[k]]`` and ``B[idx_b[k]]`` for every ``k``.
 

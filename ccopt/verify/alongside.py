@@ -25,6 +25,7 @@ import numpy as np
 
 from ccopt.geometry import KIND_ARC, KIND_LINE
 from ccopt.geometry.angles import TWO_PI
+from ccopt.geometry.distance import SegmentRows
 from ccopt.tolerances import POINT_EPS
 from ccopt.verify.clearance import BOUNDARY_REL
 from ccopt.verify.distance import max_distance
@@ -113,27 +114,18 @@ class EndPlanes:
 
 
 @dataclass(frozen=True, eq=False)
-class _Segments:
-    """The tool segments of the pairs: ``line`` (else an arc), end points,
-    centre, radius, start angle, sweep and length."""
+class _Segments(SegmentRows):
+    """The tool segments of the pairs (:class:`~ccopt.geometry.distance.SegmentRows`)
+    and their ``length``."""
 
-    line: np.ndarray
-    p0: np.ndarray
-    p1: np.ndarray
-    c: np.ndarray
-    R: np.ndarray
-    th: np.ndarray
-    sw: np.ndarray
     length: np.ndarray
 
     @classmethod
     def take(cls, T: Packed, si: np.ndarray) -> "_Segments":
-        A = T.arr
-        line = A.kind[si] == KIND_LINE
-        p0, p1, R, sw = A.p0[si], A.p1[si], A.radius[si], A.sweep[si]
+        line, p0, p1, c, R, th, sw = SegmentRows.columns(T.arr, si)
         d = p1 - p0
         length = np.where(line, _math(math.hypot, d[:, 0], d[:, 1]), R * np.abs(sw))
-        return cls(line, p0, p1, A.center[si], R, A.theta0[si], sw, length)
+        return cls(line, p0, p1, c, R, th, sw, length)
 
     def start(self) -> np.ndarray:
         """Start points (an arc's as :attr:`~ccopt.geometry.Arc.start` gives it)."""

@@ -28,13 +28,11 @@ along ``A`` (0..1 of the length).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 
 from ccopt.geometry import KIND_LINE
 from ccopt.geometry.angles import TWO_PI, angle_along, angle_in_sweep
-from ccopt.geometry.distance import point_arc, point_segment
+from ccopt.geometry.distance import SegmentRows, point_arc, point_segment
 
 
 def _unit(v):
@@ -87,36 +85,11 @@ def _fraction_arc(c, th0, sw, q):
     return np.clip(along / np.where(full > 0.0, full, 1.0), 0.0, 1.0)
 
 
-@dataclass(frozen=True, eq=False)
-class _Rows:
-    """The selected rows of a :class:`~ccopt.geometry.SegmentArray` as columns:
-    ``line`` (True for a line, else an arc), end points ``p0``, ``p1`` and the
-    arc's centre ``c``, radius ``R``, start angle ``th`` and sweep ``sw``
-    (NaN for lines)."""
-
-    line: np.ndarray
-    p0: np.ndarray
-    p1: np.ndarray
-    c: np.ndarray
-    R: np.ndarray
-    th: np.ndarray
-    sw: np.ndarray
-
-    @classmethod
-    def take(cls, S, idx) -> "_Rows":
-        return cls(S.kind[idx] == KIND_LINE, S.p0[idx], S.p1[idx], S.center[idx],
-                   S.radius[idx], S.theta0[idx], S.sweep[idx])
-
-    def finite_center(self) -> np.ndarray:
-        """Centres with the NaN of line rows replaced by 0 (those rows are masked out)."""
-        return np.where(np.isfinite(self.c), self.c, 0.0)
-
-
 class _Farthest:
     """Running maximum over candidate points ``q`` of the ``A`` rows of the
     exact distance from ``q`` to the ``B`` rows: ``d`` and the point ``q``."""
 
-    def __init__(self, b: _Rows):
+    def __init__(self, b: SegmentRows):
         self.b = b
         n = b.line.size
         self.d = np.full(n, -np.inf)
@@ -148,8 +121,8 @@ def max_distance(A, ia, B, ib):
     distance from a point of the ``A`` row to the ``B`` row; ``q``: that point;
     ``t``: its fraction along the ``A`` row.
     """
-    a = _Rows.take(A, np.asarray(ia, np.intp))
-    b = _Rows.take(B, np.asarray(ib, np.intp))
+    a = SegmentRows.take(A, np.asarray(ia, np.intp))
+    b = SegmentRows.take(B, np.asarray(ib, np.intp))
     far = _Farthest(b)
     every = np.ones(a.line.size, bool)
     far.offer(a.p0, every)
@@ -164,7 +137,7 @@ def max_distance(A, ia, B, ib):
     return far.d, far.q, t
 
 
-def _offer_boundary_crossings(far: _Farthest, a: _Rows, b: _Rows, nb: np.ndarray) -> None:
+def _offer_boundary_crossings(far: _Farthest, a: SegmentRows, b: SegmentRows, nb: np.ndarray) -> None:
     """Offer the crossings of ``A`` with the boundary lines of ``B``'s pieces:
     for a line ``B`` the normal lines at both ends; for an arc ``B`` the lines
     through the centre and each end, and the gap's bisector."""
@@ -186,7 +159,7 @@ def _offer_boundary_crossings(far: _Farthest, a: _Rows, b: _Rows, nb: np.ndarray
                 far.offer(q, ok & ~a.line & valid & angle_in_sweep(ang, a.th, a.sw))
 
 
-def _offer_interior_maxima(far: _Farthest, a: _Rows, b: _Rows, nb: np.ndarray) -> None:
+def _offer_interior_maxima(far: _Farthest, a: SegmentRows, b: SegmentRows, nb: np.ndarray) -> None:
     """Offer the local maxima inside a piece: for a line ``A`` against an arc
     ``B`` the foot of ``B``'s centre; for an arc ``A`` the points ``c_A +- R_A u``
     where its tangent is parallel to a line ``B``, on the line of centres, and
