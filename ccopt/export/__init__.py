@@ -21,7 +21,6 @@ written (:func:`ccopt.atomic.refuse_overwriting_inputs`).
 from __future__ import annotations
 
 import json
-import math
 import os
 import re
 from dataclasses import dataclass, field
@@ -34,9 +33,9 @@ from ccopt.export.arcfit import DEFAULT_TOL
 from ccopt.export.gcode import write_gcode
 from ccopt.export.pmacprog import write_pmac
 from ccopt.export.readback import readback_path
+from ccopt.export.roundtrip import roundtrip_error
 from ccopt.export.svg import write_svg
 from ccopt.export.text import with_header
-from ccopt.geometry import Arc, Line
 from ccopt.program.gcode.execute import LATHE_DIAMETER_MODE_USED
 from ccopt.program.model import INPUT_FILES, START_PARAMETERS, Program
 from ccopt.tolerances import EXPORT_REFIT_MIN_TOL, EXPORT_REFIT_ROUNDS, EXPORT_REFIT_SHRINK
@@ -172,38 +171,6 @@ def _write_checked(res: ExportResult, out: Path, text: str, program: Program | N
                          f"{res.kept_existing} left as it was")
     refuse_overwriting_inputs([out], inputs_of(program))
     write_text_atomic(out, text)
-
-
-def displacement(meant, got) -> float:
-    """Bound on the distance between two lines, or two arcs/spirals about
-    nearly the same centre, from their defining points.
-
-    Lines: the larger end point displacement (a segment lies within that of
-    the other). Arcs and spirals: centre displacement plus the larger change of
-    radius at either end plus the end point displacements.
-    """
-    dev = max(math.dist(meant.start, got.start), math.dist(meant.end, got.end))
-    if isinstance(meant, Line) or isinstance(got, Line):
-        if type(meant) is not type(got):
-            return math.inf
-        return dev
-    r_m = (meant.radius, meant.radius) if isinstance(meant, Arc) else (meant.rho0, meant.rho1)
-    r_g = (got.radius, got.radius) if isinstance(got, Arc) else (got.rho0, got.rho1)
-    if (meant.sweep > 0) != (got.sweep > 0) or abs(abs(meant.sweep) - abs(got.sweep)) > math.pi:
-        return math.inf
-    return dev + math.dist(meant.center, got.center) + max(abs(r_m[0] - r_g[0]), abs(r_m[1] - r_g[1]))
-
-
-def roundtrip_error(back: ToolPath, moves: list) -> float:
-    """Largest deviation of the read-back path from the computed one: per move,
-    the displacement of the read-back geometry from the geometry the writer
-    meant, plus that geometry's certified bound (the arc and line fit)."""
-    worst = 0.0
-    for seg, (src, meant, bound) in zip(back.segments, moves):
-        if src < 0 or meant is None:
-            continue
-        worst = max(worst, displacement(meant, seg.geom) + bound)
-    return worst
 
 
 def _tighter_fits(cert, moves: list, seg_tol: dict[int, float], tol: float) -> dict[int, float]:

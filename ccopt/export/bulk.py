@@ -129,7 +129,7 @@ def rounded(values, digits: int) -> np.ndarray:
     return out
 
 
-def _polar(cx, cy, radius, phi) -> tuple[np.ndarray, np.ndarray]:
+def polar_points(cx, cy, radius, phi) -> tuple[np.ndarray, np.ndarray]:
     """``centre + radius * (cos phi, sin phi)`` as :class:`Arc` evaluates it."""
     angles = phi.tolist()
     cos = np.fromiter(map(math.cos, angles), float, len(angles))
@@ -227,11 +227,12 @@ class PlainColumns:
         self.center[rows] = center
         self.sweep[rows] = sweep
         self.length[rows] = radius * np.abs(sweep)
-        self.start[rows] = np.column_stack(_polar(center[:, 0], center[:, 1], radius, theta0))
+        self.start[rows] = np.column_stack(polar_points(center[:, 0], center[:, 1], radius,
+                                                        theta0))
         # Arc.end: the polar point at theta0 + sweep, the sum taken first
-        self.end[rows] = np.column_stack(_polar(center[:, 0], center[:, 1], radius,
-                                                theta0 + sweep))
+        self.end[rows] = np.column_stack(polar_points(center[:, 0], center[:, 1], radius,
+                                                      theta0 + sweep))
 
 
 __all__ = ["ARC", "LINE", "OTHER", "PlainColumns", "changes", "fmt_many", "nearest_decimals",
-           "points", "rounded", "run_ends"]
+           "points", "polar_points", "rounded", "run_ends"]
