@@ -128,8 +128,17 @@ class Contour:
 
 def element_geometry(blocks: list[Block], plane: str, st=None, en=None, ce=None, is_arc=None,
                      ccw=None, turns=None) -> Packed:
-    """Programmed geometry of ``blocks`` as :func:`block_geometry` makes it, packed
-    (in-plane start, end, centre, arc flags and turns may be passed if known)."""
+    """Programmed geometry of ``blocks`` by :func:`block_geometry`'s rules, packed
+    (in-plane start, end, centre, arc flags and turns may be passed if known).
+
+    Lines and spirals are :func:`block_geometry`'s to the bit; arcs are made
+    with numpy's ``hypot``, ``arctan2``, ``cos`` and ``sin``, whose results can
+    differ from :mod:`math`'s (which :func:`block_geometry` uses) in the last
+    bit: on seeded random arcs (radii 0.01 to 100 about centres within 100)
+    about 7 % differ from the :class:`~ccopt.geometry.Arc` of their block,
+    the radius and start angle by at most an ulp, the sweep by at most 1e-15
+    rad and the end points by at most 1.1e-15 times the coordinates' size,
+    far below every tolerance the verifier applies (:mod:`ccopt.tolerances`)."""
     n = len(blocks)
     if n == 0:
         return pack([])
