@@ -198,12 +198,18 @@ def nearest_corner_points(arr: ElementArrays, ia: np.ndarray, k: np.ndarray, r: 
         # every corner of one kind (a path of lines): the arrays as they are
         sel = slice(None) if sel.size == m else sel
         x1, x2, n, deli = fn(*(_pick(v, sel) for v in args))
-        a, b = _pick(A, sel), _pick(B, sel)
-        cost1 = np.hypot(*(x1 - a).T) + np.hypot(*(x1 - b).T)
-        cost2 = np.hypot(*(x2 - a).T) + np.hypot(*(x2 - b).T)
-        # ties keep the first candidate, like the scalar loop (strict <)
-        pick2 = (n == 2) & (cost2 < cost1)
-        put_rows(X, sel, np.where(pick2[:, None], x2, x1))
+        two = np.flatnonzero(n == 2)
+        if two.size:
+            # of two roots, the one nearer both nominal points (costs only
+            # where there are two: two lines meet once)
+            a, b = _pick(A, sel)[two], _pick(B, sel)[two]
+            x1t, x2t = x1[two], x2[two]
+            cost1 = np.hypot(*(x1t - a).T) + np.hypot(*(x1t - b).T)
+            cost2 = np.hypot(*(x2t - a).T) + np.hypot(*(x2t - b).T)
+            # ties keep the first candidate, like the scalar loop (strict <)
+            pick2 = two[cost2 < cost1]
+            x1[pick2] = x2[pick2]
+        put_rows(X, sel, x1)
         found[sel] = n > 0
         delicate[sel] = deli
     return X, found, delicate
