@@ -339,6 +339,7 @@ class WindowLP:
         lo = np.concatenate([lo, np.full(hi_cap.size, -np.inf)])
         hi = np.concatenate([hi, hi_cap])
         self.jerk_rows, self.jerk_at0, self.jerk_at1, self.rise = jerk
+        self.v_at = np.maximum(self.vref[self.jerk_at0], self.vref[self.jerk_at1])
         self.h = np.diff(g.s[i0:i1 + 1])
         #: jerk rows whose speed factor covers the speed's peak inside their interval
         self.peaked = np.zeros(self.rise.size, bool)
@@ -394,11 +395,10 @@ class WindowLP:
         interior-point method (at most :data:`IPM_ITERATIONS`), then None."""
         h, nb = self.highs, self.nb
         b_at = np.maximum(bhat[self.jerk_at0], bhat[self.jerk_at1])
-        v_at = np.maximum(self.vref[self.jerk_at0], self.vref[self.jerk_at1])
         B = np.maximum(b_at, 0.0) * self.scale
         with np.errstate(divide="ignore", invalid="ignore"):
             B = np.where(self.peaked & (B > 0.0), B + self.rise / np.sqrt(B), B)
-            jb = np.where(b_at > 0.0, v_at / np.sqrt(B), np.inf)
+            jb = np.where(b_at > 0.0, self.v_at / np.sqrt(B), np.inf)
         h.changeRowsBounds(self.jerk_rows.size, self.jerk_rows, -jb, jb)
         ub = np.maximum(np.minimum(self.bmax, cap), self.b_low)   # a fixed start stays fixed
         h.changeColsBounds(nb, self.b_cols, self.b_low / self.b_unit, ub / self.b_unit)
@@ -474,8 +474,8 @@ class WindowLP:
         if np.count_nonzero(col == _BASIC) + np.count_nonzero(row == _BASIC) != row.size:
             return                                 # not a basis: HiGHS's slack basis
         basis = highspy.HighsBasis()
-        basis.col_status = [_STATUS[c] for c in col.tolist()]
-        basis.row_status = [_STATUS[r] for r in row.tolist()]
+        basis.col_status = _STATUS[col].tolist()
+        basis.row_status = _STATUS[row].tolist()
         basis.valid = True
         self.highs.setBasis(basis)
 
@@ -522,8 +522,8 @@ _BANNER_LOCK = threading.Lock()
 #: cycle times agree to the LP's tolerances.
 CRASH = True
 _LOWER, _BASIC, _UPPER = 0, 1, 2
-_STATUS = [highspy.HighsBasisStatus.kLower, highspy.HighsBasisStatus.kBasic,
-           highspy.HighsBasisStatus.kUpper]
+_STATUS = np.array([highspy.HighsBasisStatus.kLower, highspy.HighsBasisStatus.kBasic,
+                    highspy.HighsBasisStatus.kUpper], dtype=object)
 #: HiGHS's cost perturbation (its multiplier) in the re-solves from the last
 #: round's basis: none. Perturbed costs carry the cold start through
 #: degenerate vertices; from a basis that is nearly optimal already they

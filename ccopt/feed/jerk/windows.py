@@ -242,12 +242,18 @@ def _solve_chain(g: JerkGrid, cap: np.ndarray, chain, scale: float,
     in the whole path's plan (a generated CAM plate with a plunge, seed 38 of
     tests/compare/test_stretch_axes.py); in its own scale, 1e-14."""
     lo, hi = chain[0][0], chain[-1][1]
-    own = float(np.max(cap[lo:hi + 1][np.isfinite(cap[lo:hi + 1])] * scale, initial=0.0))
-    if not own > 0.0:
-        return _solve_chain_in(g, cap, chain, scale, first)
-    f = scale / own
-    out = _solve_chain_in(g, cap * f, chain, own, None if first is None else first * f)
-    return [r if r[3] is None else (*r[:3], r[3] / f, r[4] / f, r[5]) for r in out]
+    # the chain's own gridpoints only: scaling the whole task's bounds for
+    # each of its chains cost time in proportion to chains times gridpoints
+    cap = cap[lo:hi + 1]
+    first = None if first is None else first[lo:hi + 1]
+    local = [(i0 - lo, i1 - lo, keep - lo) for i0, i1, keep in chain]
+    own = float(np.max(cap[np.isfinite(cap)] * scale, initial=0.0))
+    f = scale / own if own > 0.0 else 1.0
+    out = _solve_chain_in(grid_slice(g, lo, hi), cap * f, local, own if own > 0.0 else scale,
+                          None if first is None else first * f)
+    return [(i0 + lo, i1 + lo, keep + lo, b, alpha, n) if b is None else
+            (i0 + lo, i1 + lo, keep + lo, b / f, alpha / f, n)
+            for i0, i1, keep, b, alpha, n in out]
 
 
 def _solve_chain_in(g: JerkGrid, cap: np.ndarray, chain, scale: float,
