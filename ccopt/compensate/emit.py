@@ -113,11 +113,13 @@ def _gap_counts(gaps) -> dict[int, int]:
     return {i: sum(blk.motion is not Motion.DWELL for blk in g) for i, g in gaps.items()}
 
 
-def emit_columns(scan, arr: ElementArrays, joints) -> tuple[SegmentColumns, tuple]:
-    """The tool path's rows and dwells (``(row before which, seconds, block)``)."""
+def emit_columns(scan, arr: ElementArrays, joints,
+                 codes: np.ndarray | None = None) -> tuple[SegmentColumns, tuple]:
+    """The tool path's rows and dwells (``(row before which, seconds, block)``);
+    ``codes``: the moves' :func:`class_codes` when the caller has them."""
     n, k = len(scan), scan.k
     gaps, gaps_after = scan.gaps, decisions.GAP_MOVES_AFTER_CORNER_ARC
-    codes = class_codes(k)
+    codes = class_codes(k) if codes is None else codes
     m_kind, m_geom, m_objects, length = _moves(scan, arr, joints)
     emitted = (length > POINT_EPS) | (arr.w0 != arr.w1)
     # rows before and after each move's own segment

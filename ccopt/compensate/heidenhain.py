@@ -33,8 +33,8 @@ from ccopt.compensate.corners import (
     Corner, Element, carrier_intersections, classify, corner_arc, tool_geometry, turn,
 )
 from ccopt.compensate.pmac import (
-    COMP, LEAD_IN, LEAD_OUT, ROLE_OF, UNCOMP, Joint, Joints, PmacStyle, SegmentList, classes_of,
-    decide_joints, emit_tail,
+    COMP, LEAD_IN, LEAD_OUT, ROLE_OF, UNCOMP, Joint, Joints, MoveClasses, PmacStyle, SegmentList,
+    classes_of, decide_joints, emit_tail,
 )
 from ccopt.compensate.planes import by_plane
 from ccopt.compensate.scan import ScanResult, scan_program
@@ -159,7 +159,7 @@ class HeidenhainStyle(PmacStyle):
         return contour.departure(spec["kind"], tuple(el.start), tuple(prev.t_end), k, r,
                                  spec["length"], spec["radius"], spec["cca"], (pn[0], pn[1]))
 
-    def _leads_joints(self, scan: ScanResult, classes: list[str], joints: Joints) -> dict:
+    def _leads_joints(self, scan: ScanResult, classes: MoveClasses, joints: Joints) -> dict:
         """Put the APPR/DEP tool paths into ``joints``; returns the pieces that
         replace each lead element's own tool segment."""
         override: dict[int, list] = {}
@@ -231,7 +231,7 @@ class HeidenhainStyle(PmacStyle):
                         dwells=tuple(out.dwells), units=program.units)
 
 
-def _emit(out: SegmentList, scan: ScanResult, classes: list[str], joints: Joints,
+def _emit(out: SegmentList, scan: ScanResult, classes: MoveClasses, joints: Joints,
           override: dict) -> None:
     """Each move's tool segments (its own, or the APPR/DEP pieces in its
     place), its corner segments and the gaps between moves (after the corner

@@ -15,6 +15,7 @@ Move classes (by the side in force before and for the move):
 from __future__ import annotations
 
 import numbers
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -239,10 +240,33 @@ class PmacStyle:
             return assemble(self, scan, program)
 
 
-def classes_of(k: np.ndarray) -> list[str]:
+def classes_of(k: np.ndarray) -> "MoveClasses":
     """Class of each in-plane move from the side in force before and for it."""
-    names = (UNCOMP, LEAD_IN, COMP, LEAD_OUT)
-    return list(map(names.__getitem__, class_codes(k).tolist()))
+    return MoveClasses(class_codes(k))
+
+
+class MoveClasses(Sequence):
+    """The class names (:data:`UNCOMP`, :data:`LEAD_IN`, :data:`COMP`,
+    :data:`LEAD_OUT`) of the in-plane moves, from their codes
+    (:func:`~ccopt.compensate.emit.class_codes`, kept as :attr:`codes`): a
+    name is looked up when asked for, since on a long program the joints are
+    mostly decided in bulk from the codes and few names are ever read."""
+
+    NAMES = (UNCOMP, LEAD_IN, COMP, LEAD_OUT)
+
+    def __init__(self, codes: np.ndarray):
+        self.codes = codes
+
+    def __len__(self) -> int:
+        return len(self.codes)
+
+    def __getitem__(self, i):
+        if isinstance(i, slice):
+            return list(map(self.NAMES.__getitem__, self.codes[i].tolist()))
+        return self.NAMES[self.codes[i]]
+
+    def __iter__(self):
+        return map(self.NAMES.__getitem__, self.codes.tolist())
 
 
 @dataclass
@@ -261,25 +285,25 @@ class Joints:
     arc_rows: tuple = (np.zeros(0, np.int64), np.zeros((0, 5)))
 
 
-def check_arc_offsets(scan: ScanResult, arr: ElementArrays, classes: list[str]) -> None:
+def check_arc_offsets(scan: ScanResult, arr: ElementArrays, classes: MoveClasses) -> None:
     """The offset of a fully compensated arc must exist (rule 7);
     lead-in and lead-out arcs are spirals that only reach the offset at one
     end. Raises CompensationError at the first arc whose offset vanishes."""
     k, r = scan.k, scan.r
-    comp = class_codes(k) == COMP_CODE
+    comp = classes.codes == COMP_CODE
     vanishes = (comp & (arr.kind == ARC) & (k != 0)
                 & (arr.offset_radius(np.arange(len(scan)), k, r) <= POINT_EPS))
     for i in np.flatnonzero(comp & ((arr.kind == SPIRAL) | vanishes)):
         scan.element(i).check_offset(int(k[i]), float(r[i]))
 
 
-def _batch_joints(style, scan: ScanResult, arr: ElementArrays, classes: list[str],
+def _batch_joints(style, scan: ScanResult, arr: ElementArrays, classes: MoveClasses,
                   joints: Joints) -> np.ndarray:
     """Decide the ordinary joints in bulk (``style.batch_corners``: both moves
     compensated on one side, no gap, no spiral); the joints left to
     ``style.joint`` one at a time."""
     n, k = len(scan), scan.k
-    comp = class_codes(k) == COMP_CODE
+    comp = classes.codes == COMP_CODE
     gap_counts = scan.gaps.sizes()[1:n]
     ia = np.flatnonzero(comp[:-1] & comp[1:] & (k[:-1] == k[1:]) & (gap_counts == 0)
                         & (arr.kind[:-1] != SPIRAL) & (arr.kind[1:] != SPIRAL))
@@ -302,7 +326,7 @@ def _batch_joints(style, scan: ScanResult, arr: ElementArrays, classes: list[str
     return np.flatnonzero(~handled)
 
 
-def decide_joints(style, scan: ScanResult, arr: ElementArrays, classes: list[str],
+def decide_joints(style, scan: ScanResult, arr: ElementArrays, classes: MoveClasses,
                   vectorised: bool) -> Joints:
     """Every joint of the program, and where the last move ends."""
     n, k = len(scan), scan.k
@@ -362,7 +386,7 @@ class SegmentList:
         self.segs.append(PathSegment(geom, role, blk, w0, w1, blk.feed))
 
 
-def emit_moves(out: SegmentList, scan: ScanResult, classes: list[str], geoms: list,
+def emit_moves(out: SegmentList, scan: ScanResult, classes: MoveClasses, geoms: list,
                joints: Joints) -> None:
     """Each move's tool segment, its corner segments and the gaps between moves.
 
@@ -443,7 +467,7 @@ def assemble(style, scan: ScanResult, program: Program, vectorised: bool = True,
             columns = vectorised and n >= COLUMNS_MIN_MOVES
         if columns:
             # the path as columns: no object per segment until asked for
-            rows, dwells = emit_columns(scan, arr, joints)
+            rows, dwells = emit_columns(scan, arr, joints, classes.codes)
             return ToolPath.from_columns(rows, plane=scan.plane, style=style.name,
                                          radius=radius, dwells=dwells, units=program.units,
                                          meta=meta)
