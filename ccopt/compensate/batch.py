@@ -166,10 +166,11 @@ def _arc_geometry(S, E, C, ccw, turns):
 
 
 def nearest_corner_points(arr: ElementArrays, ia: np.ndarray, k: np.ndarray, r: np.ndarray,
-                          A: np.ndarray, B: np.ndarray):
+                          A: np.ndarray, B: np.ndarray, te: np.ndarray, ts: np.ndarray):
     """Intersections of the offsets of elements ``ia`` and ``ia + 1`` (side
     ``k``, radius ``r``) nearest the nominal points ``A``, ``B``
-    (decisions.nearest_root, vectorised).
+    (decisions.nearest_root, vectorised); ``te``, ``ts``: the unit tangents
+    where ``ia`` ends and ``ia + 1`` starts (:func:`corner_tangents`).
 
     Returns ``(X, found, delicate)``: ``found`` false where the carriers miss,
     ``delicate`` where the configuration is near-degenerate and the scalar
@@ -184,7 +185,6 @@ def nearest_corner_points(arr: ElementArrays, ia: np.ndarray, k: np.ndarray, r: 
     lb = arr.kind[ib] == LINE
     Ra = np.where(la, np.nan, arr.offset_radius(ia, k, r))
     Rb = np.where(lb, np.nan, arr.offset_radius(ib, k, r))
-    te, ts = take_rows(arr.te, ia), take_rows(arr.ts, ib)
     Ca, Cb = take_rows(arr.C, ia), take_rows(arr.C, ib)
     for mask, fn, args in (
         (la & lb, lines_lines, (A, te, B, ts)),
@@ -220,19 +220,26 @@ def _pick(v: np.ndarray, sel) -> np.ndarray:
     return v if isinstance(sel, slice) else take_rows(v, sel)
 
 
-def corner_turn(arr: ElementArrays, ia: np.ndarray):
-    """Cross ``c`` and dot ``d`` of the turn at the end of elements ``ia``."""
-    te, ts = take_rows(arr.te, ia), take_rows(arr.ts, ia + 1)
+def corner_tangents(arr: ElementArrays, ia: np.ndarray):
+    """``(te, ts)``: the unit tangents where elements ``ia`` end and ``ia + 1`` start."""
+    return take_rows(arr.te, ia), take_rows(arr.ts, ia + 1)
+
+
+def corner_turn(te: np.ndarray, ts: np.ndarray):
+    """Cross ``c`` and dot ``d`` of the turn from tangents ``te`` to ``ts``
+    (:func:`corner_tangents`)."""
     c = te[:, 0] * ts[:, 1] - te[:, 1] * ts[:, 0]
     d = te[:, 0] * ts[:, 0] + te[:, 1] * ts[:, 1]
     return c, d
 
 
-def offset_points(arr: ElementArrays, ia: np.ndarray, k: np.ndarray, r: np.ndarray):
-    """Nominal offset points ``A = P + r*o(t_in)`` and ``B = P + r*o(t_out)``."""
+def offset_points(arr: ElementArrays, ia: np.ndarray, k: np.ndarray, r: np.ndarray,
+                  te: np.ndarray, ts: np.ndarray):
+    """Nominal offset points ``A = P + r*o(t_in)`` and ``B = P + r*o(t_out)``
+    at the ends ``P`` of elements ``ia`` (tangents ``te``, ``ts``: :func:`corner_tangents`)."""
     P = take_rows(arr.E, ia)
-    A = P + (k * r)[:, None] * _perp(take_rows(arr.te, ia))
-    B = P + (k * r)[:, None] * _perp(take_rows(arr.ts, ia + 1))
+    A = P + (k * r)[:, None] * _perp(te)
+    B = P + (k * r)[:, None] * _perp(ts)
     return A, B
 
 
@@ -316,5 +323,6 @@ def _arc_rows(arr: ElementArrays, idx, starts, ends, at, kind, geom, objects) ->
                                if away[q] else None)
 
 
-__all__ = ["ARC", "ElementArrays", "LINE", "SPIRAL", "classify_turn", "corner_turn",
+__all__ = ["ARC", "ElementArrays", "LINE", "SPIRAL", "classify_turn", "corner_tangents",
+           "corner_turn",
            "nearest_corner_points", "offset_points", "tool_rows", "wrap_pi"]

@@ -26,7 +26,8 @@ from ccopt.compensate.corners import (
     tool_geometry, turn,
 )
 from ccopt.compensate.batch import (
-    ARC, SPIRAL, ElementArrays, classify_turn, corner_turn, nearest_corner_points, offset_points,
+    ARC, SPIRAL, ElementArrays, classify_turn, corner_tangents, corner_turn, nearest_corner_points,
+    offset_points,
 )
 from ccopt.compensate.emit import COMP_CODE, class_codes, emit_columns
 from ccopt.compensate.planes import by_plane
@@ -208,10 +209,11 @@ class PmacStyle:
         arcs)``; joints not ``done`` (reversals, near-degenerate intersections)
         go to :meth:`joint`."""
         k, r = arr.k[ia], arr.r[ia]
-        c, d = corner_turn(arr, ia)
+        te, ts = corner_tangents(arr, ia)
+        c, d = corner_turn(te, ts)
         kind = classify_turn(k, c, d)
-        A, B = offset_points(arr, ia, k, r)
-        X, found, delicate = nearest_corner_points(arr, ia, k, r, A, B)
+        A, B = offset_points(arr, ia, k, r, te, ts)
+        X, found, delicate = nearest_corner_points(arr, ia, k, r, A, B, te, ts)
         inside, outside, tangent = kind == 0, kind == 1, kind == 2
         # radius 0 at the corner: the programmed point, no arc (as joint())
         zero = r <= 0.0
@@ -225,10 +227,14 @@ class PmacStyle:
         done &= ~(delicate & (inside | shallow))
         end_prev = np.where(use_x[:, None], X, A)
         start_next = np.where(use_x[:, None], X, np.where(has_arc[:, None], B, A))
-        te = take_rows(arr.te, ia)
-        # the corner arc's start angle: the outward normal k * (-t_y, t_x)
-        arcs = {"has": has_arc, "theta0": np.arctan2(k * te[:, 0], k * -te[:, 1]),
-                "sweep": np.arctan2(c, d)}
+        # the corner arc's start angle: the outward normal k * (-t_y, t_x); only
+        # the corners with an arc are read (NaN elsewhere)
+        arcs = {"has": has_arc, "theta0": np.full(ia.size, np.nan),
+                "sweep": np.full(ia.size, np.nan)}
+        q = np.flatnonzero(has_arc)
+        kq, teq = k[q], te[q]
+        arcs["theta0"][q] = np.arctan2(kq * teq[:, 0], kq * -teq[:, 1])
+        arcs["sweep"][q] = np.arctan2(c[q], d[q])
         return done, end_prev, start_next, arcs
 
     # -- the whole program ---------------------------------------------------------
