@@ -235,9 +235,12 @@ def _scan_columns(program: Program, radius: float | None, side: int | None,
     for q in np.flatnonzero(~in_plane).tolist():
         gaps.setdefault(int(before[q]), []).append(blocks[q])
     start = blocks[0].uvw(program.start)[:2]
-    columns = {"start": st[idx], "end": en[idx], "arc": arc[idx], "rapid": rapid[idx],
-               "motions": [motions[q] for q in idx.tolist()] if idx.size < n else motions}
-    return ScanResult(moves, k[idx], r[idx], GapList(gaps, idx.size + 1), plane,
+    if idx.size < n:
+        st, en, arc, rapid, k, r = (v[idx] for v in (st, en, arc, rapid, k, r))
+        motions = [motions[q] for q in idx.tolist()]
+    # else every block is an in-plane move: the arrays as they are
+    columns = {"start": st, "end": en, "arc": arc, "rapid": rapid, "motions": motions}
+    return ScanResult(moves, k, r, GapList(gaps, idx.size + 1), plane,
                       (float(start[0]), float(start[1])), columns=columns)
 
 
