@@ -281,7 +281,10 @@ def tool_rows(arr: ElementArrays, idx: np.ndarray, starts: np.ndarray, ends: np.
     at = np.flatnonzero(lines)
     s, e = take_rows(starts, idx[at]), take_rows(ends, idx[at])
     kind[at] = LINE_ROW
-    geom[at, 0:2], geom[at, 2:4] = s, e
+    if at.size == m:                            # all lines: every row, in order
+        geom[:, 0:2], geom[:, 2:4] = s, e
+    else:
+        geom[at, 0:2], geom[at, 2:4] = s, e
     # column by column: numpy's axis-1 reduction of a narrow array is slow
     bad = ~(np.isfinite(s[:, 0]) & np.isfinite(s[:, 1]) & np.isfinite(e[:, 0])
             & np.isfinite(e[:, 1]))

@@ -22,6 +22,7 @@ from ccopt.compensate import decisions
 from ccopt.compensate.batch import SPIRAL, ElementArrays, tool_rows
 from ccopt.compensate.corners import tool_geometry
 from ccopt.geometry import Line
+from ccopt.geometry.columns import put_rows, take_rows
 from ccopt.program.model import Block, Motion
 from ccopt.tolerances import POINT_EPS
 from ccopt.toolpath import ARC_ROW, LINE_ROW, OBJECT_ROW, ROLE_CODE, Role, SegmentColumns
@@ -166,14 +167,16 @@ def _fill(total, move_pos, emitted, m_kind, m_geom, m_objects, codes, arr, arcs,
     w = np.empty((total, 2))
     at = move_pos[emitted]
     moved = np.flatnonzero(emitted)
-    kind[at], geom[at] = m_kind[moved], m_geom[moved]
+    kind[at] = m_kind[moved]
+    put_rows(geom, at, take_rows(m_geom, moved))
     move_role = CLASS_ROLE[codes]
     move_role[(codes == 0) & arr.rapid] = ROLE_CODE[Role.RAPID]
     role[at], block[at] = move_role[moved], moved
     w[at, 0], w[at, 1] = arr.w0[moved], arr.w1[moved]
     objects = {int(move_pos[i]): g for i, g in m_objects.items() if emitted[i]}
     arc_pos, arc_at, arc_rows = arcs
-    kind[arc_pos], geom[arc_pos], role[arc_pos] = ARC_ROW, arc_rows, ROLE_CODE[Role.CORNER]
+    kind[arc_pos], role[arc_pos] = ARC_ROW, ROLE_CODE[Role.CORNER]
+    put_rows(geom, arc_pos, arc_rows)
     block[arc_pos] = arc_at
     w[arc_pos, 0] = w[arc_pos, 1] = arr.w1[arc_at]
     if loose.pos:

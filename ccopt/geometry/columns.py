@@ -46,15 +46,16 @@ def take_rows(a: np.ndarray, idx) -> np.ndarray:
 
 
 def put_rows(a: np.ndarray, idx, rows: np.ndarray) -> None:
-    """``a[idx] = rows``. For a C-contiguous ``(n, 2)`` float ``a`` each row
-    is written as one complex number (its same 16 bytes, no arithmetic), which
-    numpy scatters several times faster than the rows of a 2-D array."""
+    """``a[idx] = rows``. For a C-contiguous ``(n, k)`` float ``a`` each row
+    is written as one item of ``8 k`` bytes (a complex number for ``k = 2``,
+    else raw bytes: its same bytes, no arithmetic), which numpy scatters
+    several times faster than the rows of a 2-D array."""
     rows = np.asarray(rows)
     if isinstance(idx, np.ndarray) and a.dtype == np.float64 and a.ndim == 2 \
-            and a.shape[1] == 2 and a.flags.c_contiguous and rows.ndim == 2 \
-            and rows.shape[1] == 2:
+            and a.flags.c_contiguous and rows.ndim == 2 and rows.shape[1] == a.shape[1] > 0:
+        row = np.complex128 if a.shape[1] == 2 else np.dtype((np.void, 8 * a.shape[1]))
         src = np.ascontiguousarray(rows, np.float64)
-        a.view(np.complex128)[idx, 0] = src.view(np.complex128)[:, 0]
+        a.view(row)[idx, 0] = src.view(row)[:, 0]
     else:
         a[idx] = rows           # anything else as numpy does it (a row broadcast, ...)
 
