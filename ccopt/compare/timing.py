@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import importlib
 import pickle
+import threading
 from collections import OrderedDict
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -278,15 +279,17 @@ class StretchTimes:
         same plan of the same numbers (variants share leads and corners, and
         each starts from the reference's stretch times alone, :meth:`copy`)."""
         key = run_signature(exact, run, self.limits, self.ts)
-        got = _RUN_PLANS.get(key) if key is not None else None
+        with _RUN_PLANS_LOCK:     # a comparison plans its reference in a thread
+            got = _RUN_PLANS.get(key) if key is not None else None
+            if got is not None:
+                _RUN_PLANS.move_to_end(key)
         if got is None:
             got = tuple(self._plan_run_afresh(exact, run))
             if key is not None:
-                _RUN_PLANS[key] = got
-                while len(_RUN_PLANS) > RUN_PLANS_KEPT:
-                    _RUN_PLANS.popitem(last=False)
-        else:
-            _RUN_PLANS.move_to_end(key)
+                with _RUN_PLANS_LOCK:
+                    _RUN_PLANS[key] = got
+                    while len(_RUN_PLANS) > RUN_PLANS_KEPT:
+                        _RUN_PLANS.popitem(last=False)
         return list(got)
 
     def _plan_run_afresh(self, exact: ExactPath, run: list[Stretch]) -> list[tuple[float, float]]:
@@ -317,6 +320,7 @@ RUN_PLANS_KEPT = 256
 
 #: :func:`run_signature` -> the run's ``(seconds, max_acc_ratio)`` per stretch.
 _RUN_PLANS: OrderedDict = OrderedDict()
+_RUN_PLANS_LOCK = threading.Lock()
 
 
 def run_signature(exact: ExactPath, run: list[Stretch], limits: AxisLimits,
