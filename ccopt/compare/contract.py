@@ -22,6 +22,8 @@ is in :mod:`ccopt.geometry.bezier`.
 """
 from __future__ import annotations
 
+import os
+import sys
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from importlib.metadata import EntryPoint, entry_points
@@ -254,9 +256,35 @@ CONTROLLER_NAMES = BUILTIN_NAMES[:6] + ("siemens",)
 
 
 def blend_entry_points() -> dict[str, EntryPoint]:
-    """Entry points of group ``ccopt.blends`` by name (the first of a name wins)."""
-    out: dict[str, EntryPoint] = {}
-    for ep in entry_points(group=ENTRY_POINT_GROUP):
-        if ep.name not in BUILTIN_NAMES:
-            out.setdefault(ep.name, ep)
-    return out
+    """Entry points of group ``ccopt.blends`` by name (the first of a name wins).
+
+    Found once per state of the places distributions are found in
+    (:func:`_where_distributions_are`): the main job asks for every variant
+    of every case, and each search reads every installed distribution's
+    metadata."""
+    where = _where_distributions_are()
+    if _FOUND.get("where") != where:
+        out: dict[str, EntryPoint] = {}
+        for ep in entry_points(group=ENTRY_POINT_GROUP):
+            if ep.name not in BUILTIN_NAMES:
+                out.setdefault(ep.name, ep)
+        _FOUND.update(where=where, eps=out)
+    return dict(_FOUND["eps"])
+
+
+#: The last search of :func:`blend_entry_points`: ``where`` it looked, the ``eps`` it found.
+_FOUND: dict = {}
+
+
+def _where_distributions_are() -> tuple:
+    """What a search for entry points depends on: the finders, the current
+    folder (``""`` on ``sys.path``) and each ``sys.path`` folder with its
+    modification time (ns; a distribution installed or removed there changes
+    it; ``None``: not a folder)."""
+    def stamp(entry: str):
+        try:
+            return os.stat(entry or ".").st_mtime_ns
+        except (OSError, TypeError, ValueError):
+            return None
+    return (tuple(map(id, sys.meta_path)), os.getcwd(),
+            tuple((entry, stamp(entry)) for entry in sys.path))

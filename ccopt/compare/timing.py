@@ -31,6 +31,9 @@ rounds per window, so there the difference is within its round tolerance
 from __future__ import annotations
 
 import importlib
+import pickle
+import threading
+from collections import OrderedDict
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
 
@@ -271,6 +274,26 @@ class StretchTimes:
 
     def _plan_run(self, exact: ExactPath, run: list[Stretch]) -> list[tuple[float, float]]:
         """``(seconds, max_acc_ratio)`` of each of the consecutive stretches ``run``
+        of ``exact`` (:meth:`_plan_run_afresh`), or the figures of a run planned
+        before in this process whose :func:`run_signature` is the same: the
+        same plan of the same numbers (variants share leads and corners, and
+        each starts from the reference's stretch times alone, :meth:`copy`)."""
+        key = run_signature(exact, run, self.limits, self.ts)
+        with _RUN_PLANS_LOCK:     # a comparison plans its reference in a thread
+            got = _RUN_PLANS.get(key) if key is not None else None
+            if got is not None:
+                _RUN_PLANS.move_to_end(key)
+        if got is None:
+            got = tuple(self._plan_run_afresh(exact, run))
+            if key is not None:
+                with _RUN_PLANS_LOCK:
+                    _RUN_PLANS[key] = got
+                    while len(_RUN_PLANS) > RUN_PLANS_KEPT:
+                        _RUN_PLANS.popitem(last=False)
+        return list(got)
+
+    def _plan_run_afresh(self, exact: ExactPath, run: list[Stretch]) -> list[tuple[float, float]]:
+        """``(seconds, max_acc_ratio)`` of each of the consecutive stretches ``run``
         of ``exact``: planned as one path and cut at its stops, or one by one
         where that path's stops are not the run's (never seen; a safeguard)."""
         def plan(s0: float, s1: float):
@@ -289,6 +312,39 @@ class StretchTimes:
         reference's stretches alone, so its figures do not depend on which
         variants ran before it (serial and parallel runs agree)."""
         return StretchTimes(self.limits, dict(self.known), self.ts)
+
+
+#: How many plans of runs of stretches (:meth:`StretchTimes._plan_run`) this
+#: process keeps, the least recently used dropped first.
+RUN_PLANS_KEPT = 256
+
+#: :func:`run_signature` -> the run's ``(seconds, max_acc_ratio)`` per stretch.
+_RUN_PLANS: OrderedDict = OrderedDict()
+_RUN_PLANS_LOCK = threading.Lock()
+
+
+def run_signature(exact: ExactPath, run: list[Stretch], limits: AxisLimits,
+                  ts: float | None) -> bytes | None:
+    """What the plans of the run ``run`` of ``exact`` read, as bytes: the tool
+    path from its first stop to its last (each segment's primitive, role,
+    ``w`` at both ends, feed and plane; the dwells inside it, by place and
+    seconds; the path's plane), the run's stretches by their segments there,
+    ``exact``'s axes, the limits and ``ts`` (s). Numbers by their bits
+    (pickled), so equal bytes are the same numbers to the last bit (``-0.0``
+    is not ``0.0`` here). ``None`` where a primitive has no value key
+    (:func:`stretch_key`). Blocks are left out: they only name program lines
+    in a planner's refusal, and a refusal is not kept."""
+    sub = exact.stretch(run[0].s0, run[-1].s1)
+    segments = []
+    for seg in sub.segments:
+        g = _geometry_key(seg.geom)
+        if g is None:
+            return None
+        segments.append((g, seg.role.value, seg.w0, seg.w1, seg.feed, seg.plane))
+    base = run[0].k0
+    return pickle.dumps((tuple(segments), tuple(d[:2] for d in sub.dwells), sub.plane,
+                         tuple((st.k0 - base, st.k1 - base) for st in run), exact.axes,
+                         limits, ts), protocol=pickle.HIGHEST_PROTOCOL)
 
 
 @dataclass(frozen=True)

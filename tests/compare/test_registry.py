@@ -3,6 +3,7 @@ registered through a real distribution's entry_points.txt, appears in ccopt comp
 from __future__ import annotations
 
 import json
+import os
 from importlib.metadata import entry_points
 from pathlib import Path
 
@@ -48,3 +49,20 @@ def test_without_the_toy_it_is_unknown(capsys):
     code = main(["compare", "leadin-inside-line", "--variants", "toy"])
     err = capsys.readouterr().err
     assert code == 2 and "unknown variant(s) toy" in err and len(err.strip().splitlines()) == 1
+
+
+def test_a_blend_installed_after_a_search_is_found(tmp_path, monkeypatch):
+    # the entry points are searched again when a folder on sys.path changes
+    # (blend_entry_points keeps the last search): a distribution added there
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.syspath_prepend(str(Path(__file__).resolve().parent))
+    assert "toy" not in available()
+    before = tmp_path.stat().st_mtime_ns
+    dist = tmp_path / "toy_blend_pkg-0.1.dist-info"
+    dist.mkdir()
+    (dist / "METADATA").write_text("Metadata-Version: 2.1\nName: toy-blend-pkg\nVersion: 0.1\n")
+    (dist / "entry_points.txt").write_text("[ccopt.blends]\ntoy = toy_blend:toy\n")
+    # a folder's time stamp can be coarser than the steps above: a later one, surely
+    os.utime(tmp_path, ns=(before + 10**9, before + 10**9))
+    assert "toy" in available()
+    assert available() == available()

@@ -179,16 +179,15 @@ def test_toppra_failure_is_a_located_error(monkeypatch):
     the controllable sets come out undefined past the middle (as toppra's
     backward pass leaves them on a path it cannot control), so toppra's own
     pass reports the instance not controllable."""
-    from toppra.algorithm.reachabilitybased.reachability_algorithm import (
-        ReachabilityAlgorithm,
-    )
+    # the backward pass ccopt runs: StoppingTOPPRA's (toppra's LPs, its own loop)
+    from ccopt.feed.toppra.planner import StoppingTOPPRA
 
     def failing(self, sdmin, sdmax):
         K = np.zeros((self._N + 1, 2))
         K[self._N // 2 + 3] = np.nan
         return K
 
-    monkeypatch.setattr(ReachabilityAlgorithm, "compute_controllable_sets", failing)
+    monkeypatch.setattr(StoppingTOPPRA, "compute_controllable_sets", failing)
     tp = ToolPath((seg(Line((0, 0), (10, 0)), feed=10.0, line=7),
                    seg(Line((10, 0), (20, 0)), feed=10.0, line=8)))
     with pytest.raises(FeedError) as exc:

@@ -31,6 +31,9 @@ across each other next to zero-speed gridpoints.
 """
 from __future__ import annotations
 
+import logging
+import math
+
 import numpy as np
 
 from ccopt.feed.baselines import baseline_knot_positions, segment_budgets
@@ -56,6 +59,14 @@ from ccopt.tolerances import CROSSING_TOL
 #: LP fails on rounding (0 first: most steps need none).
 FORWARD_RETRY = (0.0, 1e-12, 1e-9, 1e-6)
 
+#: The weight of the path acceleration ``u`` in the objective of toppra's
+#: backward step (toppra's own constant: its step maximises ``x`` with this
+#: tie-break on ``u``; the pass solves the same LPs).
+BACKWARD_U_WEIGHT = 1e-9
+
+#: toppra's own logger of the backward pass, which warns as toppra's pass does
+_TOPPRA_LOG = logging.getLogger("toppra.algorithm.reachabilitybased.reachability_algorithm")
+
 
 class StoppingTOPPRA(TOPPRA):
     """toppra's TOPPRA with one numerical guard for paths that stop on the way.
@@ -71,6 +82,44 @@ class StoppingTOPPRA(TOPPRA):
     algorithm changes.
     """
 
+    def compute_controllable_sets(self, sdmin: float, sdmax: float) -> np.ndarray:
+        """toppra's backward pass (``TOPPRA.compute_controllable_sets``) with
+        :meth:`_one_step`'s guard (:func:`_uncrossed`): the same two LPs per
+        gridpoint with the same numbers, in the same order (the solver warm
+        starts each from the last), without the arrays toppra's step makes and
+        checks each time (most of the pass's time: each LP takes microseconds).
+        ``sdmin``, ``sdmax``: the final path speed's bounds (time unit of the
+        problem); returns ``K``, shape ``(N + 1, 2)``, squared speeds."""
+        assert sdmin <= sdmax and 0 <= sdmin
+        N = self._N
+        K = np.zeros((N + 1, 2))
+        K[N] = [sdmin ** 2, sdmax ** 2]
+        wrapper = self.solver_wrapper
+        solve = wrapper.solve_stagewise_optim
+        upper = np.zeros(wrapper.get_no_vars())
+        upper[0], upper[1] = BACKWARD_U_WEIGHT, -1
+        lower = -upper
+        lo_next, hi_next = K[N].tolist()
+        wrapper.setup_solver()
+        for i in range(N - 1, -1, -1):
+            if math.isnan(lo_next) or math.isnan(hi_next):
+                lo = hi = math.nan
+            else:
+                hi = solve(i, None, upper, math.nan, math.nan, lo_next, hi_next)[1]
+                lo = solve(i, None, lower, math.nan, math.nan, lo_next, hi_next)[1]
+                if hi < 0.0 or lo > hi:  # rare: only then pay for the checks
+                    lo, hi = _uncrossed(lo, hi, hi_next)
+            if lo < 0:
+                lo = 0.0
+            K[i, 0], K[i, 1] = lo, hi
+            if math.isnan(lo) or math.isnan(hi):
+                _TOPPRA_LOG.warning("A numerical error occurs: The controllable set at step "
+                                    "[%d / %d] can't be computed.", i, N + 1)
+                return K
+            lo_next, hi_next = lo, hi
+        wrapper.close_solver()
+        return K
+
     def forward_without_margin(self, x_start: float, K: np.ndarray) -> np.ndarray | None:
         """The greedy forward pass again, on toppra's controllable sets ``K``,
         without toppra's safety margin.
@@ -84,37 +133,50 @@ class StoppingTOPPRA(TOPPRA):
         ``K[i+1]``; a step whose LP fails is retried from a speed lowered by
         :data:`FORWARD_RETRY` (relative). Returns the squared speeds, or
         ``None`` when a step cannot be solved (the caller keeps toppra's).
+
+        Each step is the LP of toppra's ``_forward_step`` (objective
+        ``(-2 delta_i, -1)``), solved with the same numbers as Python floats,
+        not through the arrays toppra's step makes each time.
         """
         N = self.solver_wrapper.get_no_stages()
         deltas = self.solver_wrapper.get_deltas()
-        xs = np.empty(N + 1)
-        xs[0] = x_start
+        solve = self.solver_wrapper.solve_stagewise_optim
+        objective = np.zeros((N, self.solver_wrapper.get_no_vars()))
+        objective[:, 0] = -2 * deltas[:N]
+        objective[:, 1] = -1
+        step = (2.0 * deltas[:N]).tolist()
+        bounds = K.tolist()
+        xs = [float(x_start)] + [0.0] * N
         self.solver_wrapper.setup_solver()
         try:
             for i in range(N):
+                lo_next, hi_next = bounds[i + 1]
                 for shrink in FORWARD_RETRY:
-                    u = self._forward_step(i, xs[i] * (1.0 - shrink), K[i + 1])[0]
-                    if not np.isnan(u):
-                        xs[i] *= 1.0 - shrink
+                    x = xs[i] * (1.0 - shrink)
+                    u = math.nan if math.isnan(x) else \
+                        solve(i, None, objective[i], x, x, lo_next, hi_next)[0]
+                    if not math.isnan(u):
+                        xs[i] = x
                         break
                 else:
                     return None
-                x_next = xs[i] + 2.0 * deltas[i] * u
-                xs[i + 1] = min(K[i + 1, 1], max(K[i + 1, 0], x_next))
+                xs[i + 1] = min(hi_next, max(lo_next, xs[i] + step[i] * u))
         finally:
             self.solver_wrapper.close_solver()
-        return xs
+        return np.array(xs)
 
-    def _one_step(self, i, K_next):
-        res = super()._one_step(i, K_next)
-        lo, hi = res
-        if hi < 0.0 or lo > hi:  # rare: only then pay for the checks
-            tol = CROSSING_TOL * max(1.0, abs(float(K_next[1])))
-            if -tol <= hi < 0.0:
-                res[1] = hi = 0.0
-            if hi < lo <= hi + tol:
-                res[0] = hi
-        return res
+
+def _uncrossed(lo, hi, hi_next: float):
+    """``(lo, hi)``, a controllable set's ends, put back where rounding pushed
+    them across (:class:`StoppingTOPPRA`): an upper end below 0 by no more than
+    :data:`CROSSING_TOL` relative to ``hi_next`` (the next set's upper end) to
+    0, then a lower end above the upper one by no more than that to it."""
+    tol = CROSSING_TOL * max(1.0, abs(hi_next))
+    if -tol <= hi < 0.0:
+        hi = 0.0
+    if hi < lo <= hi + tol:
+        lo = hi
+    return lo, hi
 
 
 class IntervalAxisVelocityConstraint(AxisVelocityConstraint):
