@@ -8,8 +8,10 @@ import datetime
 import io
 import os
 import platform
+import statistics
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -46,13 +48,41 @@ def now() -> str:
     return datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
 
 
-def machine(load_before: tuple, load_after: tuple) -> str:
-    """Cores, platform, Python and the load average (1/5/15 min) before and after a run."""
+#: Iterations of :func:`speed_reference`'s loop (about 10-20 ms of CPU here).
+REFERENCE_LOOP = 200_000
+
+
+def speed_reference() -> float:
+    """Milliseconds of CPU time a fixed CPython loop takes in this process
+    (median of 5): this host's speed drifts by up to 2x within an hour with
+    the load average unchanged (another tenant of the host, not a process
+    here), so a section's figures compare with another section's in
+    proportion to their references (larger: a slower machine)."""
+    def loop() -> float:
+        x = 0.0
+        for i in range(REFERENCE_LOOP):
+            x += (i % 7) * 0.5
+        return x
+    times = []
+    for _ in range(5):
+        t = time.process_time()
+        loop()
+        times.append(time.process_time() - t)
+    return statistics.median(times) * 1e3
+
+
+def machine(load_before: tuple, load_after: tuple, speed: tuple | None = None) -> str:
+    """Cores, platform, Python, the load average (1/5/15 min) before and after a
+    run and, when given, :func:`speed_reference` before and after it (ms)."""
     def fmt(load):
         return "/".join(f"{x:.2f}" for x in load)
-    return (f"{os.cpu_count()} cores, {platform.platform()}, Python "
-            f"{platform.python_version()}; load average (1/5/15 min) {fmt(load_before)} "
-            f"before, {fmt(load_after)} after")
+    out = (f"{os.cpu_count()} cores, {platform.platform()}, Python "
+           f"{platform.python_version()}; load average (1/5/15 min) {fmt(load_before)} "
+           f"before, {fmt(load_after)} after")
+    if speed is not None:
+        out += (f"; speed reference (bench/docs_section.py: a fixed Python loop, larger is "
+                f"slower) {speed[0]:.1f} ms before, {speed[1]:.1f} ms after")
+    return out
 
 
 class _Tee(io.TextIOBase):
@@ -77,11 +107,12 @@ def printed_section(page: Path | None, name: str, command: str, title: str):
     if page is None:
         yield
         return
-    load_before = os.getloadavg()
+    load_before, speed_before = os.getloadavg(), speed_reference()
     tee = _Tee(sys.stdout)
     with contextlib.redirect_stdout(tee):
         yield
+    speed = (speed_before, speed_reference())
     write_section(page, name,
                   f"### {title}\n\n`{command}` on {now()}, commit {commit()}: "
-                  f"{machine(load_before, os.getloadavg())}.\n\n"
+                  f"{machine(load_before, os.getloadavg(), speed)}.\n\n"
                   f"```\n{tee.kept.getvalue().rstrip()}\n```")

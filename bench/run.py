@@ -43,7 +43,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from docs_section import commit, machine, now, write_section
+from docs_section import commit, machine, now, speed_reference, write_section
 
 ROOT = Path(__file__).resolve().parents[1]
 STAGES = ("read", "compensate", "feed", "verify", "compare", "export")
@@ -95,11 +95,14 @@ BENCHMARKS = ROOT / "docs" / "benchmarks.md"
 SECTION = "bench/run.py"
 
 
-def write_main_job(table: str, load_before: tuple, load_after: tuple, workers: int) -> None:
-    """The main job's section of docs/benchmarks.md."""
+def write_main_job(table: str, load_before: tuple, load_after: tuple, workers: int,
+                   speed: tuple | None = None) -> None:
+    """The main job's section of docs/benchmarks.md (``speed``: the speed
+    reference before and after the runs, ms, :func:`docs_section.speed_reference`)."""
     write_section(BENCHMARKS, SECTION,
                   f"`python bench/run.py` on {now()}, commit {commit()}: "
-                  f"{machine(load_before, load_after)}; parallel run with --workers {workers}."
+                  f"{machine(load_before, load_after, speed)}; parallel run with --workers "
+                  f"{workers}."
                   f"\n\n```\n{table}\n```")
 
 
@@ -166,6 +169,7 @@ def main() -> None:
                          "with the default options)")
     args = ap.parse_args()
     load_before = os.getloadavg()
+    speed_before = speed_reference()
     extra = ["--no-compare"] if args.no_compare else []
     if args.variants:
         extra += ["--variants", args.variants]
@@ -181,7 +185,8 @@ def main() -> None:
     else:
         print(report(serial, parallel))
     if not (args.no_write or args.cases or extra):
-        write_main_job(report(serial, parallel), load_before, os.getloadavg(), args.workers)
+        write_main_job(report(serial, parallel), load_before, os.getloadavg(), args.workers,
+                       (speed_before, speed_reference()))
         print(f"written: {BENCHMARKS.relative_to(ROOT)}")
 
 

@@ -44,3 +44,17 @@ def test_without_a_page_nothing_is_written(tmp_path, capsys):
         print("only printed")
     assert capsys.readouterr().out == "only printed\n"
     assert not page.exists()
+
+
+def test_a_section_names_the_machine_speed_before_and_after(tmp_path):
+    """The host's speed drifts with the load average unchanged: each section
+    carries the CPU time of a fixed Python loop before and after its run."""
+    import re
+
+    page = tmp_path / "benchmarks.md"
+    with docs_section.printed_section(page, "bench/y.py", "python bench/y.py", "Y bench"):
+        print("figure")
+    m = re.search(r"speed reference \(bench/docs_section\.py: a fixed Python loop, larger is "
+                  r"slower\) ([0-9.]+) ms before, ([0-9.]+) ms after", page.read_text())
+    assert m is not None
+    assert float(m.group(1)) > 0.0 and float(m.group(2)) > 0.0
