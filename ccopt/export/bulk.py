@@ -21,6 +21,7 @@ from operator import attrgetter, is_not
 import numpy as np
 
 from ccopt.geometry import Arc, Line
+from ccopt.geometry.columns import math_each
 from ccopt.toolpath import ARC_ROW, LINE_ROW, ToolPath
 
 #: Row kinds of :class:`PlainColumns`: a line, an arc, anything else.
@@ -131,10 +132,7 @@ def rounded(values, digits: int) -> np.ndarray:
 
 def polar_points(cx, cy, radius, phi) -> tuple[np.ndarray, np.ndarray]:
     """``centre + radius * (cos phi, sin phi)`` as :class:`Arc` evaluates it."""
-    angles = phi.tolist()
-    cos = np.fromiter(map(math.cos, angles), float, len(angles))
-    sin = np.fromiter(map(math.sin, angles), float, len(angles))
-    return cx + radius * cos, cy + radius * sin
+    return cx + radius * math_each(math.cos, phi), cy + radius * math_each(math.sin, phi)
 
 
 def points(pairs, n: int) -> np.ndarray:

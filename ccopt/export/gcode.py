@@ -26,7 +26,7 @@ from ccopt.export.machine import (MachineWords, machine_prefix, stand_in, writte
 from ccopt.export.text import with_header
 from ccopt.geometry import Arc, BezierCurve, Line, Spiral
 from ccopt.geometry.angles import TWO_PI
-from ccopt.geometry.columns import paused_gc
+from ccopt.geometry.columns import math_each, paused_gc
 from ccopt.program.model import PLANE_AXES
 from ccopt.toolpath import ToolPath, starts_at_origin
 
@@ -77,8 +77,7 @@ def written_as_lines(sweep, ends, before, starts, digits: int) -> np.ndarray:
     near = SHORT_CHORD_UNITS * 10.0 ** -digits
 
     def within(p) -> np.ndarray:
-        du, dv = (ends[:, 0] - p[:, 0]).tolist(), (ends[:, 1] - p[:, 1]).tolist()
-        return np.fromiter(map(math.hypot, du, dv), float, len(du)) <= near
+        return math_each(math.hypot, ends[:, 0] - p[:, 0], ends[:, 1] - p[:, 1]) <= near
 
     return (np.abs(sweep) < math.pi) & (within(before) | within(starts))
 

@@ -23,6 +23,7 @@ import numpy as np
 
 from ccopt.export.bulk import points, polar_points
 from ccopt.geometry import Arc, Line, Spiral
+from ccopt.geometry.columns import math_each
 from ccopt.toolpath import ARC_ROW, LINE_ROW, SegmentColumns, ToolPath
 
 _SOURCE, _MEANT, _BOUND = itemgetter(0), itemgetter(1), itemgetter(2)
@@ -111,7 +112,8 @@ def _line_displacements(meant: list, geom: np.ndarray) -> np.ndarray:
     from the lines ``meant``: the larger end point distance."""
     k = len(meant)
     ends = (points(map(_P0, meant), k) - geom[:, 0:2], points(map(_P1, meant), k) - geom[:, 2:4])
-    start, end = (_hypot(d[:, 0], d[:, 1]) for d in ends)
+    # math.dist of two points is the hypot of their differences, bit for bit
+    start, end = (math_each(math.hypot, d[:, 0], d[:, 1]) for d in ends)
     # max(a, b) of Python: b only where it is larger
     return np.where(end > start, end, start)
 
@@ -152,19 +154,14 @@ def _round_displacements(meant: tuple, got: tuple) -> np.ndarray:
                                  (r1_m, r1_g, th_m + sw_m, th_g + sw_g)):    # end
         xm, ym = polar_points(c_m[:, 0], c_m[:, 1], rm, phi_m)
         xg, yg = polar_points(c_g[:, 0], c_g[:, 1], rg, phi_g)
-        dist.append(_hypot(xm - xg, ym - yg))
+        dist.append(math_each(math.hypot, xm - xg, ym - yg))
     dev = np.where(dist[1] > dist[0], dist[1], dist[0])
     d0, d1 = np.abs(r0_m - r0_g), np.abs(r1_m - r1_g)
-    out = dev + _hypot(c_m[:, 0] - c_g[:, 0], c_m[:, 1] - c_g[:, 1]) + np.where(d1 > d0, d1, d0)
+    centres = math_each(math.hypot, c_m[:, 0] - c_g[:, 0], c_m[:, 1] - c_g[:, 1])
+    out = dev + centres + np.where(d1 > d0, d1, d0)
     apart = ((sw_m > 0) != (sw_g > 0)) | (np.abs(np.abs(sw_m) - np.abs(sw_g)) > math.pi)
     out[apart] = math.inf
     return out
-
-
-def _hypot(du: np.ndarray, dv: np.ndarray) -> np.ndarray:
-    """``math.hypot`` element by element (``math.dist`` of two points is the
-    ``hypot`` of their differences, bit for bit)."""
-    return np.fromiter(map(math.hypot, du.tolist(), dv.tolist()), float, du.size)
 
 
 def _row_geometry(cols: SegmentColumns, q: int):

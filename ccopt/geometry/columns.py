@@ -9,7 +9,8 @@ selects between candidates without branches (:func:`blend`), keeps the
 running minimum of candidate pairs with their witnesses (:class:`RunningMin`)
 and prepares per-arc quantities once per call (:class:`PreparedArcs`);
 :func:`take_rows` and :func:`put_rows` gather and scatter rows of the
-``(n, 2)`` point arrays, :func:`used_rows` finds the rows an index array uses.
+``(n, 2)`` point arrays, :func:`used_rows` finds the rows an index array uses;
+:func:`math_each` applies a :mod:`math` function element by element.
 Lengths are program units, angles radians.
 """
 from __future__ import annotations
@@ -33,6 +34,16 @@ def used_rows(idx, n: int) -> tuple[np.ndarray, np.ndarray]:
     place = np.empty(n, np.intp)
     place[used] = np.arange(used.size)
     return used, place[idx]
+
+
+def math_each(f, *cols) -> np.ndarray:
+    """``f`` (a function of :mod:`math`, e.g. ``math.hypot``) element by
+    element over equal-shape float columns, shaped as the first: the bits
+    :mod:`math` gives, where numpy's own ufuncs (``np.hypot``, ``np.cos``)
+    may differ in the last bit from the scalar code they stand beside."""
+    first = np.asarray(cols[0])
+    args = (np.asarray(c, float).ravel().tolist() for c in cols)
+    return np.fromiter(map(f, *args), float, first.size).reshape(first.shape)
 
 
 def take_rows(a: np.ndarray, idx) -> np.ndarray:

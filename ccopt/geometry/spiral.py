@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ccopt.geometry.angles import sweep_between, sweep_sign
+from ccopt.geometry.columns import math_each
 from ccopt.geometry.arclength import (
     END_POINT_REL_TOL, Point, as_point, clip_s, rotate_left, scalar_out, vector_out,
 )
@@ -412,10 +413,8 @@ def spiral_end_tangents(rho0, rho1, theta0, sweep, b):
 def _unit_tangents(rho, ang, sg, b) -> np.ndarray:
     """:meth:`Spiral._unit_tangent` of each row."""
     n = rho.size
-    angles = ang.tolist()
-    c = np.fromiter(map(math.cos, angles), float, n)
-    s = np.fromiter(map(math.sin, angles), float, n)
-    length = np.fromiter(map(math.hypot, rho.tolist(), b.tolist()), float, n)
+    c, s = math_each(math.cos, ang), math_each(math.sin, ang)
+    length = math_each(math.hypot, rho, b)
     out = np.empty((n, 2))
     out[:, 0] = (b * c - sg * rho * s) / length
     out[:, 1] = (b * s + sg * rho * c) / length

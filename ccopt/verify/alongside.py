@@ -25,6 +25,7 @@ import numpy as np
 
 from ccopt.geometry import KIND_ARC, KIND_LINE
 from ccopt.geometry.angles import TWO_PI
+from ccopt.geometry.columns import math_each
 from ccopt.geometry.distance import SegmentRows
 from ccopt.tolerances import POINT_EPS
 from ccopt.verify.clearance import BOUNDARY_REL
@@ -41,11 +42,6 @@ ALONGSIDE_MIN_LENGTH = POINT_EPS
 _PLANES = 4
 #: Cuts per pair: the ends 0 and 1, and up to two crossings per boundary line.
 _CUTS = 2 + 2 * _PLANES
-
-
-def _math(f, *cols: np.ndarray) -> np.ndarray:
-    """``f`` of :mod:`math` element by element over equal-length columns."""
-    return np.array(list(map(f, *(c.tolist() for c in cols))), float).reshape(cols[0].shape)
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -75,7 +71,7 @@ class EndPlanes:
         li = np.flatnonzero(kind == KIND_LINE)
         p0, p1 = A.p0[ej[li]], A.p1[ej[li]]
         d = p1 - p0
-        L = _math(math.hypot, d[:, 0], d[:, 1])
+        L = math_each(math.hypot, d[:, 0], d[:, 1])
         ok = L != 0.0                       # a point has no direction: no regions
         li, t = li[ok], d[ok] / L[ok, None]
         n[li, 0], c[li, 0] = t, _dot(t, p0[ok])
@@ -92,8 +88,8 @@ class EndPlanes:
                   (np.where(ccw, th1, th1 - half), np.where(ccw, th1 + half, th1)))
         for r, (a, b) in enumerate(wedges):
             # cross(da, q - c) >= 0 and cross(q - c, db) >= 0
-            n1 = np.stack((_math(math.sin, a), -_math(math.cos, a)), axis=1)
-            n2 = np.stack((-_math(math.sin, b), _math(math.cos, b)), axis=1)
+            n1 = np.stack((math_each(math.sin, a), -math_each(math.cos, a)), axis=1)
+            n2 = np.stack((-math_each(math.sin, b), math_each(math.cos, b)), axis=1)
             n[ai, 2 * r], c[ai, 2 * r] = n1, _dot(n1, centre)
             n[ai, 2 * r + 1], c[ai, 2 * r + 1] = n2, _dot(n2, centre)
             used[ai, 2 * r] = used[ai, 2 * r + 1] = True
@@ -124,15 +120,15 @@ class _Segments(SegmentRows):
     def take(cls, T: Packed, si: np.ndarray) -> "_Segments":
         line, p0, p1, c, R, th, sw = SegmentRows.columns(T.arr, si)
         d = p1 - p0
-        length = np.where(line, _math(math.hypot, d[:, 0], d[:, 1]), R * np.abs(sw))
+        length = np.where(line, math_each(math.hypot, d[:, 0], d[:, 1]), R * np.abs(sw))
         return cls(line, p0, p1, c, R, th, sw, length)
 
     def start(self) -> np.ndarray:
         """Start points (an arc's as :attr:`~ccopt.geometry.Arc.start` gives it)."""
         out = self.p0.copy()
         a = np.flatnonzero(~self.line)
-        out[a, 0] = self.c[a, 0] + self.R[a] * _math(math.cos, self.th[a])
-        out[a, 1] = self.c[a, 1] + self.R[a] * _math(math.sin, self.th[a])
+        out[a, 0] = self.c[a, 0] + self.R[a] * math_each(math.cos, self.th[a])
+        out[a, 1] = self.c[a, 1] + self.R[a] * math_each(math.sin, self.th[a])
         return out
 
     def point(self, k: np.ndarray, s: np.ndarray) -> np.ndarray:
@@ -165,9 +161,9 @@ def _cuts(seg: _Segments, planes: EndPlanes) -> np.ndarray:
         cuts[q, 2 + 2 * k] = np.where(ok & (0.0 <= t) & (t <= 1.0), t, np.nan)
         q = np.flatnonzero(planes.used[:, k] & ~seg.line)
         nx, ny = nk[q, 0], nk[q, 1]
-        ratio = (ck[q] - _dot(nk[q], seg.c[q])) / (seg.R[q] * _math(math.hypot, nx, ny))
+        ratio = (ck[q] - _dot(nk[q], seg.c[q])) / (seg.R[q] * math_each(math.hypot, nx, ny))
         ok = ~(np.abs(ratio) > 1.0)
-        psi, acs = _math(math.atan2, ny, nx), _math(math.acos, np.where(ok, ratio, 0.0))
+        psi, acs = math_each(math.atan2, ny, nx), math_each(math.acos, np.where(ok, ratio, 0.0))
         full = np.abs(seg.sw[q])
         for s, phi in enumerate((psi + acs, psi - acs)):
             along = np.mod((phi - seg.th[q]) * np.copysign(1.0, seg.sw[q]), TWO_PI)
@@ -201,7 +197,7 @@ def _packed_pieces(seg: _Segments, pair: np.ndarray, u0: np.ndarray, u1: np.ndar
     k = pair[ai]
     arcs = (seg.c[k], seg.R[k], seg.th[k] + seg.sw[k] * u0[ai], seg.sw[k] * (u1[ai] - u0[ai]))
     length = np.empty(pair.size)
-    length[li] = _math(math.hypot, pts[:, 2] - pts[:, 0], pts[:, 3] - pts[:, 1])
+    length[li] = math_each(math.hypot, pts[:, 2] - pts[:, 0], pts[:, 3] - pts[:, 1])
     length[ai] = arcs[1] * np.abs(arcs[3])
     return pack_rows(pair.size, li, pts, ai, arcs), length
 
