@@ -190,8 +190,14 @@ def _encloses(verts: np.ndarray, arcs: np.ndarray, eps: float) -> bool:
     area above ``eps`` times its perimeter."""
     if arcs.any():
         return True
-    x, y = verts[:, 0], verts[:, 1]
-    area = 0.5 * abs(float(np.dot(x, np.roll(y, -1)) - np.dot(y, np.roll(x, -1))))
+    # the shoelace sum of each edge's cross product about the first vertex,
+    # summed pairwise by numpy: about the origin, a small loop far from it
+    # (a sliver at x = 8000) has products of 1e7 whose rounding alone is an
+    # area; and two np.dot calls would cancel two large sums against each
+    # other (on a long loop OpenBLAS also runs them in threads that then spin
+    # idle, CPU a parallel run's other processes could use)
+    x, y = verts[:, 0] - verts[0, 0], verts[:, 1] - verts[0, 1]
+    area = 0.5 * abs(float(np.sum(x * np.roll(y, -1) - y * np.roll(x, -1))))
     perimeter = float(np.hypot(*np.diff(np.r_[verts, verts[:1]], axis=0).T).sum())
     return area > eps * perimeter
 

@@ -50,3 +50,36 @@ def test_report_is_the_move_by_move_merge(seed):
     assert got["part_lines"] == [r["lines"] for r in want if r["surface"] == S.SURFACE_PART]
     assert got["air_lines"] == [r["lines"] for r in want if r["surface"] == S.SURFACE_AIR]
     assert got["rule"] == "closed-loop"
+
+
+def test_a_loop_encloses_by_its_polygon_area_as_shapely_measures_it():
+    # seeded random polygons (star-shaped, a few to 20,000 vertices, far from
+    # and near the origin) and degenerate ones (a move and its retrace, a
+    # sliver): a loop of lines encloses when its area exceeds eps times its
+    # perimeter, area and perimeter as shapely measures them (GEOS)
+    import importlib
+
+    import numpy as np
+    import shapely
+
+    surface = importlib.import_module("ccopt.verify.surface")
+    rng = np.random.default_rng(7)
+    no_arcs = np.zeros(0, bool)
+    decided = 0
+    for k in range(200):
+        n = int(rng.choice([3, 5, 40, 20_000]))
+        theta = np.sort(rng.uniform(0.0, 2 * np.pi, n))
+        rad = rng.uniform(0.5, 1.5, n) * 10.0 ** rng.uniform(-3, 3)
+        verts = np.c_[rad * np.cos(theta), rad * np.sin(theta)] + rng.uniform(-1e4, 1e4, 2)
+        if k % 4 == 0:                          # squashed toward a line: a retrace, a sliver
+            verts[:, 1] = verts[0, 1] + (verts[:, 1] - verts[0, 1]) * 10.0 ** -rng.uniform(6, 14)
+        ring = shapely.Polygon(verts)
+        eps = 10.0 ** rng.uniform(-9, -1)
+        area, perimeter = ring.area, ring.length
+        if abs(area - eps * perimeter) <= 1e-9 * (area + eps * perimeter):
+            continue                            # a tie within rounding: either answer
+        assert surface._encloses(verts, no_arcs, eps) == (area > eps * perimeter), k
+        decided += 1
+    assert decided >= 190
+    # any arc makes a loop a contour
+    assert surface._encloses(np.zeros((3, 2)), np.array([False, True, False]), 1.0)
