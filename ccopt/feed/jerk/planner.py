@@ -160,17 +160,11 @@ from ccopt.geometry import Line
 #: stretch's length for its braking spacing:
 #: :attr:`~ccopt.feed.grid.GridOptions.stretch_lines`); the jerk inside their
 #: intervals is imposed at three inner points
-#: instead (:data:`~ccopt.feed.jerk.lp.INNER_POINTS`). On freeform-hsm's
-#: smoothed path (302 blend curves, one stretch with no stop) TOPPRA's default
-#: grid, 4x and 8x its budgets planned 11.1491, 11.1601 and 11.1723 s with
-#: 53,358, 19,171 and 13,946 gridpoints in 62.8, 10.3 and 4.6-5.0 s, the jerk
-#: at 10 kHz at most 1.00017 (4x) and 1.00087 (8x) of the limit; 16x planned
-#: 11.1880 s (+0.14 % on 8x) in 4.1 s. 8x: the smoothed path's cycle time
-#: 0.21 % above the finest grid's, in half the time 4x took (ccopt compare
-#: and ccopt run plan it for every comparison). The smoothed pocket-chords
-#: and pocket (jmax 10000, 10000, 3000) planned 10.6628 and 10.1858 s with
-#: 4x, 10.6682 and 10.1908 s (+0.05 %) with 8x, jerk within 1.00024; with the
-#: middle point alone and budgets 2x TOPPRA's the jerk reached 1.0023.
+#: instead (:data:`~ccopt.feed.jerk.lp.INNER_POINTS`). 8x: a smoothed path's
+#: cycle time a fraction of a percent above the finest grid's in a small share
+#: of its time (ccopt compare and ccopt run plan it for every comparison),
+#: with the jerk between gridpoints within the certificate's tolerance; fewer
+#: budgets gain little time, more lose cycle time (docs/jerk.md).
 JERK_GRID = GridOptions(max_curvature_change=0.4, max_curvature_bend=0.4, stretch_lines=True)
 #: Whether lines and arcs are graded as TOPPRA grades them
 #: (:func:`ccopt.feed.grid.gridpoints` with :class:`~ccopt.feed.grading.Ramps`,
@@ -187,13 +181,9 @@ JERK_GRID = GridOptions(max_curvature_change=0.4, max_curvature_bend=0.4, stretc
 #: tests/feed/test_jerk_generated.py stalled (gridpoints 3.8e-9 mm from a
 #: stop, now dropped: :func:`_clear_of_stops`). False: every line and arc evenly.
 GRADED = True
-#: Ratio of consecutive interval lengths in the geometric refinement at stops.
-#: On the 1,000-block pocket of bench/feed.py (2 stops every 4 blocks) 1.06,
-#: 1.1, 1.15 and 1.25 planned 157.54, 157.72, 157.76 and 157.84 s with
-#: 78,069, 65,537, 59,297 and 54,277 gridpoints in 10.8, 8.8, 7.7 and 7.3 CPU s;
-#: the 10,000-block pocket 1587.51 s with 1.06, 1594.90 s (+0.47 %) with 1.1
-#: in 10 % less CPU; the pure-jerk 2 mm diagonal of test_jerk_planner 0.40 %
-#: and 0.44 % above its closed form.
+#: Ratio of consecutive interval lengths in the geometric refinement at stops:
+#: a finer ratio plans a program with many stops a few tenths of a percent
+#: faster in more CPU, a coarser one slower for little saved (docs/jerk.md).
 STOP_RATIO = 1.1
 #: First interval at a stop, as a share of the first jerk phase's length.
 STOP_FIRST = 0.02
@@ -377,10 +367,9 @@ def plan_jerk(path: ExactPath, limits: AxisLimits, *, ts: float = DEFAULT_TS,
         raise ValueError(f"ts must be > 0, got {ts!r}")
     if not path.segments:
         return JerkProfile.empty(path, limits, "jerk")
-    # TOPPRA's bound (below) on the LP's grid options too: on freeform-hsm's
-    # smoothed path it took 3.4 of 14 CPU s on TOPPRA's finer default grid and
-    # 1.7 s on 4x its curve budgets, and the plan came out the same within 2e-6
-    # (11.16013 s against 11.16015 s)
+    # TOPPRA's bound (below) on the LP's grid options too: on TOPPRA's finer
+    # default grid it cost several times more and planned the same within 2e-6
+    # (docs/jerk.md)
     grid = JERK_GRID if grid is None else grid
     j = limits.jerk_in_plane(path.frame, path.dof)
     g = build_grid(path, limits, ts, grid)
@@ -423,10 +412,9 @@ def _plan_grid(path: ExactPath, limits: AxisLimits, g: JerkGrid, grid: GridOptio
     path; NaN where no LP planned: a lone line, a failed window) and the
     S-curve per block's pieces (``scurve`` when given)."""
     if not any_chained(g):
-        # every window from rest to rest: no TOPPRA bound needed (it was 14 %
-        # of the CPU on the 10,000-block pocket of bench/feed.py; the
-        # 1,000-block one planned 157.72 s starting from it, 157.34 s from the
-        # box bound and 157.07 s from windows.rest_bound)
+        # every window from rest to rest: no TOPPRA bound needed (a large
+        # share of the CPU on a program with many stops, and the rounds plan
+        # faster from windows.rest_bound: docs/jerk.md)
         scale, cap, bound_of = _scale(g.bmax), None, None
     elif split(g):
         # each task computes its stretch's bound (speed_bound): scale from the box bound

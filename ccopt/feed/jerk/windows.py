@@ -29,12 +29,10 @@ from ccopt.workers import (PARENT_ENV, interpreter_command, map_in_threads,  # n
 BHAT_TOL = 2e-3
 #: ... or a window's duration estimate changing by less than DURATION_TOL
 #: (relative) in each of SETTLED_ROUNDS rounds in a row; at most MAX_ROUNDS
-#: rounds. On the 1,000-block pocket of bench/feed.py (one window per
-#: stretch) 4, 5, 6, 7, 8 and 10 rounds planned 160.36, 158.54, 157.47,
-#: 156.93, 157.54 and 160.48 s: later rounds wander, as the LP's optimum
-#: jumps between vertices when bhat moves (and 10 left two windows
-#: infeasible); but the pure-jerk 2 mm diagonal of test_jerk_planner comes
-#: within 0.52, 0.44 and 0.40 % of its closed form with 6, 7 and 8 rounds.
+#: rounds. Fewer rounds leave the pseudo-jerk bound loose (the pure-jerk
+#: diagonal of test_jerk_planner further from its closed form); more wander,
+#: as the LP's optimum jumps between vertices when bhat moves, and can leave
+#: windows infeasible (docs/jerk.md).
 DURATION_TOL = 1e-3
 SETTLED_ROUNDS = 2
 MAX_ROUNDS = 8
@@ -51,16 +49,10 @@ BHAT_RISE = 1.5
 #: Gridpoints per LP window of stop-to-stop stretches gathered together; of a
 #: stretch with no stop; and how much further such a window plans than it keeps.
 #: (A window's rounds end together, and a failed window takes the S-curve on
-#: all its stretches: on the 1,000-block pocket, whose stretches have about
-#: 300 gridpoints, windows of 200 (a stretch each) planned 157.54 s in 15 %
-#: less CPU than windows of 800 (158.40 s), and 1,600 planned 161.15 s. On
-#: freeform-hsm's smoothed path, 53,510 gridpoints with no stop, windows of
-#: 3,000, 1,500, 1,000 and 500 kept gridpoints planned 11.1487, 11.1488,
-#: 11.1494 and 11.1517 s in 57, 46, 46 and 52 CPU s (with the last round's
-#: bound always raised, see solve_rounds); with 500 the overlap was too short
-#: for 16 windows, merged with the one before. An overlap of 0.5, 0.33, 0.25
-#: and 0.15 of the kept size: 11.14852, 11.14884, 11.14909 and 11.14970 s in
-#: 57, 56, 48 and 123 CPU s, the last with 18 windows merged.)
+#: all its stretches: larger batches plan slower in more CPU. On a long
+#: stretch with no stop, longer windows gain little cycle time for more CPU,
+#: shorter ones or a shorter overlap leave windows too short to keep their
+#: solution, merged with the one before: docs/jerk.md.)
 BATCH_POINTS = 200
 WINDOW_POINTS = 1500
 WINDOW_OVERLAP = 0.25
@@ -76,8 +68,7 @@ WORKERS: int | None = None
 PARALLEL_MIN_POINTS = 200_000
 #: The fewest gridpoints from which each task computes the speed bound of its
 #: own stretch (:func:`split`); TOPPRA over the whole path would otherwise run
-#: alone before the processes start (12 CPU s on the 10,000-block pocket of
-#: bench/feed.py, a fifth of the wall time on 2 cores).
+#: alone before the processes start (docs/jerk.md).
 SPLIT_BOUND_POINTS = 50_000
 #: Gridpoints per task handed to a process (several chains each, so the
 #: grid's arrays cross in few messages and the processes stay evenly loaded).
@@ -158,19 +149,15 @@ def solve_rounds(g: JerkGrid, i0: int, i1: int, cap: np.ndarray, start, scale: f
         if rel.max(initial=0.0) < BHAT_TOL or _settled(durations):
             break
     # the last round: b <= bhat. From the last round's basis HiGHS's simplex
-    # needs 0.4 iterations per gridpoint (median) on the rest-to-rest windows
-    # of the 1,000-block pocket of bench/feed.py; on the chained windows of a
-    # smoothed path (blend curves, rows at every gridpoint) 20,000-30,000
-    # (5-9 s on 4,500 gridpoints). There, and past FINAL_ITERATIONS per
+    # needs well under one iteration per gridpoint on rest-to-rest windows, but
+    # tens of thousands on the chained windows of a smoothed path (blend
+    # curves, rows at every gridpoint). There, and past FINAL_ITERATIONS per
     # gridpoint elsewhere, the bound is raised to the last b where b rose
     # above it instead: the last solution then breaks only those points' jerk
     # rows (by at most sqrt(BHAT_RISE)) and is repaired in a few hundred
     # iterations. Exact either way (b <= bhat and the jerk rows at that bhat).
-    # The pocket plans faster with the cap (157.54 s against 158.46 s with the
-    # raised bound everywhere); freeform-hsm's smoothed path (chained windows
-    # only) as fast with the raised bound (11.1485 s against 11.1494 s) in
-    # 59 CPU s instead of 77, where 29 of its 37 capped rounds ran out of
-    # iterations.
+    # Capped, rest-to-rest windows plan faster; raised, chained windows plan
+    # as fast in less CPU (docs/jerk.md).
     in_chain = start is not None or not g.stop[i1]        # see chained()
     out = None if in_chain else lp.solve(bhat, np.minimum(cap, bhat),
                                          max_iterations=int(FINAL_ITERATIONS * bhat.size))
