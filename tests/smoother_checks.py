@@ -1,20 +1,24 @@
 """Checks of a smoothed path shared by the smoother's tests: the limits they
 time under, a generated plate's comparison with its smoother row held to the
-comparison's promise, whether two paths lie within a band of each other
+comparison's promise and started from the faster of two controller paths,
+whether two paths lie within a band of each other
 (dense samples), and the joins left without curvature continuity near given
 points."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from scipy.spatial import cKDTree
 
 import ccopt
-from ccopt.compare import compare
+from ccopt.compare import BlendProblem, compare
 from ccopt.compare.baseline import SAME_TIME_REL
 from ccopt.compare.contract import CONTROLLER_NAMES
 from ccopt.compare.figures import joins
+from ccopt.feed import certified_planner, plan_feed
 from ccopt.program import read_text
 from ccopt.toolpath import Role
+from ccopt_formulations.smoother import smooth
 
 from cam_programs import cam_program
 
@@ -48,6 +52,54 @@ def smooth_row(seed: int):
     assert row.figures["duration"] <= best.figures["duration"] * (1 + SAME_TIME_REL), \
         cp.description
     return cp, cmp, row
+
+
+#: Relative difference allowed between a whole-path plan and the comparison's
+#: plan by stretches under the jerk planner (its windows stop their rounds
+#: on a squared-speed tolerance; TOPPRA agrees to 1e-9).
+PLAN_REL = 1e-6
+
+
+def _smoothed_time(prog, path, cp) -> float:
+    """The smoother's path from ``path`` (certified), planned whole."""
+    out, info = smooth(BlendProblem(prog, path, LIMITS, radius=cp.radius), deviation=False,
+                       certifiable=True)
+    assert info["certificate"].ok, cp.description
+    return plan_feed(out, LIMITS, planner=certified_planner(LIMITS)).duration
+
+
+def _base(row) -> str:
+    """The controller path a row started from (PMAC's, the reference, is not named)."""
+    return row.info.get("base", "pmac")
+
+
+def faster_start_holds(seed: int, got) -> str | None:
+    """The ``smooth`` row of plate ``seed``'s comparison ``got`` (as
+    :func:`smooth_row` gives it) started from the faster of the fastest
+    controller's path and LinuxCNC's, each smoothed on its own and planned
+    whole here (the row's cycle time the smaller, within :data:`PLAN_REL`),
+    and says which; returns ``row.info["started_from"]``."""
+    cp, cmp, row = got
+    prog = program(seed)[1]
+    fastest = cmp[row.figures["fastest_controller"]]
+    linuxcnc = cmp["linuxcnc"]
+    t_row = row.figures["duration"]
+    if fastest.name == "linuxcnc" or linuxcnc.status != "ok":
+        # nothing else to start from: the fastest controller's path alone
+        assert "started_from" not in row.info and _base(row) == fastest.name
+        assert t_row == pytest.approx(_smoothed_time(prog, fastest.toolpath, cp), rel=PLAN_REL)
+        return None
+    t_given = _smoothed_time(prog, fastest.toolpath, cp)
+    t_linuxcnc = _smoothed_time(prog, linuxcnc.toolpath, cp)
+    assert t_row == pytest.approx(min(t_given, t_linuxcnc), rel=PLAN_REL), cp.description
+    started = row.info.get("started_from")
+    if t_linuxcnc < t_given * (1 - 2 * PLAN_REL):
+        assert started == "linuxcnc" and row.info["base"] == "linuxcnc"
+        assert row.message.startswith("started from linuxcnc's path (a certified controller "
+                                      f"variant; the fastest is {fastest.name}'s)")
+    elif t_given < t_linuxcnc * (1 - 2 * PLAN_REL):
+        assert started is None and _base(row) == fastest.name
+    return started
 
 
 def _samples(path, spacing: float) -> np.ndarray:

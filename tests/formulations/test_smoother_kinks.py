@@ -32,7 +32,8 @@ from ccopt.compare import BlendProblem
 from ccopt.compare.figures import joins
 from ccopt_formulations.smoother import smooth
 
-from smoother_checks import LIMITS, program, smooth_row, unsmooth_joins_near, within_band
+from smoother_checks import (LIMITS, faster_start_holds, program, smooth_row,
+                             unsmooth_joins_near, within_band)
 
 #: The clearance a blend at a tiny kink may give up: a thousandth of the
 #: verifier's default gouge tolerance for mm programs (1e-3 mm).
@@ -84,8 +85,8 @@ def test_a_plate_without_tiny_kinks_gives_up_no_clearance():
     assert info["certificate"].min_clearance >= min(cp.radius, own) - EPS
 
 
-def _smooth_row_holds(seed: int) -> None:
-    cp, cmp, row = smooth_row(seed)
+def _smooth_row_holds(seed: int, got=None) -> None:
+    cp, cmp, row = smooth_row(seed) if got is None else got
     if row.info.get("optimised") is not None:             # the base path kept
         return
     base = cmp[row.info.get("base", "pmac")]
@@ -102,7 +103,15 @@ def test_generated_plates_with_tiny_kinks_quick(seed):
     _smooth_row_holds(seed)
 
 
+#: The generated plates whose comparison also checks the smoother's start
+#: (tests/formulations/test_smoother_starts.py): one comparison serves both.
+STARTS_SEEDS = range(30)
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize("seed", range(0, 60))
 def test_generated_plates_with_tiny_kinks(seed):
-    _smooth_row_holds(seed)
+    got = smooth_row(seed)
+    _smooth_row_holds(seed, got)
+    if seed in STARTS_SEEDS:
+        faster_start_holds(seed, got)
