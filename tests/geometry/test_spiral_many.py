@@ -21,7 +21,7 @@ def _moves(seed: int, n: int) -> list[tuple]:
         r0 = rng.choice((rng.uniform(0.01, 1.0), rng.uniform(1.0, 200.0)))
         r1 = r0 * (1.0 + rng.choice((1e-8, 1e-4, 0.3)) * rng.choice((-1, 1)))
         a0 = rng.uniform(-math.pi, math.pi)
-        a1 = a0 + rng.choice((rng.uniform(-6.3, 6.3), 1e-10, 0.0))
+        a1 = a0 + rng.choice((rng.uniform(-6.3, 6.3), 1e-10, 0.0, rng.uniform(1e-9, 4e-9)))
         s = (c[0] + r0 * math.cos(a0), c[1] + r0 * math.sin(a0))
         e = (c[0] + r1 * math.cos(a1), c[1] + r1 * math.sin(a1))
         out.append((s, e, c, rng.random() < 0.5, rng.choice((0, 0, 0, 1, 3))))
