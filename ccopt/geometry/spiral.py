@@ -16,7 +16,7 @@ from itertools import repeat
 import numpy as np
 
 from ccopt.geometry.angles import sweep_between, sweep_sign, sweeps_between
-from ccopt.geometry.columns import math_each, polar_ends
+from ccopt.geometry.columns import math_each, paused_gc, polar_ends
 from ccopt.geometry.arclength import (
     END_POINT_REL_TOL, Point, as_point, clip_s, rotate_left, scalar_out, vector_out,
 )
@@ -152,11 +152,12 @@ class Spiral:
         # the same operations, element by element, as one spiral's (numpy
         # runs arcsinh with one loop whatever the length; the tests compare)
         length = spiral_arclength(phi, rho0, b)
-        spirals = list(map(object.__new__, repeat(cls, n)))
-        fields = (list(zip(*center.T.tolist())), rho0.tolist(), rho1.tolist(), theta0.tolist(),
-                  sweep.tolist(), b.tolist(), length.tolist())
-        for setter, values in zip(_SETTERS, fields):
-            deque(map(setter, spirals, values), 0)
+        with paused_gc():
+            spirals = list(map(object.__new__, repeat(cls, n)))
+            fields = (list(zip(*center.T.tolist())), rho0.tolist(), rho1.tolist(),
+                      theta0.tolist(), sweep.tolist(), b.tolist(), length.tolist())
+            for setter, values in zip(_SETTERS, fields):
+                deque(map(setter, spirals, values), 0)
         return spirals
 
     # -- scalar properties ---------------------------------------------------
