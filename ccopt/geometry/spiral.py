@@ -121,26 +121,13 @@ class Spiral:
         return cls(*spiral_through(start, end, center, ccw, turns, tol))
 
     @classmethod
-    def many_from_points(cls, starts, ends, centers, ccws, turns) -> list["Spiral"]:
-        """:meth:`from_points` of each ``(start, end, center, ccw, turns)``
-        (sequences of one length), the same spirals bit for bit, worked out
-        together; ``ValueError`` when one is refused (not necessarily the
-        first: :meth:`from_points` of each says which)."""
-        if not len(starts):
-            return []
-        center = np.array(centers, float).reshape(-1, 2)
-        polar = polar_ends(np.array(starts, float).reshape(-1, 2),
-                           np.array(ends, float).reshape(-1, 2), center)
-        return cls.many_from_numbers(center, *spirals_from_polar(
-            *polar, np.array(ccws, bool), np.array(turns, float)))
-
-    @classmethod
     def many_from_numbers(cls, center: np.ndarray, rho0: np.ndarray, rho1: np.ndarray,
                           theta0: np.ndarray, sweep: np.ndarray) -> list["Spiral"]:
         """The spirals of the numbers ``center`` ``(n, 2)``, ``rho0``,
         ``rho1``, ``theta0`` and ``sweep`` (``(n,)``; those of
-        :func:`spirals_from_polar`), their lengths worked out together;
-        ``ValueError`` when the constructor refuses one."""
+        :func:`spirals_from_polar`), their lengths worked out together: with
+        that, :meth:`from_points` of many moves, bit for bit; ``ValueError``
+        when the constructor refuses one."""
         n = len(rho0)
         rows = np.c_[center, rho0, rho1, theta0, sweep]
         # the checks of __post_init__, row by row

@@ -1,5 +1,6 @@
-"""``Spiral.many_from_points`` (the spirals of many moves at once, their
-lengths worked out together) makes each spiral ``Spiral.from_points`` makes,
+"""``Spiral.many_from_numbers`` of ``spirals_from_polar`` (the spirals of
+many moves at once, their lengths worked out together, as the programmed
+path's rows make them) makes each spiral ``Spiral.from_points`` makes,
 bit for bit: every field and the numbers it keeps beside them (``b``, the
 length), over seeded random spirals (growing and shrinking, either way round,
 near-full and extra turns), and it refuses what ``from_points`` refuses."""
@@ -8,9 +9,12 @@ from __future__ import annotations
 import math
 import random
 
+import numpy as np
 import pytest
 
 from ccopt.geometry import Spiral
+from ccopt.geometry.columns import polar_ends
+from ccopt.geometry.spiral import spirals_from_polar
 
 
 def _moves(seed: int, n: int) -> list[tuple]:
@@ -28,6 +32,15 @@ def _moves(seed: int, n: int) -> list[tuple]:
     return out
 
 
+def _many(moves: list[tuple]) -> list[Spiral]:
+    """The spirals of ``moves`` made together."""
+    if not moves:
+        return []
+    s, e, c, ccw, turns = (np.array(col, float) for col in zip(*moves))
+    return Spiral.many_from_numbers(c, *spirals_from_polar(*polar_ends(s, e, c),
+                                                          ccw.astype(bool), turns))
+
+
 def _numbers(g: Spiral) -> str:
     return repr((g.center, g.rho0, g.rho1, g.theta0, g.sweep, g.b, g.length))
 
@@ -35,7 +48,7 @@ def _numbers(g: Spiral) -> str:
 @pytest.mark.parametrize("seed", range(3))
 def test_many_spirals_are_the_spirals_one_by_one(seed):
     moves = _moves(seed, 3000)
-    many = Spiral.many_from_points(*zip(*moves))
+    many = _many(moves)
     one = [Spiral.from_points(*m[:4], turns=m[4]) for m in moves]
     assert [_numbers(g) for g in many] == [_numbers(g) for g in one]
     assert many == one and all(type(g) is Spiral for g in many)
@@ -48,5 +61,5 @@ def test_refused_as_one_by_one():
         with pytest.raises(ValueError):
             Spiral.from_points(*bad[:4], turns=bad[4])
         with pytest.raises(ValueError):
-            Spiral.many_from_points(*zip(*(moves[:5] + [bad] + moves[6:])))
-    assert Spiral.many_from_points((), (), (), (), ()) == []
+            _many(moves[:5] + [bad] + moves[6:])
+    assert _many([]) == []
