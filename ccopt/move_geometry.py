@@ -20,12 +20,14 @@ from operator import attrgetter
 import numpy as np
 
 from ccopt.geometry import Arc, Line, Spiral
-from ccopt.geometry.primitives import arc_through
-from ccopt.program.columns import CCW_CODE, DWELL_CODE, RAPID_CODE, columns_of
+from ccopt.geometry.columns import polar_ends
+from ccopt.geometry.primitives import arcs_from_polar
+from ccopt.geometry.spiral import spirals_from_polar
+from ccopt.program.columns import CCW_CODE, DWELL_CODE, RAPID_CODE, columns_of, triples_column
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program
 from ccopt.tolerances import SPIRAL_RADIUS_REL_TOL
 
-_START, _END = attrgetter("start"), attrgetter("end")
+_START, _END, _CENTER, _TURNS = map(attrgetter, ("start", "end", "center", "turns"))
 
 
 def is_spiral_move(s, e, c) -> bool:
@@ -104,30 +106,47 @@ def move_rows(program: Program) -> MoveRows | None:
     geom[:, :2], geom[:, 2:4] = start[:, :2], end[:, :2]
     curved = np.flatnonzero(cols.is_arc[move])
     arc = np.zeros(move.size, bool)
-    arcs, arc_numbers, spiral_rows, spiral_moves = [], [], [], []
-    ccw = cols.motion_code[move[curved]] == CCW_CODE
-    for r, q, s, e, left in zip(curved.tolist(), move[curved].tolist(),
-                                start[curved, :2].tolist(), end[curved, :2].tolist(),
-                                ccw.tolist()):
-        b = blocks[q]
-        c = b.center_uv
-        if is_spiral_move(s, e, c):
-            spiral_rows.append(r)
-            spiral_moves.append((s, e, c, left, b.turns))
-        else:
-            (cu, cv), radius, theta0, sweep = arc_through(s, e, c, left, b.turns)
-            arcs.append(r)
-            arc_numbers.append((cu, cv, radius, theta0, sweep))
-    if arcs:
-        arc[arcs] = True
-        geom[arcs] = arc_numbers
     spirals = {}
-    if spiral_rows:
-        geom[spiral_rows] = 0.0
-        spirals = dict(zip(spiral_rows, Spiral.many_from_points(*zip(*spiral_moves))))
+    if curved.size:
+        curves = _curved_rows(blocks, move[curved], axes[curved], start[curved, :2],
+                              end[curved, :2], cols.motion_code[move[curved]] == CCW_CODE)
+        if curves is None:
+            return None
+        arc_rows, arc_numbers, spiral_rows, spiral_list = curves
+        arc[curved[arc_rows]] = True
+        geom[curved[arc_rows]] = arc_numbers
+        geom[curved[spiral_rows]] = 0.0
+        spirals = dict(zip(curved[spiral_rows].tolist(), spiral_list))
     _check(geom, arc, spirals)
     rapid = cols.motion_code[move] == RAPID_CODE
     return MoveRows(move, rapid, arc, geom, spirals, np.c_[start[:, 2], end[:, 2]])
+
+
+def _curved_rows(blocks, qs: np.ndarray, axes: np.ndarray, start: np.ndarray, end: np.ndarray,
+                 ccw: np.ndarray):
+    """``(arc rows, their numbers (n, 5), spiral rows, their Spirals)`` of
+    the circular moves ``blocks[q]`` for ``q`` in ``qs`` (rows of ``qs``),
+    from ``start`` to ``end`` (in-plane, ``(n, 2)``), their plane's ``axes``
+    and direction ``ccw``: what :func:`block_geometry` makes of each, the
+    same operations element by element; ``None`` when a centre coordinate
+    is not a number Python's float arithmetic reads as numpy does (an int or
+    a float): a program built by hand, the reference's."""
+    curved = list(map(blocks.__getitem__, qs.tolist()))
+    centres = list(map(_CENTER, curved))
+    if not all(issubclass(t, (float, int)) for t in set(map(type, chain.from_iterable(centres)))):
+        return None
+    centre = np.take_along_axis(triples_column(centres, len(centres)), axes, axis=1)[:, :2]
+    turns = np.fromiter(map(_TURNS, curved), float, len(curved))
+    r0, r1, th0, th1 = polar_ends(start, end, centre)
+    # is_spiral_move of each (Python's max(1.0, r0))
+    spiral = np.abs(r1 - r0) > SPIRAL_RADIUS_REL_TOL * np.where(r0 > 1.0, r0, 1.0)
+    arc_rows, spiral_rows = np.flatnonzero(~spiral), np.flatnonzero(spiral)
+    a = arc_rows
+    radius, theta0, sweep = arcs_from_polar(r0[a], r1[a], th0[a], th1[a], ccw[a], turns[a])
+    s = spiral_rows
+    spiral_list = Spiral.many_from_numbers(centre[s], *spirals_from_polar(
+        r0[s], r1[s], th0[s], th1[s], ccw[s], turns[s])) if s.size else []
+    return arc_rows, np.c_[centre[a], radius, theta0, sweep], spiral_rows, spiral_list
 
 
 def _floats_only(blocks) -> bool:

@@ -90,3 +90,16 @@ def sweep_between(theta_start: float, theta_end: float, ccw: bool, turns: int = 
         gap = TWO_PI
     gap += TWO_PI * turns
     return gap if ccw else -gap
+
+
+def sweeps_between(theta_start: np.ndarray, theta_end: np.ndarray, ccw: np.ndarray,
+                   turns: np.ndarray, full_if_below: np.ndarray) -> np.ndarray:
+    """:func:`sweep_between` of each row (arrays of one length; ``ccw`` bool,
+    ``turns`` >= 0 as floats): the same operations on each element (``fmod``
+    is exact, numpy's as math's)."""
+    gap = np.where(ccw, theta_end - theta_start, theta_start - theta_end)
+    gap = np.fmod(gap, TWO_PI)
+    gap = np.where(gap < 0.0, gap + TWO_PI, gap)
+    full = (gap <= full_if_below) | (TWO_PI - gap <= full_if_below) | (gap >= TWO_PI)
+    gap = np.where(full, TWO_PI, gap) + TWO_PI * turns
+    return np.where(ccw, gap, -gap)

@@ -35,7 +35,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ccopt.geometry.angles import angle_in_sweep, sweep_between, sweep_sign
+from ccopt.geometry.angles import angle_in_sweep, sweep_between, sweep_sign, sweeps_between
 from ccopt.geometry.arclength import (
     END_POINT_REL_TOL, Point, as_point, clip_s, rotate_left, scalar_out, vector_out,
 )
@@ -335,6 +335,23 @@ def arc_through(start, end, center, ccw: bool, turns: int = 0,
     th0 = math.atan2(start[1] - center[1], start[0] - center[0])
     th1 = math.atan2(end[1] - center[1], end[0] - center[0])
     return center, R, th0, sweep_between(th0, th1, ccw, turns, full_if_below=bound / R)
+
+
+def arcs_from_polar(r0: np.ndarray, r1: np.ndarray, th0: np.ndarray, th1: np.ndarray,
+                    ccw: np.ndarray, turns: np.ndarray,
+                    tol: float = END_POINT_REL_TOL) -> tuple[np.ndarray, ...]:
+    """``(radius, theta0, sweep)`` of :func:`arc_through` of each row, from
+    the polar radii and angles of its ends about its centre
+    (:func:`~ccopt.geometry.columns.polar_ends`), ``ccw`` and ``turns`` (as
+    floats): the same operations on each element; ``ValueError`` when it
+    refuses one (not necessarily the first)."""
+    bound = tol * np.where(r0 > 1.0, r0, 1.0)       # Python's max(1.0, R)
+    if (r0 <= 0.0).any() or (np.abs(r1 - r0) > bound).any() or (turns < 0).any():
+        raise ValueError("an arc's start is on its centre, its end off its circle, "
+                         "or its turns are negative")
+    with np.errstate(invalid="ignore"):
+        full_if_below = bound / r0
+    return r0, th0, sweeps_between(th0, th1, ccw, turns, full_if_below)
 
 
 Primitive = Line | Arc | Spiral

@@ -9,17 +9,20 @@ signed ``sweep`` is counter-clockwise when positive.
 from __future__ import annotations
 
 import math
+from collections import deque
 from dataclasses import dataclass, field
+from itertools import repeat
 
 import numpy as np
 
-from ccopt.geometry.angles import sweep_between, sweep_sign
-from ccopt.geometry.columns import math_each
+from ccopt.geometry.angles import sweep_between, sweep_sign, sweeps_between
+from ccopt.geometry.columns import math_each, paused_gc, polar_ends
 from ccopt.geometry.arclength import (
     END_POINT_REL_TOL, Point, as_point, clip_s, rotate_left, scalar_out, vector_out,
 )
 
-__all__ = ["Spiral", "spiral_arclength", "spiral_bboxes", "spiral_end_tangents"]
+__all__ = ["Spiral", "spiral_arclength", "spiral_bboxes", "spiral_end_tangents",
+           "spirals_from_polar"]
 
 #: Newton in the swept angle stops once every step is below this fraction of
 #: ``|sweep|`` (a few ulps of the angle: nothing smaller is representable).
@@ -118,17 +121,15 @@ class Spiral:
         return cls(*spiral_through(start, end, center, ccw, turns, tol))
 
     @classmethod
-    def many_from_points(cls, starts, ends, centers, ccws, turns) -> list["Spiral"]:
-        """:meth:`from_points` of each ``(start, end, center, ccw, turns)``
-        (sequences of one length), the same spirals bit for bit, their
-        lengths worked out together; ``ValueError`` when one is refused
-        (not necessarily the first: :meth:`from_points` of each says which)."""
-        numbers = list(map(spiral_through, starts, ends, centers, ccws, turns))
-        n = len(numbers)
-        if not n:
-            return []
-        rows = np.array([(cu, cv, r0, r1, th0, sw) for (cu, cv), r0, r1, th0, sw in numbers])
-        rho0, rho1, sweep = rows[:, 2], rows[:, 3], rows[:, 5]
+    def many_from_numbers(cls, center: np.ndarray, rho0: np.ndarray, rho1: np.ndarray,
+                          theta0: np.ndarray, sweep: np.ndarray) -> list["Spiral"]:
+        """The spirals of the numbers ``center`` ``(n, 2)``, ``rho0``,
+        ``rho1``, ``theta0`` and ``sweep`` (``(n,)``; those of
+        :func:`spirals_from_polar`), their lengths worked out together: with
+        that, :meth:`from_points` of many moves, bit for bit; ``ValueError``
+        when the constructor refuses one."""
+        n = len(rho0)
+        rows = np.c_[center, rho0, rho1, theta0, sweep]
         # the checks of __post_init__, row by row
         if not (np.isfinite(rows).all() and (rho0 > 0.0).all() and (rho1 > 0.0).all()
                 and ((sweep != 0.0) | (rho0 == rho1)).all()):
@@ -138,16 +139,13 @@ class Spiral:
         # the same operations, element by element, as one spiral's (numpy
         # runs arcsinh with one loop whatever the length; the tests compare)
         length = spiral_arclength(phi, rho0, b)
-        return list(map(cls._trusted, numbers, b.tolist(), length.tolist()))
-
-    @classmethod
-    def _trusted(cls, numbers, b: float, length: float) -> "Spiral":
-        """The spiral of checked ``(center, rho0, rho1, theta0, sweep)`` with
-        its ``b`` and length already worked out (:meth:`many_from_points`)."""
-        obj = object.__new__(cls)
-        for setter, value in zip(_SETTERS, (*numbers, b, length)):
-            setter(obj, value)
-        return obj
+        with paused_gc():
+            spirals = list(map(object.__new__, repeat(cls, n)))
+            fields = (list(zip(*center.T.tolist())), rho0.tolist(), rho1.tolist(),
+                      theta0.tolist(), sweep.tolist(), b.tolist(), length.tolist())
+            for setter, values in zip(_SETTERS, fields):
+                deque(map(setter, spirals, values), 0)
+        return spirals
 
     # -- scalar properties ---------------------------------------------------
 
@@ -380,6 +378,22 @@ def spiral_through(start, end, center, ccw: bool, turns: int = 0,
     return center, r0, r1, th0, sweep
 
 
+def spirals_from_polar(r0: np.ndarray, r1: np.ndarray, th0: np.ndarray, th1: np.ndarray,
+                       ccw: np.ndarray, turns: np.ndarray,
+                       tol: float = END_POINT_REL_TOL) -> tuple[np.ndarray, ...]:
+    """``(rho0, rho1, theta0, sweep)`` of :func:`spiral_through` of each row,
+    from the polar radii and angles of its ends about its centre
+    (:func:`~ccopt.geometry.columns.polar_ends`), ``ccw`` and ``turns`` (as
+    floats): the same operations on each element; ``ValueError`` when it
+    refuses one (not necessarily the first)."""
+    if (r0 <= 0.0).any() or (r1 <= 0.0).any() or (turns < 0).any():
+        raise ValueError("a spiral's end point is on its centre, or its turns are negative")
+    rmax = np.where(r1 > r0, r1, r0)            # Python's max(r0, r1)
+    with np.errstate(invalid="ignore"):
+        full_if_below = tol * np.where(rmax > 1.0, rmax, 1.0) / rmax
+    return r0, r1, th0, sweeps_between(th0, th1, ccw, turns, full_if_below)
+
+
 def spiral_bboxes(center, rho0, rho1, theta0, sweep, b):
     """Start points ``(n, 2)``, end points ``(n, 2)`` and boxes ``(n, 4)``
     ``(xmin, ymin, xmax, ymax)`` of ``n`` spirals given by their numbers
@@ -479,6 +493,6 @@ def _roots(target, h0, sgth, rho0, b, Phi, spiral) -> np.ndarray:
     return out
 
 
-# the slots' own descriptors, in the order Spiral._trusted sets them
+# the slots' own descriptors, in the order Spiral.many_from_numbers sets them
 _SETTERS = tuple(Spiral.__dict__[name].__set__
                  for name in ("center", "rho0", "rho1", "theta0", "sweep", "_b", "_length"))

@@ -318,3 +318,65 @@ def test_files_and_their_mutants_read_alike():
     for text in texts + _mutants(texts, 150, seed=34):
         fast, slow = _both(text, tool_table={1: 6.0, 2: 4.0})
         assert fast == slow
+
+
+def _arc_run(seed: int, count: int) -> str:
+    """``count`` seeded lines after ``X0 Y0``: mostly arcs (either way, with
+    ``I`` and ``J`` or the one that is not zero, modal, a helix's ``Z``,
+    tiny radii), some straight lines and feeds, and now and then an arc the
+    line loop may refuse, which the plain path must then leave to it: its
+    end off the circle (at the radius tolerances, absolute and relative,
+    either way), its centre on an end or at the zero-radius limit, a centre
+    word or the centre past the bound (a straight line back to where it
+    started follows)."""
+    rng = random.Random(seed)
+    out, x, y, mode = ["G21 G90 G94", "G1 X0 Y0 Z0 F600"], 0.0, 0.0, 1
+    for _ in range(count):
+        if rng.random() < 0.2:
+            x, y, mode = round(x + rng.uniform(-5, 5), 4), round(y + rng.uniform(-5, 5), 4), 1
+            feed = f" F{rng.randint(1, 900)}" if rng.random() < 0.2 else ""
+            out.append(f"G1 X{x:.4f} Y{y:.4f} Z0{feed}")
+            continue
+        r = rng.choice((rng.uniform(0.0005, 0.01), rng.uniform(0.05, 50.0)))
+        a0, sweep = rng.uniform(-math.pi, math.pi), rng.uniform(-6.3, 6.3)
+        if rng.random() < 0.1:
+            a0 = rng.choice((0.0, 0.5, 1.0, -0.5)) * math.pi    # a centre word of zero
+        r1, bad = r, rng.random()
+        if bad < 0.04:      # at a radius tolerance: 0.002 absolute, 0.1 % relative
+            off = max(0.002, 0.001 * r) * (1.0 + rng.choice((-1, 1)) * rng.choice((5e-4, 2e-3)))
+            r1 = r + rng.choice((-1, 1)) * off
+        cx, cy = x - r * math.cos(a0), y - r * math.sin(a0)
+        ex, ey = cx + r1 * math.cos(a0 + sweep), cy + r1 * math.sin(a0 + sweep)
+        i, j = cx - x, cy - y
+        if 0.04 <= bad < 0.06:
+            i, j = ex - x, ey - y                           # the centre on the end
+        elif 0.06 <= bad < 0.07:
+            i, j, ex, ey = rng.choice((1e-4, 2e-4, 3e-4)), 0.0, x, y    # a full circle
+        elif 0.07 <= bad < 0.08:
+            i = rng.choice((1000000.0001, 999999, -2000000))     # past the bound
+        g = 3 if sweep > 0 else 2
+        head = "" if g == mode and rng.random() < 0.3 else f"G{g} "
+        words = f"{'' if i == 0 else f' I{i:.7f}'}{'' if j == 0 else f' J{j:.7f}'}"
+        z = rng.choice(("", " Z0", " Z-1"))
+        out.append(f"{head}X{ex:.7f} Y{ey:.7f}{z}{words or ' I0'}")
+        if bad < 0.08:
+            out.append(f"G1 X{x:.4f} Y{y:.4f}")
+            mode = 1
+        else:
+            x, y, mode = round(ex, 7), round(ey, 7), g
+    return "\n".join(out) + "\nM2\n"
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_arc_runs_read_as_line_by_line(seed):
+    """Long runs of arcs, their centres worked out together: the blocks, the
+    refused arcs (exactly those left to the line loop, which says why) and
+    the run after each, as line by line."""
+    text = _arc_run(seed, 400)
+    # the plain path leaves the line loop just the header, M2 and the lines it refuses
+    refused = read_gcode(text, "e.ngc", keep_going=True).meta["errors_passed"]
+    assert len(refused) > 5
+    assert _taken(text, keep_going=True) == len(text.splitlines()) - 2 - len(refused)
+    for kw in ({"keep_going": True}, {}, {"start": (999990.0, 0.0, 0.0), "keep_going": True}):
+        fast, slow = _both(text, **kw)
+        assert fast == slow

@@ -12,8 +12,11 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ccopt import tolerances
 from ccopt.geometry.angles import TWO_PI
+from ccopt.geometry.columns import math_each
 from ccopt.program.gcode.coordinates import rotate_xy, rotation, to_machine
 from ccopt.program.gcode.state import GCodeState
 from ccopt.program.gcode.units import MM_PER_INCH, output_units
@@ -174,6 +177,30 @@ def _word_centre(state: GCodeState, L: dict, start_uv, end_uv, tol: float, gname
                           f"{tolerances.ARC_RADIUS_REL_TOL:.3%}): correct the end point "
                           f"or the centre offsets {wu}/{wv}", gcol)
     return cu, cv
+
+
+def incremental_centres(state: GCodeState, start_uv: np.ndarray, end_uv: np.ndarray,
+                        offsets: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Centres ``(n, 2)`` of ``n`` arcs in the plane, from ``start_uv`` to
+    ``end_uv`` (``(n, 2)``), whose centre words give the incremental
+    ``offsets`` ``(n, 2)`` (an absent word: ``0.0``) in a system that is not
+    rotated, and whether :func:`arc_geometry` refuses each (its radii
+    disagree, the centre is on an end or not finite): each row, bit for bit,
+    the centre :func:`_word_centre` and :func:`arc_geometry` give it (the
+    same operations, with math's hypot)."""
+    tol = arc_tolerance(state)
+    with np.errstate(invalid="ignore", over="ignore"):
+        centre = start_uv + offsets
+        cu, cv = centre[:, 0], centre[:, 1]
+        r0 = math_each(math.hypot, start_uv[:, 0] - cu, start_uv[:, 1] - cv)
+        r1 = math_each(math.hypot, end_uv[:, 0] - cu, end_uv[:, 1] - cv)
+        zero = _ZERO_RADIUS_FRACTION * tol
+        err = np.abs(r0 - r1)
+        larger = np.where(r1 > r0, r1, r0)      # Python's max(r0, r1)
+        refused = ((r0 < zero) | (r1 < zero)
+                   | ((err > tol) & (err > tolerances.ARC_RADIUS_REL_TOL * larger))
+                   | ~np.isfinite(cu) | ~np.isfinite(cv))
+    return centre, refused
 
 
 def _r_centre(state: GCodeState, motion: int, L: dict, start_uv, end_uv, tol: float,

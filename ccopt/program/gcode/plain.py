@@ -8,7 +8,8 @@ a plain arc line is ``[N<n>] [G2|G3] [X<n>] [Y<n>] [Z<n>] [I<n>] [J<n>]
 [F<n>]`` with ``I`` or ``J`` (:data:`ARC_LINE`), taken in the XY plane
 (G17) with incremental centres (G91.1, the default), its centre, turns and
 checks those of :func:`~ccopt.program.gcode.arcs.arc_geometry`, the line
-loop's own function.
+loop's own function (:func:`~ccopt.program.gcode.arcs.incremental_centres`,
+its operations on the run's arcs together).
 Consecutive ones change only the motion mode, the feed and the position:
 :func:`run_plain` executes them in one loop, with the modal state read
 once, and makes their blocks together at the end of the run
@@ -31,9 +32,10 @@ import re
 from collections import deque
 from itertools import repeat
 
+import numpy as np
+
 from ccopt.program.blocks import DEFAULT_SETTERS, FIELD_SETTERS, SOURCE_SETTERS
-from ccopt.errors import ProgramError
-from ccopt.program.gcode.arcs import arc_geometry
+from ccopt.program.gcode.arcs import incremental_centres
 from ccopt.program.gcode.coordinates import rotation, work_offset
 from ccopt.program.gcode.machine_words import frame_of
 from ccopt.program.gcode.state import GCodeState
@@ -111,13 +113,30 @@ def run_plain(state: GCodeState, pc: int) -> int:
 
 def _moves(state: GCodeState, pc: int, stop: int, arc_match):
     """``((line indexes, motions, feeds (units/s), ends, arc centres), mode, feed)``
-    of the plain lines from ``pc`` to ``stop`` or to one left to the line loop."""
+    of the plain lines from ``pc`` to ``stop`` or to one left to the line loop.
+
+    The arc lines' centres are worked out together once the lines are read
+    (:func:`_arc_centres`); the run then ends before the first arc the line
+    loop would refuse, with the modes in force before it."""
+    run, mode, feed, arcs = _scan(state, pc, stop, arc_match)
+    if arcs:
+        refused = _arc_centres(state, run[4], arcs)
+        if refused is not None:
+            kept, mode, feed = refused
+            run = tuple(column[:kept] for column in run)
+    return run, mode, feed
+
+
+def _scan(state: GCodeState, pc: int, stop: int, arc_match):
+    """:func:`_moves`' lines with their arc centres not yet known (None) and
+    ``arcs``: each arc line's ``((its move's index, mode and feed before
+    it, start z), (start x, y, end x, y, centre offsets I, J))``."""
     lines, bound, inc = state.lines, MAX_PROGRAM_COORDINATE, state.incremental
     match, xyz_match = PLAIN_LINE.fullmatch, FEED_XYZ_LINE.fullmatch
     off_x, off_y, off_z = work_offset(state)
     mode, feed = state.motion_mode, state.feed
     end_x, end_y, end_z = state.pos
-    at, motions, feeds, ends, centres = [], [], [], [], []
+    at, motions, feeds, ends, arcs = [], [], [], [], []
     line_motion, rapid_motion = Motion.LINE, Motion.RAPID
     for k in range(pc, stop):
         text = lines[k]
@@ -175,44 +194,38 @@ def _moves(state: GCodeState, pc: int, stop: int, arc_match):
             new_z = end_z + value if inc else value + off_z
             if not (-bound <= value <= bound and -bound <= new_z <= bound):
                 break
-        centre = None
         if motion is not line_motion and motion is not rapid_motion:
-            centre = _arc_centre(state, line_mode, i, j, (end_x, end_y, end_z),
-                                 (new_x, new_y, new_z))
-            if centre is None:
+            du = 0.0 if i is None else float(i)
+            dv = 0.0 if j is None else float(j)
+            if not (-bound <= du <= bound and -bound <= dv <= bound):
                 break
+            arcs.append(((len(at), mode, feed, end_z), (end_x, end_y, new_x, new_y, du, dv)))
         mode, feed = line_mode, line_feed
         end_x, end_y, end_z = new_x, new_y, new_z
         at.append(k)
         motions.append(motion)
         feeds.append(None if motion is rapid_motion else feed / 60.0)
         ends.append((new_x, new_y, new_z))
-        centres.append(centre)
-    return (at, motions, feeds, ends, centres), mode, feed
+    return (at, motions, feeds, ends, [None] * len(at)), mode, feed, arcs
 
 
-def _arc_centre(state: GCodeState, motion: int, i: str | None, j: str | None, start,
-                end) -> tuple[float, float, float] | None:
-    """The centre of the plain arc line (``motion`` 20 or 30, centre words
-    ``I`` and ``J`` as written) from ``start`` to ``end``, as
-    :func:`~ccopt.program.gcode.arcs.arc_geometry` gives it; None where the
-    line loop would refuse the arc (its radii disagree, the centre is on an
-    end, a value past the bound): that loop then reads it and says why."""
+def _arc_centres(state: GCodeState, centres: list, arcs: list):
+    """Put in ``centres`` each arc line's centre ``(x, y, z)`` (``arcs`` as
+    :func:`_scan` gives them), as :func:`~ccopt.program.gcode.arcs.arc_geometry`
+    gives it; ``(moves kept, mode, feed)`` before the first arc the line loop
+    would refuse (its radii disagree, the centre is on an end or past the
+    bound: that loop then reads it and says why), None when none is."""
+    places, numbers = zip(*arcs)
+    rows = np.array(numbers)
+    centre, refused = incremental_centres(state, rows[:, :2], rows[:, 2:4], rows[:, 4:])
     bound = MAX_PROGRAM_COORDINATE
-    words = {}
-    for letter, text in (("I", i), ("J", j)):
-        if text is not None:
-            value = float(text)
-            if not -bound <= value <= bound:
-                return None
-            words[letter] = (value, 0)
-    try:
-        centre, _, _ = arc_geometry(state, motion, words, start, end, 0)
-    except ProgramError:
-        return None
-    if not all(-bound <= c <= bound for c in centre):   # NaN compares False
-        return None
-    return centre
+    # NaN compares False; the centre's z is the start's, within the bound
+    refused |= ~((-bound <= centre) & (centre <= bound)).all(axis=1)
+    take = int(np.flatnonzero(refused)[0]) if refused.any() else len(arcs)
+    at, _, _, z = zip(*places[:take]) if take else ((),) * 4
+    cu, cv = centre[:take, 0].tolist(), centre[:take, 1].tolist()
+    deque(map(centres.__setitem__, at, zip(cu, cv, z)), 0)
+    return None if take == len(arcs) else places[take][:3]
 
 
 def _finish(state: GCodeState, pc: int, end: int, mode: int, feed: float | None) -> None:
