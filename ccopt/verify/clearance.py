@@ -40,7 +40,7 @@ from ccopt.verify.distance.certified_batch import (
     batchable_by_class, batchable_class, min_distance_indexed,
 )
 from ccopt.verify.contour import Contour
-from ccopt.verify.end_clip import BOUNDARY_REL
+from ccopt.verify.end_clip import BOUNDARY_REL, points_dot
 from ccopt.verify.open_ends import (
     OPEN_END_TAPER_SLOPE, TAPER_ARC_PIECES, TAPER_ARC_ROUNDS, TAPER_ARC_TOL, open_end_distances,
 )
@@ -147,7 +147,7 @@ def in_regions(regions, q: np.ndarray, margin=0.0) -> np.ndarray:
     for reg in regions:
         ins = None
         for n, c in reg:
-            side = q @ n - c <= room
+            side = points_dot(q, n) - c <= room
             ins = side if ins is None else ins & side
         out |= ins
     return out
@@ -286,7 +286,8 @@ def _on_end_normal(piece, taper: EndTaper) -> bool:
     pts = np.array([piece.p0, piece.p1], float) - taper.point
     slack = BOUNDARY_REL * (1.0 + float(np.abs(np.asarray(piece.p0)).max())
                             + float(np.abs(np.asarray(piece.p1)).max()))
-    return bool((np.abs(pts @ taper.past) <= slack).all() and (pts @ taper.tool_side >= -slack).all())
+    return bool((np.abs(points_dot(pts, taper.past)) <= slack).all()
+                and (points_dot(pts, taper.tool_side) >= -slack).all())
 
 
 def tapered_distance(piece, taper: EndTaper):
@@ -304,7 +305,7 @@ def tapered_distance(piece, taper: EndTaper):
 
 def _taper_f(q: np.ndarray, taper: EndTaper) -> np.ndarray:
     w = np.atleast_2d(q) - taper.point
-    return np.hypot(w[:, 0], w[:, 1]) + OPEN_END_TAPER_SLOPE * (w @ taper.past)
+    return np.hypot(w[:, 0], w[:, 1]) + OPEN_END_TAPER_SLOPE * points_dot(w, taper.past)
 
 
 def _tapered_line(piece: Line, taper: EndTaper):
