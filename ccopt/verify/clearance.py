@@ -16,7 +16,9 @@ half-plane for a line, a closed wedge about the centre for an arc), so the
 tool segment minus the region is at most a few pieces of line or arc, cut
 where the segment crosses the region's boundary lines; their exact distances
 replace the pair's. This is done only for pairs whose element has an open
-end (a few per lead-in and lead-out).
+end (a few per lead-in and lead-out), all of them at once by
+:mod:`ccopt.verify.open_ends` (the functions here do it pair by pair, with the
+same figures).
 
 A pair is a gouge when its distance is below the element's clearance minus
 ``eps``; the depth is ``clearance - distance``.
@@ -38,10 +40,10 @@ from ccopt.verify.distance.certified_batch import (
     batchable_by_class, batchable_class, min_distance_indexed,
 )
 from ccopt.verify.contour import Contour
-
-#: Units of clearance given up per unit past an open end
-#: (:data:`ccopt.verify.decisions.OPEN_END_TAPER`).
-OPEN_END_TAPER_SLOPE = 1.0
+from ccopt.verify.end_clip import BOUNDARY_REL, points_dot
+from ccopt.verify.open_ends import (
+    OPEN_END_TAPER_SLOPE, TAPER_ARC_PIECES, TAPER_ARC_ROUNDS, TAPER_ARC_TOL, open_end_distances,
+)
 from ccopt.verify.segments import KIND_ARC, KIND_LINE, Packed
 
 
@@ -136,22 +138,17 @@ def exempt_regions(contour: Contour, j: int):
                        bool(contour.open_end[j]))
 
 
-#: Points within this (relative to the coordinates) of an exempt region's
-#: boundary count as on it: a tool segment laid along the boundary (a lead-in
-#: on the normal at the contour's end) must not flicker in and out by rounding.
-BOUNDARY_REL = 1e-12
-
-
 def in_regions(regions, q: np.ndarray, margin=0.0) -> np.ndarray:
     """Points ``q`` inside one of the closed ``regions`` by at least ``margin``."""
     q = np.atleast_2d(q)
-    margin = np.broadcast_to(np.asarray(margin, float), (q.shape[0],))
-    slack = BOUNDARY_REL * (1.0 + np.abs(q).max(axis=1))
+    # one margin for all points or one per point, as the subtraction broadcasts
+    room = BOUNDARY_REL * (1.0 + np.abs(q).max(axis=1)) - np.asarray(margin, float)
     out = np.zeros(q.shape[0], bool)
     for reg in regions:
-        ins = np.ones(q.shape[0], bool)
+        ins = None
         for n, c in reg:
-            ins &= q @ n - c <= slack - margin
+            side = points_dot(q, n) - c <= room
+            ins = side if ins is None else ins & side
         out |= ins
     return out
 
@@ -289,7 +286,8 @@ def _on_end_normal(piece, taper: EndTaper) -> bool:
     pts = np.array([piece.p0, piece.p1], float) - taper.point
     slack = BOUNDARY_REL * (1.0 + float(np.abs(np.asarray(piece.p0)).max())
                             + float(np.abs(np.asarray(piece.p1)).max()))
-    return bool((np.abs(pts @ taper.past) <= slack).all() and (pts @ taper.tool_side >= -slack).all())
+    return bool((np.abs(points_dot(pts, taper.past)) <= slack).all()
+                and (points_dot(pts, taper.tool_side) >= -slack).all())
 
 
 def tapered_distance(piece, taper: EndTaper):
@@ -307,7 +305,7 @@ def tapered_distance(piece, taper: EndTaper):
 
 def _taper_f(q: np.ndarray, taper: EndTaper) -> np.ndarray:
     w = np.atleast_2d(q) - taper.point
-    return np.hypot(w[:, 0], w[:, 1]) + OPEN_END_TAPER_SLOPE * (w @ taper.past)
+    return np.hypot(w[:, 0], w[:, 1]) + OPEN_END_TAPER_SLOPE * points_dot(w, taper.past)
 
 
 def _tapered_line(piece: Line, taper: EndTaper):
@@ -332,13 +330,6 @@ def _tapered_line(piece: Line, taper: EndTaper):
     return float(f[k]), (float(pts[k, 0]), float(pts[k, 1]))
 
 
-#: The tapered distance of an arc piece is bracketed to within this (program
-#: units) from below: far under any eps the verifier is run with.
-TAPER_ARC_TOL = 1e-10
-_TAPER_ARC_PIECES = 16
-_TAPER_ARC_ROUNDS = 60
-
-
 def _tapered_arc(piece: Arc, taper: EndTaper):
     """Branch and bound: |q - P| + s(q) changes by at most (1 + slope) per unit
     of arc length, so over a piece of length l it is at least the mean of its
@@ -350,11 +341,11 @@ def _tapered_arc(piece: Arc, taper: EndTaper):
     def at(th):
         return c + R * np.stack((np.cos(th), np.sin(th)), axis=1)
 
-    u0 = np.linspace(0.0, 1.0, _TAPER_ARC_PIECES + 1)
+    u0 = np.linspace(0.0, 1.0, TAPER_ARC_PIECES + 1)
     a, b = u0[:-1], u0[1:]
     best, wit = math.inf, None
     lb_out = math.inf
-    for _ in range(_TAPER_ARC_ROUNDS):
+    for _ in range(TAPER_ARC_ROUNDS):
         ta, tb = theta0 + sweep * a, theta0 + sweep * b
         fa, fb = _taper_f(at(ta), taper), _taper_f(at(tb), taper)
         low = min(fa.min(), fb.min())
@@ -446,7 +437,44 @@ def pair_distances(tool: Packed, contour: Contour, eps: float,
     # segment (d), and the part past an open end by its tapered distance (f)
     f = d.copy()
     tapered = np.zeros(n, bool)
-    for q in np.flatnonzero(exact & open_elem[je]):
+    _open_ends(tool, contour, it, je, np.flatnonzero(exact & open_elem[je]),
+               (d, ub, f, wt, we, tapered))
+    keep = np.isfinite(f) & (f <= reach[je])
+    required = contour.clearance[je]
+    if tool_radius is not None:
+        required = np.minimum(required, np.asarray(tool_radius, float)[it])
+    margin = f - required
+    cnt = np.ones(n, bool) if counted is None else np.asarray(counted, bool)[it]
+    at = np.flatnonzero(keep)
+    return PairDistances(it[at], je[at], d[at], ub[at], take_rows(wt, at), take_rows(we, at),
+                         exact[at], margin[at], cnt[at], reach, tapered[at], required[at])
+
+
+def _open_ends(tool: Packed, contour: Contour, it, je, pairs, out) -> None:
+    """The open-end exemption and taper of the ``pairs`` (exact, their element
+    with an open end), written into ``out = (d, ub, f, wt, we, tapered)``:
+    :func:`clipped_distance` and :func:`tapered_pair` of each pair, all pairs
+    with a tool segment of positive length at once
+    (:func:`~ccopt.verify.open_ends.open_end_distances`), the others (a tool
+    point) one by one."""
+    if not pairs.size:
+        return
+    d, ub, f, wt, we, tapered = out
+    E = contour.elements
+    j = je[pairs]
+    got = open_end_distances(tool, E, it[pairs], j, contour.open_start[j], contour.open_end[j],
+                             contour.side[j])
+    q = pairs[got.done]
+    d[q] = ub[q] = f[q] = got.d[got.done]
+    has = got.done & np.isfinite(got.d)
+    put_rows(wt, pairs[has], got.wt[has])
+    put_rows(we, pairs[has], got.we[has])
+    if decisions.OPEN_END_TAPER:
+        under = got.done & (got.f < got.d)
+        f[pairs[under]], tapered[pairs[under]] = got.f[under], True
+        put_rows(wt, pairs[under], got.wf[under])
+        put_rows(we, pairs[under], got.end[under])
+    for q in pairs[~got.done].tolist():
         j = int(je[q])
         regions = exempt_regions(contour, j)
         if not regions:
@@ -461,15 +489,7 @@ def pair_distances(tool: Packed, contour: Contour, eps: float,
             if ff < dd:
                 f[q], tapered[q] = ff, True
                 wt[q], we[q] = a, b
-    keep = np.isfinite(f) & (f <= reach[je])
-    required = contour.clearance[je]
-    if tool_radius is not None:
-        required = np.minimum(required, np.asarray(tool_radius, float)[it])
-    margin = f - required
-    cnt = np.ones(n, bool) if counted is None else np.asarray(counted, bool)[it]
-    at = np.flatnonzero(keep)
-    return PairDistances(it[at], je[at], d[at], ub[at], take_rows(wt, at), take_rows(we, at),
-                         exact[at], margin[at], cnt[at], reach, tapered[at], required[at])
+
 
 def _certified_pairs(tool: Packed, contour: Contour, it, je, pairs, reach, tol: float, out):
     """Certified bounds of the ``pairs`` (indices into ``it``, ``je``) with a

@@ -149,16 +149,6 @@ def pack_columns(columns) -> Packed:
     return _packed(len(columns), lines_i, pts, arcs_i, arcs, curved)
 
 
-def pack_rows(n: int, line_rows: np.ndarray, line_points: np.ndarray, arc_rows: np.ndarray,
-              arcs) -> Packed:
-    """:func:`pack` of ``n`` lines and arcs given by their numbers: lines at rows
-    ``line_rows`` (``line_points``: ``(m, 4)`` ``x0, y0, x1, y1``), arcs at
-    ``arc_rows`` (``arcs``: centres ``(m, 2)``, radii, start angles, sweeps);
-    the same :class:`Packed`, bit for bit, as ``pack`` of those Line and Arc objects."""
-    return _packed(n, np.asarray(line_rows, np.intp), line_points,
-                   np.asarray(arc_rows, np.intp), arcs, {})
-
-
 def _line_points(lines) -> np.ndarray:
     """``(m, 4)``: ``x0, y0, x1, y1`` of each line."""
     m = len(lines)
