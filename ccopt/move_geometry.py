@@ -20,8 +20,7 @@ from operator import attrgetter
 import numpy as np
 
 from ccopt.geometry import Arc, Line, Spiral
-from ccopt.geometry.columns import polar_ends
-from ccopt.geometry.primitives import arcs_from_polar
+from ccopt.geometry.primitives import arcs_from_polar, polar_ends
 from ccopt.geometry.spiral import spirals_from_polar
 from ccopt.program.columns import CCW_CODE, DWELL_CODE, RAPID_CODE, columns_of, triples_column
 from ccopt.program.model import PLANE_AXES, Block, Motion, Program

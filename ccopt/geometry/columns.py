@@ -10,14 +10,12 @@ running minimum of candidate pairs with their witnesses (:class:`RunningMin`)
 and prepares per-arc quantities once per call (:class:`PreparedArcs`);
 :func:`take_rows` and :func:`put_rows` gather and scatter rows of the
 ``(n, 2)`` point arrays, :func:`used_rows` finds the rows an index array uses;
-:func:`math_each` applies a :mod:`math` function element by element,
-:func:`polar_ends` gives the polar coordinates of ends about centres.
+:func:`math_each` applies a :mod:`math` function element by element.
 Lengths are program units, angles radians.
 """
 from __future__ import annotations
 
 import gc
-import math
 from contextlib import contextmanager
 
 import numpy as np
@@ -46,17 +44,6 @@ def math_each(f, *cols) -> np.ndarray:
     first = np.asarray(cols[0])
     args = (np.asarray(c, float).ravel().tolist() for c in cols)
     return np.fromiter(map(f, *args), float, first.size).reshape(first.shape)
-
-
-def polar_ends(start: np.ndarray, end: np.ndarray,
-               center: np.ndarray) -> tuple[np.ndarray, ...]:
-    """``(r0, r1, theta0, theta1)``: the polar radius and angle (radians) of
-    each row's ``start`` and ``end`` (``(n, 2)``) about its ``center``, with
-    math's hypot and atan2 of the differences, as the scalar makers of arcs
-    and spirals work them out."""
-    d0, d1 = start - center, end - center
-    return (math_each(math.hypot, d0[:, 0], d0[:, 1]), math_each(math.hypot, d1[:, 0], d1[:, 1]),
-            math_each(math.atan2, d0[:, 1], d0[:, 0]), math_each(math.atan2, d1[:, 1], d1[:, 0]))
 
 
 def take_rows(a: np.ndarray, idx) -> np.ndarray:

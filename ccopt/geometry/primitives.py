@@ -39,6 +39,7 @@ from ccopt.geometry.angles import angle_in_sweep, sweep_between, sweep_sign, swe
 from ccopt.geometry.arclength import (
     END_POINT_REL_TOL, Point, as_point, clip_s, rotate_left, scalar_out, vector_out,
 )
+from ccopt.geometry.columns import math_each
 from ccopt.geometry.spiral import Spiral
 
 __all__ = ["Arc", "Line", "Point", "Primitive", "Spiral"]
@@ -337,12 +338,23 @@ def arc_through(start, end, center, ccw: bool, turns: int = 0,
     return center, R, th0, sweep_between(th0, th1, ccw, turns, full_if_below=bound / R)
 
 
+def polar_ends(start: np.ndarray, end: np.ndarray,
+               center: np.ndarray) -> tuple[np.ndarray, ...]:
+    """``(r0, r1, theta0, theta1)``: the polar radius and angle (radians) of
+    each row's ``start`` and ``end`` (``(n, 2)``) about its ``center``, with
+    math's hypot and atan2 of the differences, as the scalar makers of arcs
+    and spirals work them out."""
+    d0, d1 = start - center, end - center
+    return (math_each(math.hypot, d0[:, 0], d0[:, 1]), math_each(math.hypot, d1[:, 0], d1[:, 1]),
+            math_each(math.atan2, d0[:, 1], d0[:, 0]), math_each(math.atan2, d1[:, 1], d1[:, 0]))
+
+
 def arcs_from_polar(r0: np.ndarray, r1: np.ndarray, th0: np.ndarray, th1: np.ndarray,
                     ccw: np.ndarray, turns: np.ndarray,
                     tol: float = END_POINT_REL_TOL) -> tuple[np.ndarray, ...]:
     """``(radius, theta0, sweep)`` of :func:`arc_through` of each row, from
     the polar radii and angles of its ends about its centre
-    (:func:`~ccopt.geometry.columns.polar_ends`), ``ccw`` and ``turns`` (as
+    (:func:`polar_ends`), ``ccw`` and ``turns`` (as
     floats): the same operations on each element; ``ValueError`` when it
     refuses one (not necessarily the first)."""
     bound = tol * np.where(r0 > 1.0, r0, 1.0)       # Python's max(1.0, R)

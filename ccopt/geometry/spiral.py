@@ -16,7 +16,7 @@ from itertools import repeat
 import numpy as np
 
 from ccopt.geometry.angles import sweep_between, sweep_sign, sweeps_between
-from ccopt.geometry.columns import math_each, paused_gc, polar_ends
+from ccopt.geometry.columns import math_each, paused_gc
 from ccopt.geometry.arclength import (
     END_POINT_REL_TOL, Point, as_point, clip_s, rotate_left, scalar_out, vector_out,
 )
@@ -383,7 +383,7 @@ def spirals_from_polar(r0: np.ndarray, r1: np.ndarray, th0: np.ndarray, th1: np.
                        tol: float = END_POINT_REL_TOL) -> tuple[np.ndarray, ...]:
     """``(rho0, rho1, theta0, sweep)`` of :func:`spiral_through` of each row,
     from the polar radii and angles of its ends about its centre
-    (:func:`~ccopt.geometry.columns.polar_ends`), ``ccw`` and ``turns`` (as
+    (:func:`~ccopt.geometry.primitives.polar_ends`), ``ccw`` and ``turns`` (as
     floats): the same operations on each element; ``ValueError`` when it
     refuses one (not necessarily the first)."""
     if (r0 <= 0.0).any() or (r1 <= 0.0).any() or (turns < 0).any():

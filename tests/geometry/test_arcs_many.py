@@ -1,6 +1,6 @@
 """The arcs of many circular moves worked out together
 (:func:`~ccopt.geometry.primitives.arcs_from_polar`, from
-:func:`~ccopt.geometry.columns.polar_ends`, with
+:func:`~ccopt.geometry.primitives.polar_ends`, with
 :func:`~ccopt.geometry.angles.sweeps_between`) are what
 :func:`~ccopt.geometry.primitives.arc_through` gives each, bit for bit, over
 seeded random arcs (either way round, full circles and near-full ones, extra
@@ -18,8 +18,7 @@ import numpy as np
 import pytest
 
 from ccopt.geometry.angles import sweep_between, sweeps_between
-from ccopt.geometry.columns import polar_ends
-from ccopt.geometry.primitives import arc_through, arcs_from_polar
+from ccopt.geometry.primitives import arc_through, arcs_from_polar, polar_ends
 from ccopt.program.gcode import read_gcode
 from ccopt.program.model import Program
 from ccopt.toolpath import programmed_path, programmed_segments

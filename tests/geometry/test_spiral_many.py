@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from ccopt.geometry import Spiral
-from ccopt.geometry.columns import polar_ends
+from ccopt.geometry.primitives import polar_ends
 from ccopt.geometry.spiral import spirals_from_polar
 
 
